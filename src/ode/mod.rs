@@ -1,0 +1,438 @@
+//! Time integration of M(t, y) y' = f(t, y), knowing nothing of disks or beams.
+//!
+//! A [`Problem`] supplies its size, right-hand side, mass matrix (identity unless it says
+//! otherwise), Jacobian (finite differences unless it has one) and event functions. [`solve`]
+//! drives a stepper over [t0, t_end]: step-size control on rtol/atol (or a fixed step, for
+//! measuring orders of convergence), dense output at the requested times, and events located on
+//! the dense output to [`EVENT_TIME_TOL`].
+
+mod dense;
+mod dopri5;
+mod trbdf2;
+
+use std::fmt;
+use std::time::Instant;
+
+use nalgebra::DMatrix;
+use serde::Serialize;
+
+pub use dense::LinearSolve;
+
+/// Events are located to this width of their bracket in time (s).
+pub const EVENT_TIME_TOL: f64 = 1e-10;
+
+/// An event g(t, y): the run is watched for g passing from ≥ 0 to < 0.
+#[derive(Clone, Copy, Debug)]
+pub struct EventSpec {
+    pub name: &'static str,
+    pub terminal: bool,
+}
+
+pub trait Problem {
+    fn dim(&self) -> usize;
+    fn rhs(&self, t: f64, y: &[f64], f: &mut [f64]);
+    /// M(t, y) of M y' = f; `None` is the identity.
+    fn mass(&self, _t: f64, _y: &[f64]) -> Option<DMatrix<f64>> {
+        None
+    }
+    /// ∂f/∂y in closed form, where the problem has one; otherwise finite differences are used.
+    fn jacobian(&self, _t: f64, _y: &[f64]) -> Option<DMatrix<f64>> {
+        None
+    }
+    fn events(&self) -> &[EventSpec] {
+        &[]
+    }
+    fn event(&self, _index: usize, _t: f64, _y: &[f64]) -> f64 {
+        1.0
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Method {
+    #[serde(rename = "dopri5")]
+    Dopri5,
+    #[serde(rename = "trbdf2")]
+    TrBdf2,
+}
+
+impl Method {
+    pub const ALL: [Method; 2] = [Method::Dopri5, Method::TrBdf2];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Dopri5 => "dopri5",
+            Method::TrBdf2 => "trbdf2",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Method> {
+        Method::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// Classical order of the propagated solution.
+    pub fn order(self) -> u32 {
+        match self {
+            Method::Dopri5 => 5,
+            Method::TrBdf2 => 2,
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Options {
+    pub method: Method,
+    pub rtol: f64,
+    pub atol: f64,
+    /// Take steps of exactly this size, with no error control.
+    pub fixed_step: Option<f64>,
+    pub max_steps: usize,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options { method: Method::Dopri5, rtol: 1e-6, atol: 1e-9, fixed_step: None, max_steps: 10_000_000 }
+    }
+}
+
+/// What a run did; every run reports it.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Stats {
+    pub steps: usize,
+    pub rejected: usize,
+    pub rhs_evals: usize,
+    pub jacobians: usize,
+    pub factorizations: usize,
+    pub newton_iterations: usize,
+    pub wall_s: f64,
+}
+
+#[derive(Clone, Debug)]
+pub struct EventHit {
+    pub index: usize,
+    pub name: &'static str,
+    pub t: f64,
+}
+
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    pub t: f64,
+    pub y: Vec<f64>,
+    pub stats: Stats,
+    /// The terminal event that ended the run early, if any.
+    pub stopped_by: Option<EventHit>,
+    /// Non-terminal events met on the way.
+    pub events: Vec<EventHit>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum SolveError {
+    StepSizeUnderflow { t: f64, h: f64 },
+    NewtonFailed { t: f64 },
+    NonFinite { t: f64 },
+    TooManySteps { t: f64, steps: usize },
+    SingularMatrix { t: f64 },
+}
+
+impl fmt::Display for SolveError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SolveError::StepSizeUnderflow { t, h } => {
+                write!(f, "the step size fell to {h:.3e} s at t = {t:.6} s: the solution is not smooth enough to follow there")
+            }
+            SolveError::NewtonFailed { t } => {
+                write!(f, "Newton iterations did not converge at t = {t:.6} s even with a fresh Jacobian and smaller steps")
+            }
+            SolveError::NonFinite { t } => write!(f, "the state became non-finite at t = {t:.6} s"),
+            SolveError::TooManySteps { t, steps } => {
+                write!(f, "gave up after {steps} steps at t = {t:.6} s; loosen rtol or shorten the run")
+            }
+            SolveError::SingularMatrix { t } => {
+                write!(f, "the mass (or iteration) matrix is singular at t = {t:.6} s")
+            }
+        }
+    }
+}
+
+impl std::error::Error for SolveError {}
+
+/// Receives the solution at output times and after every accepted step.
+pub trait Observer {
+    fn output(&mut self, t: f64, y: &[f64]);
+    fn step(&mut self, _t: f64, _y: &[f64]) {}
+}
+
+/// Step outcome of one attempt by a stepper.
+pub(crate) enum Attempt {
+    /// Accepted or not by the driver from `err` (weighted RMS norm, 1 = on tolerance).
+    Done { err: f64 },
+    /// The nonlinear solve failed even with a fresh Jacobian: retry with a smaller step.
+    NewtonFailed,
+}
+
+pub(crate) trait Stepper {
+    /// Exponent base for step-size control: the order of the error estimate.
+    fn error_order(&self) -> u32;
+    fn start(&mut self, p: &dyn Problem, t0: f64, y0: &[f64], ctx: &mut Ctx) -> Result<(), SolveError>;
+    /// Attempt a step of size h from (t, y); leaves the candidate in `y_new`.
+    fn attempt(&mut self, p: &dyn Problem, t: f64, y: &[f64], h: f64, ctx: &mut Ctx) -> Result<Attempt, SolveError>;
+    fn y_new(&self) -> &[f64];
+    /// Commit the last attempt as the new step start.
+    fn accept(&mut self);
+    /// Dense output inside the last accepted step [t_old, t_old + h].
+    fn interpolate(&self, t: f64, out: &mut [f64]);
+    /// Implicit methods keep a factorised iteration matrix valid while h stays put.
+    fn keep_step(&self, _h_old: f64, h_new: f64) -> f64 {
+        h_new
+    }
+}
+
+/// Shared per-run context: tolerances, statistics and the weighted error norm.
+pub(crate) struct Ctx {
+    pub rtol: f64,
+    pub atol: f64,
+    pub stats: Stats,
+}
+
+impl Ctx {
+    /// max_i |e_i| / (atol + rtol max(|a_i|, |b_i|)): every component within its tolerance, as
+    /// Matlab's solvers (and so the thesis) measure it.
+    pub fn norm(&self, e: &[f64], a: &[f64], b: &[f64]) -> f64 {
+        e.iter()
+            .zip(a.iter().zip(b))
+            .map(|(ei, (ai, bi))| (ei / (self.atol + self.rtol * ai.abs().max(bi.abs()))).abs())
+            .fold(0.0, |m, x| if x.is_nan() { f64::NAN } else { m.max(x) })
+    }
+
+    pub fn rhs(&mut self, p: &dyn Problem, t: f64, y: &[f64], f: &mut [f64]) {
+        self.stats.rhs_evals += 1;
+        p.rhs(t, y, f);
+    }
+
+    /// y' = M⁻¹ f.
+    pub fn derivative(&mut self, p: &dyn Problem, t: f64, y: &[f64], yp: &mut [f64]) -> Result<(), SolveError> {
+        self.rhs(p, t, y, yp);
+        if let Some(m) = p.mass(t, y) {
+            let lu = LinearSolve::factor(m).ok_or(SolveError::SingularMatrix { t })?;
+            lu.solve_in_place(yp);
+        }
+        Ok(())
+    }
+
+    /// ∂f/∂y: the problem's own, or forward differences scaled to each component.
+    pub fn jacobian(&mut self, p: &dyn Problem, t: f64, y: &[f64], f0: &[f64]) -> DMatrix<f64> {
+        self.stats.jacobians += 1;
+        if let Some(j) = p.jacobian(t, y) {
+            return j;
+        }
+        let n = y.len();
+        let mut j = DMatrix::zeros(n, n);
+        let mut yh = y.to_vec();
+        let mut fh = vec![0.0; n];
+        for c in 0..n {
+            let delta = f64::EPSILON.sqrt() * y[c].abs().max(self.atol / self.rtol.max(f64::EPSILON)).max(1e-8);
+            yh[c] = y[c] + delta;
+            self.rhs(p, t, &yh, &mut fh);
+            for r in 0..n {
+                j[(r, c)] = (fh[r] - f0[r]) / delta;
+            }
+            yh[c] = y[c];
+        }
+        j
+    }
+}
+
+fn make_stepper(method: Method, n: usize) -> Box<dyn Stepper> {
+    match method {
+        Method::Dopri5 => Box::new(dopri5::Dopri5::new(n)),
+        Method::TrBdf2 => Box::new(trbdf2::TrBdf2::new(n)),
+    }
+}
+
+/// Integrate from (t0, y0) to t_end, reporting at every time of `outputs` that the run reaches
+/// (sorted, within [t0, t_end]) and after every step.
+pub fn solve(
+    p: &dyn Problem,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    outputs: &[f64],
+    opts: &Options,
+    observer: &mut dyn Observer,
+) -> Result<Outcome, SolveError> {
+    let clock = Instant::now();
+    let n = p.dim();
+    let mut ctx = Ctx { rtol: opts.rtol, atol: opts.atol, stats: Stats::default() };
+    let mut stepper = make_stepper(opts.method, n);
+    let specs = p.events();
+    let mut t = t0;
+    let mut y = y0.to_vec();
+    let mut next_out = outputs.partition_point(|&o| o < t0);
+    let mut events = Vec::new();
+    let finish = |t: f64, y: Vec<f64>, mut ctx: Ctx, stopped_by, events| {
+        ctx.stats.wall_s = clock.elapsed().as_secs_f64();
+        Ok(Outcome { t, y, stats: ctx.stats, stopped_by, events })
+    };
+
+    let mut g: Vec<f64> = (0..specs.len()).map(|i| p.event(i, t, &y)).collect();
+    while next_out < outputs.len() && outputs[next_out] <= t0 {
+        observer.output(t0, &y);
+        next_out += 1;
+    }
+    if let Some(i) = (0..specs.len()).find(|&i| specs[i].terminal && g[i] < 0.0) {
+        let hit = EventHit { index: i, name: specs[i].name, t };
+        return finish(t, y, ctx, Some(hit), events);
+    }
+
+    stepper.start(p, t0, y0, &mut ctx)?;
+    let mut h = match opts.fixed_step {
+        Some(h) => h,
+        None => initial_step(p, t0, y0, t_end, stepper.error_order(), &mut ctx)?,
+    };
+    let h_min = 1e-14 * t0.abs().max(t_end.abs()).max(1.0);
+    let mut y_tmp = vec![0.0; n];
+    let mut just_rejected = false;
+
+    while t < t_end {
+        if ctx.stats.steps >= opts.max_steps {
+            return Err(SolveError::TooManySteps { t, steps: ctx.stats.steps });
+        }
+        let last = t + h >= t_end - h_min;
+        let h_try = if last { t_end - t } else { h };
+        let attempt = stepper.attempt(p, t, &y, h_try, &mut ctx)?;
+        let err = match attempt {
+            Attempt::Done { err } => err,
+            Attempt::NewtonFailed => {
+                if opts.fixed_step.is_some() {
+                    return Err(SolveError::NewtonFailed { t });
+                }
+                ctx.stats.rejected += 1;
+                h = h_try * 0.25;
+                if h < h_min {
+                    return Err(SolveError::NewtonFailed { t });
+                }
+                continue;
+            }
+        };
+        if !err.is_finite() && opts.fixed_step.is_some() {
+            return Err(SolveError::NonFinite { t });
+        }
+        let q = stepper.error_order() as f64;
+        if opts.fixed_step.is_none() && !(err <= 1.0) {
+            ctx.stats.rejected += 1;
+            just_rejected = true;
+            let factor = if err.is_finite() { (0.9 * err.powf(-1.0 / (q + 1.0))).clamp(0.2, 1.0) } else { 0.2 };
+            h = h_try * factor;
+            if h < h_min {
+                return Err(SolveError::StepSizeUnderflow { t, h });
+            }
+            continue;
+        }
+        if stepper.y_new().iter().any(|v| !v.is_finite()) {
+            return Err(SolveError::NonFinite { t: t + h_try });
+        }
+        stepper.accept();
+        ctx.stats.steps += 1;
+        let t_new = if last { t_end } else { t + h_try };
+
+        // Earliest sign change from ≥ 0 to < 0 in this step, located on the dense output.
+        let mut first: Option<(usize, f64)> = None;
+        let mut g_new = vec![0.0; specs.len()];
+        for i in 0..specs.len() {
+            g_new[i] = p.event(i, t_new, stepper.y_new());
+            if g[i] >= 0.0 && g_new[i] < 0.0 {
+                let te = locate(|tt| {
+                    stepper.interpolate(tt, &mut y_tmp);
+                    p.event(i, tt, &y_tmp)
+                }, t, g[i], t_new, g_new[i]);
+                if specs[i].terminal {
+                    if first.is_none_or(|(_, tf)| te < tf) {
+                        first = Some((i, te));
+                    }
+                } else {
+                    events.push(EventHit { index: i, name: specs[i].name, t: te });
+                }
+            }
+        }
+        let t_stop = first.map_or(t_new, |(_, te)| te);
+        while next_out < outputs.len() && outputs[next_out] <= t_stop {
+            stepper.interpolate(outputs[next_out], &mut y_tmp);
+            observer.output(outputs[next_out], &y_tmp);
+            next_out += 1;
+        }
+        if let Some((i, te)) = first {
+            stepper.interpolate(te, &mut y_tmp);
+            observer.step(te, &y_tmp);
+            let hit = EventHit { index: i, name: specs[i].name, t: te };
+            return finish(te, y_tmp, ctx, Some(hit), events);
+        }
+        t = t_new;
+        y.copy_from_slice(stepper.y_new());
+        g = g_new;
+        observer.step(t, &y);
+        if opts.fixed_step.is_none() {
+            // No growth straight after a rejection (Hairer & Wanner II.4).
+            let grow = if just_rejected { 1.0 } else { 5.0 };
+            let factor = (0.9 * err.max(1e-10).powf(-1.0 / (q + 1.0))).clamp(0.2, grow);
+            h = stepper.keep_step(h_try, h_try * factor);
+            just_rejected = false;
+        }
+    }
+    finish(t, y, ctx, None, events)
+}
+
+/// Illinois (modified regula falsi) on g over [a, b] with g(a) ≥ 0 > g(b).
+fn locate(mut g: impl FnMut(f64) -> f64, mut a: f64, mut ga: f64, mut b: f64, mut gb: f64) -> f64 {
+    if ga == 0.0 {
+        return a;
+    }
+    let mut side = 0;
+    for _ in 0..200 {
+        if b - a <= EVENT_TIME_TOL {
+            break;
+        }
+        let mut c = b - gb * (b - a) / (gb - ga);
+        if !(c > a && c < b) {
+            c = 0.5 * (a + b);
+        }
+        let gc = g(c);
+        if gc >= 0.0 {
+            a = c;
+            ga = gc;
+            if side == 1 {
+                gb *= 0.5;
+            }
+            side = 1;
+        } else {
+            b = c;
+            gb = gc;
+            if side == -1 {
+                ga *= 0.5;
+            }
+            side = -1;
+        }
+    }
+    // The first time known to be past the crossing: the event has happened by then.
+    b
+}
+
+/// Hairer–Wanner's starting step from the size of y, y' and an estimate of y''.
+fn initial_step(p: &dyn Problem, t0: f64, y0: &[f64], t_end: f64, order: u32, ctx: &mut Ctx) -> Result<f64, SolveError> {
+    let n = y0.len();
+    let mut f0 = vec![0.0; n];
+    ctx.derivative(p, t0, y0, &mut f0)?;
+    let zero = vec![0.0; n];
+    let d0 = ctx.norm(y0, y0, &zero);
+    let d1 = ctx.norm(&f0, y0, &zero);
+    let h0 = if d0 < 1e-5 || d1 < 1e-5 { 1e-6 } else { 0.01 * d0 / d1 };
+    let y1: Vec<f64> = y0.iter().zip(&f0).map(|(y, f)| y + h0 * f).collect();
+    let mut f1 = vec![0.0; n];
+    ctx.derivative(p, t0 + h0, &y1, &mut f1)?;
+    let df: Vec<f64> = f1.iter().zip(&f0).map(|(a, b)| a - b).collect();
+    let d2 = ctx.norm(&df, y0, &zero) / h0;
+    let h1 = if d1.max(d2) <= 1e-15 {
+        (h0 * 1e-3).max(1e-6)
+    } else {
+        (0.01 / d1.max(d2)).powf(1.0 / (order as f64 + 1.0))
+    };
+    Ok((100.0 * h0).min(h1).min(t_end - t0))
+}

@@ -1,0 +1,182 @@
+//! A disk rolling without slip on a rigid curve, in two formulations that must agree:
+//! [`thesis`], the 6-unknown mass-matrix system of thesis Table 1, and [`minimal`], one degree of
+//! freedom s with the centre on the offset curve. Both report the same [`DiskObservation`] and
+//! watch the same physical events.
+
+pub mod minimal;
+pub mod thesis;
+
+use crate::curve::{Curve, CurvePoint};
+use crate::disk::Disk;
+use crate::ode::{EventSpec, Problem};
+
+/// Everything a run reports about the disk at one instant.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DiskObservation {
+    pub s: f64,
+    /// Centre position and velocity, global.
+    pub x: f64,
+    pub y: f64,
+    pub vx: f64,
+    pub vy: f64,
+    /// Absolute angular velocity (Ω < 0 rolls towards +s).
+    pub omega: f64,
+    /// Rotation of the disk relative to the tangent frame (thesis φ).
+    pub phi: f64,
+    /// Contact force on the disk: along the track tangent, and along the left normal (positive
+    /// pushes the disk off the track).
+    pub rt: f64,
+    pub rn: f64,
+    pub kinetic: f64,
+    pub potential: f64,
+}
+
+/// A rolling model the run can drive: an ODE problem that also knows its initial state and
+/// what its state means.
+pub trait RollingModel: Problem {
+    fn initial_state(&self) -> Vec<f64>;
+    fn observe(&self, t: f64, y: &[f64]) -> DiskObservation;
+    fn formulation(&self) -> &'static str;
+}
+
+/// Where the disk stops being a disk rolling on this track.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StopReason {
+    ContactLost,
+    Slip,
+    NoFit,
+    LeftTrack,
+}
+
+impl StopReason {
+    pub fn name(self) -> &'static str {
+        match self {
+            StopReason::ContactLost => "contact-lost",
+            StopReason::Slip => "slip",
+            StopReason::NoFit => "no-fit",
+            StopReason::LeftTrack => "left-track",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<StopReason> {
+        [StopReason::ContactLost, StopReason::Slip, StopReason::NoFit, StopReason::LeftTrack]
+            .into_iter()
+            .find(|r| r.name() == name)
+    }
+}
+
+/// The disk is taken not to fit once 1 − aκ falls below this: the offset curve is about to
+/// turn singular and ṡ = v / (|r'| (1 − aκ)) to blow up.
+pub const FIT_MARGIN: f64 = 1e-6;
+
+/// The rolling setting shared by both formulations.
+#[derive(Clone, Debug)]
+pub struct Rolling {
+    pub curve: Curve,
+    pub disk: Disk,
+    pub gravity: f64,
+    pub s0: f64,
+    pub omega0: f64,
+    pub mu: Option<f64>,
+    specs: Vec<EventSpec>,
+    reasons: Vec<StopReason>,
+}
+
+impl Rolling {
+    pub fn new(curve: Curve, disk: Disk, gravity: f64, s0: f64, omega0: f64, mu: Option<f64>) -> Self {
+        let mut reasons = vec![StopReason::ContactLost, StopReason::NoFit];
+        if mu.is_some() {
+            reasons.push(StopReason::Slip);
+        }
+        if curve.domain().is_some() {
+            reasons.push(StopReason::LeftTrack);
+        }
+        let specs = reasons.iter().map(|r| EventSpec { name: r.name(), terminal: true }).collect();
+        Rolling { curve, disk, gravity, s0, omega0, mu, specs, reasons }
+    }
+
+    pub fn event_specs(&self) -> &[EventSpec] {
+        &self.specs
+    }
+
+    /// g ≥ 0 while the disk rolls; the event fires where g turns negative.
+    pub fn event_value(&self, index: usize, obs: &DiskObservation) -> f64 {
+        match self.reasons[index] {
+            StopReason::ContactLost => obs.rn,
+            StopReason::Slip => self.mu.unwrap_or(f64::INFINITY) * obs.rn - obs.rt.abs(),
+            StopReason::NoFit => {
+                let p = self.curve.at(obs.s);
+                1.0 - self.disk.radius * p.curvature() - FIT_MARGIN
+            }
+            StopReason::LeftTrack => {
+                let (lo, hi) = self.curve.domain().unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+                (obs.s - lo).min(hi - obs.s)
+            }
+        }
+    }
+
+    /// Centre of the disk touching the curve at p: r + a e_n.
+    pub fn centre(&self, p: &CurvePoint) -> [f64; 2] {
+        let n = p.normal();
+        [p.r[0] + self.disk.radius * n[0], p.r[1] + self.disk.radius * n[1]]
+    }
+
+    /// Initial centre speed along the tangent, from the no-slip condition v + aΩ = 0.
+    pub fn v0(&self) -> f64 {
+        -self.disk.radius * self.omega0
+    }
+
+    /// Contact forces from Newton's law for the centre in the tangent frame (thesis (3.6), with
+    /// erratum 2): R_t = m v̇ + m g e_tY, R_n = m v ψ' ṡ + m g e_tX.
+    pub fn reactions(&self, p: &CurvePoint, v: f64, vdot: f64, sdot: f64) -> (f64, f64) {
+        let m = self.disk.mass;
+        let t = p.tangent();
+        let rt = m * vdot + m * self.gravity * t[1];
+        let rn = m * v * p.psi_prime() * sdot + m * self.gravity * t[0];
+        (rt, rn)
+    }
+
+    pub fn energies(&self, v: f64, omega: f64, centre_y: f64) -> (f64, f64) {
+        let kinetic = 0.5 * self.disk.mass * v * v + 0.5 * self.disk.inertia() * omega * omega;
+        (kinetic, self.disk.mass * self.gravity * centre_y)
+    }
+
+    /// Scan every point the disk could reach with its initial energy and fail where the disk
+    /// does not fit the curve (1 − aκ ≤ 0). Returns the parameter of the first such point.
+    pub fn first_unfit_point(&self) -> Option<f64> {
+        let a = self.disk.radius;
+        let fits = |s: f64| 1.0 - a * self.curve.at(s).curvature() > 0.0;
+        if !fits(self.s0) {
+            return Some(self.s0);
+        }
+        let start = self.curve.at(self.s0);
+        let g = self.gravity;
+        let reach_height = if g > 0.0 {
+            self.centre(&start)[1] + 0.5 * self.disk.rolling_mass() / self.disk.mass * self.v0().powi(2) / g
+        } else {
+            f64::INFINITY
+        };
+        let (lo, hi) = self.curve.domain().unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+        const SAMPLES: usize = 200_000;
+        for dir in [-1.0, 1.0] {
+            let mut s = self.s0;
+            for _ in 0..SAMPLES {
+                // Steps a fraction of the smaller of the disk radius and the local radius of
+                // curvature, so that a curvature peak cannot be stepped over.
+                let p = self.curve.at(s);
+                let ds = 0.02 * a.min(1.0 / p.curvature().abs().max(1e-12)) / p.speed();
+                s += dir * ds;
+                if s < lo || s > hi {
+                    break;
+                }
+                if !fits(s) {
+                    return Some(s);
+                }
+                if self.centre(&self.curve.at(s))[1] > reach_height {
+                    break;
+                }
+            }
+        }
+        None
+    }
+}
