@@ -5,3 +5,8 @@ pub mod curve;
 pub mod ode;
 pub mod disk;
 pub mod rolling;
+pub mod error;
+pub mod scene;
+pub mod output;
+pub mod run;
+pub mod studies;

@@ -1,1 +1,139 @@
-fn main() {}
+//! The `rollbeam` command line: run, check, static, modes, studies.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use rollbeam::error::Error;
+use rollbeam::ode::Method;
+use rollbeam::run::{self, Overrides};
+use rollbeam::scene::{method_names, Scene};
+use rollbeam::{output, studies};
+
+#[derive(Parser)]
+#[command(name = "rollbeam", version, about = "A rigid disk rolling without slip on a rigid curve or a Reissner beam")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run one scene and write summary.yaml, history.csv and figures.
+    Run {
+        scene: PathBuf,
+        /// Output folder (default out/<scene name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Integrator: dopri5 or trbdf2.
+        #[arg(long)]
+        method: Option<String>,
+        #[arg(long)]
+        rtol: Option<f64>,
+        #[arg(long)]
+        atol: Option<f64>,
+    },
+    /// Validate a scene and print the model it would build; runs nothing.
+    Check { scene: PathBuf },
+    /// Static equilibrium of a beam scene.
+    Static {
+        scene: PathBuf,
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Natural frequencies and mode shapes of a beam scene.
+    Modes {
+        scene: PathBuf,
+        #[arg(long)]
+        count: Option<usize>,
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Rerun every scene under studies/ and regenerate the report's figures.
+    Studies {
+        /// Folder for the runs (default out).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand) {
+                let _ = e.print();
+                return ExitCode::SUCCESS;
+            }
+            let text = e.to_string();
+            let first = text.lines().next().unwrap_or("invalid command line").trim_start_matches("error: ");
+            eprintln!("rollbeam: {first} (see rollbeam --help)");
+            return ExitCode::from(1);
+        }
+    };
+    match dispatch(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("rollbeam: {e}");
+            ExitCode::from(e.exit_code() as u8)
+        }
+    }
+}
+
+fn positive(value: Option<f64>, flag: &str) -> Result<Option<f64>, Error> {
+    match value {
+        Some(v) if !(v > 0.0 && v.is_finite()) => Err(Error::Input(format!("{flag} must be a positive number (got {v})"))),
+        v => Ok(v),
+    }
+}
+
+fn dispatch(command: Command) -> Result<(), Error> {
+    match command {
+        Command::Run { scene, out, method, rtol, atol } => {
+            let scene = Scene::load(&scene)?;
+            let method = match method {
+                None => None,
+                Some(m) => Some(Method::from_name(&m).ok_or_else(|| Error::Input(format!("--method '{m}' is unknown; use one of {}", method_names())))?),
+            };
+            let over = Overrides { method, rtol: positive(rtol, "--rtol")?, atol: positive(atol, "--atol")?, fixed_step: None };
+            let result = run::run(&scene, &over, true)?;
+            let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
+            output::write_all(&result, &dir)?;
+            let d = &result.last.disk;
+            println!("{}: {}", scene.name, result.stop.sentence(result.last.t));
+            println!("  disk at s = {:.6}, centre ({:.6}, {:.6}) m, velocity ({:.6}, {:.6}) m/s, Ω = {:.6} 1/s", d.s, d.x, d.y, d.vx, d.vy, d.omega);
+            println!("  energy drift {:.2e} (relative)", result.energy.max_rel_drift());
+            let s = &result.stats;
+            println!(
+                "  {} rtol {:e} atol {:e}: {} steps, {} rejected, {} rhs evaluations, {} Jacobians, {} factorisations, {:.3} s",
+                result.method.name(), result.rtol, result.atol, s.steps, s.rejected, s.rhs_evals, s.jacobians, s.factorizations, s.wall_s
+            );
+            println!("  wrote {}", dir.display());
+            Ok(())
+        }
+        Command::Check { scene } => {
+            let scene = Scene::load(&scene)?;
+            let r = &scene.rolling;
+            let model = run::model(&scene);
+            println!("scene {}: valid", scene.name);
+            println!("  track: rigid {} curve{}", r.curve.kind(), r.curve.domain().map_or(String::new(), |(a, b)| format!(", s in [{a}, {b}]")));
+            println!("  disk: m = {} kg, a = {} m, C = {} kg m², s0 = {}, Ω0 = {} 1/s{}", r.disk.mass, r.disk.radius, r.disk.inertia(), r.s0, r.omega0, r.mu.map_or(String::new(), |m| format!(", mu = {m}")));
+            println!("  model: {} formulation, {} unknowns", scene.formulation.name(), model.initial_state().len());
+            println!("  solver: {} rtol {:e} atol {:e}; duration {} s, output every {} s", scene.solver.method.name(), scene.solver.rtol, scene.solver.atol, scene.duration, scene.interval);
+            Ok(())
+        }
+        Command::Static { scene, .. } | Command::Modes { scene, .. } => {
+            Scene::load(&scene)?;
+            Err(Error::Input(format!("{}: `static` and `modes` need a beam track; this scene has a rigid curve", scene.display())))
+        }
+        Command::Studies { out } => {
+            let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+            let here = if Path::new("studies").is_dir() { Path::new(".") } else { root };
+            let out = out.unwrap_or_else(|| here.join("out"));
+            studies::run_all(&here.join("studies"), &out, &here.join("report").join("figures"))?;
+            Ok(())
+        }
+    }
+}

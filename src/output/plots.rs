@@ -1,0 +1,163 @@
+//! SVG figures of a run: the disk drawn on the track at a few times (thesis figure 7) and the
+//! disk quantities against time (figures 8–11), plus the energy error.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use crate::error::Error;
+use crate::run::{Row, RunResult};
+
+type Series<'a> = (&'a str, Vec<(f64, f64)>);
+
+const PALETTE: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+];
+
+fn plot_error(path: &Path, e: impl std::fmt::Display) -> Error {
+    Error::Output(format!("cannot draw {}: {e}", path.display()))
+}
+
+/// Padded range of all y values of the series.
+fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values.filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    if !lo.is_finite() {
+        return (-1.0, 1.0);
+    }
+    let pad = ((hi - lo) * 0.05).max(1e-12 + 1e-9 * hi.abs().max(lo.abs()));
+    (lo - pad, hi + pad)
+}
+
+/// One chart with several named lines against a shared x axis.
+pub fn line_chart(path: &Path, title: &str, x_desc: &str, y_desc: &str, series: &[Series]) -> Result<(), Error> {
+    let err = |e: &dyn std::fmt::Display| plot_error(path, e);
+    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(&e))?;
+    let (x0, x1) = range(series.iter().flat_map(|s| s.1.iter().map(|p| p.0)));
+    let (y0, y1) = range(series.iter().flat_map(|s| s.1.iter().map(|p| p.1)));
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(75)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|e| err(&e))?;
+    chart.configure_mesh().x_desc(x_desc).y_desc(y_desc).draw().map_err(|e| err(&e))?;
+    for (i, (name, pts)) in series.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
+        chart
+            .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))
+            .map_err(|e| err(&e))?
+            .label(*name)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+    }
+    if series.len() > 1 {
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| err(&e))?;
+    }
+    root.present().map_err(|e| err(&e))
+}
+
+fn series<'a>(rows: &[Row], name: &'a str, f: impl Fn(&Row) -> f64) -> Series<'a> {
+    (name, rows.iter().map(|r| (r.t, f(r))).collect())
+}
+
+/// The track with the disk drawn at `count` evenly spaced output times, equal axis scales.
+pub fn track_figure(r: &RunResult, path: &Path, count: usize) -> Result<(), Error> {
+    let err = |e: &dyn std::fmt::Display| plot_error(path, e);
+    let rolling = &r.scene.rolling;
+    let a = rolling.disk.radius;
+    let (s_lo, s_hi) = r.rows.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), row| (lo.min(row.disk.s), hi.max(row.disk.s)));
+    let span = (s_hi - s_lo).max(4.0 * a);
+    let (mut lo, mut hi) = (s_lo - 0.1 * span, s_hi + 0.1 * span);
+    if let Some((d_lo, d_hi)) = rolling.curve.domain() {
+        lo = lo.max(d_lo);
+        hi = hi.min(d_hi);
+    }
+    let track: Vec<(f64, f64)> = (0..=400).map(|i| {
+        let p = rolling.curve.at(lo + (hi - lo) * i as f64 / 400.0);
+        (p.r[0], p.r[1])
+    }).collect();
+    let picks: Vec<&Row> = (0..count).map(|k| &r.rows[k * (r.rows.len() - 1) / (count - 1).max(1)]).collect();
+    let xs = track.iter().map(|p| p.0).chain(picks.iter().flat_map(|row| [row.disk.x - a, row.disk.x + a]));
+    let ys = track.iter().map(|p| p.1).chain(picks.iter().flat_map(|row| [row.disk.y - a, row.disk.y + a]));
+    let (mut x0, mut x1) = range(xs);
+    let (mut y0, mut y1) = range(ys);
+    // Equal scales on both axes so the disk stays round.
+    let (w, h) = (900.0, 620.0);
+    let scale = ((x1 - x0) / w).max((y1 - y0) / h);
+    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    (x0, x1) = (cx - scale * w / 2.0, cx + scale * w / 2.0);
+    (y0, y1) = (cy - scale * h / 2.0, cy + scale * h / 2.0);
+
+    let root = SVGBackend::new(path, (900 + 90, 620 + 80)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(&e))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(format!("{}: the disk at {count} times", r.scene.name), ("sans-serif", 22))
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(50)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|e| err(&e))?;
+    chart.configure_mesh().x_desc("X (m)").y_desc("Y (m)").draw().map_err(|e| err(&e))?;
+    chart.draw_series(LineSeries::new(track, BLACK.stroke_width(2))).map_err(|e| err(&e))?;
+    for (k, row) in picks.iter().enumerate() {
+        let color = PALETTE[k % PALETTE.len()];
+        let d = &row.disk;
+        let rim: Vec<(f64, f64)> = (0..=72).map(|i| {
+            let th = i as f64 * std::f64::consts::TAU / 72.0;
+            (d.x + a * th.cos(), d.y + a * th.sin())
+        }).collect();
+        chart.draw_series(LineSeries::new(rim, color.stroke_width(2))).map_err(|e| err(&e))?;
+        // A spoke fixed in the disk: at φ = 0 it points to the contact point.
+        let tangent = rolling.curve.at(d.s).tangent();
+        let angle = tangent[1].atan2(tangent[0]) - std::f64::consts::FRAC_PI_2 + d.phi;
+        let spoke = vec![(d.x, d.y), (d.x + a * angle.cos(), d.y + a * angle.sin())];
+        chart.draw_series(LineSeries::new(spoke, color.stroke_width(2))).map_err(|e| err(&e))?;
+        chart
+            .draw_series(std::iter::once(Text::new(format!("{:.2} s", row.t), (d.x, d.y + 1.25 * a), ("sans-serif", 14).into_font().color(&color))))
+            .map_err(|e| err(&e))?;
+    }
+    root.present().map_err(|e| err(&e))
+}
+
+/// Every figure of a rigid-track run.
+pub fn all(r: &RunResult, dir: &Path) -> Result<(), Error> {
+    let rows = &r.rows;
+    let name = &r.scene.name;
+    track_figure(r, &dir.join("track.svg"), 8)?;
+    line_chart(
+        &dir.join("velocities.svg"),
+        &format!("{name}: centre velocity"),
+        "t (s)",
+        "v (m/s)",
+        &[series(rows, "vx", |r| r.disk.vx), series(rows, "vy", |r| r.disk.vy)],
+    )?;
+    line_chart(&dir.join("omega.svg"), &format!("{name}: angular velocity"), "t (s)", "Ω (1/s)", &[series(rows, "Ω", |r| r.disk.omega)])?;
+    line_chart(
+        &dir.join("reactions.svg"),
+        &format!("{name}: contact force on the disk"),
+        "t (s)",
+        "R (N)",
+        &[series(rows, "R_t (tangential)", |r| r.disk.rt), series(rows, "R_n (normal)", |r| r.disk.rn)],
+    )?;
+    let e0 = r.energy.initial;
+    let scale = r.energy.scale.max(f64::MIN_POSITIVE);
+    line_chart(
+        &dir.join("energy.svg"),
+        &format!("{name}: energy error (E(t) − E(0)) / max(|K| + |V|)"),
+        "t (s)",
+        "relative error",
+        &[series(rows, "energy error", |r| (r.energy() - e0) / scale)],
+    )
+}
