@@ -2,11 +2,11 @@
 //! beam. See README.md for the scene format and REPORT.md for what the studies show.
 
 pub mod curve;
-pub mod ode;
 pub mod disk;
-pub mod rolling;
 pub mod error;
-pub mod scene;
+pub mod ode;
 pub mod output;
+pub mod rolling;
 pub mod run;
+pub mod scene;
 pub mod studies;

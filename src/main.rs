@@ -12,7 +12,11 @@ use rollbeam::scene::{method_names, Scene};
 use rollbeam::{output, studies};
 
 #[derive(Parser)]
-#[command(name = "rollbeam", version, about = "A rigid disk rolling without slip on a rigid curve or a Reissner beam")]
+#[command(
+    name = "rollbeam",
+    version,
+    about = "A rigid disk rolling without slip on a rigid curve or a Reissner beam"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -29,9 +33,9 @@ enum Command {
         /// Integrator: dopri5 or trbdf2.
         #[arg(long)]
         method: Option<String>,
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         rtol: Option<f64>,
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         atol: Option<f64>,
     },
     /// Validate a scene and print the model it would build; runs nothing.
@@ -63,13 +67,26 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => {
             use clap::error::ErrorKind;
-            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand) {
+            if matches!(
+                e.kind(),
+                ErrorKind::DisplayHelp
+                    | ErrorKind::DisplayVersion
+                    | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+            ) {
                 let _ = e.print();
                 return ExitCode::SUCCESS;
             }
+            // clap's message spans several lines; keep the part before its usage block.
             let text = e.to_string();
-            let first = text.lines().next().unwrap_or("invalid command line").trim_start_matches("error: ");
-            eprintln!("rollbeam: {first} (see rollbeam --help)");
+            let sentence: Vec<&str> = text
+                .lines()
+                .map(str::trim)
+                .take_while(|l| !l.is_empty() && !l.starts_with("Usage:"))
+                .collect();
+            eprintln!(
+                "rollbeam: {} (see rollbeam --help)",
+                sentence.join(" ").trim_start_matches("error: ")
+            );
             return ExitCode::from(1);
         }
     };
@@ -84,27 +101,48 @@ fn main() -> ExitCode {
 
 fn positive(value: Option<f64>, flag: &str) -> Result<Option<f64>, Error> {
     match value {
-        Some(v) if !(v > 0.0 && v.is_finite()) => Err(Error::Input(format!("{flag} must be a positive number (got {v})"))),
+        Some(v) if !(v > 0.0 && v.is_finite()) => Err(Error::Input(format!(
+            "{flag} must be a positive number (got {v})"
+        ))),
         v => Ok(v),
     }
 }
 
 fn dispatch(command: Command) -> Result<(), Error> {
     match command {
-        Command::Run { scene, out, method, rtol, atol } => {
+        Command::Run {
+            scene,
+            out,
+            method,
+            rtol,
+            atol,
+        } => {
             let scene = Scene::load(&scene)?;
             let method = match method {
                 None => None,
-                Some(m) => Some(Method::from_name(&m).ok_or_else(|| Error::Input(format!("--method '{m}' is unknown; use one of {}", method_names())))?),
+                Some(m) => Some(Method::from_name(&m).ok_or_else(|| {
+                    Error::Input(format!(
+                        "--method '{m}' is unknown; use one of {}",
+                        method_names()
+                    ))
+                })?),
             };
-            let over = Overrides { method, rtol: positive(rtol, "--rtol")?, atol: positive(atol, "--atol")?, fixed_step: None };
+            let over = Overrides {
+                method,
+                rtol: positive(rtol, "--rtol")?,
+                atol: positive(atol, "--atol")?,
+                fixed_step: None,
+            };
             let result = run::run(&scene, &over, true)?;
             let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
             output::write_all(&result, &dir)?;
             let d = &result.last.disk;
             println!("{}: {}", scene.name, result.stop.sentence(result.last.t));
             println!("  disk at s = {:.6}, centre ({:.6}, {:.6}) m, velocity ({:.6}, {:.6}) m/s, Ω = {:.6} 1/s", d.s, d.x, d.y, d.vx, d.vy, d.omega);
-            println!("  energy drift {:.2e} (relative)", result.energy.max_rel_drift());
+            println!(
+                "  energy drift {:.2e} (relative)",
+                result.energy.max_rel_drift()
+            );
             let s = &result.stats;
             println!(
                 "  {} rtol {:e} atol {:e}: {} steps, {} rejected, {} rhs evaluations, {} Jacobians, {} factorisations, {:.3} s",
@@ -118,21 +156,57 @@ fn dispatch(command: Command) -> Result<(), Error> {
             let r = &scene.rolling;
             let model = run::model(&scene);
             println!("scene {}: valid", scene.name);
-            println!("  track: rigid {} curve{}", r.curve.kind(), r.curve.domain().map_or(String::new(), |(a, b)| format!(", s in [{a}, {b}]")));
-            println!("  disk: m = {} kg, a = {} m, C = {} kg m², s0 = {}, Ω0 = {} 1/s{}", r.disk.mass, r.disk.radius, r.disk.inertia(), r.s0, r.omega0, r.mu.map_or(String::new(), |m| format!(", mu = {m}")));
-            println!("  model: {} formulation, {} unknowns", scene.formulation.name(), model.initial_state().len());
-            println!("  solver: {} rtol {:e} atol {:e}; duration {} s, output every {} s", scene.solver.method.name(), scene.solver.rtol, scene.solver.atol, scene.duration, scene.interval);
+            println!(
+                "  track: rigid {} curve{}",
+                r.curve.kind(),
+                r.curve
+                    .domain()
+                    .map_or(String::new(), |(a, b)| format!(", s in [{a}, {b}]"))
+            );
+            println!(
+                "  disk: m = {} kg, a = {} m, C = {} kg m², s0 = {}, Ω0 = {} 1/s{}",
+                r.disk.mass,
+                r.disk.radius,
+                r.disk.inertia(),
+                r.s0,
+                r.omega0,
+                r.mu.map_or(String::new(), |m| format!(", mu = {m}"))
+            );
+            println!(
+                "  model: {} formulation, {} unknowns",
+                scene.formulation.name(),
+                model.initial_state().len()
+            );
+            println!(
+                "  solver: {} rtol {:e} atol {:e}; duration {} s, output every {} s",
+                scene.solver.method.name(),
+                scene.solver.rtol,
+                scene.solver.atol,
+                scene.duration,
+                scene.interval
+            );
             Ok(())
         }
         Command::Static { scene, .. } | Command::Modes { scene, .. } => {
             Scene::load(&scene)?;
-            Err(Error::Input(format!("{}: `static` and `modes` need a beam track; this scene has a rigid curve", scene.display())))
+            Err(Error::Input(format!(
+                "{}: `static` and `modes` need a beam track; this scene has a rigid curve",
+                scene.display()
+            )))
         }
         Command::Studies { out } => {
             let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-            let here = if Path::new("studies").is_dir() { Path::new(".") } else { root };
+            let here = if Path::new("studies").is_dir() {
+                Path::new(".")
+            } else {
+                root
+            };
             let out = out.unwrap_or_else(|| here.join("out"));
-            studies::run_all(&here.join("studies"), &out, &here.join("report").join("figures"))?;
+            studies::run_all(
+                &here.join("studies"),
+                &out,
+                &here.join("report").join("figures"),
+            )?;
             Ok(())
         }
     }

@@ -64,7 +64,12 @@ pub struct EnergyCheck {
 impl EnergyCheck {
     fn new(d: &DiskObservation) -> Self {
         let e = d.kinetic + d.potential;
-        EnergyCheck { initial: e, last: e, max_abs_drift: 0.0, scale: d.kinetic.abs() + d.potential.abs() }
+        EnergyCheck {
+            initial: e,
+            last: e,
+            max_abs_drift: 0.0,
+            scale: d.kinetic.abs() + d.potential.abs(),
+        }
     }
 
     fn record(&mut self, d: &DiskObservation) {
@@ -75,7 +80,11 @@ impl EnergyCheck {
     }
 
     pub fn max_rel_drift(&self) -> f64 {
-        if self.scale > 0.0 { self.max_abs_drift / self.scale } else { 0.0 }
+        if self.scale > 0.0 {
+            self.max_abs_drift / self.scale
+        } else {
+            0.0
+        }
     }
 }
 
@@ -104,8 +113,12 @@ pub struct Overrides {
 
 pub fn model(scene: &Scene) -> Box<dyn RollingModel> {
     match scene.formulation {
-        Formulation::Minimal => Box::new(Minimal { rolling: scene.rolling.clone() }),
-        Formulation::Thesis => Box::new(Thesis { rolling: scene.rolling.clone() }),
+        Formulation::Minimal => Box::new(Minimal {
+            rolling: scene.rolling.clone(),
+        }),
+        Formulation::Thesis => Box::new(Thesis {
+            rolling: scene.rolling.clone(),
+        }),
     }
 }
 
@@ -135,7 +148,12 @@ impl Progress {
                 .expect("the template is valid"),
         );
         bar.set_message(format!("0 / {duration}"));
-        Some(Progress { bar, started: Instant::now(), shown: false, duration })
+        Some(Progress {
+            bar,
+            started: Instant::now(),
+            shown: false,
+            duration,
+        })
     }
 
     fn update(&mut self, t: f64) {
@@ -171,7 +189,13 @@ pub fn run(scene: &Scene, over: &Overrides, show_progress: bool) -> Result<RunRe
     let method = over.method.unwrap_or(scene.solver.method);
     let rtol = over.rtol.unwrap_or(scene.solver.rtol);
     let atol = over.atol.unwrap_or(scene.solver.atol);
-    let opts = ode::Options { method, rtol, atol, fixed_step: over.fixed_step, ..Default::default() };
+    let opts = ode::Options {
+        method,
+        rtol,
+        atol,
+        fixed_step: over.fixed_step,
+        ..Default::default()
+    };
     let count = (scene.duration / scene.interval + 1e-9).floor() as usize;
     let outputs: Vec<f64> = (0..=count).map(|i| i as f64 * scene.interval).collect();
     let first = model.observe(0.0, &y0);
@@ -179,19 +203,36 @@ pub fn run(scene: &Scene, over: &Overrides, show_progress: bool) -> Result<RunRe
         model: model.as_ref(),
         rows: Vec::with_capacity(outputs.len() + 1),
         energy: EnergyCheck::new(&first),
-        progress: if show_progress { Progress::new(scene.duration) } else { None },
+        progress: if show_progress {
+            Progress::new(scene.duration)
+        } else {
+            None
+        },
     };
-    let out = ode::solve(model.as_ref(), 0.0, &y0, scene.duration, &outputs, &opts, &mut rec)
-        .map_err(|e| Error::Solver(format!("scene {}: the solver failed: {e}", scene.name)))?;
+    let out = ode::solve(
+        model.as_ref(),
+        0.0,
+        &y0,
+        scene.duration,
+        &outputs,
+        &opts,
+        &mut rec,
+    )
+    .map_err(|e| Error::Solver(format!("scene {}: the solver failed: {e}", scene.name)))?;
     if let Some(p) = &rec.progress {
         p.bar.finish_and_clear();
     }
-    let last = Row { t: out.t, disk: model.observe(out.t, &out.y) };
+    let last = Row {
+        t: out.t,
+        disk: model.observe(out.t, &out.y),
+    };
     if rec.rows.last().is_none_or(|r| r.t < out.t) {
         rec.rows.push(last);
     }
     let stop = match &out.stopped_by {
-        Some(hit) => Stop::Event(StopReason::from_name(hit.name).expect("rolling events are stop reasons")),
+        Some(hit) => {
+            Stop::Event(StopReason::from_name(hit.name).expect("rolling events are stop reasons"))
+        }
         None => Stop::End,
     };
     Ok(RunResult {

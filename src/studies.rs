@@ -10,7 +10,12 @@ use crate::scene::Scene;
 
 /// The scenes under `dir`, sorted by file name.
 pub fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, Error> {
-    let entries = std::fs::read_dir(dir).map_err(|e| Error::Input(format!("cannot read the studies folder {}: {e}", dir.display())))?;
+    let entries = std::fs::read_dir(dir).map_err(|e| {
+        Error::Input(format!(
+            "cannot read the studies folder {}: {e}",
+            dir.display()
+        ))
+    })?;
     let mut files: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "yaml"))
@@ -51,17 +56,60 @@ pub fn run_all(studies: &Path, out: &Path, figures: &Path) -> Result<Vec<RunResu
 
 /// Study 1 side by side: the four disks' speeds, angular velocities and normal reactions.
 fn compare_parabola(results: &[RunResult], figures: &Path) -> Result<(), Error> {
-    let cases: Vec<&RunResult> = results.iter().filter(|r| r.scene.name.starts_with("parabola-p")).collect();
+    let cases: Vec<&RunResult> = results
+        .iter()
+        .filter(|r| r.scene.name.starts_with("parabola-p"))
+        .collect();
     if cases.is_empty() {
         return Ok(());
     }
-    let label = |r: &RunResult| format!("{} (m = {}, a = {})", &r.scene.name["parabola-".len()..].to_uppercase(), r.scene.rolling.disk.mass, r.scene.rolling.disk.radius);
+    let label = |r: &RunResult| {
+        format!(
+            "{} (m = {}, a = {})",
+            &r.scene.name["parabola-".len()..].to_uppercase(),
+            r.scene.rolling.disk.mass,
+            r.scene.rolling.disk.radius
+        )
+    };
     let labels: Vec<String> = cases.iter().map(|r| label(r)).collect();
     let pick = |f: fn(&run::Row) -> f64| -> Vec<(&str, Vec<(f64, f64)>)> {
-        cases.iter().zip(&labels).map(|(r, l)| (l.as_str(), r.rows.iter().map(|row| (row.t, f(row))).collect())).collect()
+        cases
+            .iter()
+            .zip(&labels)
+            .map(|(r, l)| {
+                (
+                    l.as_str(),
+                    r.rows.iter().map(|row| (row.t, f(row))).collect(),
+                )
+            })
+            .collect()
     };
-    plots::line_chart(&figures.join("parabola-compare-vx.svg"), "Study 1: horizontal centre velocity", "t (s)", "vx (m/s)", &pick(|r| r.disk.vx))?;
-    plots::line_chart(&figures.join("parabola-compare-omega.svg"), "Study 1: angular velocity", "t (s)", "Ω (1/s)", &pick(|r| r.disk.omega))?;
-    plots::line_chart(&figures.join("parabola-compare-rn.svg"), "Study 1: normal reaction", "t (s)", "R_n (N)", &pick(|r| r.disk.rn))?;
-    plots::line_chart(&figures.join("parabola-compare-rt.svg"), "Study 1: tangential reaction", "t (s)", "R_t (N)", &pick(|r| r.disk.rt))
+    plots::line_chart(
+        &figures.join("parabola-compare-vx.svg"),
+        "Study 1: horizontal centre velocity",
+        "t (s)",
+        "vx (m/s)",
+        &pick(|r| r.disk.vx),
+    )?;
+    plots::line_chart(
+        &figures.join("parabola-compare-omega.svg"),
+        "Study 1: angular velocity",
+        "t (s)",
+        "Ω (1/s)",
+        &pick(|r| r.disk.omega),
+    )?;
+    plots::line_chart(
+        &figures.join("parabola-compare-rn.svg"),
+        "Study 1: normal reaction",
+        "t (s)",
+        "R_n (N)",
+        &pick(|r| r.disk.rn),
+    )?;
+    plots::line_chart(
+        &figures.join("parabola-compare-rt.svg"),
+        "Study 1: tangential reaction",
+        "t (s)",
+        "R_t (N)",
+        &pick(|r| r.disk.rt),
+    )
 }

@@ -55,7 +55,10 @@ pub struct Formula {
 
 impl Formula {
     pub fn parse(text: &str) -> Result<Formula, String> {
-        let mut p = Parser { chars: text.chars().collect(), pos: 0 };
+        let mut p = Parser {
+            chars: text.chars().collect(),
+            pos: 0,
+        };
         let root = p.sum()?;
         p.skip_ws();
         if p.pos < p.chars.len() {
@@ -262,9 +265,13 @@ mod tests {
 
     #[test]
     fn errors_name_the_problem() {
-        assert!(Formula::parse("foo(s)").unwrap_err().contains("unknown function 'foo'"));
+        assert!(Formula::parse("foo(s)")
+            .unwrap_err()
+            .contains("unknown function 'foo'"));
         assert!(Formula::parse("s +").is_err());
         assert!(Formula::parse("(s").unwrap_err().contains("missing ')'"));
-        assert!(Formula::parse("x").unwrap_err().contains("unknown name 'x'"));
+        assert!(Formula::parse("x")
+            .unwrap_err()
+            .contains("unknown name 'x'"));
     }
 }

@@ -13,11 +13,19 @@ pub struct Jet {
 
 impl Jet {
     pub fn constant(v: f64) -> Self {
-        Jet { v, d1: 0.0, d2: 0.0 }
+        Jet {
+            v,
+            d1: 0.0,
+            d2: 0.0,
+        }
     }
 
     pub fn variable(v: f64) -> Self {
-        Jet { v, d1: 1.0, d2: 0.0 }
+        Jet {
+            v,
+            d1: 1.0,
+            d2: 0.0,
+        }
     }
 
     /// Chain rule for a scalar function f with f(v), f'(v), f''(v) given.
@@ -98,7 +106,11 @@ impl Jet {
                 return self.chain(f, df, ddf);
             }
             let f = self.v.powf(c);
-            return self.chain(f, c * self.v.powf(c - 1.0), c * (c - 1.0) * self.v.powf(c - 2.0));
+            return self.chain(
+                f,
+                c * self.v.powf(c - 1.0),
+                c * (c - 1.0) * self.v.powf(c - 2.0),
+            );
         }
         (p * self.ln()).exp()
     }
@@ -107,19 +119,31 @@ impl Jet {
 impl Add for Jet {
     type Output = Jet;
     fn add(self, o: Jet) -> Jet {
-        Jet { v: self.v + o.v, d1: self.d1 + o.d1, d2: self.d2 + o.d2 }
+        Jet {
+            v: self.v + o.v,
+            d1: self.d1 + o.d1,
+            d2: self.d2 + o.d2,
+        }
     }
 }
 impl Sub for Jet {
     type Output = Jet;
     fn sub(self, o: Jet) -> Jet {
-        Jet { v: self.v - o.v, d1: self.d1 - o.d1, d2: self.d2 - o.d2 }
+        Jet {
+            v: self.v - o.v,
+            d1: self.d1 - o.d1,
+            d2: self.d2 - o.d2,
+        }
     }
 }
 impl Neg for Jet {
     type Output = Jet;
     fn neg(self) -> Jet {
-        Jet { v: -self.v, d1: -self.d1, d2: -self.d2 }
+        Jet {
+            v: -self.v,
+            d1: -self.d1,
+            d2: -self.d2,
+        }
     }
 }
 impl Mul for Jet {
@@ -138,7 +162,11 @@ impl Div for Jet {
         let q = self.v / o.v;
         let q1 = (self.d1 - q * o.d1) / o.v;
         let q2 = (self.d2 - 2.0 * q1 * o.d1 - q * o.d2) / o.v;
-        Jet { v: q, d1: q1, d2: q2 }
+        Jet {
+            v: q,
+            d1: q1,
+            d2: q2,
+        }
     }
 }
 
@@ -159,7 +187,8 @@ mod tests {
         let num2 = 2.0 * g.cos() - 4.0 * x * x * g.sin();
         let d1 = x.exp();
         let expect1 = (num1 * d - num * d1) / (d * d);
-        let expect2 = (num2 * d - num * d1) / (d * d) - 2.0 * d1 * (num1 * d - num * d1) / (d * d * d);
+        let expect2 =
+            (num2 * d - num * d1) / (d * d) - 2.0 * d1 * (num1 * d - num * d1) / (d * d * d);
         assert!((f.v - num / d).abs() < 1e-15);
         assert!((f.d1 - expect1).abs() < 1e-14);
         assert!((f.d2 - expect2).abs() < 1e-13);

@@ -52,10 +52,18 @@ impl CurvePoint {
 #[derive(Clone, Debug)]
 pub enum Curve {
     /// Y = k X², s = X.
-    Parabola { k: f64 },
+    Parabola {
+        k: f64,
+    },
     /// s = arc length from `from`.
-    Line { from: [f64; 2], to: [f64; 2] },
-    Expr { x: Formula, y: Formula },
+    Line {
+        from: [f64; 2],
+        to: [f64; 2],
+    },
+    Expr {
+        x: Formula,
+        y: Formula,
+    },
     /// A C2 spline through points, s = X.
     Points(Spline),
 }
@@ -79,11 +87,19 @@ impl Curve {
             }
             Curve::Expr { x, y } => {
                 let (x, y) = (x.eval(s), y.eval(s));
-                CurvePoint { r: [x.v, y.v], d1: [x.d1, y.d1], d2: [x.d2, y.d2] }
+                CurvePoint {
+                    r: [x.v, y.v],
+                    d1: [x.d1, y.d1],
+                    d2: [x.d2, y.d2],
+                }
             }
             Curve::Points(sp) => {
                 let (y, dy, ddy) = sp.eval(s);
-                CurvePoint { r: [s, y], d1: [1.0, dy], d2: [0.0, ddy] }
+                CurvePoint {
+                    r: [s, y],
+                    d1: [1.0, dy],
+                    d2: [0.0, ddy],
+                }
             }
         }
     }

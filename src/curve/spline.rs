@@ -60,8 +60,11 @@ impl Spline {
         let a = (self.x[i + 1] - s) / h;
         let b = (s - self.x[i]) / h;
         let (m0, m1) = (self.m[i], self.m[i + 1]);
-        let y = a * self.y[i] + b * self.y[i + 1] + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6.0;
-        let dy = (self.y[i + 1] - self.y[i]) / h + ((1.0 - 3.0 * a * a) * m0 + (3.0 * b * b - 1.0) * m1) * h / 6.0;
+        let y = a * self.y[i]
+            + b * self.y[i + 1]
+            + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6.0;
+        let dy = (self.y[i + 1] - self.y[i]) / h
+            + ((1.0 - 3.0 * a * a) * m0 + (3.0 * b * b - 1.0) * m1) * h / 6.0;
         let ddy = a * m0 + b * m1;
         (y, dy, ddy)
     }
@@ -75,11 +78,22 @@ mod tests {
     /// C2 at the knots.
     #[test]
     fn line_exact_and_c2_at_knots() {
-        let pts: Vec<[f64; 2]> = (0..6).map(|i| [i as f64 * 0.7, 2.0 - 0.3 * i as f64 * 0.7]).collect();
+        let pts: Vec<[f64; 2]> = (0..6)
+            .map(|i| [i as f64 * 0.7, 2.0 - 0.3 * i as f64 * 0.7])
+            .collect();
         let sp = Spline::new(&pts);
         let (y, dy, ddy) = sp.eval(1.234);
-        assert!((y - (2.0 - 0.3 * 1.234)).abs() < 1e-14 && (dy + 0.3).abs() < 1e-14 && ddy.abs() < 1e-14);
-        let pts: Vec<[f64; 2]> = (0..8).map(|i| { let x = i as f64 * 0.5; [x, x.powi(3) - x] }).collect();
+        assert!(
+            (y - (2.0 - 0.3 * 1.234)).abs() < 1e-14
+                && (dy + 0.3).abs() < 1e-14
+                && ddy.abs() < 1e-14
+        );
+        let pts: Vec<[f64; 2]> = (0..8)
+            .map(|i| {
+                let x = i as f64 * 0.5;
+                [x, x.powi(3) - x]
+            })
+            .collect();
         let sp = Spline::new(&pts);
         for &xk in &[0.5, 1.0, 2.5] {
             let l = sp.eval(xk - 1e-12);

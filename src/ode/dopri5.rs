@@ -9,9 +9,30 @@ const A: [[f64; 6]; 7] = [
     [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
     [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
     [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-    [19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0, 0.0, 0.0],
-    [9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0, 0.0],
-    [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0],
+    [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+        0.0,
+        0.0,
+    ],
+    [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+        0.0,
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
 ];
 /// Fifth-order weights minus fourth-order weights.
 const E: [f64; 7] = [
@@ -70,12 +91,25 @@ impl Stepper for Dopri5 {
         4
     }
 
-    fn start(&mut self, p: &dyn Problem, t0: f64, y0: &[f64], ctx: &mut Ctx) -> Result<(), SolveError> {
+    fn start(
+        &mut self,
+        p: &dyn Problem,
+        t0: f64,
+        y0: &[f64],
+        ctx: &mut Ctx,
+    ) -> Result<(), SolveError> {
         self.y_old.copy_from_slice(y0);
         ctx.derivative(p, t0, y0, &mut self.k[0])
     }
 
-    fn attempt(&mut self, p: &dyn Problem, t: f64, y: &[f64], h: f64, ctx: &mut Ctx) -> Result<Attempt, SolveError> {
+    fn attempt(
+        &mut self,
+        p: &dyn Problem,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        ctx: &mut Ctx,
+    ) -> Result<Attempt, SolveError> {
         let n = y.len();
         for s in 1..7 {
             for i in 0..n {
@@ -89,10 +123,14 @@ impl Stepper for Dopri5 {
         }
         // Stage 7 was evaluated at the fifth-order solution (the A[6] row are its weights).
         self.y_new.copy_from_slice(&self.stage);
-        let err: Vec<f64> = (0..n).map(|i| h * (0..7).map(|j| E[j] * self.k[j][i]).sum::<f64>()).collect();
+        let err: Vec<f64> = (0..n)
+            .map(|i| h * (0..7).map(|j| E[j] * self.k[j][i]).sum::<f64>())
+            .collect();
         self.t_try = t;
         self.h_try = h;
-        Ok(Attempt::Done { err: ctx.norm(&err, y, &self.y_new) })
+        Ok(Attempt::Done {
+            err: ctx.norm(&err, y, &self.y_new),
+        })
     }
 
     fn y_new(&self) -> &[f64] {

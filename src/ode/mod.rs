@@ -90,7 +90,13 @@ pub struct Options {
 
 impl Default for Options {
     fn default() -> Self {
-        Options { method: Method::Dopri5, rtol: 1e-6, atol: 1e-9, fixed_step: None, max_steps: 10_000_000 }
+        Options {
+            method: Method::Dopri5,
+            rtol: 1e-6,
+            atol: 1e-9,
+            fixed_step: None,
+            max_steps: 10_000_000,
+        }
     }
 }
 
@@ -144,10 +150,16 @@ impl fmt::Display for SolveError {
             }
             SolveError::NonFinite { t } => write!(f, "the state became non-finite at t = {t:.6} s"),
             SolveError::TooManySteps { t, steps } => {
-                write!(f, "gave up after {steps} steps at t = {t:.6} s; loosen rtol or shorten the run")
+                write!(
+                    f,
+                    "gave up after {steps} steps at t = {t:.6} s; loosen rtol or shorten the run"
+                )
             }
             SolveError::SingularMatrix { t } => {
-                write!(f, "the mass (or iteration) matrix is singular at t = {t:.6} s")
+                write!(
+                    f,
+                    "the mass (or iteration) matrix is singular at t = {t:.6} s"
+                )
             }
         }
     }
@@ -172,9 +184,22 @@ pub(crate) enum Attempt {
 pub(crate) trait Stepper {
     /// Exponent base for step-size control: the order of the error estimate.
     fn error_order(&self) -> u32;
-    fn start(&mut self, p: &dyn Problem, t0: f64, y0: &[f64], ctx: &mut Ctx) -> Result<(), SolveError>;
+    fn start(
+        &mut self,
+        p: &dyn Problem,
+        t0: f64,
+        y0: &[f64],
+        ctx: &mut Ctx,
+    ) -> Result<(), SolveError>;
     /// Attempt a step of size h from (t, y); leaves the candidate in `y_new`.
-    fn attempt(&mut self, p: &dyn Problem, t: f64, y: &[f64], h: f64, ctx: &mut Ctx) -> Result<Attempt, SolveError>;
+    fn attempt(
+        &mut self,
+        p: &dyn Problem,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        ctx: &mut Ctx,
+    ) -> Result<Attempt, SolveError>;
     fn y_new(&self) -> &[f64];
     /// Commit the last attempt as the new step start.
     fn accept(&mut self);
@@ -209,7 +234,13 @@ impl Ctx {
     }
 
     /// y' = M⁻¹ f.
-    pub fn derivative(&mut self, p: &dyn Problem, t: f64, y: &[f64], yp: &mut [f64]) -> Result<(), SolveError> {
+    pub fn derivative(
+        &mut self,
+        p: &dyn Problem,
+        t: f64,
+        y: &[f64],
+        yp: &mut [f64],
+    ) -> Result<(), SolveError> {
         self.rhs(p, t, y, yp);
         if let Some(m) = p.mass(t, y) {
             let lu = LinearSolve::factor(m).ok_or(SolveError::SingularMatrix { t })?;
@@ -229,7 +260,11 @@ impl Ctx {
         let mut yh = y.to_vec();
         let mut fh = vec![0.0; n];
         for c in 0..n {
-            let delta = f64::EPSILON.sqrt() * y[c].abs().max(self.atol / self.rtol.max(f64::EPSILON)).max(1e-8);
+            let delta = f64::EPSILON.sqrt()
+                * y[c]
+                    .abs()
+                    .max(self.atol / self.rtol.max(f64::EPSILON))
+                    .max(1e-8);
             yh[c] = y[c] + delta;
             self.rhs(p, t, &yh, &mut fh);
             for r in 0..n {
@@ -261,7 +296,11 @@ pub fn solve(
 ) -> Result<Outcome, SolveError> {
     let clock = Instant::now();
     let n = p.dim();
-    let mut ctx = Ctx { rtol: opts.rtol, atol: opts.atol, stats: Stats::default() };
+    let mut ctx = Ctx {
+        rtol: opts.rtol,
+        atol: opts.atol,
+        stats: Stats::default(),
+    };
     let mut stepper = make_stepper(opts.method, n);
     let specs = p.events();
     let mut t = t0;
@@ -270,7 +309,13 @@ pub fn solve(
     let mut events = Vec::new();
     let finish = |t: f64, y: Vec<f64>, mut ctx: Ctx, stopped_by, events| {
         ctx.stats.wall_s = clock.elapsed().as_secs_f64();
-        Ok(Outcome { t, y, stats: ctx.stats, stopped_by, events })
+        Ok(Outcome {
+            t,
+            y,
+            stats: ctx.stats,
+            stopped_by,
+            events,
+        })
     };
 
     let mut g: Vec<f64> = (0..specs.len()).map(|i| p.event(i, t, &y)).collect();
@@ -279,7 +324,11 @@ pub fn solve(
         next_out += 1;
     }
     if let Some(i) = (0..specs.len()).find(|&i| specs[i].terminal && g[i] < 0.0) {
-        let hit = EventHit { index: i, name: specs[i].name, t };
+        let hit = EventHit {
+            index: i,
+            name: specs[i].name,
+            t,
+        };
         return finish(t, y, ctx, Some(hit), events);
     }
 
@@ -294,7 +343,10 @@ pub fn solve(
 
     while t < t_end {
         if ctx.stats.steps >= opts.max_steps {
-            return Err(SolveError::TooManySteps { t, steps: ctx.stats.steps });
+            return Err(SolveError::TooManySteps {
+                t,
+                steps: ctx.stats.steps,
+            });
         }
         let last = t + h >= t_end - h_min;
         let h_try = if last { t_end - t } else { h };
@@ -320,7 +372,11 @@ pub fn solve(
         if opts.fixed_step.is_none() && !(err <= 1.0) {
             ctx.stats.rejected += 1;
             just_rejected = true;
-            let factor = if err.is_finite() { (0.9 * err.powf(-1.0 / (q + 1.0))).clamp(0.2, 1.0) } else { 0.2 };
+            let factor = if err.is_finite() {
+                (0.9 * err.powf(-1.0 / (q + 1.0))).clamp(0.2, 1.0)
+            } else {
+                0.2
+            };
             h = h_try * factor;
             if h < h_min {
                 return Err(SolveError::StepSizeUnderflow { t, h });
@@ -340,16 +396,26 @@ pub fn solve(
         for i in 0..specs.len() {
             g_new[i] = p.event(i, t_new, stepper.y_new());
             if g[i] >= 0.0 && g_new[i] < 0.0 {
-                let te = locate(|tt| {
-                    stepper.interpolate(tt, &mut y_tmp);
-                    p.event(i, tt, &y_tmp)
-                }, t, g[i], t_new, g_new[i]);
+                let te = locate(
+                    |tt| {
+                        stepper.interpolate(tt, &mut y_tmp);
+                        p.event(i, tt, &y_tmp)
+                    },
+                    t,
+                    g[i],
+                    t_new,
+                    g_new[i],
+                );
                 if specs[i].terminal {
                     if first.is_none_or(|(_, tf)| te < tf) {
                         first = Some((i, te));
                     }
                 } else {
-                    events.push(EventHit { index: i, name: specs[i].name, t: te });
+                    events.push(EventHit {
+                        index: i,
+                        name: specs[i].name,
+                        t: te,
+                    });
                 }
             }
         }
@@ -362,7 +428,11 @@ pub fn solve(
         if let Some((i, te)) = first {
             stepper.interpolate(te, &mut y_tmp);
             observer.step(te, &y_tmp);
-            let hit = EventHit { index: i, name: specs[i].name, t: te };
+            let hit = EventHit {
+                index: i,
+                name: specs[i].name,
+                t: te,
+            };
             return finish(te, y_tmp, ctx, Some(hit), events);
         }
         t = t_new;
@@ -416,14 +486,25 @@ fn locate(mut g: impl FnMut(f64) -> f64, mut a: f64, mut ga: f64, mut b: f64, mu
 }
 
 /// Hairer–Wanner's starting step from the size of y, y' and an estimate of y''.
-fn initial_step(p: &dyn Problem, t0: f64, y0: &[f64], t_end: f64, order: u32, ctx: &mut Ctx) -> Result<f64, SolveError> {
+fn initial_step(
+    p: &dyn Problem,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    order: u32,
+    ctx: &mut Ctx,
+) -> Result<f64, SolveError> {
     let n = y0.len();
     let mut f0 = vec![0.0; n];
     ctx.derivative(p, t0, y0, &mut f0)?;
     let zero = vec![0.0; n];
     let d0 = ctx.norm(y0, y0, &zero);
     let d1 = ctx.norm(&f0, y0, &zero);
-    let h0 = if d0 < 1e-5 || d1 < 1e-5 { 1e-6 } else { 0.01 * d0 / d1 };
+    let h0 = if d0 < 1e-5 || d1 < 1e-5 {
+        1e-6
+    } else {
+        0.01 * d0 / d1
+    };
     let y1: Vec<f64> = y0.iter().zip(&f0).map(|(y, f)| y + h0 * f).collect();
     let mut f1 = vec![0.0; n];
     ctx.derivative(p, t0 + h0, &y1, &mut f1)?;

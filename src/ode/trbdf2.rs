@@ -76,11 +76,21 @@ impl TrBdf2 {
         self.iteration = None;
     }
 
-    fn factor(&mut self, p: &dyn Problem, t: f64, y: &[f64], dh: f64, ctx: &mut Ctx) -> Result<(), SolveError> {
+    fn factor(
+        &mut self,
+        p: &dyn Problem,
+        t: f64,
+        y: &[f64],
+        dh: f64,
+        ctx: &mut Ctx,
+    ) -> Result<(), SolveError> {
         if matches!(self.iteration, Some((d, _)) if d == dh) {
             return Ok(());
         }
-        let jac = self.jac.as_ref().expect("the Jacobian is evaluated before the first factorisation");
+        let jac = self
+            .jac
+            .as_ref()
+            .expect("the Jacobian is evaluated before the first factorisation");
         let n = y.len();
         let mut w = p.mass(t, y).unwrap_or_else(|| DMatrix::identity(n, n));
         w -= jac * dh;
@@ -91,7 +101,15 @@ impl TrBdf2 {
     }
 
     /// Solve M(z)(z − base) = d h f(t, z) for z, from the guess in `z`.
-    fn newton(&mut self, p: &dyn Problem, t: f64, base: &[f64], z: &mut [f64], dh: f64, ctx: &mut Ctx) -> bool {
+    fn newton(
+        &mut self,
+        p: &dyn Problem,
+        t: f64,
+        base: &[f64],
+        z: &mut [f64],
+        dh: f64,
+        ctx: &mut Ctx,
+    ) -> bool {
         let n = z.len();
         let mut eta = self.eta.max(f64::EPSILON).powf(0.8);
         let mut prev: Option<f64> = None;
@@ -137,7 +155,14 @@ impl TrBdf2 {
         false
     }
 
-    fn stages(&mut self, p: &dyn Problem, t: f64, y: &[f64], h: f64, ctx: &mut Ctx) -> Result<bool, SolveError> {
+    fn stages(
+        &mut self,
+        p: &dyn Problem,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        ctx: &mut Ctx,
+    ) -> Result<bool, SolveError> {
         let n = y.len();
         let dh = D * h;
         self.factor(p, t, y, dh, ctx)?;
@@ -174,14 +199,27 @@ impl Stepper for TrBdf2 {
         2
     }
 
-    fn start(&mut self, p: &dyn Problem, t0: f64, y0: &[f64], ctx: &mut Ctx) -> Result<(), SolveError> {
+    fn start(
+        &mut self,
+        p: &dyn Problem,
+        t0: f64,
+        y0: &[f64],
+        ctx: &mut Ctx,
+    ) -> Result<(), SolveError> {
         self.y_old.copy_from_slice(y0);
         ctx.derivative(p, t0, y0, &mut self.yp_old)?;
         self.refresh_jacobian(p, t0, y0, ctx);
         Ok(())
     }
 
-    fn attempt(&mut self, p: &dyn Problem, t: f64, y: &[f64], h: f64, ctx: &mut Ctx) -> Result<Attempt, SolveError> {
+    fn attempt(
+        &mut self,
+        p: &dyn Problem,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        ctx: &mut Ctx,
+    ) -> Result<Attempt, SolveError> {
         if !self.stages(p, t, y, h, ctx)? {
             if self.jac_fresh {
                 return Ok(Attempt::NewtonFailed);
@@ -201,7 +239,9 @@ impl Stepper for TrBdf2 {
             .collect();
         self.t_try = t;
         self.h_try = h;
-        Ok(Attempt::Done { err: ctx.norm(&err, y, &self.y_new) })
+        Ok(Attempt::Done {
+            err: ctx.norm(&err, y, &self.y_new),
+        })
     }
 
     fn y_new(&self) -> &[f64] {
@@ -227,11 +267,18 @@ impl Stepper for TrBdf2 {
         let h01 = th * th * (3.0 - 2.0 * th);
         let h11 = th * th * (th - 1.0);
         for (i, o) in out.iter_mut().enumerate() {
-            *o = h00 * self.prev_y[i] + h * h10 * self.prev_yp[i] + h01 * self.y_old[i] + h * h11 * self.yp_old[i];
+            *o = h00 * self.prev_y[i]
+                + h * h10 * self.prev_yp[i]
+                + h01 * self.y_old[i]
+                + h * h11 * self.yp_old[i];
         }
     }
 
     fn keep_step(&self, h_old: f64, h_new: f64) -> f64 {
-        if (1.0..=1.2).contains(&(h_new / h_old)) { h_old } else { h_new }
+        if (1.0..=1.2).contains(&(h_new / h_old)) {
+            h_old
+        } else {
+            h_new
+        }
     }
 }

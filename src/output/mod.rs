@@ -12,7 +12,8 @@ use crate::run::RunResult;
 pub fn write_all(result: &RunResult, dir: &Path) -> Result<(), Error> {
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
     let summary = summary::Summary::from_run(result);
-    let yaml = serde_saphyr::to_string(&summary).map_err(|e| Error::Output(format!("cannot format the summary: {e}")))?;
+    let yaml = serde_saphyr::to_string(&summary)
+        .map_err(|e| Error::Output(format!("cannot format the summary: {e}")))?;
     write(&dir.join("summary.yaml"), &yaml)?;
     write(&dir.join("history.csv"), &history::csv(result))?;
     plots::all(result, dir)

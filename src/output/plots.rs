@@ -25,7 +25,11 @@ fn plot_error(path: &Path, e: impl std::fmt::Display) -> Error {
 
 /// Padded range of all y values of the series.
 fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values.filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
     if !lo.is_finite() {
         return (-1.0, 1.0);
     }
@@ -34,7 +38,13 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
 }
 
 /// One chart with several named lines against a shared x axis.
-pub fn line_chart(path: &Path, title: &str, x_desc: &str, y_desc: &str, series: &[Series]) -> Result<(), Error> {
+pub fn line_chart(
+    path: &Path,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    series: &[Series],
+) -> Result<(), Error> {
     let err = |e: &dyn std::fmt::Display| plot_error(path, e);
     let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
@@ -47,14 +57,21 @@ pub fn line_chart(path: &Path, title: &str, x_desc: &str, y_desc: &str, series: 
         .y_label_area_size(75)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(|e| err(&e))?;
-    chart.configure_mesh().x_desc(x_desc).y_desc(y_desc).draw().map_err(|e| err(&e))?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .draw()
+        .map_err(|e| err(&e))?;
     for (i, (name, pts)) in series.iter().enumerate() {
         let color = PALETTE[i % PALETTE.len()];
         chart
             .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))
             .map_err(|e| err(&e))?
             .label(*name)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
     }
     if series.len() > 1 {
         chart
@@ -77,20 +94,37 @@ pub fn track_figure(r: &RunResult, path: &Path, count: usize) -> Result<(), Erro
     let err = |e: &dyn std::fmt::Display| plot_error(path, e);
     let rolling = &r.scene.rolling;
     let a = rolling.disk.radius;
-    let (s_lo, s_hi) = r.rows.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), row| (lo.min(row.disk.s), hi.max(row.disk.s)));
+    let (s_lo, s_hi) = r
+        .rows
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), row| {
+            (lo.min(row.disk.s), hi.max(row.disk.s))
+        });
     let span = (s_hi - s_lo).max(4.0 * a);
     let (mut lo, mut hi) = (s_lo - 0.1 * span, s_hi + 0.1 * span);
     if let Some((d_lo, d_hi)) = rolling.curve.domain() {
         lo = lo.max(d_lo);
         hi = hi.min(d_hi);
     }
-    let track: Vec<(f64, f64)> = (0..=400).map(|i| {
-        let p = rolling.curve.at(lo + (hi - lo) * i as f64 / 400.0);
-        (p.r[0], p.r[1])
-    }).collect();
-    let picks: Vec<&Row> = (0..count).map(|k| &r.rows[k * (r.rows.len() - 1) / (count - 1).max(1)]).collect();
-    let xs = track.iter().map(|p| p.0).chain(picks.iter().flat_map(|row| [row.disk.x - a, row.disk.x + a]));
-    let ys = track.iter().map(|p| p.1).chain(picks.iter().flat_map(|row| [row.disk.y - a, row.disk.y + a]));
+    let track: Vec<(f64, f64)> = (0..=400)
+        .map(|i| {
+            let p = rolling.curve.at(lo + (hi - lo) * i as f64 / 400.0);
+            (p.r[0], p.r[1])
+        })
+        .collect();
+    let picks: Vec<&Row> = (0..count)
+        .map(|k| &r.rows[k * (r.rows.len() - 1) / (count - 1).max(1)])
+        .collect();
+    let xs = track.iter().map(|p| p.0).chain(
+        picks
+            .iter()
+            .flat_map(|row| [row.disk.x - a, row.disk.x + a]),
+    );
+    let ys = track.iter().map(|p| p.1).chain(
+        picks
+            .iter()
+            .flat_map(|row| [row.disk.y - a, row.disk.y + a]),
+    );
     let (mut x0, mut x1) = range(xs);
     let (mut y0, mut y1) = range(ys);
     // Equal scales on both axes so the disk stays round.
@@ -103,29 +137,49 @@ pub fn track_figure(r: &RunResult, path: &Path, count: usize) -> Result<(), Erro
     let root = SVGBackend::new(path, (900 + 90, 620 + 80)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let mut chart = ChartBuilder::on(&root)
-        .caption(format!("{}: the disk at {count} times", r.scene.name), ("sans-serif", 22))
+        .caption(
+            format!("{}: the disk at {count} times", r.scene.name),
+            ("sans-serif", 22),
+        )
         .margin(10)
         .x_label_area_size(40)
         .y_label_area_size(50)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(|e| err(&e))?;
-    chart.configure_mesh().x_desc("X (m)").y_desc("Y (m)").draw().map_err(|e| err(&e))?;
-    chart.draw_series(LineSeries::new(track, BLACK.stroke_width(2))).map_err(|e| err(&e))?;
+    chart
+        .configure_mesh()
+        .x_desc("X (m)")
+        .y_desc("Y (m)")
+        .draw()
+        .map_err(|e| err(&e))?;
+    chart
+        .draw_series(LineSeries::new(track, BLACK.stroke_width(2)))
+        .map_err(|e| err(&e))?;
     for (k, row) in picks.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
         let d = &row.disk;
-        let rim: Vec<(f64, f64)> = (0..=72).map(|i| {
-            let th = i as f64 * std::f64::consts::TAU / 72.0;
-            (d.x + a * th.cos(), d.y + a * th.sin())
-        }).collect();
-        chart.draw_series(LineSeries::new(rim, color.stroke_width(2))).map_err(|e| err(&e))?;
+        let rim: Vec<(f64, f64)> = (0..=72)
+            .map(|i| {
+                let th = i as f64 * std::f64::consts::TAU / 72.0;
+                (d.x + a * th.cos(), d.y + a * th.sin())
+            })
+            .collect();
+        chart
+            .draw_series(LineSeries::new(rim, color.stroke_width(2)))
+            .map_err(|e| err(&e))?;
         // A spoke fixed in the disk: at φ = 0 it points to the contact point.
         let tangent = rolling.curve.at(d.s).tangent();
         let angle = tangent[1].atan2(tangent[0]) - std::f64::consts::FRAC_PI_2 + d.phi;
         let spoke = vec![(d.x, d.y), (d.x + a * angle.cos(), d.y + a * angle.sin())];
-        chart.draw_series(LineSeries::new(spoke, color.stroke_width(2))).map_err(|e| err(&e))?;
         chart
-            .draw_series(std::iter::once(Text::new(format!("{:.2} s", row.t), (d.x, d.y + 1.25 * a), ("sans-serif", 14).into_font().color(&color))))
+            .draw_series(LineSeries::new(spoke, color.stroke_width(2)))
+            .map_err(|e| err(&e))?;
+        chart
+            .draw_series(std::iter::once(Text::new(
+                format!("{:.2} s", row.t),
+                (d.x, d.y + 1.25 * a),
+                ("sans-serif", 14).into_font().color(&color),
+            )))
             .map_err(|e| err(&e))?;
     }
     root.present().map_err(|e| err(&e))
@@ -141,15 +195,27 @@ pub fn all(r: &RunResult, dir: &Path) -> Result<(), Error> {
         &format!("{name}: centre velocity"),
         "t (s)",
         "v (m/s)",
-        &[series(rows, "vx", |r| r.disk.vx), series(rows, "vy", |r| r.disk.vy)],
+        &[
+            series(rows, "vx", |r| r.disk.vx),
+            series(rows, "vy", |r| r.disk.vy),
+        ],
     )?;
-    line_chart(&dir.join("omega.svg"), &format!("{name}: angular velocity"), "t (s)", "Ω (1/s)", &[series(rows, "Ω", |r| r.disk.omega)])?;
+    line_chart(
+        &dir.join("omega.svg"),
+        &format!("{name}: angular velocity"),
+        "t (s)",
+        "Ω (1/s)",
+        &[series(rows, "Ω", |r| r.disk.omega)],
+    )?;
     line_chart(
         &dir.join("reactions.svg"),
         &format!("{name}: contact force on the disk"),
         "t (s)",
         "R (N)",
-        &[series(rows, "R_t (tangential)", |r| r.disk.rt), series(rows, "R_n (normal)", |r| r.disk.rn)],
+        &[
+            series(rows, "R_t (tangential)", |r| r.disk.rt),
+            series(rows, "R_n (normal)", |r| r.disk.rn),
+        ],
     )?;
     let e0 = r.energy.initial;
     let scale = r.energy.scale.max(f64::MIN_POSITIVE);

@@ -71,15 +71,30 @@ impl Summary {
     pub fn from_run(r: &RunResult) -> Summary {
         let d = &r.last.disk;
         let fold = |f: fn(&crate::rolling::DiskObservation) -> f64| {
-            r.rows.iter().map(|row| f(&row.disk)).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+            r.rows
+                .iter()
+                .map(|row| f(&row.disk))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                    (lo.min(v), hi.max(v))
+                })
         };
         let (rn_min, rn_max) = fold(|d| d.rn);
         let (rt_min, rt_max) = fold(|d| d.rt);
-        let mu_needed_max = r.rows.iter().map(|row| row.disk.rt.abs() / row.disk.rn).fold(0.0, f64::max);
-        let left = matches!(r.stop, crate::run::Stop::Event(crate::rolling::StopReason::LeftTrack));
+        let mu_needed_max = r
+            .rows
+            .iter()
+            .map(|row| row.disk.rt.abs() / row.disk.rn)
+            .fold(0.0, f64::max);
+        let left = matches!(
+            r.stop,
+            crate::run::Stop::Event(crate::rolling::StopReason::LeftTrack)
+        );
         Summary {
             scene: r.scene.name.clone(),
-            stopped: Stopped { reason: r.stop.name().into(), t: r.last.t },
+            stopped: Stopped {
+                reason: r.stop.name().into(),
+                t: r.last.t,
+            },
             model: Model {
                 track: r.scene.rolling.curve.kind().into(),
                 unknowns: r.unknowns,
@@ -97,7 +112,11 @@ impl Summary {
                 newton_iterations: r.stats.newton_iterations,
                 wall_s: r.stats.wall_s,
             },
-            energy: Energy { initial: r.energy.initial, last: r.energy.last, max_rel_drift: r.energy.max_rel_drift() },
+            energy: Energy {
+                initial: r.energy.initial,
+                last: r.energy.last,
+                max_rel_drift: r.energy.max_rel_drift(),
+            },
             disk: DiskSummary {
                 s: d.s,
                 x: d.x,

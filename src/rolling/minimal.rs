@@ -20,7 +20,8 @@ impl Minimal {
         let h = p.speed() - a * p.psi_prime();
         let v = y[1];
         let sdot = v / h;
-        let vdot = -self.rolling.gravity * p.tangent()[1] * self.rolling.disk.mass / self.rolling.disk.rolling_mass();
+        let vdot = -self.rolling.gravity * p.tangent()[1] * self.rolling.disk.mass
+            / self.rolling.disk.rolling_mass();
         let phidot = -v / a - p.psi_prime() * sdot;
         (sdot, vdot, phidot)
     }

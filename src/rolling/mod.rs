@@ -59,9 +59,14 @@ impl StopReason {
     }
 
     pub fn from_name(name: &str) -> Option<StopReason> {
-        [StopReason::ContactLost, StopReason::Slip, StopReason::NoFit, StopReason::LeftTrack]
-            .into_iter()
-            .find(|r| r.name() == name)
+        [
+            StopReason::ContactLost,
+            StopReason::Slip,
+            StopReason::NoFit,
+            StopReason::LeftTrack,
+        ]
+        .into_iter()
+        .find(|r| r.name() == name)
     }
 }
 
@@ -83,7 +88,14 @@ pub struct Rolling {
 }
 
 impl Rolling {
-    pub fn new(curve: Curve, disk: Disk, gravity: f64, s0: f64, omega0: f64, mu: Option<f64>) -> Self {
+    pub fn new(
+        curve: Curve,
+        disk: Disk,
+        gravity: f64,
+        s0: f64,
+        omega0: f64,
+        mu: Option<f64>,
+    ) -> Self {
         let mut reasons = vec![StopReason::ContactLost, StopReason::NoFit];
         if mu.is_some() {
             reasons.push(StopReason::Slip);
@@ -91,8 +103,23 @@ impl Rolling {
         if curve.domain().is_some() {
             reasons.push(StopReason::LeftTrack);
         }
-        let specs = reasons.iter().map(|r| EventSpec { name: r.name(), terminal: true }).collect();
-        Rolling { curve, disk, gravity, s0, omega0, mu, specs, reasons }
+        let specs = reasons
+            .iter()
+            .map(|r| EventSpec {
+                name: r.name(),
+                terminal: true,
+            })
+            .collect();
+        Rolling {
+            curve,
+            disk,
+            gravity,
+            s0,
+            omega0,
+            mu,
+            specs,
+            reasons,
+        }
     }
 
     pub fn event_specs(&self) -> &[EventSpec] {
@@ -109,7 +136,10 @@ impl Rolling {
                 1.0 - self.disk.radius * p.curvature() - FIT_MARGIN
             }
             StopReason::LeftTrack => {
-                let (lo, hi) = self.curve.domain().unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+                let (lo, hi) = self
+                    .curve
+                    .domain()
+                    .unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
                 (obs.s - lo).min(hi - obs.s)
             }
         }
@@ -118,7 +148,10 @@ impl Rolling {
     /// Centre of the disk touching the curve at p: r + a e_n.
     pub fn centre(&self, p: &CurvePoint) -> [f64; 2] {
         let n = p.normal();
-        [p.r[0] + self.disk.radius * n[0], p.r[1] + self.disk.radius * n[1]]
+        [
+            p.r[0] + self.disk.radius * n[0],
+            p.r[1] + self.disk.radius * n[1],
+        ]
     }
 
     /// Initial centre speed along the tangent, from the no-slip condition v + aΩ = 0.
@@ -143,40 +176,75 @@ impl Rolling {
 
     /// Scan every point the disk could reach with its initial energy and fail where the disk
     /// does not fit the curve (1 − aκ ≤ 0). Returns the parameter of the first such point.
+    /// Between samples, each local maximum of the curvature is refined by golden-section
+    /// search, so a peak such as the parabola's vertex is checked exactly.
     pub fn first_unfit_point(&self) -> Option<f64> {
         let a = self.disk.radius;
-        let fits = |s: f64| 1.0 - a * self.curve.at(s).curvature() > 0.0;
+        let kappa = |s: f64| self.curve.at(s).curvature();
+        let fits = |s: f64| 1.0 - a * kappa(s) > 0.0;
         if !fits(self.s0) {
             return Some(self.s0);
         }
         let start = self.curve.at(self.s0);
         let g = self.gravity;
         let reach_height = if g > 0.0 {
-            self.centre(&start)[1] + 0.5 * self.disk.rolling_mass() / self.disk.mass * self.v0().powi(2) / g
+            self.centre(&start)[1]
+                + 0.5 * self.disk.rolling_mass() / self.disk.mass * self.v0().powi(2) / g
         } else {
             f64::INFINITY
         };
-        let (lo, hi) = self.curve.domain().unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+        let (lo, hi) = self
+            .curve
+            .domain()
+            .unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
         const SAMPLES: usize = 200_000;
         for dir in [-1.0, 1.0] {
+            let mut trail = [(self.s0, kappa(self.s0)); 2];
             let mut s = self.s0;
             for _ in 0..SAMPLES {
                 // Steps a fraction of the smaller of the disk radius and the local radius of
-                // curvature, so that a curvature peak cannot be stepped over.
+                // curvature, so that no bend is stepped over.
                 let p = self.curve.at(s);
                 let ds = 0.02 * a.min(1.0 / p.curvature().abs().max(1e-12)) / p.speed();
-                s += dir * ds;
-                if s < lo || s > hi {
-                    break;
-                }
+                s = (s + dir * ds).clamp(lo, hi);
+                let k = kappa(s);
                 if !fits(s) {
                     return Some(s);
                 }
-                if self.centre(&self.curve.at(s))[1] > reach_height {
+                if trail[1].1 > trail[0].1 && trail[1].1 >= k {
+                    let peak = golden_max(&kappa, trail[0].0.min(s), trail[0].0.max(s));
+                    if !fits(peak) {
+                        return Some(peak);
+                    }
+                }
+                trail = [trail[1], (s, k)];
+                if s <= lo || s >= hi || self.centre(&self.curve.at(s))[1] > reach_height {
                     break;
                 }
             }
         }
         None
     }
+}
+
+/// Maximiser of a unimodal f on [a, b] by golden-section search.
+fn golden_max(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    let r = (5f64.sqrt() - 1.0) / 2.0;
+    let mut c = b - r * (b - a);
+    let mut d = a + r * (b - a);
+    let (mut fc, mut fd) = (f(c), f(d));
+    while b - a > 1e-12 * (1.0 + a.abs().max(b.abs())) {
+        if fc > fd {
+            b = d;
+            (d, fd) = (c, fc);
+            c = b - r * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            (c, fc) = (d, fd);
+            d = a + r * (b - a);
+            fd = f(d);
+        }
+    }
+    0.5 * (a + b)
 }

@@ -44,7 +44,8 @@ impl Thesis {
         let mut f = vec![0.0; 6];
         self.rhs(0.0, y, &mut f);
         let lu = self.mass_matrix(y).lu();
-        lu.solve(&DVector::from_vec(f)).map(|v| v.as_slice().to_vec())
+        lu.solve(&DVector::from_vec(f))
+            .map(|v| v.as_slice().to_vec())
     }
 }
 

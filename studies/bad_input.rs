@@ -1,0 +1,261 @@
+//! Bad input: each case must end with exit status 1 and one sentence on stderr that names the
+//! problem (and, for scene errors, the line and key), never a panic, a NaN or a silent run.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+const GOOD_DISK: &str = "disk:\n  mass: 1.0\n  radius: 0.1\n  s0: -1.0\n";
+const PARABOLA: &str = "track:\n  curve:\n    parabola: {k: 1.0}\n";
+
+fn scene_path(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rollbeam-bad-input-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join(format!("{name}.yaml"));
+    std::fs::write(&path, text).expect("write scene");
+    path
+}
+
+/// Run `rollbeam ARGS` and return (exit code, stderr).
+fn rollbeam(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_rollbeam"))
+        .args(args)
+        .env("CI", "true")
+        .output()
+        .expect("run rollbeam");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// The scene is rejected by both `check` and `run` with one sentence holding every `needle`.
+fn rejected(name: &str, text: &str, needles: &[&str]) {
+    let path = scene_path(name, text);
+    let p = path.to_str().expect("utf-8 path");
+    let out = format!("{p}.out");
+    for args in [vec!["check", p], vec!["run", p, "--out", &out]] {
+        let cmd = args[0];
+        let (code, err) = rollbeam(&args);
+        assert_eq!(code, 1, "{name}/{cmd}: exit {code}, stderr: {err}");
+        assert_eq!(
+            err.trim().lines().count(),
+            1,
+            "{name}/{cmd}: not one sentence: {err}"
+        );
+        assert!(
+            !err.contains("panicked") && !err.contains("NaN") || err.contains("not NaN"),
+            "{name}: {err}"
+        );
+        for n in needles {
+            assert!(err.contains(n), "{name}/{cmd}: '{n}' missing from: {err}");
+        }
+    }
+}
+
+#[test]
+fn unknown_keys() {
+    rejected(
+        "unknown-top",
+        &format!("duration: 1\ndurration: 2\n{PARABOLA}{GOOD_DISK}"),
+        &["line 2", "unknown field `durration`"],
+    );
+    rejected(
+        "unknown-disk",
+        &format!("duration: 1\n{PARABOLA}{GOOD_DISK}  mas: 3\n"),
+        &["line 9", "unknown field `mas`"],
+    );
+    rejected(
+        "unknown-curve",
+        &format!("duration: 1\ntrack:\n  curve:\n    circle: {{r: 1}}\n{GOOD_DISK}"),
+        &["line 4", "unknown field `circle`"],
+    );
+}
+
+#[test]
+fn duration_missing_or_not_positive() {
+    rejected(
+        "no-duration",
+        &format!("{PARABOLA}{GOOD_DISK}"),
+        &["missing field `duration`"],
+    );
+    rejected(
+        "zero-duration",
+        &format!("duration: 0\n{PARABOLA}{GOOD_DISK}"),
+        &["line 1", "`duration` must be positive"],
+    );
+    rejected(
+        "negative-duration",
+        &format!("duration: -2\n{PARABOLA}{GOOD_DISK}"),
+        &["line 1", "`duration` must be positive"],
+    );
+}
+
+#[test]
+fn disk_sizes_not_positive() {
+    rejected(
+        "zero-mass",
+        &format!("duration: 1\n{PARABOLA}disk:\n  mass: 0\n  radius: 0.1\n"),
+        &["line 6", "`disk.mass` must be positive"],
+    );
+    rejected(
+        "negative-radius",
+        &format!("duration: 1\n{PARABOLA}disk:\n  mass: 1\n  radius: -0.1\n"),
+        &["line 7", "`disk.radius` must be positive"],
+    );
+}
+
+/// On Y = kX² the curvature peaks at 2k at the vertex, which a disk released anywhere reaches:
+/// a ≥ 1/(2k) cannot roll there. Just below the limit the scene is accepted.
+#[test]
+fn disk_that_cannot_fit_the_parabola() {
+    for a in ["0.5", "0.8"] {
+        rejected(
+            &format!("fit-{a}"),
+            &format!("duration: 1\n{PARABOLA}disk:\n  mass: 1\n  radius: {a}\n  s0: -1.5\n"),
+            &["line 7", "`disk.radius`", "does not fit"],
+        );
+    }
+    let ok = scene_path(
+        "fit-ok",
+        &format!("duration: 1\n{PARABOLA}disk:\n  mass: 1\n  radius: 0.499\n  s0: -1.5\n"),
+    );
+    assert_eq!(rollbeam(&["check", ok.to_str().unwrap()]).0, 0);
+}
+
+#[test]
+fn formulas_that_do_not_parse() {
+    let expr = |x: &str, y: &str| {
+        format!("duration: 1\ntrack:\n  curve:\n    expr: {{x: \"{x}\", y: \"{y}\"}}\n{GOOD_DISK}")
+    };
+    rejected(
+        "expr-function",
+        &expr("s", "foo(s)"),
+        &["line 4", "track.curve.expr.y", "unknown function 'foo'"],
+    );
+    rejected(
+        "expr-syntax",
+        &expr("s + ", "0"),
+        &["line 4", "track.curve.expr.x", "does not parse"],
+    );
+    rejected("expr-name", &expr("s", "2*x"), &["unknown name 'x'"]);
+}
+
+#[test]
+fn bad_point_lists() {
+    let pts = |p: &str| {
+        format!("duration: 1\ntrack:\n  curve:\n    points: {p}\ndisk:\n  mass: 1\n  radius: 0.1\n  s0: 0.5\n")
+    };
+    rejected(
+        "three-points",
+        &pts("[[0, 0], [1, 0], [2, 0]]"),
+        &["line 4", "has 3 points", "at least 4"],
+    );
+    rejected(
+        "x-decreasing",
+        &pts("[[0, 0], [1, 0], [0.5, 0], [2, 0]]"),
+        &["X increasing", "point 3"],
+    );
+}
+
+#[test]
+fn start_off_a_finite_track() {
+    let line = "duration: 1\ntrack:\n  curve:\n    line: {from: [0, 0], to: [3, 4]}\ndisk:\n  mass: 1\n  radius: 0.1\n  s0: 6\n";
+    rejected(
+        "off-line",
+        line,
+        &["line 8", "`disk.s0`", "off the track", "[0, 5]"],
+    );
+}
+
+#[test]
+fn tolerances_not_positive() {
+    rejected(
+        "rtol-zero",
+        &format!("duration: 1\n{PARABOLA}{GOOD_DISK}solver:\n  rtol: 0\n"),
+        &["line 10", "`solver.rtol` must be positive"],
+    );
+    let good = scene_path("good", &format!("duration: 0.1\n{PARABOLA}{GOOD_DISK}"));
+    let (code, err) = rollbeam(&["run", good.to_str().unwrap(), "--rtol", "-1"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("--rtol must be a positive number"), "{err}");
+    let (code, err) = rollbeam(&["run", good.to_str().unwrap(), "--method", "euler"]);
+    assert!(
+        code == 1 && err.contains("--method 'euler' is unknown"),
+        "{err}"
+    );
+}
+
+#[test]
+fn non_finite_numbers_anywhere() {
+    rejected(
+        "nan-duration",
+        &format!("duration: .nan\n{PARABOLA}{GOOD_DISK}"),
+        &["line 1", "`duration` must be a finite number"],
+    );
+    rejected(
+        "inf-k",
+        "duration: 1\ntrack:\n  curve:\n    parabola: {k: .inf}\ndisk:\n  mass: 1\n  radius: 0.1\n",
+        &["line 4", "parabola.k", "finite"],
+    );
+    rejected("inf-point", "duration: 1\ntrack:\n  curve:\n    line: {from: [0, 0], to: [.inf, 1]}\ndisk:\n  mass: 1\n  radius: 0.1\n", &["line 4", "line.to", "finite"]);
+    rejected(
+        "nan-mass",
+        &format!("duration: 1\n{PARABOLA}disk:\n  mass: .nan\n  radius: 0.1\n"),
+        &["line 6", "disk.mass", "finite"],
+    );
+    rejected(
+        "inf-omega",
+        &format!("duration: 1\n{PARABOLA}{GOOD_DISK}  omega0: -.inf\n"),
+        &["line 9", "disk.omega0", "finite"],
+    );
+}
+
+#[test]
+fn track_must_be_curve_xor_beam() {
+    rejected(
+        "both",
+        &format!(
+            "duration: 1\ntrack:\n  curve:\n    parabola: {{k: 1}}\n  beam: {{}}\n{GOOD_DISK}"
+        ),
+        &["`track` must name exactly one of `curve` or `beam`"],
+    );
+    rejected(
+        "neither",
+        &format!("duration: 1\ntrack: {{}}\n{GOOD_DISK}"),
+        &["line 2", "exactly one of `curve` or `beam`"],
+    );
+}
+
+#[test]
+fn files_that_are_missing_or_not_yaml() {
+    for cmd in ["check", "run"] {
+        let (code, err) = rollbeam(&[cmd, "/nonexistent/scene.yaml"]);
+        assert!(
+            code == 1 && err.contains("cannot read scene file") && err.trim().lines().count() == 1,
+            "{err}"
+        );
+    }
+    rejected(
+        "not-yaml",
+        "duration: [1, 2\n  : : :\n",
+        &["is not a valid scene", "line 1"],
+    );
+    rejected(
+        "wrong-type",
+        &format!("duration: soon\n{PARABOLA}{GOOD_DISK}"),
+        &["is not a valid scene", "line 1"],
+    );
+}
+
+#[test]
+fn command_line_errors() {
+    for args in [
+        &["bogus"][..],
+        &["run"][..],
+        &["run", "a.yaml", "--frobnicate"][..],
+    ] {
+        let (code, err) = rollbeam(args);
+        assert_eq!(code, 1, "{args:?}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+    }
+}

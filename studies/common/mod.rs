@@ -1,0 +1,62 @@
+//! Helpers shared by the study tests: load a scene of `studies/`, run it with chosen solver
+//! settings, read the history at given times.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+use rollbeam::ode::Method;
+use rollbeam::run::{self, Overrides, Row, RunResult};
+use rollbeam::scene::Scene;
+
+pub fn studies_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("studies")
+}
+
+pub fn load(file: &str) -> Scene {
+    Scene::load(&studies_dir().join(file)).expect("study scenes are valid")
+}
+
+pub fn parse(text: &str) -> Scene {
+    Scene::parse(text, "test scene", "test").expect("test scene is valid")
+}
+
+pub fn run_with(scene: &Scene, method: Method, rtol: f64, atol: f64) -> RunResult {
+    let over = Overrides {
+        method: Some(method),
+        rtol: Some(rtol),
+        atol: Some(atol),
+        fixed_step: None,
+    };
+    run::run(scene, &over, false).expect("the run completes")
+}
+
+/// Fixed steps of size h. The tolerances then only stop Newton iterations: they are tight so
+/// that what is measured is the method's truncation error, not the nonlinear solve's.
+pub fn run_fixed(scene: &Scene, method: Method, h: f64) -> RunResult {
+    let over = Overrides {
+        method: Some(method),
+        rtol: Some(1e-13),
+        atol: Some(1e-15),
+        fixed_step: Some(h),
+    };
+    run::run(scene, &over, false).expect("the run completes")
+}
+
+/// The history row at time t (output times are multiples of the scene's interval).
+pub fn at(r: &RunResult, t: f64) -> Row {
+    *r.rows
+        .iter()
+        .min_by(|a, b| (a.t - t).abs().total_cmp(&(b.t - t).abs()))
+        .expect("rows")
+}
+
+/// Least-squares slope of log(y) against log(x).
+pub fn log_slope(x: &[f64], y: &[f64]) -> f64 {
+    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
+    let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
+    let n = lx.len() as f64;
+    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
+    let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = lx.iter().map(|a| (a - mx).powi(2)).sum();
+    sxy / sxx
+}
