@@ -132,7 +132,7 @@ mod tests {
     #[test]
     fn curvature_closed_forms() {
         let p = Curve::Parabola { k: 1.5 };
-        let s = -0.4;
+        let s: f64 = -0.4;
         let expect = 3.0 / (1.0 + 9.0 * s * s).powf(1.5);
         assert!((p.at(s).curvature() - expect).abs() < 1e-14);
         let c = Curve::Expr {
