@@ -4,6 +4,7 @@
 pub mod curve;
 pub mod disk;
 pub mod error;
+pub mod linalg;
 pub mod ode;
 pub mod output;
 pub mod rolling;

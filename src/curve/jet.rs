@@ -102,7 +102,11 @@ impl Jet {
                 let n = c as i32;
                 let f = self.v.powi(n);
                 let df = if n == 0 { 0.0 } else { c * self.v.powi(n - 1) };
-                let ddf = if n == 0 || n == 1 { 0.0 } else { c * (c - 1.0) * self.v.powi(n - 2) };
+                let ddf = if n == 0 || n == 1 {
+                    0.0
+                } else {
+                    c * (c - 1.0) * self.v.powi(n - 2)
+                };
                 return self.chain(f, df, ddf);
             }
             let f = self.v.powf(c);

@@ -6,17 +6,15 @@
 //! measuring orders of convergence), dense output at the requested times, and events located on
 //! the dense output to [`EVENT_TIME_TOL`].
 
-mod dense;
 mod dopri5;
 mod trbdf2;
 
 use std::fmt;
 use std::time::Instant;
 
-use nalgebra::DMatrix;
 use serde::Serialize;
 
-pub use dense::LinearSolve;
+use crate::linalg::{self, Sparse, SparseLu};
 
 /// Events are located to this width of their bracket in time (s).
 pub const EVENT_TIME_TOL: f64 = 1e-10;
@@ -32,12 +30,21 @@ pub trait Problem {
     fn dim(&self) -> usize;
     fn rhs(&self, t: f64, y: &[f64], f: &mut [f64]);
     /// M(t, y) of M y' = f; `None` is the identity.
-    fn mass(&self, _t: f64, _y: &[f64]) -> Option<DMatrix<f64>> {
+    fn mass(&self, _t: f64, _y: &[f64]) -> Option<Sparse> {
         None
     }
-    /// ∂f/∂y in closed form, where the problem has one; otherwise finite differences are used.
-    fn jacobian(&self, _t: f64, _y: &[f64]) -> Option<DMatrix<f64>> {
+    /// A constant mass matrix is factorised once per run.
+    fn mass_is_constant(&self) -> bool {
+        false
+    }
+    /// ∂f/∂y in closed form, where the problem has one; otherwise finite differences are used
+    /// (dense: meant for small problems only).
+    fn jacobian(&self, _t: f64, _y: &[f64]) -> Option<Sparse> {
         None
+    }
+    /// Times where f jumps (loads switched on or off): steps end there and restart.
+    fn breakpoints(&self) -> Vec<f64> {
+        Vec::new()
     }
     fn events(&self) -> &[EventSpec] {
         &[]
@@ -216,6 +223,8 @@ pub(crate) struct Ctx {
     pub rtol: f64,
     pub atol: f64,
     pub stats: Stats,
+    /// Factorised mass matrix of a problem whose mass is constant.
+    mass_lu: Option<SparseLu>,
 }
 
 impl Ctx {
@@ -242,21 +251,34 @@ impl Ctx {
         yp: &mut [f64],
     ) -> Result<(), SolveError> {
         self.rhs(p, t, y, yp);
-        if let Some(m) = p.mass(t, y) {
-            let lu = LinearSolve::factor(m).ok_or(SolveError::SingularMatrix { t })?;
-            lu.solve_in_place(yp);
+        if p.mass_is_constant() {
+            if self.mass_lu.is_none() {
+                if let Some(m) = p.mass(t, y) {
+                    self.stats.factorizations += 1;
+                    self.mass_lu =
+                        Some(SparseLu::factor(&m, None).ok_or(SolveError::SingularMatrix { t })?);
+                }
+            }
+            if let Some(lu) = &self.mass_lu {
+                lu.solve_in_place(yp);
+            }
+        } else if let Some(m) = p.mass(t, y) {
+            self.stats.factorizations += 1;
+            SparseLu::factor(&m, None)
+                .ok_or(SolveError::SingularMatrix { t })?
+                .solve_in_place(yp);
         }
         Ok(())
     }
 
     /// ∂f/∂y: the problem's own, or forward differences scaled to each component.
-    pub fn jacobian(&mut self, p: &dyn Problem, t: f64, y: &[f64], f0: &[f64]) -> DMatrix<f64> {
+    pub fn jacobian(&mut self, p: &dyn Problem, t: f64, y: &[f64], f0: &[f64]) -> Sparse {
         self.stats.jacobians += 1;
         if let Some(j) = p.jacobian(t, y) {
             return j;
         }
         let n = y.len();
-        let mut j = DMatrix::zeros(n, n);
+        let mut j = nalgebra::DMatrix::zeros(n, n);
         let mut yh = y.to_vec();
         let mut fh = vec![0.0; n];
         for c in 0..n {
@@ -272,7 +294,7 @@ impl Ctx {
             }
             yh[c] = y[c];
         }
-        j
+        linalg::from_dense(&j)
     }
 }
 
@@ -300,6 +322,7 @@ pub fn solve(
         rtol: opts.rtol,
         atol: opts.atol,
         stats: Stats::default(),
+        mass_lu: None,
     };
     let mut stepper = make_stepper(opts.method, n);
     let specs = p.events();
@@ -340,6 +363,12 @@ pub fn solve(
     let h_min = 1e-14 * t0.abs().max(t_end.abs()).max(1.0);
     let mut y_tmp = vec![0.0; n];
     let mut just_rejected = false;
+    let mut breaks: Vec<f64> = p
+        .breakpoints()
+        .into_iter()
+        .filter(|&b| b > t0 && b < t_end)
+        .collect();
+    breaks.sort_by(f64::total_cmp);
 
     while t < t_end {
         if ctx.stats.steps >= opts.max_steps {
@@ -348,8 +377,14 @@ pub fn solve(
                 steps: ctx.stats.steps,
             });
         }
-        let last = t + h >= t_end - h_min;
-        let h_try = if last { t_end - t } else { h };
+        // Steps end exactly on the next breakpoint (or the end), and restart there.
+        let target = breaks
+            .iter()
+            .copied()
+            .find(|&b| b > t + h_min)
+            .unwrap_or(t_end);
+        let last = t + h >= target - h_min;
+        let h_try = if last { target - t } else { h };
         let attempt = stepper.attempt(p, t, &y, h_try, &mut ctx)?;
         let err = match attempt {
             Attempt::Done { err } => err,
@@ -388,7 +423,7 @@ pub fn solve(
         }
         stepper.accept();
         ctx.stats.steps += 1;
-        let t_new = if last { t_end } else { t + h_try };
+        let t_new = if last { target } else { t + h_try };
 
         // Earliest sign change from ≥ 0 to < 0 in this step, located on the dense output.
         let mut first: Option<(usize, f64)> = None;
@@ -437,6 +472,9 @@ pub fn solve(
         }
         t = t_new;
         y.copy_from_slice(stepper.y_new());
+        if last && target < t_end {
+            stepper.start(p, t, &y, &mut ctx)?;
+        }
         g = g_new;
         observer.step(t, &y);
         if opts.fixed_step.is_none() {

@@ -6,9 +6,8 @@
 //! Newton reuses the Jacobian and the factorised iteration matrix across steps for as long as it
 //! converges; a failure first refreshes the Jacobian, then halves the step (twice).
 
-use nalgebra::DMatrix;
-
-use super::{Attempt, Ctx, LinearSolve, Problem, SolveError, Stepper};
+use super::{Attempt, Ctx, Problem, SolveError, Stepper};
+use crate::linalg::{self, Assembly, Sparse, SparseLu};
 
 const GAMMA: f64 = 2.0 - std::f64::consts::SQRT_2;
 const D: f64 = GAMMA / 2.0;
@@ -32,11 +31,11 @@ pub struct TrBdf2 {
     h: f64,
     t_try: f64,
     h_try: f64,
-    jac: Option<DMatrix<f64>>,
+    jac: Option<Sparse>,
     /// The Jacobian was evaluated at the current step start.
     jac_fresh: bool,
     /// Factorised M − d h J and the d h it was built for.
-    iteration: Option<(f64, LinearSolve)>,
+    iteration: Option<(f64, SparseLu)>,
     /// Newton contraction estimate carried between solves (Hairer & Wanner IV.8).
     eta: f64,
     f: Vec<f64>,
@@ -92,10 +91,15 @@ impl TrBdf2 {
             .as_ref()
             .expect("the Jacobian is evaluated before the first factorisation");
         let n = y.len();
-        let mut w = p.mass(t, y).unwrap_or_else(|| DMatrix::identity(n, n));
-        w -= jac * dh;
+        let mut w = Assembly::new(n);
+        match p.mass(t, y) {
+            Some(m) => w.add_sparse(&m, 1.0, 0, 0),
+            None => (0..n).for_each(|i| w.add(i, i, 1.0)),
+        }
+        w.add_sparse(jac, -dh, 0, 0);
         ctx.stats.factorizations += 1;
-        let lu = LinearSolve::factor(w).ok_or(SolveError::SingularMatrix { t })?;
+        let previous = self.iteration.take().map(|(_, lu)| lu);
+        let lu = SparseLu::factor(&w.build(), previous).ok_or(SolveError::SingularMatrix { t })?;
         self.iteration = Some((dh, lu));
         Ok(())
     }
@@ -120,8 +124,8 @@ impl TrBdf2 {
                 self.g[i] = z[i] - base[i];
             }
             if let Some(m) = p.mass(t, z) {
-                let mv = &m * nalgebra::DVector::from_column_slice(&self.g);
-                self.g.copy_from_slice(mv.as_slice());
+                let g = self.g.clone();
+                linalg::mul(&m, &g, &mut self.g);
             }
             for i in 0..n {
                 self.g[i] = -(self.g[i] - dh * self.f[i]);

@@ -63,8 +63,8 @@ impl Problem for Thesis {
         f[4] = y[5];
     }
 
-    fn mass(&self, _t: f64, y: &[f64]) -> Option<DMatrix<f64>> {
-        Some(self.mass_matrix(y))
+    fn mass(&self, _t: f64, y: &[f64]) -> Option<crate::linalg::Sparse> {
+        Some(crate::linalg::from_dense(&self.mass_matrix(y)))
     }
 
     fn events(&self) -> &[EventSpec] {
