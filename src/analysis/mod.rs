@@ -1,0 +1,4 @@
+//! Analyses of a beam that are not time integration: static equilibrium and natural modes.
+
+pub mod modes;
+pub mod statics;

@@ -1,0 +1,67 @@
+//! Lagrange shape functions of degree p on one element, through the Gauss–Lobatto points
+//! (well conditioned up to p = 10, unlike equally spaced nodes).
+
+use super::quadrature::lobatto;
+
+#[derive(Clone, Debug)]
+pub struct Lagrange {
+    /// Nodes on [−1, 1], ascending, both ends included.
+    pub nodes: Vec<f64>,
+}
+
+impl Lagrange {
+    pub fn new(degree: usize) -> Self {
+        Lagrange {
+            nodes: lobatto(degree + 1).points,
+        }
+    }
+
+    pub fn count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Values and derivatives (in ξ) of every shape function at ξ.
+    pub fn eval(&self, xi: f64, n: &mut [f64], dn: &mut [f64]) {
+        let k = self.nodes.len();
+        for a in 0..k {
+            let mut value = 1.0;
+            let mut deriv = 0.0;
+            for b in 0..k {
+                if b == a {
+                    continue;
+                }
+                let denom = self.nodes[a] - self.nodes[b];
+                // Product rule: the derivative of a product of linear factors.
+                deriv = deriv * (xi - self.nodes[b]) / denom + value / denom;
+                value *= (xi - self.nodes[b]) / denom;
+            }
+            n[a] = value;
+            dn[a] = deriv;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Partition of unity, Kronecker property at the nodes, and exact derivatives of ξ^p.
+    #[test]
+    fn interpolation_properties() {
+        for p in 1..=10 {
+            let b = Lagrange::new(p);
+            let mut n = vec![0.0; p + 1];
+            let mut dn = vec![0.0; p + 1];
+            b.eval(0.3127, &mut n, &mut dn);
+            assert!((n.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+            assert!(dn.iter().sum::<f64>().abs() < 1e-10);
+            let interp: f64 = (0..=p).map(|a| dn[a] * b.nodes[a].powi(p as i32)).sum();
+            assert!(
+                (interp - p as f64 * 0.3127f64.powi(p as i32 - 1)).abs() < 1e-9,
+                "p = {p}"
+            );
+            b.eval(b.nodes[1], &mut n, &mut dn);
+            assert!((n[1] - 1.0).abs() < 1e-14 && n[0].abs() < 1e-14);
+        }
+    }
+}

@@ -1,0 +1,284 @@
+//! The geometrically exact planar (Reissner) beam of thesis chapter 4, discretised by Galerkin
+//! finite elements with Lagrange polynomials of degree 1..10.
+//!
+//! The beam is computed in its own frame: x along the undeformed axis from `from` to `to`,
+//! displacements (u, w) along and across it, so an inclined beam is the horizontal one turned
+//! rigidly by its angle; loads are turned into this frame and results back. Each step of the
+//! method lives in its own file: `quadrature`, `basis`, `element` (kinematics, resultants,
+//! internal force, tangent, mass), `supports`, and the assembly below.
+
+pub mod basis;
+pub mod element;
+pub mod quadrature;
+pub mod supports;
+
+use basis::Lagrange;
+use element::{ElementKernels, Section, Tabulated};
+use supports::Support;
+
+use crate::linalg::{Assembly, Sparse};
+
+/// Which rule integrates the stiffness. Reduced Gauss (p points for degree p) is free of
+/// shear locking and of spurious zero-energy modes for this element (3p constraints on
+/// 3(p + 1) − 3 deformation modes); full Gauss (p + 1) locks for thin beams at low degree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quadrature {
+    Reduced,
+    Full,
+    Lobatto,
+}
+
+impl Quadrature {
+    pub fn name(self) -> &'static str {
+        match self {
+            Quadrature::Reduced => "reduced",
+            Quadrature::Full => "full",
+            Quadrature::Lobatto => "lobatto",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Quadrature> {
+        [Quadrature::Reduced, Quadrature::Full, Quadrature::Lobatto]
+            .into_iter()
+            .find(|q| q.name() == name)
+    }
+
+    fn rule(self, degree: usize) -> quadrature::Rule {
+        match self {
+            Quadrature::Reduced => quadrature::gauss(degree),
+            Quadrature::Full => quadrature::gauss(degree + 1),
+            Quadrature::Lobatto => quadrature::lobatto(degree + 1),
+        }
+    }
+}
+
+/// The beam as the scene describes it.
+#[derive(Clone, Debug)]
+pub struct BeamSpec {
+    pub from: [f64; 2],
+    pub to: [f64; 2],
+    pub section: Section,
+    pub supports: [Support; 2],
+    pub elements: usize,
+    pub order: usize,
+    pub quadrature: Quadrature,
+}
+
+/// A displacement state at one material point, in global axes.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PointDisplacement {
+    pub u: f64,
+    pub w: f64,
+    pub phi: f64,
+}
+
+/// The discretised beam: mesh, equation numbering with supports applied, constant mass matrix.
+#[derive(Clone, Debug)]
+pub struct Beam {
+    pub spec: BeamSpec,
+    pub length: f64,
+    /// Angle of the undeformed axis to the global X axis.
+    pub angle: f64,
+    basis: Lagrange,
+    stiff: Tabulated,
+    h: f64,
+    /// Equation number of each global unknown (3 per node), `None` where a support holds it.
+    eq: Vec<Option<usize>>,
+    n_free: usize,
+    mass: Sparse,
+}
+
+impl Beam {
+    pub fn new(spec: BeamSpec) -> Beam {
+        let length = (spec.to[0] - spec.from[0]).hypot(spec.to[1] - spec.from[1]);
+        let angle = (spec.to[1] - spec.from[1]).atan2(spec.to[0] - spec.from[0]);
+        let basis = Lagrange::new(spec.order);
+        let h = length / spec.elements as f64;
+        let stiff = Tabulated::new(&basis, &spec.quadrature.rule(spec.order), h);
+        let nodes = spec.elements * spec.order + 1;
+        let mut held = vec![false; 3 * nodes];
+        for (end, support) in spec.supports.iter().enumerate() {
+            let node = if end == 0 { 0 } else { nodes - 1 };
+            for c in support.held_components() {
+                held[3 * node + c] = true;
+            }
+        }
+        let mut next = 0;
+        let eq = held
+            .iter()
+            .map(|&h| {
+                (!h).then(|| {
+                    next += 1;
+                    next - 1
+                })
+            })
+            .collect();
+        let mut beam = Beam {
+            spec,
+            length,
+            angle,
+            basis,
+            stiff,
+            h,
+            eq,
+            n_free: next,
+            mass: Sparse::try_new_from_triplets(0, 0, &[]).expect("empty"),
+        };
+        beam.mass = beam.assemble_mass();
+        beam
+    }
+
+    /// Unknowns after the supports are applied.
+    pub fn dim(&self) -> usize {
+        self.n_free
+    }
+
+    pub fn nodes(&self) -> usize {
+        self.spec.elements * self.spec.order + 1
+    }
+
+    pub fn mass(&self) -> &Sparse {
+        &self.mass
+    }
+
+    fn element_dofs(&self, e: usize) -> impl Iterator<Item = usize> + '_ {
+        let first = e * self.spec.order;
+        (0..3 * (self.spec.order + 1)).map(move |k| 3 * first + k)
+    }
+
+    fn gather(&self, e: usize, q: &[f64], qe: &mut [f64]) {
+        for (k, dof) in self.element_dofs(e).enumerate() {
+            qe[k] = self.eq[dof].map_or(0.0, |i| q[i]);
+        }
+    }
+
+    fn assemble_mass(&self) -> Sparse {
+        let rule = quadrature::gauss(self.spec.order + 1);
+        let tab = Tabulated::new(&self.basis, &rule, self.h);
+        let k = 3 * (self.spec.order + 1);
+        let mut me = vec![0.0; k * k];
+        element::mass(&self.spec.section, &tab, &mut me);
+        let mut a = Assembly::new(self.n_free);
+        for e in 0..self.spec.elements {
+            self.scatter_matrix(e, &me, &mut a);
+        }
+        a.build()
+    }
+
+    fn scatter_matrix(&self, e: usize, ke: &[f64], a: &mut Assembly) {
+        let dofs: Vec<Option<usize>> = self.element_dofs(e).map(|d| self.eq[d]).collect();
+        let k = dofs.len();
+        for (i, ri) in dofs.iter().enumerate() {
+            let Some(ri) = ri else { continue };
+            for (j, cj) in dofs.iter().enumerate() {
+                if let Some(cj) = cj {
+                    a.add(*ri, *cj, ke[i * k + j]);
+                }
+            }
+        }
+    }
+
+    /// Internal force vector on the free unknowns; returns the strain energy.
+    pub fn internal_force(&self, q: &[f64], f: &mut [f64]) -> f64 {
+        f.fill(0.0);
+        let k = 3 * (self.spec.order + 1);
+        let mut qe = vec![0.0; k];
+        let mut fe = vec![0.0; k];
+        let kernels = ElementKernels {
+            section: &self.spec.section,
+            stiff: &self.stiff,
+        };
+        let mut energy = 0.0;
+        for e in 0..self.spec.elements {
+            self.gather(e, q, &mut qe);
+            energy += kernels.internal_force(&qe, &mut fe);
+            for (kk, dof) in self.element_dofs(e).enumerate() {
+                if let Some(i) = self.eq[dof] {
+                    f[i] += fe[kk];
+                }
+            }
+        }
+        energy
+    }
+
+    pub fn strain_energy(&self, q: &[f64]) -> f64 {
+        let mut f = vec![0.0; self.n_free];
+        self.internal_force(q, &mut f)
+    }
+
+    /// Tangent stiffness ∂f_int/∂q on the free unknowns (material + geometric).
+    pub fn tangent(&self, q: &[f64]) -> Sparse {
+        let k = 3 * (self.spec.order + 1);
+        let mut qe = vec![0.0; k];
+        let mut ke = vec![0.0; k * k];
+        let kernels = ElementKernels {
+            section: &self.spec.section,
+            stiff: &self.stiff,
+        };
+        let mut a = Assembly::new(self.n_free);
+        for e in 0..self.spec.elements {
+            self.gather(e, q, &mut qe);
+            kernels.tangent(&qe, &mut ke);
+            self.scatter_matrix(e, &ke, &mut a);
+        }
+        a.build()
+    }
+
+    /// Element and shape-function values at material point x ∈ [0, L].
+    fn locate(&self, x: f64) -> (usize, Vec<f64>, Vec<f64>) {
+        let e = ((x / self.h).floor() as usize).min(self.spec.elements - 1);
+        let xi = 2.0 * (x - e as f64 * self.h) / self.h - 1.0;
+        let k = self.spec.order + 1;
+        let mut n = vec![0.0; k];
+        let mut dn = vec![0.0; k];
+        self.basis.eval(xi, &mut n, &mut dn);
+        (e, n, dn)
+    }
+
+    /// Global load components turned into the beam frame.
+    pub fn to_local(&self, v: [f64; 2]) -> [f64; 2] {
+        let (s, c) = self.angle.sin_cos();
+        [c * v[0] + s * v[1], -s * v[0] + c * v[1]]
+    }
+
+    pub fn to_global(&self, v: [f64; 2]) -> [f64; 2] {
+        let (s, c) = self.angle.sin_cos();
+        [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+    }
+
+    /// Add a point force (global fx, fy) and moment mz at material point x: the Dirac load's
+    /// virtual work puts P·P_i(x) on each unknown, no mesh node needed at x.
+    pub fn add_point_load(&self, x: f64, force: [f64; 2], mz: f64, f: &mut [f64]) {
+        let local = self.to_local(force);
+        let (e, n, _) = self.locate(x);
+        let first = e * self.spec.order;
+        for (a, na) in n.iter().enumerate() {
+            let node = first + a;
+            for (c, value) in [(0, local[0]), (1, local[1]), (2, mz)] {
+                if let Some(i) = self.eq[3 * node + c] {
+                    f[i] += na * value;
+                }
+            }
+        }
+    }
+
+    /// Displacement (global u, w) and rotation at material point x.
+    pub fn displacement_at(&self, q: &[f64], x: f64) -> PointDisplacement {
+        let (e, n, _) = self.locate(x);
+        let first = e * self.spec.order;
+        let mut v = [0.0; 3];
+        for (a, na) in n.iter().enumerate() {
+            for (c, vc) in v.iter_mut().enumerate() {
+                *vc += na * self.eq[3 * (first + a) + c].map_or(0.0, |i| q[i]);
+            }
+        }
+        let [u, w] = self.to_global([v[0], v[1]]);
+        PointDisplacement { u, w, phi: v[2] }
+    }
+
+    /// Position of the undeformed axis at material point x.
+    pub fn reference_point(&self, x: f64) -> [f64; 2] {
+        let (s, c) = self.angle.sin_cos();
+        [self.spec.from[0] + x * c, self.spec.from[1] + x * s]
+    }
+}
