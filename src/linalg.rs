@@ -53,11 +53,18 @@ pub fn entries(m: &Sparse) -> impl Iterator<Item = (usize, (usize, f64))> + '_ {
         .flat_map(move |j| (col_ptr[j]..col_ptr[j + 1]).map(move |k| (j, (row_idx[k], val[k]))))
 }
 
-/// y = A x.
+/// y = A x. Plain loops over the CSC arrays: this is the innermost operation of every
+/// structural step.
 pub fn mul(a: &Sparse, x: &[f64], y: &mut [f64]) {
     y.fill(0.0);
-    for (j, (i, v)) in entries(a) {
-        y[i] += v * x[j];
+    let col_ptr = a.symbolic().col_ptr();
+    let row_idx = a.symbolic().row_idx();
+    let val = a.val();
+    for j in 0..a.ncols() {
+        let xj = x[j];
+        for k in col_ptr[j]..col_ptr[j + 1] {
+            y[row_idx[k]] += val[k] * xj;
+        }
     }
 }
 
@@ -72,6 +79,43 @@ pub fn from_dense(m: &nalgebra::DMatrix<f64>) -> Sparse {
         }
     }
     a.build()
+}
+
+/// A + c B for matrices A and B assembled from the same kinds of entries: both are put on
+/// their joint pattern once, after which a new c only rescales values (no sorting).
+pub struct Combination {
+    a: Vec<f64>,
+    b: Vec<f64>,
+    joint: Sparse,
+}
+
+impl Combination {
+    pub fn new(a: &Sparse, b: &Sparse) -> Self {
+        let n = a.nrows();
+        let (mut pa, mut pb) = (Assembly::new(n), Assembly::new(n));
+        pa.add_sparse(a, 1.0, 0, 0);
+        pa.add_sparse(b, 0.0, 0, 0);
+        pb.add_sparse(a, 0.0, 0, 0);
+        pb.add_sparse(b, 1.0, 0, 0);
+        let (ja, jb) = (pa.build(), pb.build());
+        Combination {
+            a: ja.val().to_vec(),
+            b: jb.val().to_vec(),
+            joint: ja,
+        }
+    }
+
+    pub fn at(&mut self, c: f64) -> &Sparse {
+        for (v, (a, b)) in self
+            .joint
+            .val_mut()
+            .iter_mut()
+            .zip(self.a.iter().zip(&self.b))
+        {
+            *v = a + c * b;
+        }
+        &self.joint
+    }
 }
 
 /// Sparse LU that keeps its symbolic analysis while the pattern stays the same.

@@ -5,10 +5,11 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use rollbeam::beam::Beam;
 use rollbeam::error::Error;
 use rollbeam::ode::Method;
-use rollbeam::run::{self, Overrides};
-use rollbeam::scene::{method_names, Scene};
+use rollbeam::run::{self, Overrides, Run};
+use rollbeam::scene::{method_names, BeamScene, Model, Scene};
 use rollbeam::{output, studies};
 
 #[derive(Parser)]
@@ -30,7 +31,7 @@ enum Command {
         /// Output folder (default out/<scene name>).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Integrator: dopri5 or trbdf2.
+        /// Integrator: dopri5, trbdf2 or genalpha (beam scenes).
         #[arg(long)]
         method: Option<String>,
         #[arg(long, allow_negative_numbers = true)]
@@ -127,6 +128,9 @@ fn dispatch(command: Command) -> Result<(), Error> {
                     ))
                 })?),
             };
+            if method == Some(Method::GenAlpha) && scene.beam().is_none() {
+                return Err(Error::Input("--method genalpha integrates beam scenes; use dopri5 or trbdf2 for a rigid curve".into()));
+            }
             let over = Overrides {
                 method,
                 rtol: positive(rtol, "--rtol")?,
@@ -136,47 +140,101 @@ fn dispatch(command: Command) -> Result<(), Error> {
             let result = run::run(&scene, &over, true)?;
             let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
             output::write_all(&result, &dir)?;
-            let d = &result.last.disk;
-            println!("{}: {}", scene.name, result.stop.sentence(result.last.t));
-            println!("  disk at s = {:.6}, centre ({:.6}, {:.6}) m, velocity ({:.6}, {:.6}) m/s, Ω = {:.6} 1/s", d.s, d.x, d.y, d.vx, d.vy, d.omega);
+            println!("{}: {}", scene.name, result.stop().sentence(result.t_end()));
+            match &result {
+                Run::Rolling(r) => {
+                    let d = &r.last.disk;
+                    println!("  disk at s = {:.6}, centre ({:.6}, {:.6}) m, velocity ({:.6}, {:.6}) m/s, Ω = {:.6} 1/s", d.s, d.x, d.y, d.vx, d.vy, d.omega);
+                }
+                Run::Beam(b) => {
+                    for (k, p) in b.setup.probes.iter().enumerate() {
+                        let (lo, hi) = b
+                            .rows
+                            .iter()
+                            .map(|r| r.probes[k].w)
+                            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, c), w| {
+                                (a.min(w), c.max(w))
+                            });
+                        println!(
+                            "  probe {} (x = {} m): w from {lo:.6e} to {hi:.6e} m",
+                            p.name, p.x
+                        );
+                    }
+                }
+            }
             println!(
                 "  energy drift {:.2e} (relative)",
-                result.energy.max_rel_drift()
+                result.energy().max_rel_drift()
             );
-            let s = &result.stats;
+            let s = result.stats();
+            let (m, rt, at) = match &result {
+                Run::Rolling(r) => (r.method, r.rtol, r.atol),
+                Run::Beam(b) => (b.method, b.rtol, b.atol),
+            };
             println!(
-                "  {} rtol {:e} atol {:e}: {} steps, {} rejected, {} rhs evaluations, {} Jacobians, {} factorisations, {:.3} s",
-                result.method.name(), result.rtol, result.atol, s.steps, s.rejected, s.rhs_evals, s.jacobians, s.factorizations, s.wall_s
+                "  {} rtol {rt:e} atol {at:e}: {} steps, {} rejected, {} rhs evaluations, {} Jacobians, {} factorisations, {:.3} s",
+                m.name(), s.steps, s.rejected, s.rhs_evals, s.jacobians, s.factorizations, s.wall_s
             );
             println!("  wrote {}", dir.display());
             Ok(())
         }
         Command::Check { scene } => {
             let scene = Scene::load(&scene)?;
-            let r = &scene.rolling;
-            let model = run::model(&scene);
             println!("scene {}: valid", scene.name);
-            println!(
-                "  track: rigid {} curve{}",
-                r.curve.kind(),
-                r.curve
-                    .domain()
-                    .map_or(String::new(), |(a, b)| format!(", s in [{a}, {b}]"))
-            );
-            println!(
-                "  disk: m = {} kg, a = {} m, C = {} kg m², s0 = {}, Ω0 = {} 1/s{}",
-                r.disk.mass,
-                r.disk.radius,
-                r.disk.inertia(),
-                r.s0,
-                r.omega0,
-                r.mu.map_or(String::new(), |m| format!(", mu = {m}"))
-            );
-            println!(
-                "  model: {} formulation, {} unknowns",
-                scene.formulation.name(),
-                model.initial_state().len()
-            );
+            match &scene.model {
+                Model::Rolling(setup) => {
+                    let r = &setup.rolling;
+                    println!(
+                        "  track: rigid {} curve{}",
+                        r.curve.kind(),
+                        r.curve
+                            .domain()
+                            .map_or(String::new(), |(a, b)| format!(", s in [{a}, {b}]"))
+                    );
+                    println!(
+                        "  disk: m = {} kg, a = {} m, C = {} kg m², s0 = {}, Ω0 = {} 1/s{}",
+                        r.disk.mass,
+                        r.disk.radius,
+                        r.disk.inertia(),
+                        r.s0,
+                        r.omega0,
+                        r.mu.map_or(String::new(), |m| format!(", mu = {m}"))
+                    );
+                    println!(
+                        "  model: {} formulation, {} unknowns (no beam)",
+                        setup.formulation.name(),
+                        run::model(setup).initial_state().len()
+                    );
+                }
+                Model::Beam(setup) => {
+                    let b = Beam::new(setup.beam.clone());
+                    let spec = &b.spec;
+                    println!(
+                        "  track: Reissner beam, L = {:.6} m at {:.4}° , supports {} / {}",
+                        b.length,
+                        b.angle.to_degrees(),
+                        spec.supports[0].name(),
+                        spec.supports[1].name()
+                    );
+                    println!(
+                        "  mesh: {} elements of degree {}, {} quadrature, {} unknowns (no disk)",
+                        spec.elements,
+                        spec.order,
+                        spec.quadrature.name(),
+                        b.dim()
+                    );
+                    println!(
+                        "  loads: {}, probes: {}",
+                        setup.loads.len(),
+                        setup
+                            .probes
+                            .iter()
+                            .map(|p| format!("{} at x = {}", p.name, p.x))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    );
+                }
+            }
             println!(
                 "  solver: {} rtol {:e} atol {:e}; duration {} s, output every {} s",
                 scene.solver.method.name(),
@@ -187,12 +245,26 @@ fn dispatch(command: Command) -> Result<(), Error> {
             );
             Ok(())
         }
-        Command::Static { scene, .. } | Command::Modes { scene, .. } => {
-            Scene::load(&scene)?;
-            Err(Error::Input(format!(
-                "{}: `static` and `modes` need a beam track; this scene has a rigid curve",
-                scene.display()
-            )))
+        Command::Static { scene: path, out } => {
+            let scene = Scene::load(&path)?;
+            let setup = beam_only(&scene, &path, "static")?;
+            let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
+            let result = rollbeam::analysis::report::statics(&scene, setup, &dir)?;
+            print!("{result}");
+            Ok(())
+        }
+        Command::Modes {
+            scene: path,
+            count,
+            out,
+        } => {
+            let scene = Scene::load(&path)?;
+            let setup = beam_only(&scene, &path, "modes")?;
+            let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
+            let result =
+                rollbeam::analysis::report::modes(&scene, setup, count.unwrap_or(6), &dir)?;
+            print!("{result}");
+            Ok(())
         }
         Command::Studies { out } => {
             let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -210,4 +282,13 @@ fn dispatch(command: Command) -> Result<(), Error> {
             Ok(())
         }
     }
+}
+
+fn beam_only<'a>(scene: &'a Scene, path: &Path, command: &str) -> Result<&'a BeamScene, Error> {
+    scene.beam().ok_or_else(|| {
+        Error::Input(format!(
+            "{}: `{command}` needs a beam track; this scene has a rigid curve",
+            path.display()
+        ))
+    })
 }

@@ -4,10 +4,12 @@
 
 use std::path::Path;
 
-use serde::de::IgnoredAny;
 use serde::Deserialize;
 use serde_saphyr::Spanned;
 
+use crate::beam::element::Section;
+use crate::beam::supports::Support;
+use crate::beam::{BeamSpec, Quadrature};
 use crate::curve::expr::Formula;
 use crate::curve::spline::Spline;
 use crate::curve::Curve;
@@ -24,7 +26,7 @@ struct SceneFile {
     duration: Spanned<f64>,
     track: Spanned<TrackFile>,
     disk: Option<Spanned<DiskFile>>,
-    loads: Option<Spanned<IgnoredAny>>,
+    loads: Option<Spanned<Vec<Spanned<LoadFile>>>>,
     solver: Option<SolverFile>,
     output: Option<OutputFile>,
 }
@@ -33,7 +35,50 @@ struct SceneFile {
 #[serde(deny_unknown_fields)]
 struct TrackFile {
     curve: Option<Spanned<CurveFile>>,
-    beam: Option<Spanned<IgnoredAny>>,
+    beam: Option<Spanned<BeamFile>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(non_snake_case)]
+struct BeamFile {
+    from: Spanned<[f64; 2]>,
+    to: Spanned<[f64; 2]>,
+    E: Spanned<f64>,
+    G: Spanned<f64>,
+    rho: Spanned<f64>,
+    A: Spanned<f64>,
+    Av: Spanned<f64>,
+    I: Spanned<f64>,
+    supports: Spanned<SupportsFile>,
+    elements: Option<Spanned<i64>>,
+    order: Option<Spanned<i64>>,
+    quadrature: Option<Spanned<String>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SupportsFile {
+    from: Spanned<String>,
+    to: Spanned<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LoadFile {
+    x: Spanned<f64>,
+    fx: Option<Spanned<f64>>,
+    fy: Option<Spanned<f64>>,
+    mz: Option<Spanned<f64>>,
+    from: Option<Spanned<f64>>,
+    until: Option<Spanned<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ProbeFile {
+    name: Spanned<String>,
+    x: Spanned<f64>,
 }
 
 #[derive(Deserialize)]
@@ -83,15 +128,16 @@ struct SolverFile {
     method: Option<Spanned<String>>,
     rtol: Option<Spanned<f64>>,
     atol: Option<Spanned<f64>>,
+    rho_inf: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct OutputFile {
     interval: Option<Spanned<f64>>,
-    probes: Option<Spanned<IgnoredAny>>,
-    shapes: Option<Spanned<IgnoredAny>>,
-    magnify: Option<Spanned<IgnoredAny>>,
+    probes: Option<Spanned<Vec<Spanned<ProbeFile>>>>,
+    shapes: Option<Spanned<Vec<Spanned<f64>>>>,
+    magnify: Option<Spanned<f64>>,
 }
 
 /// How the disk on a rigid curve is formulated.
@@ -117,16 +163,79 @@ pub struct SolverSettings {
     pub atol: f64,
 }
 
+/// A disk on a rigid curve.
+#[derive(Clone, Debug)]
+pub struct RollingScene {
+    pub rolling: Rolling,
+    pub formulation: Formulation,
+}
+
+/// A point force (global components) and moment at material point x, on for from ≤ t < until.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointLoad {
+    pub x: f64,
+    pub force: [f64; 2],
+    pub mz: f64,
+    pub from: f64,
+    pub until: f64,
+}
+
+impl PointLoad {
+    pub fn active(&self, t: f64) -> bool {
+        self.from <= t && t < self.until
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Probe {
+    pub name: String,
+    pub x: f64,
+}
+
+/// A flexible beam under point loads.
+#[derive(Clone, Debug)]
+pub struct BeamScene {
+    pub beam: BeamSpec,
+    pub loads: Vec<PointLoad>,
+    pub probes: Vec<Probe>,
+    pub shapes: Vec<f64>,
+    pub magnify: f64,
+    /// Spectral radius at infinity of generalized-α.
+    pub rho_inf: f64,
+}
+
+/// What the scene models, and only that.
+#[derive(Clone, Debug)]
+pub enum Model {
+    Rolling(RollingScene),
+    Beam(BeamScene),
+}
+
 /// A checked scene: everything the run needs, nothing it does not.
 #[derive(Clone, Debug)]
 pub struct Scene {
     pub name: String,
     pub duration: f64,
-    pub rolling: Rolling,
-    pub formulation: Formulation,
+    pub model: Model,
     pub solver: SolverSettings,
     /// Time between rows of history.csv.
     pub interval: f64,
+}
+
+impl Scene {
+    pub fn rolling(&self) -> Option<&RollingScene> {
+        match &self.model {
+            Model::Rolling(r) => Some(r),
+            Model::Beam(_) => None,
+        }
+    }
+
+    pub fn beam(&self) -> Option<&BeamScene> {
+        match &self.model {
+            Model::Beam(b) => Some(b),
+            Model::Rolling(_) => None,
+        }
+    }
 }
 
 pub const DEFAULT_GRAVITY: f64 = 9.81;
@@ -204,15 +313,13 @@ impl Scene {
             Error::Input(format!("{file} is not a valid scene: {first}"))
         })?;
         let c = Checker { file };
-
         let gravity = match &raw.gravity {
             Some(g) => c.finite(g, "gravity")?,
             None => DEFAULT_GRAVITY,
         };
         let duration = c.positive(&raw.duration, "duration")?;
-
         let track = &raw.track;
-        let curve_file = match (&track.value.curve, &track.value.beam) {
+        let model = match (&track.value.curve, &track.value.beam) {
             (Some(_), Some(_)) | (None, None) => {
                 return c.err(
                     track.referenced.line(),
@@ -220,98 +327,16 @@ impl Scene {
                     "must name exactly one of `curve` or `beam`",
                 )
             }
-            (None, Some(b)) => return c.err(
-                b.referenced.line(),
-                "track.beam",
-                "flexible beam tracks are not implemented yet in this version; use a rigid `curve`",
-            ),
-            (Some(curve), None) => curve,
+            (Some(curve), None) => Model::Rolling(rolling_scene(&c, &raw, curve, gravity)?),
+            (None, Some(beam)) => Model::Beam(beam_scene(&c, &raw, beam, duration)?),
         };
-        if let Some(loads) = &raw.loads {
-            return c.err(
-                loads.referenced.line(),
-                "loads",
-                "apply to beam tracks only; a rigid curve carries no loads",
-            );
-        }
-        let curve = build_curve(&c, curve_file)?;
-
-        let Some(disk_file) = &raw.disk else {
-            return c.err(
-                track.referenced.line(),
-                "disk",
-                "is missing: a rigid curve needs a disk to roll on it",
-            );
-        };
-        let d = &disk_file.value;
-        let disk = Disk {
-            mass: c.positive(&d.mass, "disk.mass")?,
-            radius: c.positive(&d.radius, "disk.radius")?,
-        };
-        let s0 = match &d.s0 {
-            Some(s) => c.finite(s, "disk.s0")?,
-            None => 0.0,
-        };
-        let omega0 = match &d.omega0 {
-            Some(w) => c.finite(w, "disk.omega0")?,
-            None => 0.0,
-        };
-        let mu = match &d.mu {
-            Some(m) => Some(c.positive(m, "disk.mu")?),
-            None => None,
-        };
-        if let Some(cp) = &d.coupling {
-            return c.err(
-                cp.referenced.line(),
-                "disk.coupling",
-                "applies to beam tracks only; on a rigid curve choose `formulation`",
-            );
-        }
-        let formulation = match &d.formulation {
-            None => Formulation::Minimal,
-            Some(f) => match f.value.as_str() {
-                "minimal" => Formulation::Minimal,
-                "thesis" => Formulation::Thesis,
-                other => {
-                    return c.err(
-                        f.referenced.line(),
-                        "disk.formulation",
-                        format!("is '{other}'; use minimal or thesis"),
-                    )
-                }
-            },
-        };
-        if let Some((lo, hi)) = curve.domain() {
-            if !(lo..=hi).contains(&s0) {
-                let line =
-                    d.s0.as_ref()
-                        .map_or(disk_file.referenced.line(), |s| s.referenced.line());
-                return c.err(
-                    line,
-                    "disk.s0",
-                    format!(
-                        "= {s0} is off the track: the {} runs over s in [{lo}, {hi}]",
-                        curve.kind()
-                    ),
-                );
-            }
-        }
-        let rolling = Rolling::new(curve, disk, gravity, s0, omega0, mu);
-        if let Some(s) = rolling.first_unfit_point() {
-            let kappa = rolling.curve.at(s).curvature();
-            return c.err(
-                d.radius.referenced.line(),
-                "disk.radius",
-                format!(
-                    "= {} does not fit the curve at s = {s:.4}, which the disk can reach: the radius of curvature there is {:.4} m (the disk needs radius × curvature < 1)",
-                    disk.radius,
-                    1.0 / kappa
-                ),
-            );
-        }
-
+        let beam_default = matches!(model, Model::Beam(_));
         let mut solver = SolverSettings {
-            method: Method::Dopri5,
+            method: if beam_default {
+                Method::GenAlpha
+            } else {
+                Method::Dopri5
+            },
             rtol: 1e-6,
             atol: 1e-9,
         };
@@ -327,6 +352,9 @@ impl Scene {
                     },
                     Ok,
                 )?;
+                if solver.method == Method::GenAlpha && !beam_default {
+                    return c.err(m.referenced.line(), "solver.method", "genalpha integrates structural (beam) scenes; use dopri5 or trbdf2 for a rigid curve");
+                }
             }
             if let Some(r) = &s.rtol {
                 solver.rtol = c.positive(r, "solver.rtol")?;
@@ -335,32 +363,332 @@ impl Scene {
                 solver.atol = c.positive(a, "solver.atol")?;
             }
         }
-
         let mut interval = duration / 500.0;
-        if let Some(o) = &raw.output {
-            if let Some(i) = &o.interval {
-                interval = c.positive(i, "output.interval")?;
-            }
-            for (v, key) in [
-                (&o.probes, "output.probes"),
-                (&o.shapes, "output.shapes"),
-                (&o.magnify, "output.magnify"),
-            ] {
-                if let Some(v) = v {
-                    return c.err(v.referenced.line(), key, "applies to beam tracks only");
-                }
-            }
+        if let Some(i) = raw.output.as_ref().and_then(|o| o.interval.as_ref()) {
+            interval = c.positive(i, "output.interval")?;
         }
-
         Ok(Scene {
-            name: raw.name.unwrap_or_else(|| stem.to_string()),
+            name: raw.name.clone().unwrap_or_else(|| stem.to_string()),
             duration,
-            rolling,
-            formulation,
+            model,
             solver,
             interval,
         })
     }
+}
+
+fn rolling_scene(
+    c: &Checker,
+    raw: &SceneFile,
+    curve_file: &Spanned<CurveFile>,
+    gravity: f64,
+) -> Result<RollingScene, Error> {
+    let track = &raw.track;
+    if let Some(loads) = &raw.loads {
+        return c.err(
+            loads.referenced.line(),
+            "loads",
+            "apply to beam tracks only; a rigid curve carries no loads",
+        );
+    }
+    if let Some(rho) = raw.solver.as_ref().and_then(|s| s.rho_inf.as_ref()) {
+        return c.err(
+            rho.referenced.line(),
+            "solver.rho_inf",
+            "applies to genalpha on beam tracks only",
+        );
+    }
+    if let Some(o) = &raw.output {
+        let beam_only = [
+            o.probes.as_ref().map(|v| v.referenced.line()),
+            o.shapes.as_ref().map(|v| v.referenced.line()),
+            o.magnify.as_ref().map(|v| v.referenced.line()),
+        ];
+        for (line, key) in
+            beam_only
+                .iter()
+                .zip(["output.probes", "output.shapes", "output.magnify"])
+        {
+            if let Some(line) = line {
+                return c.err(*line, key, "applies to beam tracks only");
+            }
+        }
+    }
+    let curve = build_curve(c, curve_file)?;
+    let Some(disk_file) = &raw.disk else {
+        return c.err(
+            track.referenced.line(),
+            "disk",
+            "is missing: a rigid curve needs a disk to roll on it",
+        );
+    };
+    let d = &disk_file.value;
+    let disk = Disk {
+        mass: c.positive(&d.mass, "disk.mass")?,
+        radius: c.positive(&d.radius, "disk.radius")?,
+    };
+    let s0 = match &d.s0 {
+        Some(s) => c.finite(s, "disk.s0")?,
+        None => 0.0,
+    };
+    let omega0 = match &d.omega0 {
+        Some(w) => c.finite(w, "disk.omega0")?,
+        None => 0.0,
+    };
+    let mu = match &d.mu {
+        Some(m) => Some(c.positive(m, "disk.mu")?),
+        None => None,
+    };
+    if let Some(cp) = &d.coupling {
+        return c.err(
+            cp.referenced.line(),
+            "disk.coupling",
+            "applies to beam tracks only; on a rigid curve choose `formulation`",
+        );
+    }
+    let formulation = match &d.formulation {
+        None => Formulation::Minimal,
+        Some(f) => match f.value.as_str() {
+            "minimal" => Formulation::Minimal,
+            "thesis" => Formulation::Thesis,
+            other => {
+                return c.err(
+                    f.referenced.line(),
+                    "disk.formulation",
+                    format!("is '{other}'; use minimal or thesis"),
+                )
+            }
+        },
+    };
+    if let Some((lo, hi)) = curve.domain() {
+        if !(lo..=hi).contains(&s0) {
+            let line =
+                d.s0.as_ref()
+                    .map_or(disk_file.referenced.line(), |s| s.referenced.line());
+            return c.err(
+                line,
+                "disk.s0",
+                format!(
+                    "= {s0} is off the track: the {} runs over s in [{lo}, {hi}]",
+                    curve.kind()
+                ),
+            );
+        }
+    }
+    let rolling = Rolling::new(curve, disk, gravity, s0, omega0, mu);
+    if let Some(s) = rolling.first_unfit_point() {
+        let kappa = rolling.curve.at(s).curvature();
+        return c.err(
+            d.radius.referenced.line(),
+            "disk.radius",
+            format!(
+                "= {} does not fit the curve at s = {s:.4}, which the disk can reach: the radius of curvature there is {:.4} m (the disk needs radius × curvature < 1)",
+                disk.radius,
+                1.0 / kappa
+            ),
+        );
+    }
+    Ok(RollingScene {
+        rolling,
+        formulation,
+    })
+}
+
+fn beam_scene(
+    c: &Checker,
+    raw: &SceneFile,
+    file: &Spanned<BeamFile>,
+    duration: f64,
+) -> Result<BeamScene, Error> {
+    let b = &file.value;
+    if let Some(disk) = &raw.disk {
+        return c.err(
+            disk.referenced.line(),
+            "disk",
+            "on a beam: coupled disk–beam scenes are not supported yet",
+        );
+    }
+    let from = c.pair(&b.from, "track.beam.from")?;
+    let to = c.pair(&b.to, "track.beam.to")?;
+    let length = (to[0] - from[0]).hypot(to[1] - from[1]);
+    if length == 0.0 {
+        return c.err(
+            b.to.referenced.line(),
+            "track.beam.to",
+            "equals `from`: the beam has zero length",
+        );
+    }
+    let e = c.positive(&b.E, "track.beam.E")?;
+    let g = c.positive(&b.G, "track.beam.G")?;
+    let rho = c.positive(&b.rho, "track.beam.rho")?;
+    let a = c.positive(&b.A, "track.beam.A")?;
+    let av = c.positive(&b.Av, "track.beam.Av")?;
+    let i = c.positive(&b.I, "track.beam.I")?;
+    let support = |v: &Spanned<String>, key: &str| {
+        Support::from_name(&v.value).map_or_else(
+            || {
+                c.err(
+                    v.referenced.line(),
+                    key,
+                    format!("is '{}'; use clamped, pinned, roller or free", v.value),
+                )
+            },
+            Ok,
+        )
+    };
+    let supports = [
+        support(&b.supports.value.from, "track.beam.supports.from")?,
+        support(&b.supports.value.to, "track.beam.supports.to")?,
+    ];
+    let elements = match &b.elements {
+        None => 10,
+        Some(n) if n.value >= 1 => n.value as usize,
+        Some(n) => {
+            return c.err(
+                n.referenced.line(),
+                "track.beam.elements",
+                format!("must be at least 1 (got {})", n.value),
+            )
+        }
+    };
+    let order = match &b.order {
+        None => 4,
+        Some(n) if (1..=10).contains(&n.value) => n.value as usize,
+        Some(n) => {
+            return c.err(
+                n.referenced.line(),
+                "track.beam.order",
+                format!("must be a Lagrange degree from 1 to 10 (got {})", n.value),
+            )
+        }
+    };
+    let quadrature = match &b.quadrature {
+        None => Quadrature::Reduced,
+        Some(q) => Quadrature::from_name(&q.value).map_or_else(
+            || {
+                c.err(
+                    q.referenced.line(),
+                    "track.beam.quadrature",
+                    format!("is '{}'; use reduced, full or lobatto", q.value),
+                )
+            },
+            Ok,
+        )?,
+    };
+    let section = Section {
+        ea: e * a,
+        gav: g * av,
+        ei: e * i,
+        rho_a: rho * a,
+        rho_i: rho * i,
+    };
+    let beam = BeamSpec {
+        from,
+        to,
+        section,
+        supports,
+        elements,
+        order,
+        quadrature,
+    };
+
+    let within = |x: &Spanned<f64>, key: &str| -> Result<f64, Error> {
+        let v = c.finite(x, key)?;
+        if !(0.0..=length).contains(&v) {
+            return c.err(
+                x.referenced.line(),
+                key,
+                format!("= {v} lies outside the beam, which runs over x in [0, {length}]"),
+            );
+        }
+        Ok(v)
+    };
+    let mut loads = Vec::new();
+    if let Some(list) = &raw.loads {
+        for l in &list.value {
+            let lf = &l.value;
+            let opt = |v: &Option<Spanned<f64>>, key: &str| {
+                v.as_ref().map_or(Ok(0.0), |v| c.finite(v, key))
+            };
+            let from_t = opt(&lf.from, "loads.from")?;
+            let until = match &lf.until {
+                None => f64::INFINITY,
+                Some(u) => {
+                    let u_v = c.finite(u, "loads.until")?;
+                    if u_v <= from_t {
+                        return c.err(
+                            u.referenced.line(),
+                            "loads.until",
+                            format!(
+                                "= {u_v} is not after `from` = {from_t}: the load would never act"
+                            ),
+                        );
+                    }
+                    u_v
+                }
+            };
+            loads.push(PointLoad {
+                x: within(&lf.x, "loads.x")?,
+                force: [opt(&lf.fx, "loads.fx")?, opt(&lf.fy, "loads.fy")?],
+                mz: opt(&lf.mz, "loads.mz")?,
+                from: from_t,
+                until,
+            });
+        }
+    }
+    let mut probes = Vec::new();
+    let mut shapes = Vec::new();
+    let mut magnify = 1.0;
+    if let Some(o) = &raw.output {
+        for p in o.probes.iter().flat_map(|v| v.value.iter()) {
+            probes.push(Probe {
+                name: p.value.name.value.clone(),
+                x: within(&p.value.x, "output.probes.x")?,
+            });
+        }
+        for t in o.shapes.iter().flat_map(|v| v.value.iter()) {
+            let tv = c.finite(t, "output.shapes")?;
+            if !(0.0..=duration).contains(&tv) {
+                return c.err(
+                    t.referenced.line(),
+                    "output.shapes",
+                    format!("time {tv} lies outside the run [0, {duration}]"),
+                );
+            }
+            shapes.push(tv);
+        }
+        if let Some(m) = &o.magnify {
+            magnify = c.positive(m, "output.magnify")?;
+        }
+    }
+    if probes.is_empty() {
+        probes.push(Probe {
+            name: "mid".into(),
+            x: 0.5 * length,
+        });
+    }
+    let rho_inf = match raw.solver.as_ref().and_then(|s| s.rho_inf.as_ref()) {
+        None => 1.0,
+        Some(r) => {
+            let v = c.finite(r, "solver.rho_inf")?;
+            if !(0.0..=1.0).contains(&v) {
+                return c.err(
+                    r.referenced.line(),
+                    "solver.rho_inf",
+                    format!("= {v} must lie in [0, 1]"),
+                );
+            }
+            v
+        }
+    };
+    Ok(BeamScene {
+        beam,
+        loads,
+        probes,
+        shapes,
+        magnify,
+        rho_inf,
+    })
 }
 
 pub fn method_names() -> String {

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use crate::error::Error;
 use crate::output::{self, io_error, plots};
-use crate::run::{self, Overrides, RunResult};
+use crate::run::{self, Overrides, Run, RunResult};
 use crate::scene::Scene;
 
 /// The scenes under `dir`, sorted by file name.
@@ -25,7 +25,7 @@ pub fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, Error> {
 }
 
 /// Run every study, write each into `out/<name>`, and the report figures into `figures`.
-pub fn run_all(studies: &Path, out: &Path, figures: &Path) -> Result<Vec<RunResult>, Error> {
+pub fn run_all(studies: &Path, out: &Path, figures: &Path) -> Result<Vec<Run>, Error> {
     std::fs::create_dir_all(figures).map_err(|e| io_error(figures, e))?;
     let mut results = Vec::new();
     for file in scene_files(studies)? {
@@ -33,7 +33,7 @@ pub fn run_all(studies: &Path, out: &Path, figures: &Path) -> Result<Vec<RunResu
         let result = run::run(&scene, &Overrides::default(), true)?;
         let dir = out.join(&scene.name);
         output::write_all(&result, &dir)?;
-        for fig in ["track", "velocities", "omega", "reactions", "energy"] {
+        for fig in result.figures() {
             let from = dir.join(format!("{fig}.svg"));
             let to = figures.join(format!("{}-{fig}.svg", scene.name));
             std::fs::copy(&from, &to).map_err(|e| io_error(&to, e))?;
@@ -41,23 +41,34 @@ pub fn run_all(studies: &Path, out: &Path, figures: &Path) -> Result<Vec<RunResu
         println!(
             "{:<14} {:<12} t = {:>7.3} s  steps {:>6}  rejected {:>4}  energy drift {:.1e}  {:.3} s",
             scene.name,
-            result.stop.name(),
-            result.last.t,
-            result.stats.steps,
-            result.stats.rejected,
-            result.energy.max_rel_drift(),
-            result.stats.wall_s
+            result.stop().name(),
+            result.t_end(),
+            result.stats().steps,
+            result.stats().rejected,
+            result.energy().max_rel_drift(),
+            result.stats().wall_s
         );
         results.push(result);
     }
-    compare_parabola(&results, figures)?;
+    let rolling: Vec<&RunResult> = results
+        .iter()
+        .filter_map(|r| {
+            if let Run::Rolling(r) = r {
+                Some(r)
+            } else {
+                None
+            }
+        })
+        .collect();
+    compare_parabola(&rolling, figures)?;
     Ok(results)
 }
 
 /// Study 1 side by side: the four disks' speeds, angular velocities and normal reactions.
-fn compare_parabola(results: &[RunResult], figures: &Path) -> Result<(), Error> {
+fn compare_parabola(results: &[&RunResult], figures: &Path) -> Result<(), Error> {
     let cases: Vec<&RunResult> = results
         .iter()
+        .copied()
         .filter(|r| r.scene.name.starts_with("parabola-p"))
         .collect();
     if cases.is_empty() {
@@ -67,8 +78,8 @@ fn compare_parabola(results: &[RunResult], figures: &Path) -> Result<(), Error> 
         format!(
             "{} (m = {}, a = {})",
             &r.scene.name["parabola-".len()..].to_uppercase(),
-            r.scene.rolling.disk.mass,
-            r.scene.rolling.disk.radius
+            r.setup.rolling.disk.mass,
+            r.setup.rolling.disk.radius
         )
     };
     let labels: Vec<String> = cases.iter().map(|r| label(r)).collect();

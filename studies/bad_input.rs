@@ -215,7 +215,8 @@ fn track_must_be_curve_xor_beam() {
     rejected(
         "both",
         &format!(
-            "duration: 1\ntrack:\n  curve:\n    parabola: {{k: 1}}\n  beam: {{}}\n{GOOD_DISK}"
+            "duration: 1\ntrack:\n  curve:\n    parabola: {{k: 1}}\n  beam:\n{}{GOOD_DISK}",
+            beam_body(&[])
         ),
         &["`track` must name exactly one of `curve` or `beam`"],
     );
@@ -258,4 +259,121 @@ fn command_line_errors() {
         assert_eq!(code, 1, "{args:?}: {err}");
         assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
     }
+}
+
+/// The body of a valid beam under `track:` (indented), with keys replaced by `changes`.
+fn beam_body(changes: &[(&str, &str)]) -> String {
+    let mut keys = vec![
+        ("from", "[0, 0]"),
+        ("to", "[8, 0]"),
+        ("E", "210e9"),
+        ("G", "81e9"),
+        ("rho", "7850"),
+        ("A", "59.8e-4"),
+        ("Av", "29.9e-4"),
+        ("I", "3620e-8"),
+        ("supports", "{from: clamped, to: pinned}"),
+        ("elements", "4"),
+        ("order", "2"),
+    ];
+    for (k, v) in changes {
+        match keys.iter_mut().find(|(key, _)| key == k) {
+            Some(entry) => entry.1 = v,
+            None => keys.push((k, v)),
+        }
+    }
+    keys.iter()
+        .map(|(k, v)| format!("    {k}: {v}\n"))
+        .collect()
+}
+
+fn beam_scene(changes: &[(&str, &str)], rest: &str) -> String {
+    format!(
+        "duration: 0.01\ntrack:\n  beam:\n{}{rest}",
+        beam_body(changes)
+    )
+}
+
+#[test]
+fn bad_beams() {
+    rejected(
+        "support",
+        &beam_scene(&[("supports", "{from: hinge, to: pinned}")], ""),
+        &[
+            "track.beam.supports.from",
+            "'hinge'",
+            "clamped, pinned, roller or free",
+        ],
+    );
+    rejected(
+        "zero-length",
+        &beam_scene(&[("to", "[0, 0]")], ""),
+        &["zero length"],
+    );
+    for key in ["E", "G", "rho", "A", "Av", "I"] {
+        rejected(
+            &format!("nonpositive-{key}"),
+            &beam_scene(&[(key, "0")], ""),
+            &[&format!("`track.beam.{key}` must be positive")],
+        );
+    }
+    rejected(
+        "no-elements",
+        &beam_scene(&[("elements", "0")], ""),
+        &["track.beam.elements", "at least 1"],
+    );
+    rejected(
+        "order-11",
+        &beam_scene(&[("order", "11")], ""),
+        &["track.beam.order", "from 1 to 10"],
+    );
+    rejected(
+        "order-0",
+        &beam_scene(&[("order", "0")], ""),
+        &["track.beam.order"],
+    );
+    rejected(
+        "load-outside",
+        &beam_scene(&[], "loads:\n  - {x: 9.5, fy: -1}\n"),
+        &["loads.x", "outside the beam", "[0, 8]"],
+    );
+    rejected(
+        "until-before-from",
+        &beam_scene(&[], "loads:\n  - {x: 4, fy: -1, from: 0.5, until: 0.2}\n"),
+        &["loads.until", "not after `from`"],
+    );
+    rejected(
+        "probe-outside",
+        &beam_scene(&[], "output:\n  probes: [{name: p, x: -1}]\n"),
+        &["output.probes.x", "outside the beam"],
+    );
+    rejected(
+        "disk-on-beam",
+        &beam_scene(&[], "disk:\n  mass: 1500\n  radius: 0.4\n"),
+        &["coupled disk–beam scenes are not supported yet"],
+    );
+}
+
+/// A free–free beam has no static equilibrium under a load: one sentence, exit 1.
+#[test]
+fn static_solution_of_a_mechanism() {
+    let path = scene_path(
+        "mechanism",
+        &beam_scene(
+            &[("supports", "{from: free, to: free}")],
+            "loads:\n  - {x: 4, fy: -1}\n",
+        ),
+    );
+    let (code, err) = rollbeam(&[
+        "static",
+        path.to_str().unwrap(),
+        "--out",
+        "/tmp/rollbeam-mechanism",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("the beam is not supported enough for a static solution")
+            && err.trim().lines().count() == 1,
+        "{err}"
+    );
 }

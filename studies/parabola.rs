@@ -12,12 +12,14 @@ use rollbeam::curve::Curve;
 use rollbeam::ode::Method;
 use rollbeam::rolling::StopReason;
 use rollbeam::run::{RunResult, Stop};
-use rollbeam::scene::{Formulation, Scene};
+use rollbeam::scene::{Formulation, Model, Scene};
 
 const G: f64 = 9.81;
 
 fn with_formulation(mut scene: Scene, f: Formulation) -> Scene {
-    scene.formulation = f;
+    if let Model::Rolling(setup) = &mut scene.model {
+        setup.formulation = f;
+    }
     scene
 }
 
@@ -418,10 +420,9 @@ fn vertex_crossing_matches_energy_closed_form() {
     use rollbeam::rolling::RollingModel;
     for case in ["p1", "p2", "p3", "p4"] {
         let scene = load(&format!("parabola-{case}.yaml"));
-        let (m, a) = (scene.rolling.disk.mass, scene.rolling.disk.radius);
-        let model = UntilVertex(rollbeam::rolling::minimal::Minimal {
-            rolling: scene.rolling.clone(),
-        });
+        let rolling = scene.rolling().expect("a rolling scene").rolling.clone();
+        let (m, a) = (rolling.disk.mass, rolling.disk.radius);
+        let model = UntilVertex(rollbeam::rolling::minimal::Minimal { rolling });
         let opts = rollbeam::ode::Options {
             method: Method::Dopri5,
             rtol: 1e-12,

@@ -1,4 +1,5 @@
 //! Analyses of a beam that are not time integration: static equilibrium and natural modes.
 
 pub mod modes;
+pub mod report;
 pub mod statics;

@@ -8,6 +8,7 @@
 //! internal force, tangent, mass), `supports`, and the assembly below.
 
 pub mod basis;
+pub mod dynamics;
 pub mod element;
 pub mod quadrature;
 pub mod supports;

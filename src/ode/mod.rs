@@ -7,6 +7,7 @@
 //! the dense output to [`EVENT_TIME_TOL`].
 
 mod dopri5;
+pub mod second_order;
 mod trbdf2;
 
 use std::fmt;
@@ -46,6 +47,9 @@ pub trait Problem {
     fn breakpoints(&self) -> Vec<f64> {
         Vec::new()
     }
+    /// Told before the steps of each stretch between breakpoints, so that a jump is seen on
+    /// the right side of it by every stage.
+    fn enter_segment(&self, _start: f64, _end: f64) {}
     fn events(&self) -> &[EventSpec] {
         &[]
     }
@@ -60,15 +64,21 @@ pub enum Method {
     Dopri5,
     #[serde(rename = "trbdf2")]
     TrBdf2,
+    /// Generalized-α, for structural (second-order) problems only.
+    #[serde(rename = "genalpha")]
+    GenAlpha,
 }
 
 impl Method {
-    pub const ALL: [Method; 2] = [Method::Dopri5, Method::TrBdf2];
+    pub const ALL: [Method; 3] = [Method::Dopri5, Method::TrBdf2, Method::GenAlpha];
+    /// The methods that integrate any first-order problem.
+    pub const FIRST_ORDER: [Method; 2] = [Method::Dopri5, Method::TrBdf2];
 
     pub fn name(self) -> &'static str {
         match self {
             Method::Dopri5 => "dopri5",
             Method::TrBdf2 => "trbdf2",
+            Method::GenAlpha => "genalpha",
         }
     }
 
@@ -80,7 +90,7 @@ impl Method {
     pub fn order(self) -> u32 {
         match self {
             Method::Dopri5 => 5,
-            Method::TrBdf2 => 2,
+            Method::TrBdf2 | Method::GenAlpha => 2,
         }
     }
 }
@@ -144,6 +154,7 @@ pub enum SolveError {
     NonFinite { t: f64 },
     TooManySteps { t: f64, steps: usize },
     SingularMatrix { t: f64 },
+    NeedsSecondOrder,
 }
 
 impl fmt::Display for SolveError {
@@ -160,6 +171,12 @@ impl fmt::Display for SolveError {
                 write!(
                     f,
                     "gave up after {steps} steps at t = {t:.6} s; loosen rtol or shorten the run"
+                )
+            }
+            SolveError::NeedsSecondOrder => {
+                write!(
+                    f,
+                    "generalized-α integrates second-order (structural) problems only"
                 )
             }
             SolveError::SingularMatrix { t } => {
@@ -298,10 +315,11 @@ impl Ctx {
     }
 }
 
-fn make_stepper(method: Method, n: usize) -> Box<dyn Stepper> {
+fn make_stepper(method: Method, n: usize) -> Result<Box<dyn Stepper>, SolveError> {
     match method {
-        Method::Dopri5 => Box::new(dopri5::Dopri5::new(n)),
-        Method::TrBdf2 => Box::new(trbdf2::TrBdf2::new(n)),
+        Method::Dopri5 => Ok(Box::new(dopri5::Dopri5::new(n))),
+        Method::TrBdf2 => Ok(Box::new(trbdf2::TrBdf2::new(n))),
+        Method::GenAlpha => Err(SolveError::NeedsSecondOrder),
     }
 }
 
@@ -324,7 +342,7 @@ pub fn solve(
         stats: Stats::default(),
         mass_lu: None,
     };
-    let mut stepper = make_stepper(opts.method, n);
+    let mut stepper = make_stepper(opts.method, n)?;
     let specs = p.events();
     let mut t = t0;
     let mut y = y0.to_vec();
@@ -355,6 +373,14 @@ pub fn solve(
         return finish(t, y, ctx, Some(hit), events);
     }
 
+    let mut breaks: Vec<f64> = p
+        .breakpoints()
+        .into_iter()
+        .filter(|&b| b > t0 && b < t_end)
+        .collect();
+    breaks.sort_by(f64::total_cmp);
+    let segment_end = |t: f64| breaks.iter().copied().find(|&b| b > t).unwrap_or(t_end);
+    p.enter_segment(t0, segment_end(t0));
     stepper.start(p, t0, y0, &mut ctx)?;
     let mut h = match opts.fixed_step {
         Some(h) => h,
@@ -363,12 +389,6 @@ pub fn solve(
     let h_min = 1e-14 * t0.abs().max(t_end.abs()).max(1.0);
     let mut y_tmp = vec![0.0; n];
     let mut just_rejected = false;
-    let mut breaks: Vec<f64> = p
-        .breakpoints()
-        .into_iter()
-        .filter(|&b| b > t0 && b < t_end)
-        .collect();
-    breaks.sort_by(f64::total_cmp);
 
     while t < t_end {
         if ctx.stats.steps >= opts.max_steps {
@@ -473,6 +493,7 @@ pub fn solve(
         t = t_new;
         y.copy_from_slice(stepper.y_new());
         if last && target < t_end {
+            p.enter_segment(t, segment_end(t));
             stepper.start(p, t, &y, &mut ctx)?;
         }
         g = g_new;

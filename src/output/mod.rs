@@ -1,5 +1,6 @@
 //! What a run leaves in its output directory: `summary.yaml`, `history.csv` and SVG figures.
 
+pub mod beam;
 pub mod history;
 pub mod plots;
 pub mod summary;
@@ -7,14 +8,24 @@ pub mod summary;
 use std::path::Path;
 
 use crate::error::Error;
-use crate::run::RunResult;
+use crate::run::{Run, RunResult};
 
-pub fn write_all(result: &RunResult, dir: &Path) -> Result<(), Error> {
+pub fn write_all(run: &Run, dir: &Path) -> Result<(), Error> {
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
+    match run {
+        Run::Rolling(r) => write_rolling(r, dir),
+        Run::Beam(b) => beam::write_all(b, dir),
+    }
+}
+
+pub(crate) fn yaml(value: &impl serde::Serialize) -> Result<String, Error> {
+    serde_saphyr::to_string(value)
+        .map_err(|e| Error::Output(format!("cannot format YAML output: {e}")))
+}
+
+fn write_rolling(result: &RunResult, dir: &Path) -> Result<(), Error> {
     let summary = summary::Summary::from_run(result);
-    let yaml = serde_saphyr::to_string(&summary)
-        .map_err(|e| Error::Output(format!("cannot format the summary: {e}")))?;
-    write(&dir.join("summary.yaml"), &yaml)?;
+    write(&dir.join("summary.yaml"), &yaml(&summary)?)?;
     write(&dir.join("history.csv"), &history::csv(result))?;
     plots::all(result, dir)
 }

@@ -10,7 +10,7 @@ use crate::run::{Row, RunResult};
 
 type Series<'a> = (&'a str, Vec<(f64, f64)>);
 
-const PALETTE: [RGBColor; 6] = [
+pub const PALETTE: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
@@ -92,7 +92,7 @@ fn series<'a>(rows: &[Row], name: &'a str, f: impl Fn(&Row) -> f64) -> Series<'a
 /// The track with the disk drawn at `count` evenly spaced output times, equal axis scales.
 pub fn track_figure(r: &RunResult, path: &Path, count: usize) -> Result<(), Error> {
     let err = |e: &dyn std::fmt::Display| plot_error(path, e);
-    let rolling = &r.scene.rolling;
+    let rolling = &r.setup.rolling;
     let a = rolling.disk.radius;
     let (s_lo, s_hi) = r
         .rows

@@ -96,9 +96,9 @@ impl Summary {
                 t: r.last.t,
             },
             model: Model {
-                track: r.scene.rolling.curve.kind().into(),
+                track: r.setup.rolling.curve.kind().into(),
                 unknowns: r.unknowns,
-                formulation: r.scene.formulation.name().into(),
+                formulation: r.setup.formulation.name().into(),
             },
             solver: Solver {
                 method: r.method.name().into(),

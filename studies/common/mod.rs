@@ -5,6 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use rollbeam::ode::Method;
+use rollbeam::run::beam::BeamRun;
 use rollbeam::run::{self, Overrides, Row, RunResult};
 use rollbeam::scene::Scene;
 
@@ -27,7 +28,23 @@ pub fn run_with(scene: &Scene, method: Method, rtol: f64, atol: f64) -> RunResul
         atol: Some(atol),
         fixed_step: None,
     };
-    run::run(scene, &over, false).expect("the run completes")
+    run::run(scene, &over, false)
+        .expect("the run completes")
+        .rolling()
+        .expect("a rolling scene")
+}
+
+pub fn run_beam(scene: &Scene, method: Method, rtol: f64, atol: f64) -> BeamRun {
+    let over = Overrides {
+        method: Some(method),
+        rtol: Some(rtol),
+        atol: Some(atol),
+        fixed_step: None,
+    };
+    run::run(scene, &over, false)
+        .expect("the run completes")
+        .beam()
+        .expect("a beam scene")
 }
 
 /// Fixed steps of size h. The tolerances then only stop Newton iterations: they are tight so
@@ -39,7 +56,10 @@ pub fn run_fixed(scene: &Scene, method: Method, h: f64) -> RunResult {
         atol: Some(1e-15),
         fixed_step: Some(h),
     };
-    run::run(scene, &over, false).expect("the run completes")
+    run::run(scene, &over, false)
+        .expect("the run completes")
+        .rolling()
+        .expect("a rolling scene")
 }
 
 /// The history row at time t (output times are multiples of the scene's interval).

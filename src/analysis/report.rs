@@ -1,0 +1,151 @@
+//! `rollbeam static` and `rollbeam modes`: run the analysis on a beam scene and write
+//! `static.yaml` / `modes.yaml` (and mode-shape plots); return the text printed to the user.
+
+use std::collections::BTreeMap;
+use std::fmt::Write;
+use std::path::Path;
+
+use serde::Serialize;
+
+use super::{modes, statics};
+use crate::beam::supports::statically_supported;
+use crate::beam::Beam;
+use crate::error::Error;
+use crate::output::{io_error, plots, write, yaml};
+use crate::scene::{BeamScene, Scene};
+
+#[derive(Serialize)]
+struct ProbeState {
+    x: f64,
+    u: f64,
+    w: f64,
+    phi: f64,
+}
+
+#[derive(Serialize)]
+struct StaticFile {
+    scene: String,
+    probes: BTreeMap<String, ProbeState>,
+    iterations: usize,
+    load_steps: usize,
+}
+
+/// Static equilibrium under the loads active at t = 0.
+pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, Error> {
+    if !statically_supported(setup.beam.supports) {
+        return Err(Error::Input(format!(
+            "scene {}: the beam is not supported enough for a static solution (supports {} and {} hold fewer than 3 independent motions)",
+            scene.name,
+            setup.beam.supports[0].name(),
+            setup.beam.supports[1].name()
+        )));
+    }
+    let beam = Beam::new(setup.beam.clone());
+    let mut f = vec![0.0; beam.dim()];
+    for l in setup.loads.iter().filter(|l| l.active(0.0)) {
+        beam.add_point_load(l.x, l.force, l.mz, &mut f);
+    }
+    let sol = statics::solve(&beam, &f)
+        .map_err(|e| Error::Solver(format!("scene {}: {e}", scene.name)))?;
+    let probes: BTreeMap<String, ProbeState> = setup
+        .probes
+        .iter()
+        .map(|p| {
+            let d = beam.displacement_at(&sol.q, p.x);
+            (
+                p.name.clone(),
+                ProbeState {
+                    x: p.x,
+                    u: d.u,
+                    w: d.w,
+                    phi: d.phi,
+                },
+            )
+        })
+        .collect();
+    let mut text = format!(
+        "{}: static equilibrium in {} load steps, {} Newton iterations\n",
+        scene.name, sol.load_steps, sol.iterations
+    );
+    for (name, p) in &probes {
+        let _ = writeln!(
+            text,
+            "  {name} (x = {}): u = {:.6e} m, w = {:.6e} m, phi = {:.6e} rad",
+            p.x, p.u, p.w, p.phi
+        );
+    }
+    std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
+    write(
+        &dir.join("static.yaml"),
+        &yaml(&StaticFile {
+            scene: scene.name.clone(),
+            probes,
+            iterations: sol.iterations,
+            load_steps: sol.load_steps,
+        })?,
+    )?;
+    let _ = writeln!(text, "  wrote {}", dir.join("static.yaml").display());
+    Ok(text)
+}
+
+#[derive(Serialize)]
+struct ModesFile {
+    scene: String,
+    frequencies_hz: Vec<f64>,
+}
+
+/// The lowest `count` natural frequencies and mode shapes about the undeformed state.
+pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Result<String, Error> {
+    let beam = Beam::new(setup.beam.clone());
+    let m = modes::modes(&beam, count).ok_or_else(|| {
+        Error::Solver(format!(
+            "scene {}: the mass matrix is not positive definite",
+            scene.name
+        ))
+    })?;
+    let hz: Vec<f64> = m.omega.iter().map(|w| w / std::f64::consts::TAU).collect();
+    std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
+    write(
+        &dir.join("modes.yaml"),
+        &yaml(&ModesFile {
+            scene: scene.name.clone(),
+            frequencies_hz: hz.clone(),
+        })?,
+    )?;
+    let xs: Vec<f64> = (0..=200).map(|k| beam.length * k as f64 / 200.0).collect();
+    let labels: Vec<String> = hz
+        .iter()
+        .enumerate()
+        .map(|(k, f)| format!("mode {} ({f:.3} Hz)", k + 1))
+        .collect();
+    let series: Vec<(&str, Vec<(f64, f64)>)> = (0..hz.len())
+        .map(|k| {
+            let shape: Vec<f64> = m.shapes.column(k).iter().copied().collect();
+            let w: Vec<f64> = xs
+                .iter()
+                .map(|&x| beam.displacement_at(&shape, x).w)
+                .collect();
+            let peak = w
+                .iter()
+                .fold(0.0_f64, |a, v| a.max(v.abs()))
+                .max(f64::MIN_POSITIVE);
+            (
+                labels[k].as_str(),
+                xs.iter().zip(&w).map(|(x, w)| (*x, w / peak)).collect(),
+            )
+        })
+        .collect();
+    plots::line_chart(
+        &dir.join("modes.svg"),
+        &format!("{}: mode shapes (w, normalised)", scene.name),
+        "x (m)",
+        "w / max|w|",
+        &series,
+    )?;
+    let mut text = format!("{}: natural frequencies (Hz)\n", scene.name);
+    for (k, f) in hz.iter().enumerate() {
+        let _ = writeln!(text, "  {:>2}: {f:.6}", k + 1);
+    }
+    let _ = writeln!(text, "  wrote {}", dir.join("modes.yaml").display());
+    Ok(text)
+}

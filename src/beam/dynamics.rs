@@ -1,0 +1,69 @@
+//! The loaded beam as a structural problem M q'' = F_ext(t) − F_int(q) for the integrators.
+//! Loads switch on and off at their `from`/`until` times: those are breakpoints, and within
+//! each stretch between them the set of active loads is fixed (the integrator names the
+//! stretch), so no stage ever sees a load on the wrong side of its jump.
+
+use std::cell::Cell;
+
+use super::Beam;
+use crate::linalg::Sparse;
+use crate::ode::second_order::SecondOrderProblem;
+use crate::scene::PointLoad;
+
+pub struct LoadedBeam<'a> {
+    pub beam: &'a Beam,
+    pub loads: &'a [PointLoad],
+    /// Midpoint of the current stretch between breakpoints; NaN outside a run.
+    segment: Cell<f64>,
+}
+
+impl<'a> LoadedBeam<'a> {
+    pub fn new(beam: &'a Beam, loads: &'a [PointLoad]) -> Self {
+        LoadedBeam {
+            beam,
+            loads,
+            segment: Cell::new(f64::NAN),
+        }
+    }
+
+    /// F_ext at time t (within the current stretch, if one is set).
+    pub fn external(&self, t: f64, f: &mut [f64]) {
+        f.fill(0.0);
+        let when = if self.segment.get().is_nan() {
+            t
+        } else {
+            self.segment.get()
+        };
+        for l in self.loads.iter().filter(|l| l.active(when)) {
+            self.beam.add_point_load(l.x, l.force, l.mz, f);
+        }
+    }
+}
+
+impl SecondOrderProblem for LoadedBeam<'_> {
+    fn dim(&self) -> usize {
+        self.beam.dim()
+    }
+    fn mass(&self) -> &Sparse {
+        self.beam.mass()
+    }
+    fn force(&self, t: f64, q: &[f64], f: &mut [f64]) {
+        self.external(t, f);
+        let mut fi = vec![0.0; f.len()];
+        self.beam.internal_force(q, &mut fi);
+        f.iter_mut().zip(&fi).for_each(|(a, b)| *a -= b);
+    }
+    fn stiffness(&self, _t: f64, q: &[f64]) -> Sparse {
+        self.beam.tangent(q)
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        self.loads
+            .iter()
+            .flat_map(|l| [l.from, l.until])
+            .filter(|t| t.is_finite())
+            .collect()
+    }
+    fn enter_segment(&self, start: f64, end: f64) {
+        self.segment.set(0.5 * (start + end));
+    }
+}

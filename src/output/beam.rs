@@ -1,0 +1,331 @@
+//! Outputs of a beam run: `summary.yaml`, `history.csv` and figures (probe histories, deformed
+//! shapes, envelopes of u, w and φ, the energy budget).
+
+use std::collections::BTreeMap;
+use std::fmt::Write;
+use std::path::Path;
+
+use plotters::prelude::*;
+use serde::Serialize;
+
+use super::plots::{line_chart, PALETTE};
+use super::{write, yaml};
+use crate::error::Error;
+use crate::run::beam::BeamRun;
+
+#[derive(Serialize)]
+struct Summary {
+    scene: String,
+    stopped: super::summary::Stopped,
+    model: Model,
+    solver: super::summary::Solver,
+    energy: super::summary::Energy,
+    probes: BTreeMap<String, ProbeSummary>,
+}
+
+#[derive(Serialize)]
+struct Model {
+    track: &'static str,
+    unknowns: usize,
+    elements: usize,
+    order: usize,
+    quadrature: &'static str,
+    length: f64,
+}
+
+#[derive(Serialize)]
+struct ProbeSummary {
+    x: f64,
+    w_min: f64,
+    w_min_t: f64,
+    w_max: f64,
+    w_max_t: f64,
+    u_min: f64,
+    u_max: f64,
+    phi_min: f64,
+    phi_max: f64,
+}
+
+fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
+    let rows = &r.rows;
+    let arg = |better: fn(f64, f64) -> bool| {
+        rows.iter()
+            .fold((rows[0].probes[k].w, rows[0].t), |(v, t), row| {
+                if better(row.probes[k].w, v) {
+                    (row.probes[k].w, row.t)
+                } else {
+                    (v, t)
+                }
+            })
+    };
+    let (w_min, w_min_t) = arg(|a, b| a < b);
+    let (w_max, w_max_t) = arg(|a, b| a > b);
+    let fold = |f: fn(&crate::beam::PointDisplacement) -> f64| {
+        rows.iter()
+            .map(|row| f(&row.probes[k]))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            })
+    };
+    let (u_min, u_max) = fold(|d| d.u);
+    let (phi_min, phi_max) = fold(|d| d.phi);
+    ProbeSummary {
+        x: r.setup.probes[k].x,
+        w_min,
+        w_min_t,
+        w_max,
+        w_max_t,
+        u_min,
+        u_max,
+        phi_min,
+        phi_max,
+    }
+}
+
+pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
+    let s = &r.stats;
+    let summary = Summary {
+        scene: r.scene.name.clone(),
+        stopped: super::summary::Stopped {
+            reason: r.stop.name().into(),
+            t: r.t_end,
+        },
+        model: Model {
+            track: "beam",
+            unknowns: r.beam.dim(),
+            elements: r.beam.spec.elements,
+            order: r.beam.spec.order,
+            quadrature: r.beam.spec.quadrature.name(),
+            length: r.beam.length,
+        },
+        solver: super::summary::Solver {
+            method: r.method.name().into(),
+            rtol: r.rtol,
+            atol: r.atol,
+            steps: s.steps,
+            rejected: s.rejected,
+            rhs_evals: s.rhs_evals,
+            jacobians: s.jacobians,
+            factorizations: s.factorizations,
+            newton_iterations: s.newton_iterations,
+            wall_s: s.wall_s,
+        },
+        energy: super::summary::Energy {
+            initial: r.energy.initial,
+            last: r.energy.last,
+            max_rel_drift: r.energy.max_rel_drift(),
+        },
+        probes: (0..r.setup.probes.len())
+            .map(|k| (r.setup.probes[k].name.clone(), probe_summary(r, k)))
+            .collect(),
+    };
+    write(&dir.join("summary.yaml"), &yaml(&summary)?)?;
+    write(&dir.join("history.csv"), &csv(r))?;
+    figures(r, dir)
+}
+
+fn csv(r: &BeamRun) -> String {
+    let mut head = vec!["t".to_string()];
+    for p in &r.setup.probes {
+        head.extend(["u", "w", "phi"].map(|c| format!("{}.{c}", p.name)));
+    }
+    head.extend(
+        [
+            "energy.kinetic",
+            "energy.strain",
+            "energy.potential",
+            "energy.work",
+            "energy.total",
+        ]
+        .map(String::from),
+    );
+    let mut out = head.join(",");
+    out.push('\n');
+    for row in &r.rows {
+        let mut v = vec![row.t];
+        for d in &row.probes {
+            v.extend([d.u, d.w, d.phi]);
+        }
+        // The beam's own weight is left out (erratum 6), so there is no potential energy.
+        v.extend([row.kinetic, row.strain, 0.0, row.work, row.total()]);
+        let line: Vec<String> = v.iter().map(|x| format!("{x}")).collect();
+        let _ = writeln!(out, "{}", line.join(","));
+    }
+    out
+}
+
+fn figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
+    let name = &r.scene.name;
+    let probes: Vec<(String, Vec<(f64, f64)>)> = r
+        .setup
+        .probes
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            (
+                format!("{} (x = {} m)", p.name, p.x),
+                r.rows.iter().map(|row| (row.t, row.probes[k].w)).collect(),
+            )
+        })
+        .collect();
+    let borrowed: Vec<(&str, Vec<(f64, f64)>)> = probes
+        .iter()
+        .map(|(n, v)| (n.as_str(), v.clone()))
+        .collect();
+    line_chart(
+        &dir.join("probes.svg"),
+        &format!("{name}: vertical displacement w at the probes"),
+        "t (s)",
+        "w (m)",
+        &borrowed,
+    )?;
+    let e = &r.rows;
+    line_chart(
+        &dir.join("energy.svg"),
+        &format!("{name}: energy budget"),
+        "t (s)",
+        "energy (J)",
+        &[
+            ("kinetic", e.iter().map(|r| (r.t, r.kinetic)).collect()),
+            ("strain", e.iter().map(|r| (r.t, r.strain)).collect()),
+            (
+                "work of the loads",
+                e.iter().map(|r| (r.t, r.work)).collect(),
+            ),
+            (
+                "kinetic + strain − work",
+                e.iter().map(|r| (r.t, r.total())).collect(),
+            ),
+        ],
+    )?;
+    let env = &r.envelope;
+    for (file, label, pick) in [
+        (
+            "envelope-u.svg",
+            "u (m)",
+            (|d: &crate::beam::PointDisplacement| d.u)
+                as fn(&crate::beam::PointDisplacement) -> f64,
+        ),
+        ("envelope-w.svg", "w (m)", |d| d.w),
+        ("envelope-phi.svg", "φ (rad)", |d| d.phi),
+    ] {
+        line_chart(
+            &dir.join(file),
+            &format!(
+                "{name}: envelope of {}",
+                label.split(' ').next().unwrap_or(label)
+            ),
+            "x (m)",
+            label,
+            &[
+                (
+                    "max over time",
+                    env.x
+                        .iter()
+                        .zip(&env.max)
+                        .map(|(x, d)| (*x, pick(d)))
+                        .collect(),
+                ),
+                (
+                    "min over time",
+                    env.x
+                        .iter()
+                        .zip(&env.min)
+                        .map(|(x, d)| (*x, pick(d)))
+                        .collect(),
+                ),
+            ],
+        )?;
+    }
+    shapes(r, &dir.join("shapes.svg"))
+}
+
+/// The deformed axis at the requested times, displacements magnified, over the undeformed axis.
+fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
+    let err =
+        |e: &dyn std::fmt::Display| Error::Output(format!("cannot draw {}: {e}", path.display()));
+    let mag = r.setup.magnify;
+    let xs = &r.envelope.x;
+    let axis: Vec<[f64; 2]> = xs.iter().map(|&x| r.beam.reference_point(x)).collect();
+    let lines: Vec<(String, Vec<(f64, f64)>)> = r
+        .shapes
+        .iter()
+        .map(|(t, disp)| {
+            (
+                format!("t = {t} s"),
+                axis.iter()
+                    .zip(disp)
+                    .map(|(p, d)| (p[0] + mag * d.u, p[1] + mag * d.w))
+                    .collect(),
+            )
+        })
+        .collect();
+    let all = axis
+        .iter()
+        .map(|p| (p[0], p[1]))
+        .chain(lines.iter().flat_map(|l| l.1.iter().copied()));
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for (x, y) in all {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    let span = (x1 - x0).max(y1 - y0).max(1e-9);
+    let pad = 0.05 * span;
+    // Equal scales, so the magnified shape is seen as drawn.
+    let (w, h) = (
+        900.0,
+        (900.0 * ((y1 - y0) + 2.0 * pad) / ((x1 - x0) + 2.0 * pad)).clamp(250.0, 700.0),
+    );
+    let scale = (((x1 - x0) + 2.0 * pad) / w).max(((y1 - y0) + 2.0 * pad) / h);
+    let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+    let root = SVGBackend::new(path, (w as u32 + 90, h as u32 + 80)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(&e))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            format!("{}: deformed shapes, displacements × {mag}", r.scene.name),
+            ("sans-serif", 22),
+        )
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(
+            cx - scale * w / 2.0..cx + scale * w / 2.0,
+            cy - scale * h / 2.0..cy + scale * h / 2.0,
+        )
+        .map_err(|e| err(&e))?;
+    chart
+        .configure_mesh()
+        .x_desc("X (m)")
+        .y_desc("Y (m)")
+        .draw()
+        .map_err(|e| err(&e))?;
+    chart
+        .draw_series(LineSeries::new(
+            axis.iter().map(|p| (p[0], p[1])),
+            BLACK.mix(0.5).stroke_width(1),
+        ))
+        .map_err(|e| err(&e))?
+        .label("undeformed")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
+    for (i, (label, pts)) in lines.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
+        chart
+            .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))
+            .map_err(|e| err(&e))?
+            .label(label.as_str())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| err(&e))?;
+    root.present().map_err(|e| err(&e))
+}

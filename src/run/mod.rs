@@ -1,0 +1,201 @@
+//! One run of a scene: build the model the scene names (a disk on a rigid curve, or a loaded
+//! beam), integrate it, watch its energy, and collect what the outputs need.
+
+pub mod beam;
+pub mod rolling;
+
+use std::io::IsTerminal;
+use std::time::{Duration, Instant};
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+pub use rolling::{model, Row, RunResult};
+
+use crate::error::Error;
+use crate::ode::Method;
+use crate::rolling::StopReason;
+use crate::scene::{Model, Scene};
+
+/// How a run ended: at its duration, or at a physical event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stop {
+    End,
+    Event(StopReason),
+}
+
+impl Stop {
+    pub fn name(self) -> &'static str {
+        match self {
+            Stop::End => "end",
+            Stop::Event(r) => r.name(),
+        }
+    }
+
+    /// What a user reads on the terminal.
+    pub fn sentence(self, t: f64) -> String {
+        match self {
+            Stop::End => format!("reached the end of the run at t = {t:.6} s"),
+            Stop::Event(StopReason::ContactLost) => format!("the disk lost contact with the track at t = {t:.6} s (normal reaction fell to zero)"),
+            Stop::Event(StopReason::Slip) => format!("the disk started to slip at t = {t:.6} s (|R_t| reached mu R_n)"),
+            Stop::Event(StopReason::NoFit) => format!("the disk no longer fits the curve at t = {t:.6} s (radius × curvature reached 1)"),
+            Stop::Event(StopReason::LeftTrack) => format!("the disk ran off the end of the track at t = {t:.6} s"),
+        }
+    }
+}
+
+/// Energy bookkeeping: the drift of total = kinetic + strain + potential − work, relative to the
+/// largest |kinetic| + |strain| + |potential| met in the run.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct EnergyCheck {
+    pub initial: f64,
+    pub last: f64,
+    pub max_abs_drift: f64,
+    pub scale: f64,
+}
+
+impl EnergyCheck {
+    pub fn new(total: f64, scale: f64) -> Self {
+        EnergyCheck {
+            initial: total,
+            last: total,
+            max_abs_drift: 0.0,
+            scale,
+        }
+    }
+
+    pub fn record(&mut self, total: f64, scale: f64) {
+        self.last = total;
+        self.max_abs_drift = self.max_abs_drift.max((total - self.initial).abs());
+        self.scale = self.scale.max(scale);
+    }
+
+    pub fn max_rel_drift(&self) -> f64 {
+        if self.scale > 0.0 {
+            self.max_abs_drift / self.scale
+        } else {
+            0.0
+        }
+    }
+}
+
+/// Overrides of the scene's solver settings from the command line.
+#[derive(Clone, Debug, Default)]
+pub struct Overrides {
+    pub method: Option<Method>,
+    pub rtol: Option<f64>,
+    pub atol: Option<f64>,
+    /// Fixed step size (no error control), for convergence studies.
+    pub fixed_step: Option<f64>,
+}
+
+/// A progress bar on a terminal, shown only once a run has taken more than a second.
+pub(crate) struct Progress {
+    bar: ProgressBar,
+    started: Instant,
+    shown: bool,
+    duration: f64,
+}
+
+impl Progress {
+    pub(crate) fn new(duration: f64) -> Option<Progress> {
+        if !std::io::stderr().is_terminal() || std::env::var_os("CI").is_some() {
+            return None;
+        }
+        let bar = ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::hidden());
+        bar.set_style(
+            ProgressStyle::with_template("{bar:40} t = {msg} s  ({elapsed}, eta {eta})")
+                .expect("the template is valid"),
+        );
+        Some(Progress {
+            bar,
+            started: Instant::now(),
+            shown: false,
+            duration,
+        })
+    }
+
+    pub(crate) fn update(&mut self, t: f64) {
+        if !self.shown && self.started.elapsed() > Duration::from_secs(1) {
+            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+            self.shown = true;
+        }
+        self.bar.set_position((1000.0 * t / self.duration) as u64);
+        self.bar.set_message(format!("{t:.3} / {}", self.duration));
+    }
+
+    pub(crate) fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+/// The result of a run, by kind of scene.
+pub enum Run {
+    Rolling(RunResult),
+    Beam(beam::BeamRun),
+}
+
+impl Run {
+    pub fn stop(&self) -> Stop {
+        match self {
+            Run::Rolling(r) => r.stop,
+            Run::Beam(b) => b.stop,
+        }
+    }
+
+    pub fn t_end(&self) -> f64 {
+        match self {
+            Run::Rolling(r) => r.last.t,
+            Run::Beam(b) => b.t_end,
+        }
+    }
+
+    pub fn stats(&self) -> &crate::ode::Stats {
+        match self {
+            Run::Rolling(r) => &r.stats,
+            Run::Beam(b) => &b.stats,
+        }
+    }
+
+    pub fn energy(&self) -> &EnergyCheck {
+        match self {
+            Run::Rolling(r) => &r.energy,
+            Run::Beam(b) => &b.energy,
+        }
+    }
+
+    /// The SVG figures the run writes (file stems).
+    pub fn figures(&self) -> &'static [&'static str] {
+        match self {
+            Run::Rolling(_) => &["track", "velocities", "omega", "reactions", "energy"],
+            Run::Beam(_) => &[
+                "probes",
+                "shapes",
+                "envelope-u",
+                "envelope-w",
+                "envelope-phi",
+                "energy",
+            ],
+        }
+    }
+
+    pub fn rolling(self) -> Option<RunResult> {
+        match self {
+            Run::Rolling(r) => Some(r),
+            Run::Beam(_) => None,
+        }
+    }
+
+    pub fn beam(self) -> Option<beam::BeamRun> {
+        match self {
+            Run::Beam(b) => Some(b),
+            Run::Rolling(_) => None,
+        }
+    }
+}
+
+pub fn run(scene: &Scene, over: &Overrides, show_progress: bool) -> Result<Run, Error> {
+    match &scene.model {
+        Model::Rolling(setup) => rolling::run(scene, setup, over, show_progress).map(Run::Rolling),
+        Model::Beam(setup) => beam::run(scene, setup, over, show_progress).map(Run::Beam),
+    }
+}
