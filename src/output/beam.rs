@@ -21,6 +21,38 @@ struct Summary {
     solver: super::summary::Solver,
     energy: super::summary::Energy,
     probes: BTreeMap<String, ProbeSummary>,
+    envelope: EnvelopeSummary,
+}
+
+/// Extremes over time and over the whole beam, and where along it they occur.
+#[derive(Serialize)]
+struct EnvelopeSummary {
+    w_min: f64,
+    w_min_x: f64,
+    w_max: f64,
+    w_max_x: f64,
+    u_min: f64,
+    u_max: f64,
+    phi_min: f64,
+    phi_min_x: f64,
+    phi_max: f64,
+    phi_max_x: f64,
+}
+
+fn envelope_summary(r: &BeamRun) -> EnvelopeSummary {
+    let e = &r.envelope;
+    let arg = |values: Vec<f64>, lowest: bool| {
+        values.iter().zip(&e.x).fold((if lowest { f64::INFINITY } else { f64::NEG_INFINITY }, 0.0), |(v, x), (&w, &xx)| {
+            if (lowest && w < v) || (!lowest && w > v) { (w, xx) } else { (v, x) }
+        })
+    };
+    let (w_min, w_min_x) = arg(e.min.iter().map(|d| d.w).collect(), true);
+    let (w_max, w_max_x) = arg(e.max.iter().map(|d| d.w).collect(), false);
+    let (phi_min, phi_min_x) = arg(e.min.iter().map(|d| d.phi).collect(), true);
+    let (phi_max, phi_max_x) = arg(e.max.iter().map(|d| d.phi).collect(), false);
+    let u_min = e.min.iter().map(|d| d.u).fold(f64::INFINITY, f64::min);
+    let u_max = e.max.iter().map(|d| d.u).fold(f64::NEG_INFINITY, f64::max);
+    EnvelopeSummary { w_min, w_min_x, w_max, w_max_x, u_min, u_max, phi_min, phi_min_x, phi_max, phi_max_x }
 }
 
 #[derive(Serialize)]
@@ -118,6 +150,7 @@ pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
         probes: (0..r.setup.probes.len())
             .map(|k| (r.setup.probes[k].name.clone(), probe_summary(r, k)))
             .collect(),
+        envelope: envelope_summary(r),
     };
     write(&dir.join("summary.yaml"), &yaml(&summary)?)?;
     write(&dir.join("history.csv"), &csv(r))?;
