@@ -10,7 +10,8 @@ use rollbeam::run::{run, Overrides};
 use rollbeam::scene::{Model, Scene};
 
 fn b1() -> Scene {
-    Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/beam-b1.yaml")).expect("B1 is valid")
+    Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/beam-b1.yaml"))
+        .expect("B1 is valid")
 }
 
 /// B1 with `elements` elements of degree 4 (12 unknowns per element) for `steps` fixed steps.
@@ -31,8 +32,17 @@ fn per_step(c: &mut Criterion) {
     let (steps, h) = (20, 1e-4);
     for elements in [3, 8, 25, 83, 250] {
         let scene = sized(elements, steps, h);
-        let over = Overrides { method: Some(Method::GenAlpha), rtol: Some(1e-6), atol: Some(1e-9), fixed_step: Some(h) };
-        group.bench_with_input(BenchmarkId::from_parameter(12 * elements), &scene, |b, s| b.iter(|| run(s, &over, false).expect("runs")));
+        let over = Overrides {
+            method: Some(Method::GenAlpha),
+            rtol: Some(1e-6),
+            atol: Some(1e-9),
+            fixed_step: Some(h),
+        };
+        group.bench_with_input(
+            BenchmarkId::from_parameter(12 * elements),
+            &scene,
+            |b, s| b.iter(|| run(s, &over, false).expect("runs")),
+        );
     }
     group.finish();
 
@@ -40,8 +50,15 @@ fn per_step(c: &mut Criterion) {
     group.sample_size(10);
     let scene = sized(16, 1, 1e-5);
     for method in Method::ALL {
-        let over = Overrides { method: Some(method), rtol: Some(1e-6), atol: Some(1e-9), fixed_step: Some(1e-5) };
-        group.bench_function(method.name(), |b| b.iter(|| run(&scene, &over, false).expect("runs")));
+        let over = Overrides {
+            method: Some(method),
+            rtol: Some(1e-6),
+            atol: Some(1e-9),
+            fixed_step: Some(1e-5),
+        };
+        group.bench_function(method.name(), |b| {
+            b.iter(|| run(&scene, &over, false).expect("runs"))
+        });
     }
     group.finish();
 }
@@ -50,7 +67,9 @@ fn study(c: &mut Criterion) {
     let mut group = c.benchmark_group("beam-b1-whole");
     group.sample_size(10);
     let scene = b1();
-    group.bench_function("genalpha-study-settings", |b| b.iter(|| run(&scene, &Overrides::default(), false).expect("runs")));
+    group.bench_function("genalpha-study-settings", |b| {
+        b.iter(|| run(&scene, &Overrides::default(), false).expect("runs"))
+    });
     group.finish();
 }
 

@@ -148,6 +148,29 @@ fn clamped_pinned_deflection_under_the_load() {
     for a in [0.75 * l, 0.5 * l] {
         let e = relative_error(a, 8);
         assert!(e < 1e-6, "a = {a}: relative error {e:.2e}");
+        // The pinned end carries the prop force R of the closed form (upwards on the beam:
+        // −R), and the clamp the rest of the load.
+        let b = beam(
+            l,
+            [Support::Clamped, Support::Pinned],
+            8,
+            4,
+            Quadrature::Reduced,
+            s,
+        );
+        let mut f = vec![0.0; b.dim()];
+        b.add_point_load(a, [0.0, p], 0.0, &mut f);
+        let q = statics::solve(&b, &f).expect("converges").q;
+        let [clamp, pin] = b.support_reactions(&q, &[(a, [0.0, p], 0.0)]);
+        let prop = p * (a * a * (3.0 * l - a) / (6.0 * s.ei) + a / s.gav)
+            / (l.powi(3) / (3.0 * s.ei) + l / s.gav);
+        assert!(
+            (pin[1] + prop).abs() < 1e-6 * p.abs(),
+            "prop {} vs {}",
+            pin[1],
+            -prop
+        );
+        assert!((clamp[1] + pin[1] + p).abs() < 1e-9 * p.abs() && pin[2] == 0.0);
     }
     let a = 0.3 * l + 0.01;
     let meshes = [10, 20, 40, 80];

@@ -23,9 +23,18 @@ struct ProbeState {
 }
 
 #[derive(Serialize)]
+struct Reaction {
+    fx: f64,
+    fy: f64,
+    mz: f64,
+}
+
+#[derive(Serialize)]
 struct StaticFile {
     scene: String,
     probes: BTreeMap<String, ProbeState>,
+    /// What each support exerts on the beam, global axes.
+    reactions: BTreeMap<&'static str, Reaction>,
     iterations: usize,
     load_steps: usize,
 }
@@ -42,11 +51,31 @@ pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, E
     }
     let beam = Beam::new(setup.beam.clone());
     let mut f = vec![0.0; beam.dim()];
-    for l in setup.loads.iter().filter(|l| l.active(0.0)) {
-        beam.add_point_load(l.x, l.force, l.mz, &mut f);
+    let active: Vec<(f64, [f64; 2], f64)> = setup
+        .loads
+        .iter()
+        .filter(|l| l.active(0.0))
+        .map(|l| (l.x, l.force, l.mz))
+        .collect();
+    for &(x, force, mz) in &active {
+        beam.add_point_load(x, force, mz, &mut f);
     }
     let sol = statics::solve(&beam, &f)
         .map_err(|e| Error::Solver(format!("scene {}: {e}", scene.name)))?;
+    let r = beam.support_reactions(&sol.q, &active);
+    let reactions: BTreeMap<&'static str, Reaction> = [("from", r[0]), ("to", r[1])]
+        .into_iter()
+        .map(|(k, v)| {
+            (
+                k,
+                Reaction {
+                    fx: v[0],
+                    fy: v[1],
+                    mz: v[2],
+                },
+            )
+        })
+        .collect();
     let probes: BTreeMap<String, ProbeState> = setup
         .probes
         .iter()
@@ -74,12 +103,20 @@ pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, E
             p.x, p.u, p.w, p.phi
         );
     }
+    for (end, r) in &reactions {
+        let _ = writeln!(
+            text,
+            "  reaction at `{end}`: fx = {:.6e} N, fy = {:.6e} N, mz = {:.6e} N m",
+            r.fx, r.fy, r.mz
+        );
+    }
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
     write(
         &dir.join("static.yaml"),
         &yaml(&StaticFile {
             scene: scene.name.clone(),
             probes,
+            reactions,
             iterations: sol.iterations,
             load_steps: sol.load_steps,
         })?,

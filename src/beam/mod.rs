@@ -277,6 +277,48 @@ impl Beam {
         PointDisplacement { u, w, phi: v[2] }
     }
 
+    /// Forces and moment the supports exert on the beam at each end, global (fx, fy, mz), in
+    /// static equilibrium at q under the point loads `loads` (x, global force, moment): the
+    /// internal forces at the held unknowns not balanced by the loads there. Zero where an end
+    /// is free to move.
+    pub fn support_reactions(&self, q: &[f64], loads: &[(f64, [f64; 2], f64)]) -> [[f64; 3]; 2] {
+        let nodes = self.nodes();
+        let mut full = vec![0.0; 3 * nodes];
+        let k = 3 * (self.spec.order + 1);
+        let (mut qe, mut fe) = (vec![0.0; k], vec![0.0; k]);
+        let kernels = ElementKernels {
+            section: &self.spec.section,
+            stiff: &self.stiff,
+        };
+        for e in 0..self.spec.elements {
+            self.gather(e, q, &mut qe);
+            kernels.internal_force(&qe, &mut fe);
+            for (kk, dof) in self.element_dofs(e).enumerate() {
+                full[dof] += fe[kk];
+            }
+        }
+        for &(x, force, mz) in loads {
+            let local = self.to_local(force);
+            let (e, n, _) = self.locate(x);
+            for (a, na) in n.iter().enumerate() {
+                let node = e * self.spec.order + a;
+                full[3 * node] -= na * local[0];
+                full[3 * node + 1] -= na * local[1];
+                full[3 * node + 2] -= na * mz;
+            }
+        }
+        let mut out = [[0.0; 3]; 2];
+        for (end, node) in [0, nodes - 1].into_iter().enumerate() {
+            let mut r = [0.0; 3];
+            for &c in self.spec.supports[end].held_components() {
+                r[c] = full[3 * node + c];
+            }
+            let g = self.to_global([r[0], r[1]]);
+            out[end] = [g[0], g[1], r[2]];
+        }
+        out
+    }
+
     /// Position of the undeformed axis at material point x.
     pub fn reference_point(&self, x: f64) -> [f64; 2] {
         let (s, c) = self.angle.sin_cos();

@@ -42,9 +42,23 @@ struct EnvelopeSummary {
 fn envelope_summary(r: &BeamRun) -> EnvelopeSummary {
     let e = &r.envelope;
     let arg = |values: Vec<f64>, lowest: bool| {
-        values.iter().zip(&e.x).fold((if lowest { f64::INFINITY } else { f64::NEG_INFINITY }, 0.0), |(v, x), (&w, &xx)| {
-            if (lowest && w < v) || (!lowest && w > v) { (w, xx) } else { (v, x) }
-        })
+        values.iter().zip(&e.x).fold(
+            (
+                if lowest {
+                    f64::INFINITY
+                } else {
+                    f64::NEG_INFINITY
+                },
+                0.0,
+            ),
+            |(v, x), (&w, &xx)| {
+                if (lowest && w < v) || (!lowest && w > v) {
+                    (w, xx)
+                } else {
+                    (v, x)
+                }
+            },
+        )
     };
     let (w_min, w_min_x) = arg(e.min.iter().map(|d| d.w).collect(), true);
     let (w_max, w_max_x) = arg(e.max.iter().map(|d| d.w).collect(), false);
@@ -52,7 +66,18 @@ fn envelope_summary(r: &BeamRun) -> EnvelopeSummary {
     let (phi_max, phi_max_x) = arg(e.max.iter().map(|d| d.phi).collect(), false);
     let u_min = e.min.iter().map(|d| d.u).fold(f64::INFINITY, f64::min);
     let u_max = e.max.iter().map(|d| d.u).fold(f64::NEG_INFINITY, f64::max);
-    EnvelopeSummary { w_min, w_min_x, w_max, w_max_x, u_min, u_max, phi_min, phi_min_x, phi_max, phi_max_x }
+    EnvelopeSummary {
+        w_min,
+        w_min_x,
+        w_max,
+        w_max_x,
+        u_min,
+        u_max,
+        phi_min,
+        phi_min_x,
+        phi_max,
+        phi_max_x,
+    }
 }
 
 #[derive(Serialize)]
