@@ -373,12 +373,7 @@ pub fn solve(
         return finish(t, y, ctx, Some(hit), events);
     }
 
-    let mut breaks: Vec<f64> = p
-        .breakpoints()
-        .into_iter()
-        .filter(|&b| b > t0 && b < t_end)
-        .collect();
-    breaks.sort_by(f64::total_cmp);
+    let breaks = breakpoints_within(p.breakpoints(), t0, t_end);
     let segment_end = |t: f64| breaks.iter().copied().find(|&b| b > t).unwrap_or(t_end);
     p.enter_segment(t0, segment_end(t0));
     stepper.start(p, t0, y0, &mut ctx)?;
@@ -507,6 +502,13 @@ pub fn solve(
         }
     }
     finish(t, y, ctx, None, events)
+}
+
+/// The breakpoints strictly inside (t0, t_end), ascending.
+pub(crate) fn breakpoints_within(mut breaks: Vec<f64>, t0: f64, t_end: f64) -> Vec<f64> {
+    breaks.retain(|&b| b > t0 && b < t_end);
+    breaks.sort_by(f64::total_cmp);
+    breaks
 }
 
 /// Illinois (modified regula falsi) on g over [a, b] with g(a) ≥ 0 > g(b).

@@ -296,12 +296,7 @@ pub fn solve_genalpha(
         combination: None,
         k_fresh: false,
     };
-    let mut breaks: Vec<f64> = p
-        .breakpoints()
-        .into_iter()
-        .filter(|&b| b > t0 && b < t_end)
-        .collect();
-    breaks.sort_by(f64::total_cmp);
+    let breaks = super::breakpoints_within(p.breakpoints(), t0, t_end);
     let segment_end = |t: f64| breaks.iter().copied().find(|&b| b > t).unwrap_or(t_end);
     p.enter_segment(t0, segment_end(t0));
     let mut s = State {

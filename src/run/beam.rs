@@ -174,18 +174,9 @@ pub fn run(
     let beam = Beam::new(setup.beam.clone());
     let loaded = LoadedBeam::new(&beam, &setup.loads);
     let n = beam.dim();
-    let method = over.method.unwrap_or(scene.solver.method);
-    let rtol = over.rtol.unwrap_or(scene.solver.rtol);
-    let atol = over.atol.unwrap_or(scene.solver.atol);
-    let opts = ode::Options {
-        method,
-        rtol,
-        atol,
-        fixed_step: over.fixed_step,
-        ..Default::default()
-    };
-    let count = (scene.duration / scene.interval + 1e-9).floor() as usize;
-    let mut outputs: Vec<f64> = (0..=count).map(|i| i as f64 * scene.interval).collect();
+    let opts = over.options(scene);
+    let (method, rtol, atol) = (opts.method, opts.rtol, opts.atol);
+    let mut outputs = super::output_times(scene);
     outputs.extend(setup.shapes.iter().copied());
     outputs.sort_by(f64::total_cmp);
     outputs.dedup_by(|a, b| (*a - *b).abs() < 1e-9);

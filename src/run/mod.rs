@@ -88,6 +88,25 @@ pub struct Overrides {
     pub fixed_step: Option<f64>,
 }
 
+impl Overrides {
+    /// The integrator settings of a run: the scene's, overridden from the command line.
+    pub(crate) fn options(&self, scene: &Scene) -> crate::ode::Options {
+        crate::ode::Options {
+            method: self.method.unwrap_or(scene.solver.method),
+            rtol: self.rtol.unwrap_or(scene.solver.rtol),
+            atol: self.atol.unwrap_or(scene.solver.atol),
+            fixed_step: self.fixed_step,
+            ..Default::default()
+        }
+    }
+}
+
+/// The output grid: every `interval` from 0 to the duration.
+pub(crate) fn output_times(scene: &Scene) -> Vec<f64> {
+    let count = (scene.duration / scene.interval + 1e-9).floor() as usize;
+    (0..=count).map(|i| i as f64 * scene.interval).collect()
+}
+
 /// A progress bar on a terminal, shown only once a run has taken more than a second.
 pub(crate) struct Progress {
     bar: ProgressBar,

@@ -82,18 +82,9 @@ pub fn run(
 ) -> Result<RunResult, Error> {
     let model = model(setup);
     let y0 = model.initial_state();
-    let method = over.method.unwrap_or(scene.solver.method);
-    let rtol = over.rtol.unwrap_or(scene.solver.rtol);
-    let atol = over.atol.unwrap_or(scene.solver.atol);
-    let opts = ode::Options {
-        method,
-        rtol,
-        atol,
-        fixed_step: over.fixed_step,
-        ..Default::default()
-    };
-    let count = (scene.duration / scene.interval + 1e-9).floor() as usize;
-    let outputs: Vec<f64> = (0..=count).map(|i| i as f64 * scene.interval).collect();
+    let opts = over.options(scene);
+    let (method, rtol, atol) = (opts.method, opts.rtol, opts.atol);
+    let outputs = super::output_times(scene);
     let first = model.observe(0.0, &y0);
     let mut rec = Recorder {
         model: model.as_ref(),
