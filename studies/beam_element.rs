@@ -161,7 +161,7 @@ fn clamped_pinned_deflection_under_the_load() {
         let mut f = vec![0.0; b.dim()];
         b.add_point_load(a, [0.0, p], 0.0, &mut f);
         let q = statics::solve(&b, &f).expect("converges").q;
-        let [clamp, pin] = b.support_reactions(&q, &[(a, [0.0, p], 0.0)]);
+        let [clamp, pin] = b.support_reactions(&q, &[(a, [0.0, p], 0.0)], None);
         let prop = p * (a * a * (3.0 * l - a) / (6.0 * s.ei) + a / s.gav)
             / (l.powi(3) / (3.0 * s.ei) + l / s.gav);
         assert!(

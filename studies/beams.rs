@@ -193,3 +193,46 @@ fn snapshots_of_headline_numbers() {
         });
     }
 }
+
+/// The support reactions of a dynamic run carry the beam's inertia as well as the load; the
+/// undamped beam oscillates about its static equilibrium, so over the last two seconds of B1
+/// (about 30 periods of the first mode) their mean is the static reaction (2 % allows for the
+/// finite window and the slight numerical damping of ρ∞ = 0.8), and they swing about it with
+/// the vibration the sudden load started.
+#[test]
+fn dynamic_reactions_average_to_the_static_ones() {
+    use rollbeam::analysis::statics;
+    let r = run_beam(&load("beam-b1.yaml"), Method::GenAlpha, 1e-4, 1e-9);
+    let b = &r.beam;
+    let loads: Vec<(f64, [f64; 2], f64)> =
+        r.setup.loads.iter().map(|l| (l.x, l.force, l.mz)).collect();
+    let mut f = vec![0.0; b.dim()];
+    for &(x, force, mz) in &loads {
+        b.add_point_load(x, force, mz, &mut f);
+    }
+    let q = statics::solve(b, &f).expect("converges").q;
+    let [clamp, pin] = b.support_reactions(&q, &loads, None);
+    let late: Vec<_> = r.rows.iter().filter(|row| row.t >= 1.0).collect();
+    let mean = |f: &dyn Fn(&rollbeam::run::beam::BeamRow) -> f64| {
+        late.iter().map(|row| f(row)).sum::<f64>() / late.len() as f64
+    };
+    for (name, dynamic, static_value) in [
+        ("clamp R_Y", mean(&|row| row.reactions[0][1]), clamp[1]),
+        ("pin R_Y", mean(&|row| row.reactions[1][1]), pin[1]),
+        ("clamp M", mean(&|row| row.reactions[0][2]), clamp[2]),
+    ] {
+        eprintln!("{name}: mean {dynamic:.1} vs static {static_value:.1}");
+        assert!(
+            (dynamic / static_value - 1.0).abs() < 0.02,
+            "{name}: mean {dynamic} vs static {static_value}"
+        );
+    }
+    let swing = late
+        .iter()
+        .map(|row| row.reactions[1][1])
+        .fold(0.0_f64, |m, v| m.max((v - pin[1]).abs()));
+    assert!(
+        swing > 0.5 * pin[1].abs(),
+        "the pin reaction does not oscillate: {swing}"
+    );
+}

@@ -62,7 +62,7 @@ pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, E
     }
     let sol = statics::solve(&beam, &f)
         .map_err(|e| Error::Solver(format!("scene {}: {e}", scene.name)))?;
-    let r = beam.support_reactions(&sol.q, &active);
+    let r = beam.support_reactions(&sol.q, &active, None);
     let reactions: BTreeMap<&'static str, Reaction> = [("from", r[0]), ("to", r[1])]
         .into_iter()
         .map(|(k, v)| {

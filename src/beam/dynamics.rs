@@ -26,15 +26,20 @@ impl<'a> LoadedBeam<'a> {
         }
     }
 
-    /// F_ext at time t (within the current stretch, if one is set).
-    pub fn external(&self, t: f64, f: &mut [f64]) {
-        f.fill(0.0);
+    /// The loads acting at time t (within the current stretch, if one is set).
+    pub fn active(&self, t: f64) -> impl Iterator<Item = &PointLoad> {
         let when = if self.segment.get().is_nan() {
             t
         } else {
             self.segment.get()
         };
-        for l in self.loads.iter().filter(|l| l.active(when)) {
+        self.loads.iter().filter(move |l| l.active(when))
+    }
+
+    /// F_ext at time t.
+    pub fn external(&self, t: f64, f: &mut [f64]) {
+        f.fill(0.0);
+        for l in self.active(t) {
             self.beam.add_point_load(l.x, l.force, l.mz, f);
         }
     }

@@ -87,6 +87,8 @@ pub struct Beam {
     eq: Vec<Option<usize>>,
     n_free: usize,
     mass: Sparse,
+    /// Mass on every unknown, supports included: the inertia the supports carry.
+    full_mass: Sparse,
 }
 
 impl Beam {
@@ -124,8 +126,9 @@ impl Beam {
             eq,
             n_free: next,
             mass: Sparse::try_new_from_triplets(0, 0, &[]).expect("empty"),
+            full_mass: Sparse::try_new_from_triplets(0, 0, &[]).expect("empty"),
         };
-        beam.mass = beam.assemble_mass();
+        (beam.mass, beam.full_mass) = beam.assemble_mass();
         beam
     }
 
@@ -153,17 +156,25 @@ impl Beam {
         }
     }
 
-    fn assemble_mass(&self) -> Sparse {
+    /// The consistent mass on the free unknowns, and on all of them.
+    fn assemble_mass(&self) -> (Sparse, Sparse) {
         let rule = quadrature::gauss(self.spec.order + 1);
         let tab = Tabulated::new(&self.basis, &rule, self.h);
         let k = 3 * (self.spec.order + 1);
         let mut me = vec![0.0; k * k];
         element::mass(&self.spec.section, &tab, &mut me);
-        let mut a = Assembly::new(self.n_free);
+        let mut free = Assembly::new(self.n_free);
+        let mut full = Assembly::new(3 * self.nodes());
         for e in 0..self.spec.elements {
-            self.scatter_matrix(e, &me, &mut a);
+            self.scatter_matrix(e, &me, &mut free);
+            let dofs: Vec<usize> = self.element_dofs(e).collect();
+            for (i, &r) in dofs.iter().enumerate() {
+                for (j, &c) in dofs.iter().enumerate() {
+                    full.add(r, c, me[i * k + j]);
+                }
+            }
         }
-        a.build()
+        (free.build(), full.build())
     }
 
     fn scatter_matrix(&self, e: usize, ke: &[f64], a: &mut Assembly) {
@@ -277,11 +288,16 @@ impl Beam {
         PointDisplacement { u, w, phi: v[2] }
     }
 
-    /// Forces and moment the supports exert on the beam at each end, global (fx, fy, mz), in
-    /// static equilibrium at q under the point loads `loads` (x, global force, moment): the
-    /// internal forces at the held unknowns not balanced by the loads there. Zero where an end
-    /// is free to move.
-    pub fn support_reactions(&self, q: &[f64], loads: &[(f64, [f64; 2], f64)]) -> [[f64; 3]; 2] {
+    /// Forces and moment the supports exert on the beam at each end, global (fx, fy, mz), at q
+    /// under the point loads `loads` (x, global force, moment) and, in motion, with the
+    /// acceleration `a` of the free unknowns: at each held unknown, R = F_int + M a − F_ext.
+    /// Zero where an end is free to move.
+    pub fn support_reactions(
+        &self,
+        q: &[f64],
+        loads: &[(f64, [f64; 2], f64)],
+        a: Option<&[f64]>,
+    ) -> [[f64; 3]; 2] {
         let nodes = self.nodes();
         let mut full = vec![0.0; 3 * nodes];
         let k = 3 * (self.spec.order + 1);
@@ -296,6 +312,12 @@ impl Beam {
             for (kk, dof) in self.element_dofs(e).enumerate() {
                 full[dof] += fe[kk];
             }
+        }
+        if let Some(a) = a {
+            let a_full: Vec<f64> = self.eq.iter().map(|e| e.map_or(0.0, |i| a[i])).collect();
+            let mut inertia = vec![0.0; full.len()];
+            crate::linalg::mul(&self.full_mass, &a_full, &mut inertia);
+            full.iter_mut().zip(&inertia).for_each(|(f, m)| *f += m);
         }
         for &(x, force, mz) in loads {
             let local = self.to_local(force);

@@ -197,6 +197,9 @@ fn csv(r: &BeamRun) -> String {
         ]
         .map(String::from),
     );
+    for end in ["from", "to"] {
+        head.extend(["fx", "fy", "mz"].map(|c| format!("reaction.{end}.{c}")));
+    }
     let mut out = head.join(",");
     out.push('\n');
     for row in &r.rows {
@@ -206,6 +209,7 @@ fn csv(r: &BeamRun) -> String {
         }
         // The beam's own weight is left out (erratum 6), so there is no potential energy.
         v.extend([row.kinetic, row.strain, 0.0, row.work, row.total()]);
+        v.extend(row.reactions.iter().flatten());
         let line: Vec<String> = v.iter().map(|x| format!("{x}")).collect();
         let _ = writeln!(out, "{}", line.join(","));
     }
@@ -253,6 +257,22 @@ fn figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             (
                 "kinetic + strain − work",
                 e.iter().map(|r| (r.t, r.total())).collect(),
+            ),
+        ],
+    )?;
+    line_chart(
+        &dir.join("reactions.svg"),
+        &format!("{name}: vertical support reactions"),
+        "t (s)",
+        "R_Y (N)",
+        &[
+            (
+                "at `from` (x = 0)",
+                e.iter().map(|r| (r.t, r.reactions[0][1])).collect(),
+            ),
+            (
+                "at `to` (x = L)",
+                e.iter().map(|r| (r.t, r.reactions[1][1])).collect(),
             ),
         ],
     )?;

@@ -5,7 +5,8 @@ use super::{EnergyCheck, Overrides, Progress, Stop};
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::{Beam, PointDisplacement};
 use crate::error::Error;
-use crate::linalg;
+use crate::linalg::{self, SparseLu};
+use crate::ode::second_order::SecondOrderProblem;
 use crate::ode::second_order::{solve_genalpha, FirstOrder};
 use crate::ode::{self, Method, Observer, Stats};
 use crate::scene::{BeamScene, PointLoad, Scene};
@@ -21,6 +22,8 @@ pub struct BeamRow {
     pub kinetic: f64,
     pub strain: f64,
     pub work: f64,
+    /// What the supports exert on the beam, global (fx, fy, mz), at `from` and at `to`.
+    pub reactions: [[f64; 3]; 2],
 }
 
 impl BeamRow {
@@ -88,6 +91,9 @@ fn work_since(
 
 struct Recorder<'a> {
     beam: &'a Beam,
+    loaded: &'a LoadedBeam<'a>,
+    /// The mass matrix, factorised once: accelerations for the support reactions.
+    mass_lu: SparseLu,
     setup: &'a BeamScene,
     xs: Vec<f64>,
     rows: Vec<BeamRow>,
@@ -124,12 +130,22 @@ impl Observer for Recorder<'_> {
             .iter()
             .map(|p| self.beam.displacement_at(q, p.x))
             .collect();
+        let mut a = vec![0.0; n];
+        self.loaded.force(t, q, &mut a);
+        self.mass_lu.solve_in_place(&mut a);
+        let acting: Vec<(f64, [f64; 2], f64)> = self
+            .loaded
+            .active(t)
+            .map(|l| (l.x, l.force, l.mz))
+            .collect();
+        let reactions = self.beam.support_reactions(q, &acting, Some(&a));
         self.rows.push(BeamRow {
             t,
             probes,
             kinetic,
             strain,
             work,
+            reactions,
         });
         let along: Vec<PointDisplacement> = self
             .xs
@@ -194,8 +210,13 @@ pub fn run(
         w: f64::NEG_INFINITY,
         phi: f64::NEG_INFINITY,
     };
+    let mass_lu = SparseLu::factor(beam.mass(), None).ok_or_else(|| {
+        Error::Solver(format!("scene {}: the mass matrix is singular", scene.name))
+    })?;
     let mut rec = Recorder {
         beam: &beam,
+        loaded: &loaded,
+        mass_lu,
         setup,
         envelope: Envelope {
             x: xs.clone(),
