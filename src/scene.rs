@@ -239,6 +239,10 @@ impl Scene {
 }
 
 pub const DEFAULT_GRAVITY: f64 = 9.81;
+/// Rows of history.csv a run may write.
+const MAX_ROWS: f64 = 1e6;
+/// Mesh nodes a beam may have (three unknowns each).
+const MAX_NODES: f64 = 1e6;
 
 /// Reports problems as "FILE line N: KEY ...".
 struct Checker<'a> {
@@ -366,6 +370,9 @@ impl Scene {
         let mut interval = duration / 500.0;
         if let Some(i) = raw.output.as_ref().and_then(|o| o.interval.as_ref()) {
             interval = c.positive(i, "output.interval")?;
+            if duration / interval > MAX_ROWS {
+                return c.err(i.referenced.line(), "output.interval", format!("= {interval} would write {:.0} rows of history; at most {MAX_ROWS:.0} are allowed", duration / interval));
+            }
         }
         Ok(Scene {
             name: raw.name.clone().unwrap_or_else(|| stem.to_string()),
@@ -478,6 +485,13 @@ fn rolling_scene(
     let rolling = Rolling::new(curve, disk, gravity, s0, omega0, mu);
     if let Some(s) = rolling.first_unfit_point() {
         let kappa = rolling.curve.at(s).curvature();
+        if !kappa.is_finite() {
+            return c.err(
+                curve_file.referenced.line(),
+                "track.curve",
+                format!("has no finite tangent or curvature at s = {s:.4}, where the disk can reach (r' = 0 or a derivative is infinite there)"),
+            );
+        }
         return c.err(
             d.radius.referenced.line(),
             "disk.radius",
@@ -551,6 +565,19 @@ fn beam_scene(
             )
         }
     };
+    if let Some(n) = &b.elements {
+        if n.value as f64 * 10.0 > MAX_NODES {
+            return c.err(
+                n.referenced.line(),
+                "track.beam.elements",
+                format!(
+                    "= {} is more than this solver can hold (at most {} elements of degree 10)",
+                    n.value,
+                    MAX_NODES / 10.0
+                ),
+            );
+        }
+    }
     let order = match &b.order {
         None => 4,
         Some(n) if (1..=10).contains(&n.value) => n.value as usize,

@@ -167,6 +167,17 @@ fn start_off_a_finite_track() {
     );
 }
 
+/// A curve without a finite tangent where the disk starts, and an output grid too fine to write.
+#[test]
+fn degenerate_curve_and_output() {
+    rejected("sqrt-curve", "duration: 1\ntrack:\n  curve:\n    expr: {x: \"s\", y: \"sqrt(s)\"}\ndisk:\n  mass: 1\n  radius: 0.1\n  s0: 0\n", &["line 4", "track.curve", "no finite tangent or curvature"]);
+    rejected(
+        "tiny-interval",
+        &format!("duration: 1\n{PARABOLA}{GOOD_DISK}output:\n  interval: 1e-300\n"),
+        &["line 10", "output.interval", "rows"],
+    );
+}
+
 #[test]
 fn tolerances_not_positive() {
     rejected(
