@@ -193,6 +193,7 @@ impl Run {
                 "envelope-w",
                 "envelope-phi",
                 "energy",
+                "reactions",
             ],
         }
     }
