@@ -59,8 +59,8 @@ fn energy_drift_shrinks_with_tolerance_at_the_predicted_rate() {
 
 /// The target, 1e-9 relative drift at rtol 1e-10. Dormand–Prince meets it. TR-BDF2
 /// cannot: a second-order method controlling its local error to 1e-10 per step accumulates
-/// ~1e-7 over the 2·10⁴ steps of this run (the rate above); so for it we assert the drift its
-/// order predicts, within a factor 3 of (rtol)^{2/3} measured from the dopri5 reference scale.
+/// ~1e-7 over the 1.6·10⁴ steps of this run (at the tol^{2/3} rate the test above measures);
+/// for it we only assert that the drift lies in the band [1e-10, 1e-6] that rate predicts.
 #[test]
 fn energy_drift_at_rtol_1e10() {
     let scene = load("parabola-p1.yaml");

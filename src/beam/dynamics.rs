@@ -3,7 +3,7 @@
 //! each stretch between them the set of active loads is fixed (the integrator names the
 //! stretch), so no stage ever sees a load on the wrong side of its jump.
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 
 use super::Beam;
 use crate::linalg::Sparse;
@@ -15,6 +15,8 @@ pub struct LoadedBeam<'a> {
     pub loads: &'a [PointLoad],
     /// Midpoint of the current stretch between breakpoints; NaN outside a run.
     segment: Cell<f64>,
+    /// Internal forces, kept so that each force evaluation does not allocate.
+    scratch: RefCell<Vec<f64>>,
 }
 
 impl<'a> LoadedBeam<'a> {
@@ -23,6 +25,7 @@ impl<'a> LoadedBeam<'a> {
             beam,
             loads,
             segment: Cell::new(f64::NAN),
+            scratch: RefCell::new(vec![0.0; beam.dim()]),
         }
     }
 
@@ -54,9 +57,9 @@ impl SecondOrderProblem for LoadedBeam<'_> {
     }
     fn force(&self, t: f64, q: &[f64], f: &mut [f64]) {
         self.external(t, f);
-        let mut fi = vec![0.0; f.len()];
+        let mut fi = self.scratch.borrow_mut();
         self.beam.internal_force(q, &mut fi);
-        f.iter_mut().zip(&fi).for_each(|(a, b)| *a -= b);
+        f.iter_mut().zip(fi.iter()).for_each(|(a, b)| *a -= b);
     }
     fn stiffness(&self, _t: f64, q: &[f64]) -> Sparse {
         self.beam.tangent(q)
