@@ -39,6 +39,27 @@ impl Lagrange {
             dn[a] = deriv;
         }
     }
+
+    /// Every shape function and its first three derivatives (in ξ) at ξ: the rolling disk
+    /// needs the axis' curvature and how fast it changes.
+    pub fn eval_derivatives(&self, xi: f64, out: &mut [[f64; 4]]) {
+        let k = self.nodes.len();
+        for a in 0..k {
+            let mut d = [1.0, 0.0, 0.0, 0.0];
+            for b in 0..k {
+                if b == a {
+                    continue;
+                }
+                let denom = self.nodes[a] - self.nodes[b];
+                // (P·ℓ)^(j) = P^(j) ℓ + j P^(j−1) ℓ' for the linear factor ℓ.
+                for j in (0..4).rev() {
+                    let lower = if j > 0 { j as f64 * d[j - 1] } else { 0.0 };
+                    d[j] = (d[j] * (xi - self.nodes[b]) + lower) / denom;
+                }
+            }
+            out[a] = d;
+        }
+    }
 }
 
 #[cfg(test)]
@@ -60,6 +81,20 @@ mod tests {
                 (interp - p as f64 * 0.3127f64.powi(p as i32 - 1)).abs() < 1e-9,
                 "p = {p}"
             );
+            let mut all = vec![[0.0; 4]; p + 1];
+            b.eval_derivatives(0.3127, &mut all);
+            for j in 0..3.min(p) {
+                let expect =
+                    (p - j..=p).product::<usize>() as f64 * 0.3127f64.powi((p - j - 1) as i32);
+                let got: f64 = (0..=p)
+                    .map(|a| all[a][j + 1] * b.nodes[a].powi(p as i32))
+                    .sum();
+                assert!(
+                    (got - expect).abs() < 1e-8 * expect.abs().max(1.0),
+                    "p = {p}, d{}",
+                    j + 1
+                );
+            }
             b.eval(b.nodes[1], &mut n, &mut dn);
             assert!((n[1] - 1.0).abs() < 1e-14 && n[0].abs() < 1e-14);
         }

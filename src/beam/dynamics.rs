@@ -3,6 +3,7 @@
 //! each stretch between them the set of active loads is fixed (the integrator names the
 //! stretch), so no stage ever sees a load on the wrong side of its jump.
 
+use std::borrow::Cow;
 use std::cell::{Cell, RefCell};
 
 use super::Beam;
@@ -52,10 +53,10 @@ impl SecondOrderProblem for LoadedBeam<'_> {
     fn dim(&self) -> usize {
         self.beam.dim()
     }
-    fn mass(&self) -> &Sparse {
-        self.beam.mass()
+    fn mass(&self, _t: f64, _q: &[f64]) -> Cow<'_, Sparse> {
+        Cow::Borrowed(self.beam.mass())
     }
-    fn force(&self, t: f64, q: &[f64], f: &mut [f64]) {
+    fn force(&self, t: f64, q: &[f64], _v: &[f64], f: &mut [f64]) {
         self.external(t, f);
         let mut fi = self.scratch.borrow_mut();
         self.beam.internal_force(q, &mut fi);

@@ -512,7 +512,13 @@ pub(crate) fn breakpoints_within(mut breaks: Vec<f64>, t0: f64, t_end: f64) -> V
 }
 
 /// Illinois (modified regula falsi) on g over [a, b] with g(a) ≥ 0 > g(b).
-fn locate(mut g: impl FnMut(f64) -> f64, mut a: f64, mut ga: f64, mut b: f64, mut gb: f64) -> f64 {
+pub(crate) fn locate(
+    mut g: impl FnMut(f64) -> f64,
+    mut a: f64,
+    mut ga: f64,
+    mut b: f64,
+    mut gb: f64,
+) -> f64 {
     if ga == 0.0 {
         return a;
     }

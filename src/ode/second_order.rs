@@ -4,40 +4,55 @@
 //! spectral radius at infinity ρ∞ as its setting (ρ∞ = 1: the trapezoidal rule, energy-neutral
 //! for linear systems; smaller values damp the unresolved high modes).
 
+use std::borrow::Cow;
+use std::ops::Range;
 use std::time::Instant;
 
-use super::{EventHit, Observer, Options, Outcome, Problem, SolveError, Stats};
+use super::{locate, EventHit, EventSpec, Observer, Options, Outcome, Problem, SolveError, Stats};
 use crate::linalg::{self, Assembly, Combination, Sparse, SparseLu};
 
 pub trait SecondOrderProblem {
     fn dim(&self) -> usize;
-    fn mass(&self) -> &Sparse;
-    /// f(t, q) = F_ext(t) − F_int(q).
-    fn force(&self, t: f64, q: &[f64], f: &mut [f64]);
-    /// K(q) = −∂f/∂q, the tangent stiffness.
+    /// M(t, q): constant for a bare beam, state-dependent once a body rides on it.
+    fn mass(&self, t: f64, q: &[f64]) -> Cow<'_, Sparse>;
+    /// A constant mass is factorised into the iteration matrix once per step size.
+    fn mass_is_constant(&self) -> bool {
+        true
+    }
+    /// out = M(t, q) a, without assembling M where the problem can avoid it.
+    fn mass_mul(&self, t: f64, q: &[f64], a: &[f64], out: &mut [f64]) {
+        linalg::mul(&self.mass(t, q), a, out);
+    }
+    /// f(t, q, v) = F_ext(t) − F_int(q) − (forces quadratic in the velocities).
+    fn force(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]);
+    /// K(q) = −∂f/∂q, the tangent stiffness (the part that matters for Newton's convergence).
     fn stiffness(&self, t: f64, q: &[f64]) -> Sparse;
+    /// Blocks of unknowns of one kind (beam displacements, the contact coordinate): each is
+    /// measured against its own largest value in the error norm.
+    fn norm_groups(&self) -> Vec<Range<usize>> {
+        vec![0..self.dim()]
+    }
     fn breakpoints(&self) -> Vec<f64> {
         Vec::new()
     }
     fn enter_segment(&self, _start: f64, _end: f64) {}
+    fn events(&self) -> &[EventSpec] {
+        &[]
+    }
+    /// g(t, q, v); the run is watched for g passing from ≥ 0 to < 0.
+    fn event(&self, _index: usize, _t: f64, _q: &[f64], _v: &[f64]) -> f64 {
+        1.0
+    }
 }
 
-/// y = (q, v): q' = v, M v' = f(t, q). Mass diag(I, M), Jacobian [[0, I], [−K, 0]].
+/// y = (q, v): q' = v, M(q) v' = f(t, q, v). Mass diag(I, M), Jacobian [[0, I], [−K, 0]].
 pub struct FirstOrder<'a> {
     pub inner: &'a dyn SecondOrderProblem,
-    mass: Sparse,
 }
 
 impl<'a> FirstOrder<'a> {
     pub fn new(inner: &'a dyn SecondOrderProblem) -> Self {
-        let n = inner.dim();
-        let mut a = Assembly::new(2 * n);
-        (0..n).for_each(|i| a.add(i, i, 1.0));
-        a.add_sparse(inner.mass(), 1.0, n, n);
-        FirstOrder {
-            inner,
-            mass: a.build(),
-        }
+        FirstOrder { inner }
     }
 }
 
@@ -48,13 +63,17 @@ impl Problem for FirstOrder<'_> {
     fn rhs(&self, t: f64, y: &[f64], f: &mut [f64]) {
         let n = self.inner.dim();
         f[..n].copy_from_slice(&y[n..]);
-        self.inner.force(t, &y[..n], &mut f[n..]);
+        self.inner.force(t, &y[..n], &y[n..], &mut f[n..]);
     }
-    fn mass(&self, _t: f64, _y: &[f64]) -> Option<Sparse> {
-        Some(self.mass.clone())
+    fn mass(&self, t: f64, y: &[f64]) -> Option<Sparse> {
+        let n = self.inner.dim();
+        let mut a = Assembly::new(2 * n);
+        (0..n).for_each(|i| a.add(i, i, 1.0));
+        a.add_sparse(&self.inner.mass(t, &y[..n]), 1.0, n, n);
+        Some(a.build())
     }
     fn mass_is_constant(&self) -> bool {
-        true
+        self.inner.mass_is_constant()
     }
     fn jacobian(&self, t: f64, y: &[f64]) -> Option<Sparse> {
         let n = self.inner.dim();
@@ -68,6 +87,13 @@ impl Problem for FirstOrder<'_> {
     }
     fn enter_segment(&self, start: f64, end: f64) {
         self.inner.enter_segment(start, end)
+    }
+    fn events(&self) -> &[EventSpec] {
+        self.inner.events()
+    }
+    fn event(&self, index: usize, t: f64, y: &[f64]) -> f64 {
+        let n = self.inner.dim();
+        self.inner.event(index, t, &y[..n], &y[n..])
     }
 }
 
@@ -102,7 +128,7 @@ struct State {
     q: Vec<f64>,
     v: Vec<f64>,
     a: Vec<f64>,
-    /// f(t, q) at this state, on the side of the current segment.
+    /// f(t, q, v) at this state, on the side of the current segment.
     f: Vec<f64>,
 }
 
@@ -111,52 +137,59 @@ struct Ga<'a> {
     c: GenAlpha,
     rtol: f64,
     atol: f64,
+    groups: Vec<Range<usize>>,
     stats: Stats,
     /// Factorised (1 − α_m) M + (1 − α_f) β h² K and the h it was built for.
     iteration: Option<(f64, SparseLu)>,
-    /// (1 − α_m) M + c K on their joint pattern, for the current K.
+    /// The tangent stiffness the iteration matrix is built from, kept until Newton stalls.
+    k: Option<Sparse>,
+    /// (1 − α_m) M + c K on their joint pattern, for the current K (and M, if it is constant).
     combination: Option<Combination>,
     k_fresh: bool,
 }
 
 impl Ga<'_> {
-    /// max |e_i| / (atol + rtol max_j |q_j|): relative to the largest displacement, not to each
-    /// component, so that the tiny, unresolvable motion of the mesh-scale modes a sudden load
-    /// excites does not dictate the step.
+    /// Per group, max |e_i| / (atol + rtol max_j |q_j|): relative to the largest displacement
+    /// of the group, not to each component, so that the tiny, unresolvable motion of the
+    /// mesh-scale modes a sudden load excites does not dictate the step.
     fn norm(&self, e: &[f64], q: &[f64]) -> f64 {
-        let size = q.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        let sc = self.atol + self.rtol * size;
-        e.iter().fold(0.0_f64, |m, v| m.max(v.abs())) / sc
+        self.groups
+            .iter()
+            .map(|g| {
+                let size = q[g.clone()].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                let sc = self.atol + self.rtol * size;
+                e[g.clone()].iter().fold(0.0_f64, |m, v| m.max(v.abs())) / sc
+            })
+            .fold(0.0, |m, x| if x.is_nan() { f64::NAN } else { m.max(x) })
     }
 
-    fn acceleration(
-        &mut self,
-        t: f64,
-        q: &[f64],
-        f: &mut [f64],
-        a: &mut [f64],
-    ) -> Result<(), SolveError> {
+    fn acceleration(&mut self, s: &mut State) -> Result<(), SolveError> {
         self.stats.rhs_evals += 1;
-        self.p.force(t, q, f);
-        a.copy_from_slice(f);
+        self.p.force(s.t, &s.q, &s.v, &mut s.f);
+        s.a.copy_from_slice(&s.f);
         self.stats.factorizations += 1;
-        SparseLu::factor(self.p.mass(), None)
-            .ok_or(SolveError::SingularMatrix { t })?
-            .solve_in_place(a);
+        SparseLu::factor(&self.p.mass(s.t, &s.q), None)
+            .ok_or(SolveError::SingularMatrix { t: s.t })?
+            .solve_in_place(&mut s.a);
         Ok(())
     }
 
     fn factor(&mut self, t: f64, q: &[f64], h: f64) -> Result<(), SolveError> {
-        if matches!(self.iteration, Some((hh, _)) if hh == h) {
+        let constant = self.p.mass_is_constant();
+        if constant && matches!(self.iteration, Some((hh, _)) if hh == h) {
             return Ok(());
         }
-        if self.combination.is_none() {
-            let k = self.p.stiffness(t, q);
+        if self.k.is_none() {
+            self.k = Some(self.p.stiffness(t, q));
             self.stats.jacobians += 1;
             self.k_fresh = true;
+            self.combination = None;
+        }
+        if self.combination.is_none() || !constant {
             let mut m = Assembly::new(q.len());
-            m.add_sparse(self.p.mass(), 1.0 - self.c.alpha_m, 0, 0);
-            self.combination = Some(Combination::new(&m.build(), &k));
+            m.add_sparse(&self.p.mass(t, q), 1.0 - self.c.alpha_m, 0, 0);
+            let k = self.k.as_ref().expect("built above");
+            self.combination = Some(Combination::new(&m.build(), k));
         }
         let c = (1.0 - self.c.alpha_f) * self.c.beta * h * h;
         let s = self.combination.as_mut().expect("built above").at(c);
@@ -182,17 +215,21 @@ impl Ga<'_> {
         let mut r = vec![0.0; n];
         let mut ma = vec![0.0; n];
         let mut ma0 = vec![0.0; n];
-        linalg::mul(self.p.mass(), &s.a, &mut ma0);
+        self.p.mass_mul(s.t, &s.q, &s.a, &mut ma0);
+        let advance = |a1: &[f64], q1: &mut [f64], v1: &mut [f64]| {
+            for i in 0..n {
+                q1[i] = s.q[i] + h * s.v[i] + h * h * ((0.5 - c.beta) * s.a[i] + c.beta * a1[i]);
+                v1[i] = s.v[i] + h * ((1.0 - c.gamma) * s.a[i] + c.gamma * a1[i]);
+            }
+        };
         let mut prev: Option<f64> = None;
         let mut converged = false;
         for _ in 0..MAX_NEWTON {
             self.stats.newton_iterations += 1;
-            for i in 0..n {
-                q1[i] = s.q[i] + h * s.v[i] + h * h * ((0.5 - c.beta) * s.a[i] + c.beta * a1[i]);
-            }
+            advance(&a1, &mut q1, &mut v1);
             self.stats.rhs_evals += 1;
-            self.p.force(t1, &q1, &mut f1);
-            linalg::mul(self.p.mass(), &a1, &mut ma);
+            self.p.force(t1, &q1, &v1, &mut f1);
+            self.p.mass_mul(t1, &q1, &a1, &mut ma);
             for i in 0..n {
                 r[i] = -((1.0 - c.alpha_m) * ma[i] + c.alpha_m * ma0[i]
                     - (1.0 - c.alpha_f) * f1[i]
@@ -222,12 +259,9 @@ impl Ga<'_> {
         if !converged {
             return Ok(None);
         }
-        for i in 0..n {
-            q1[i] = s.q[i] + h * s.v[i] + h * h * ((0.5 - c.beta) * s.a[i] + c.beta * a1[i]);
-            v1[i] = s.v[i] + h * ((1.0 - c.gamma) * s.a[i] + c.gamma * a1[i]);
-        }
+        advance(&a1, &mut q1, &mut v1);
         self.stats.rhs_evals += 1;
-        self.p.force(t1, &q1, &mut f1);
+        self.p.force(t1, &q1, &v1, &mut f1);
         // Local error of the displacement (Zienkiewicz & Xie 1991): h² (β − 1/6)(a_{n+1} − a_n),
         // filtered through the iteration matrix as Hairer & Wanner filter stiff estimates: a mode
         // with ωh ≫ 1 is divided by about β(ωh)², which brings its estimate down to its own
@@ -236,7 +270,7 @@ impl Ga<'_> {
             .map(|i| (1.0 - c.alpha_m) * h * h * (c.beta - 1.0 / 6.0) * (a1[i] - s.a[i]))
             .collect();
         let mut e = vec![0.0; n];
-        linalg::mul(self.p.mass(), &raw, &mut e);
+        self.p.mass_mul(t1, &q1, &raw, &mut e);
         self.iteration
             .as_ref()
             .expect("factorised")
@@ -271,7 +305,8 @@ fn interpolate(s0: &State, s1: &State, t: f64, out: &mut [f64]) {
     }
 }
 
-/// Generalized-α from (q0, v0) at t0 to t_end; the observer sees y = (q, v).
+/// Generalized-α from (q0, v0) at t0 to t_end; the observer sees y = (q, v). A terminal event
+/// of the problem ends the run where it is located.
 #[allow(clippy::too_many_arguments)]
 pub fn solve_genalpha(
     p: &dyn SecondOrderProblem,
@@ -291,11 +326,14 @@ pub fn solve_genalpha(
         c: GenAlpha::new(rho_inf),
         rtol: opts.rtol,
         atol: opts.atol,
+        groups: p.norm_groups(),
         stats: Stats::default(),
         iteration: None,
+        k: None,
         combination: None,
         k_fresh: false,
     };
+    let specs = p.events();
     let breaks = super::breakpoints_within(p.breakpoints(), t0, t_end);
     let segment_end = |t: f64| breaks.iter().copied().find(|&b| b > t).unwrap_or(t_end);
     p.enter_segment(t0, segment_end(t0));
@@ -306,7 +344,7 @@ pub fn solve_genalpha(
         a: vec![0.0; n],
         f: vec![0.0; n],
     };
-    ga.acceleration(t0, &s.q, &mut s.f, &mut s.a)?;
+    ga.acceleration(&mut s)?;
     let mut y = vec![0.0; 2 * n];
     let mut next_out = outputs.partition_point(|&o| o < t0);
     let emit = |st: &State, y: &mut [f64]| {
@@ -317,6 +355,29 @@ pub fn solve_genalpha(
         emit(&s, &mut y);
         observer.output(t0, &y);
         next_out += 1;
+    }
+    let mut events = Vec::new();
+    let finish = |t: f64, y: Vec<f64>, mut stats: Stats, stopped_by, events| {
+        stats.wall_s = clock.elapsed().as_secs_f64();
+        Ok(Outcome {
+            t,
+            y,
+            stats,
+            stopped_by,
+            events,
+        })
+    };
+    let mut g: Vec<f64> = (0..specs.len())
+        .map(|i| p.event(i, t0, &s.q, &s.v))
+        .collect();
+    if let Some(i) = (0..specs.len()).find(|&i| specs[i].terminal && g[i] < 0.0) {
+        emit(&s, &mut y);
+        let hit = EventHit {
+            index: i,
+            name: specs[i].name,
+            t: t0,
+        };
+        return finish(t0, y, ga.stats, Some(hit), events);
     }
     let h_min = 1e-14 * t_end.abs().max(1.0);
     let mut h = opts.fixed_step.unwrap_or_else(|| {
@@ -345,7 +406,7 @@ pub fn solve_genalpha(
         let h_try = if last { target - s.t } else { h };
         let Some((mut s1, err)) = ga.step(&s, h_try)? else {
             if !ga.k_fresh {
-                ga.combination = None;
+                ga.k = None;
                 ga.iteration = None;
                 continue;
             }
@@ -381,17 +442,59 @@ pub fn solve_genalpha(
         }
         ga.stats.steps += 1;
         ga.k_fresh = false;
-        while next_out < outputs.len() && outputs[next_out] <= s1.t {
+
+        // Earliest terminal sign change in this step, located on the Hermite interpolant.
+        let mut first: Option<(usize, f64)> = None;
+        let mut g_new = vec![0.0; specs.len()];
+        for i in 0..specs.len() {
+            g_new[i] = p.event(i, s1.t, &s1.q, &s1.v);
+            if g[i] >= 0.0 && g_new[i] < 0.0 {
+                let te = locate(
+                    |tt| {
+                        interpolate(&s, &s1, tt, &mut y);
+                        p.event(i, tt, &y[..n], &y[n..])
+                    },
+                    s.t,
+                    g[i],
+                    s1.t,
+                    g_new[i],
+                );
+                if specs[i].terminal {
+                    if first.is_none_or(|(_, tf)| te < tf) {
+                        first = Some((i, te));
+                    }
+                } else {
+                    events.push(EventHit {
+                        index: i,
+                        name: specs[i].name,
+                        t: te,
+                    });
+                }
+            }
+        }
+        let t_stop = first.map_or(s1.t, |(_, te)| te);
+        while next_out < outputs.len() && outputs[next_out] <= t_stop {
             interpolate(&s, &s1, outputs[next_out], &mut y);
             observer.output(outputs[next_out], &y);
             next_out += 1;
         }
+        if let Some((i, te)) = first {
+            interpolate(&s, &s1, te, &mut y);
+            observer.step(te, &y);
+            let hit = EventHit {
+                index: i,
+                name: specs[i].name,
+                t: te,
+            };
+            return finish(te, y, ga.stats, Some(hit), events);
+        }
+        g = g_new;
         emit(&s1, &mut y);
         observer.step(s1.t, &y);
         if last && target < t_end {
             // The load jumps here: restart with the acceleration of the new segment.
             p.enter_segment(target, segment_end(target));
-            ga.acceleration(target, &s1.q.clone(), &mut s1.f, &mut s1.a)?;
+            ga.acceleration(&mut s1)?;
         }
         s = s1;
         if opts.fixed_step.is_none() {
@@ -406,13 +509,6 @@ pub fn solve_genalpha(
             just_rejected = false;
         }
     }
-    ga.stats.wall_s = clock.elapsed().as_secs_f64();
     emit(&s, &mut y);
-    Ok(Outcome {
-        t: s.t,
-        y,
-        stats: ga.stats,
-        stopped_by: None::<EventHit>,
-        events: Vec::new(),
-    })
+    finish(s.t, y, ga.stats, None, events)
 }

@@ -131,7 +131,7 @@ impl Observer for Recorder<'_> {
             .map(|p| self.beam.displacement_at(q, p.x))
             .collect();
         let mut a = vec![0.0; n];
-        self.loaded.force(t, q, &mut a);
+        self.loaded.force(t, q, &y[n..], &mut a);
         self.mass_lu.solve_in_place(&mut a);
         let acting: Vec<(f64, [f64; 2], f64)> = self
             .loaded
