@@ -3,6 +3,7 @@
 
 pub mod analysis;
 pub mod beam;
+pub mod coupling;
 pub mod curve;
 pub mod disk;
 pub mod error;

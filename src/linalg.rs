@@ -87,6 +87,9 @@ pub struct Combination {
     a: Vec<f64>,
     b: Vec<f64>,
     joint: Sparse,
+    /// Where each stored entry of A sits in the joint pattern, and A's pattern.
+    a_at: Vec<usize>,
+    a_pattern: (Vec<usize>, Vec<usize>),
 }
 
 impl Combination {
@@ -98,11 +101,28 @@ impl Combination {
         pb.add_sparse(a, 0.0, 0, 0);
         pb.add_sparse(b, 1.0, 0, 0);
         let (ja, jb) = (pa.build(), pb.build());
+        let a_at = entries(a)
+            .map(|(j, (i, _))| position(&ja, i, j).expect("A lies in the joint pattern"))
+            .collect();
         Combination {
             a: ja.val().to_vec(),
             b: jb.val().to_vec(),
             joint: ja,
+            a_at,
+            a_pattern: pattern(a),
         }
+    }
+
+    /// New values of A on the pattern it had: no sorting. `false` if the pattern changed.
+    pub fn update_a(&mut self, a: &Sparse) -> bool {
+        if pattern(a) != self.a_pattern {
+            return false;
+        }
+        self.a.fill(0.0);
+        for (k, v) in a.val().iter().enumerate() {
+            self.a[self.a_at[k]] += v;
+        }
+        true
     }
 
     pub fn at(&mut self, c: f64) -> &Sparse {
@@ -118,6 +138,20 @@ impl Combination {
     }
 }
 
+fn pattern(m: &Sparse) -> (Vec<usize>, Vec<usize>) {
+    (
+        m.symbolic().col_ptr().to_vec(),
+        m.symbolic().row_idx().to_vec(),
+    )
+}
+
+/// Index of entry (i, j) in the stored values of m, if it is in the pattern.
+pub fn position(m: &Sparse, i: usize, j: usize) -> Option<usize> {
+    let col_ptr = m.symbolic().col_ptr();
+    let rows = &m.symbolic().row_idx()[col_ptr[j]..col_ptr[j + 1]];
+    rows.binary_search(&i).ok().map(|k| col_ptr[j] + k)
+}
+
 /// Sparse LU that keeps its symbolic analysis while the pattern stays the same.
 pub struct SparseLu {
     pattern: (Vec<usize>, Vec<usize>),
@@ -129,10 +163,7 @@ impl SparseLu {
     /// `None` when the matrix is (numerically) singular.
     pub fn factor(m: &Sparse, previous: Option<SparseLu>) -> Option<SparseLu> {
         faer::set_global_parallelism(Par::Seq);
-        let pattern = (
-            m.symbolic().col_ptr().to_vec(),
-            m.symbolic().row_idx().to_vec(),
-        );
+        let pattern = pattern(m);
         let symbolic = match previous {
             Some(p) if p.pattern == pattern => p.symbolic,
             _ => SymbolicLu::try_new(m.symbolic()).ok()?,

@@ -10,6 +10,7 @@ use serde_saphyr::Spanned;
 use crate::beam::element::Section;
 use crate::beam::supports::Support;
 use crate::beam::{BeamSpec, Quadrature};
+use crate::coupling::{Coupling, DiskOnBeamSpec};
 use crate::curve::expr::Formula;
 use crate::curve::spline::Spline;
 use crate::curve::Curve;
@@ -120,6 +121,7 @@ struct DiskFile {
     coupling: Option<Spanned<String>>,
     formulation: Option<Spanned<String>>,
     mu: Option<Spanned<f64>>,
+    patch: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize)]
@@ -196,6 +198,8 @@ pub struct Probe {
 #[derive(Clone, Debug)]
 pub struct BeamScene {
     pub beam: BeamSpec,
+    /// A disk riding on the beam, if the scene has one.
+    pub disk: Option<DiskOnBeamSpec>,
     pub loads: Vec<PointLoad>,
     pub probes: Vec<Probe>,
     pub shapes: Vec<f64>,
@@ -332,7 +336,7 @@ impl Scene {
                 )
             }
             (Some(curve), None) => Model::Rolling(rolling_scene(&c, &raw, curve, gravity)?),
-            (None, Some(beam)) => Model::Beam(beam_scene(&c, &raw, beam, duration)?),
+            (None, Some(beam)) => Model::Beam(beam_scene(&c, &raw, beam, duration, gravity)?),
         };
         let beam_default = matches!(model, Model::Beam(_));
         let mut solver = SolverSettings {
@@ -453,6 +457,13 @@ fn rolling_scene(
             "applies to beam tracks only; on a rigid curve choose `formulation`",
         );
     }
+    if let Some(p) = &d.patch {
+        return c.err(
+            p.referenced.line(),
+            "disk.patch",
+            "applies to beam tracks only; on a rigid curve the contact is a point",
+        );
+    }
     let formulation = match &d.formulation {
         None => Formulation::Minimal,
         Some(f) => match f.value.as_str() {
@@ -513,15 +524,9 @@ fn beam_scene(
     raw: &SceneFile,
     file: &Spanned<BeamFile>,
     duration: f64,
+    gravity: f64,
 ) -> Result<BeamScene, Error> {
     let b = &file.value;
-    if let Some(disk) = &raw.disk {
-        return c.err(
-            disk.referenced.line(),
-            "disk",
-            "on a beam: coupled disk–beam scenes are not supported yet",
-        );
-    }
     let from = c.pair(&b.from, "track.beam.from")?;
     let to = c.pair(&b.to, "track.beam.to")?;
     let length = (to[0] - from[0]).hypot(to[1] - from[1]);
@@ -708,13 +713,122 @@ fn beam_scene(
             v
         }
     };
+    let disk = match &raw.disk {
+        None => None,
+        Some(d) => Some(disk_on_beam(c, d, length, gravity)?),
+    };
     Ok(BeamScene {
         beam,
+        disk,
         loads,
         probes,
         shapes,
         magnify,
         rho_inf,
+    })
+}
+
+/// The disk of a beam scene: checked against the beam it rolls on.
+fn disk_on_beam(
+    c: &Checker,
+    file: &Spanned<DiskFile>,
+    length: f64,
+    gravity: f64,
+) -> Result<DiskOnBeamSpec, Error> {
+    let d = &file.value;
+    let disk = Disk {
+        mass: c.positive(&d.mass, "disk.mass")?,
+        radius: c.positive(&d.radius, "disk.radius")?,
+    };
+    if let Some(f) = &d.formulation {
+        return c.err(
+            f.referenced.line(),
+            "disk.formulation",
+            "applies to rigid curves only; on a beam choose `coupling`",
+        );
+    }
+    let coupling = match &d.coupling {
+        None => Coupling::Consistent,
+        Some(cp) => Coupling::from_name(&cp.value).map_or_else(
+            || {
+                c.err(
+                    cp.referenced.line(),
+                    "disk.coupling",
+                    format!(
+                        "is '{}'; use one of {}",
+                        cp.value,
+                        Coupling::ALL.map(|k| k.name()).join(", ")
+                    ),
+                )
+            },
+            Ok,
+        )?,
+    };
+    let s0_line =
+        d.s0.as_ref()
+            .map_or(file.referenced.line(), |s| s.referenced.line());
+    let s0 = match &d.s0 {
+        Some(s) => c.finite(s, "disk.s0")?,
+        None => 0.0,
+    };
+    if !(0.0..=length).contains(&s0) {
+        return c.err(
+            s0_line,
+            "disk.s0",
+            format!("= {s0} is off the beam, which runs over x in [0, {length}]"),
+        );
+    }
+    let omega_line = d
+        .omega0
+        .as_ref()
+        .map_or(file.referenced.line(), |s| s.referenced.line());
+    let omega0 = match &d.omega0 {
+        Some(w) => c.finite(w, "disk.omega0")?,
+        None => 0.0,
+    };
+    if !coupling.rolls() && omega0 == 0.0 {
+        return c.err(
+            omega_line,
+            "disk.omega0",
+            format!(
+                "is 0: a {} travels at the constant speed −radius × omega0, so it needs a non-zero omega0",
+                coupling.name()
+            ),
+        );
+    }
+    // Rolling off the end it starts on leaves nothing to simulate; a disk resting exactly on
+    // an end support with no speed has nowhere to go but off or nowhere.
+    let v0 = -disk.radius * omega0;
+    if (s0 == 0.0 && v0 < 0.0) || (s0 == length && v0 > 0.0) {
+        return c.err(
+            omega_line,
+            "disk.omega0",
+            format!("= {omega0} rolls the disk off the end of the beam it starts on (s0 = {s0}); Ω < 0 rolls towards +x"),
+        );
+    }
+    if (s0 == 0.0 || s0 == length) && v0 == 0.0 {
+        return c.err(
+            s0_line,
+            "disk.s0",
+            format!("= {s0} puts the disk at rest on the end support, where it would load only the support and never move onto the beam; give it a speed (omega0) or start it inside"),
+        );
+    }
+    let mu = match &d.mu {
+        Some(m) => Some(c.positive(m, "disk.mu")?),
+        None => None,
+    };
+    let patch = match &d.patch {
+        Some(p) => c.positive(p, "disk.patch")?,
+        None => disk.radius,
+    };
+    Ok(DiskOnBeamSpec {
+        disk,
+        s0,
+        omega0,
+        coupling,
+        mu,
+        gravity,
+        patch,
     })
 }
 

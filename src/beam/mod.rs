@@ -73,6 +73,15 @@ pub struct PointDisplacement {
     pub phi: f64,
 }
 
+/// One node's free unknowns (`None` where a support holds it) and N, N', N'', N''' at a point.
+#[derive(Clone, Copy, Debug)]
+pub struct NodeBasis {
+    pub u: Option<usize>,
+    pub w: Option<usize>,
+    pub phi: Option<usize>,
+    pub d: [f64; 4],
+}
+
 /// The discretised beam: mesh, equation numbering with supports applied, constant mass matrix.
 #[derive(Clone, Debug)]
 pub struct Beam {
@@ -245,6 +254,110 @@ impl Beam {
         let mut dn = vec![0.0; k];
         self.basis.eval(xi, &mut n, &mut dn);
         (e, n, dn)
+    }
+
+    /// Equation number of component c (0 u, 1 w, 2 φ) of a node; `None` where a support holds it.
+    pub fn eq_of(&self, node: usize, c: usize) -> Option<usize> {
+        self.eq[3 * node + c]
+    }
+
+    /// The element holding material point x (the end elements extend past the ends).
+    pub fn element_of(&self, x: f64) -> usize {
+        ((x / self.h).floor().max(0.0) as usize).min(self.spec.elements - 1)
+    }
+
+    /// The free unknowns of each node of the element holding material point x, with the node's
+    /// shape function and its first three derivatives in x there: what a body riding on the
+    /// axis at x needs to follow its position, slope and curvature.
+    pub fn basis_at(&self, x: f64) -> Vec<NodeBasis> {
+        let e = self.element_of(x);
+        let xi = 2.0 * (x - e as f64 * self.h) / self.h - 1.0;
+        let mut d = vec![[0.0; 4]; self.spec.order + 1];
+        self.basis.eval_derivatives(xi, &mut d);
+        let scale = 2.0 / self.h;
+        d.iter()
+            .enumerate()
+            .map(|(a, da)| {
+                let node = e * self.spec.order + a;
+                NodeBasis {
+                    u: self.eq[3 * node],
+                    w: self.eq[3 * node + 1],
+                    phi: self.eq[3 * node + 2],
+                    d: [
+                        da[0],
+                        da[1] * scale,
+                        da[2] * scale * scale,
+                        da[3] * scale * scale * scale,
+                    ],
+                }
+            })
+            .collect()
+    }
+
+    /// Like [`Beam::basis_at`], but for the axis averaged over a contact patch of half-width
+    /// `half` around s with the smooth kernel K(ξ) = 315/(256 b) (1 − (ξ/b)²)⁴: the weights are
+    /// S_a^(k)(s) = ∫ K^(k)(s − x) N_a(x) dx, integrated exactly element by element (the end
+    /// elements extended past the ends). K and its first three derivatives vanish at the
+    /// patch's edges, so the averaged axis has three continuous derivatives in s even though
+    /// the elements meet with kinks.
+    pub fn patch_basis_at(&self, s: f64, half: f64) -> Vec<NodeBasis> {
+        let (lo, hi) = (s - half, s + half);
+        let (e_lo, e_hi) = (self.element_of(lo), self.element_of(hi));
+        let p = self.spec.order;
+        let first = e_lo * p;
+        let mut weights = vec![[0.0; 4]; (e_hi - e_lo) * p + p + 1];
+        // Kernel (degree 8) times shape function (degree p): exact with (p + 10) / 2 points.
+        let rule = quadrature::gauss((p + 10) / 2);
+        let mut n = vec![0.0; p + 1];
+        let mut dn = vec![0.0; p + 1];
+        let c = 315.0 / 256.0;
+        for e in e_lo..=e_hi {
+            let a = if e == e_lo { lo } else { e as f64 * self.h };
+            let b = if e == e_hi {
+                hi
+            } else {
+                (e + 1) as f64 * self.h
+            };
+            if b <= a {
+                continue;
+            }
+            for (xi, w) in rule.points.iter().zip(&rule.weights) {
+                let x = 0.5 * (a + b) + 0.5 * (b - a) * xi;
+                let jw = 0.5 * (b - a) * w;
+                let u = (s - x) / half;
+                let v = 1.0 - u * u;
+                let f = [
+                    v.powi(4),
+                    -8.0 * u * v.powi(3),
+                    -8.0 * v.powi(3) + 48.0 * u * u * v * v,
+                    144.0 * u * v * v - 192.0 * u.powi(3) * v,
+                ];
+                self.basis.eval(
+                    2.0 * (x - e as f64 * self.h) / self.h - 1.0,
+                    &mut n,
+                    &mut dn,
+                );
+                for (k, fk) in f.iter().enumerate() {
+                    let kernel = c * fk / half.powi(k as i32 + 1);
+                    for (a_local, na) in n.iter().enumerate() {
+                        weights[e * p + a_local - first][k] += kernel * na * jw;
+                    }
+                }
+            }
+        }
+        weights
+            .into_iter()
+            .enumerate()
+            .map(|(k, d)| {
+                let node = first + k;
+                NodeBasis {
+                    u: self.eq[3 * node],
+                    w: self.eq[3 * node + 1],
+                    phi: self.eq[3 * node + 2],
+                    d,
+                }
+            })
+            .collect()
     }
 
     /// Global load components turned into the beam frame.

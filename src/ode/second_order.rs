@@ -19,6 +19,11 @@ pub trait SecondOrderProblem {
     fn mass_is_constant(&self) -> bool {
         true
     }
+    /// A label of the region of states within which one iteration matrix serves (for a
+    /// body riding on the beam: the element it is on); a new label refactorises.
+    fn iteration_key(&self, _t: f64, _q: &[f64]) -> usize {
+        0
+    }
     /// out = M(t, q) a, without assembling M where the problem can avoid it.
     fn mass_mul(&self, t: f64, q: &[f64], a: &[f64], out: &mut [f64]) {
         linalg::mul(&self.mass(t, q), a, out);
@@ -141,6 +146,8 @@ struct Ga<'a> {
     stats: Stats,
     /// Factorised (1 − α_m) M + (1 − α_f) β h² K and the h it was built for.
     iteration: Option<(f64, SparseLu)>,
+    /// The problem's iteration key when it was built.
+    key: usize,
     /// The tangent stiffness the iteration matrix is built from, kept until Newton stalls.
     k: Option<Sparse>,
     /// (1 − α_m) M + c K on their joint pattern, for the current K (and M, if it is constant).
@@ -176,9 +183,11 @@ impl Ga<'_> {
 
     fn factor(&mut self, t: f64, q: &[f64], h: f64) -> Result<(), SolveError> {
         let constant = self.p.mass_is_constant();
-        if constant && matches!(self.iteration, Some((hh, _)) if hh == h) {
+        let key = self.p.iteration_key(t, q);
+        if key == self.key && matches!(self.iteration, Some((hh, _)) if hh == h) {
             return Ok(());
         }
+        self.key = key;
         if self.k.is_none() {
             self.k = Some(self.p.stiffness(t, q));
             self.stats.jacobians += 1;
@@ -186,10 +195,15 @@ impl Ga<'_> {
             self.combination = None;
         }
         if self.combination.is_none() || !constant {
-            let mut m = Assembly::new(q.len());
-            m.add_sparse(&self.p.mass(t, q), 1.0 - self.c.alpha_m, 0, 0);
-            let k = self.k.as_ref().expect("built above");
-            self.combination = Some(Combination::new(&m.build(), k));
+            let mut m = self.p.mass(t, q).into_owned();
+            m.val_mut()
+                .iter_mut()
+                .for_each(|v| *v *= 1.0 - self.c.alpha_m);
+            let same = self.combination.as_mut().is_some_and(|c| c.update_a(&m));
+            if !same {
+                let k = self.k.as_ref().expect("built above");
+                self.combination = Some(Combination::new(&m, k));
+            }
         }
         let c = (1.0 - self.c.alpha_f) * self.c.beta * h * h;
         let s = self.combination.as_mut().expect("built above").at(c);
@@ -329,6 +343,7 @@ pub fn solve_genalpha(
         groups: p.norm_groups(),
         stats: Stats::default(),
         iteration: None,
+        key: 0,
         k: None,
         combination: None,
         k_fresh: false,
@@ -408,6 +423,7 @@ pub fn solve_genalpha(
             if !ga.k_fresh {
                 ga.k = None;
                 ga.iteration = None;
+                ga.combination = None;
                 continue;
             }
             if opts.fixed_step.is_some() {

@@ -182,8 +182,15 @@ pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
     figures(r, dir)
 }
 
+/// The disk's columns of history.csv, after `disk.`.
+const DISK_COLUMNS: [&str; 9] = ["s", "x", "y", "vx", "vy", "omega", "rt", "rn", "mu_needed"];
+
 fn csv(r: &BeamRun) -> String {
     let mut head = vec!["t".to_string()];
+    let disk = r.setup.disk.is_some();
+    if disk {
+        head.extend(DISK_COLUMNS.iter().map(|c| format!("disk.{c}")));
+    }
     for p in &r.setup.probes {
         head.extend(["u", "w", "phi"].map(|c| format!("{}.{c}", p.name)));
     }
@@ -204,13 +211,44 @@ fn csv(r: &BeamRun) -> String {
     out.push('\n');
     for row in &r.rows {
         let mut v = vec![row.t];
+        if disk {
+            // After the disk has left the beam its columns stay empty.
+            v.extend(row.disk.as_ref().map_or([f64::NAN; 9], |d| {
+                [
+                    d.s,
+                    d.x,
+                    d.y,
+                    d.vx,
+                    d.vy,
+                    d.omega,
+                    d.rt,
+                    d.rn,
+                    d.rt.abs() / d.rn,
+                ]
+            }));
+        }
         for d in &row.probes {
             v.extend([d.u, d.w, d.phi]);
         }
-        // The beam's own weight is left out (erratum 6), so there is no potential energy.
-        v.extend([row.kinetic, row.strain, 0.0, row.work, row.total()]);
+        // The beam's own weight is left out (erratum 6): the potential is the disk's alone.
+        v.extend([
+            row.kinetic,
+            row.strain,
+            row.potential,
+            row.work,
+            row.total(),
+        ]);
         v.extend(row.reactions.iter().flatten());
-        let line: Vec<String> = v.iter().map(|x| format!("{x}")).collect();
+        let line: Vec<String> = v
+            .iter()
+            .map(|x| {
+                if x.is_nan() {
+                    String::new()
+                } else {
+                    format!("{x}")
+                }
+            })
+            .collect();
         let _ = writeln!(out, "{}", line.join(","));
     }
     out

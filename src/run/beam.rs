@@ -1,14 +1,20 @@
-//! A run of a loaded beam: integrate, and record probe histories, envelopes along the beam,
-//! deformed shapes and the energy budget (kinetic + strain − work of the loads).
+//! A run of a loaded beam, with or without a disk on it: integrate, and record probe histories,
+//! envelopes along the beam, deformed shapes, the disk's quantities and the energy budget
+//! (kinetic + strain + potential − work of the loads).
+//!
+//! With a disk the run has two phases: the coupled one, until the disk leaves the beam at an
+//! end (or stops at a physical event), then the beam alone, vibrating freely to the end.
 
 use super::{EnergyCheck, Overrides, Progress, Stop};
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::{Beam, PointDisplacement};
+use crate::coupling::DiskOnBeam;
 use crate::error::Error;
 use crate::linalg::{self, SparseLu};
 use crate::ode::second_order::SecondOrderProblem;
 use crate::ode::second_order::{solve_genalpha, FirstOrder};
 use crate::ode::{self, Method, Observer, Stats};
+use crate::rolling::{DiskObservation, StopReason};
 use crate::scene::{BeamScene, PointLoad, Scene};
 
 /// Points along the beam where envelopes and shapes are sampled.
@@ -19,8 +25,12 @@ pub struct BeamRow {
     pub t: f64,
     /// One per probe, in the scene's order.
     pub probes: Vec<PointDisplacement>,
+    /// While the disk is on the beam.
+    pub disk: Option<DiskObservation>,
     pub kinetic: f64,
     pub strain: f64,
+    /// The disk's gravity potential (zero without a disk in the system).
+    pub potential: f64,
     pub work: f64,
     /// What the supports exert on the beam, global (fx, fy, mz), at `from` and at `to`.
     pub reactions: [[f64; 3]; 2],
@@ -28,7 +38,7 @@ pub struct BeamRow {
 
 impl BeamRow {
     pub fn total(&self) -> f64 {
-        self.kinetic + self.strain - self.work
+        self.kinetic + self.strain + self.potential - self.work
     }
 }
 
@@ -53,6 +63,10 @@ pub struct BeamRun {
     pub shapes: Vec<(f64, Vec<PointDisplacement>)>,
     pub stop: Stop,
     pub t_end: f64,
+    /// When the disk left the beam, if it did.
+    pub left_track_t: Option<f64>,
+    /// Unknowns of the coupled model (beam, and the contact point where it is one).
+    pub unknowns: usize,
     /// (q, v) at the end of the run.
     pub y_end: Vec<f64>,
     pub stats: Stats,
@@ -92,6 +106,9 @@ fn work_since(
 struct Recorder<'a> {
     beam: &'a Beam,
     loaded: &'a LoadedBeam<'a>,
+    /// The disk while it is on the beam; the state is then (z, ż) with z = (q, s) or q.
+    coupled: Option<&'a DiskOnBeam<'a>>,
+    nz: usize,
     /// The mass matrix, factorised once: accelerations for the support reactions.
     mass_lu: SparseLu,
     setup: &'a BeamScene,
@@ -100,50 +117,111 @@ struct Recorder<'a> {
     envelope: Envelope,
     shapes: Vec<(f64, Vec<PointDisplacement>)>,
     work: Work,
+    /// Work of a moving load, by the trapezoidal rule over the steps: (t, power, work).
+    moving: (f64, f64, f64),
+    /// The disk's energy when it left (it leaves the model with it): (kinetic, potential).
+    disk_energy: (f64, f64),
     energy: EnergyCheck,
     progress: Option<Progress>,
     mv: Vec<f64>,
 }
 
 impl Recorder<'_> {
+    fn beam_state<'y>(&self, y: &'y [f64]) -> (&'y [f64], &'y [f64]) {
+        let n = self.beam.dim();
+        (&y[..n], &y[self.nz..self.nz + n])
+    }
+
     fn energies(&mut self, y: &[f64]) -> (f64, f64) {
         let n = self.beam.dim();
-        linalg::mul(self.beam.mass(), &y[n..], &mut self.mv);
-        let kinetic = 0.5 * y[n..].iter().zip(&self.mv).map(|(a, b)| a * b).sum::<f64>();
+        let v = y[self.nz..self.nz + n].to_vec();
+        linalg::mul(self.beam.mass(), &v, &mut self.mv);
+        let kinetic = 0.5 * v.iter().zip(&self.mv).map(|(a, b)| a * b).sum::<f64>();
         (kinetic, self.beam.strain_energy(&y[..n]))
+    }
+
+    fn disk(&self, t: f64, y: &[f64]) -> Option<DiskObservation> {
+        self.coupled
+            .map(|c| c.observe(t, &y[..self.nz], &y[self.nz..]))
+    }
+
+    /// Kinetic and potential energy of the disk, as far as it belongs to the system.
+    fn disk_energies(&self, disk: Option<&DiskObservation>) -> (f64, f64) {
+        match (disk, self.coupled) {
+            (Some(d), Some(c)) if c.disk_in_system() => (d.kinetic, d.potential),
+            (Some(_), Some(_)) => (0.0, 0.0),
+            _ => self.disk_energy,
+        }
+    }
+
+    fn moving_work(&self, t: f64, y: &[f64]) -> f64 {
+        let (t0, p0, done) = self.moving;
+        match self.coupled {
+            Some(c) if !c.disk_in_system() => {
+                let p = c.power_on_beam(t, &y[..self.nz], &y[self.nz..]);
+                done + 0.5 * (p0 + p) * (t - t0)
+            }
+            _ => done,
+        }
     }
 }
 
 impl Observer for Recorder<'_> {
     fn output(&mut self, t: f64, y: &[f64]) {
         let n = self.beam.dim();
-        let q = &y[..n];
+        let (q, v) = self.beam_state(y);
         let (kinetic, strain) = self.energies(y);
+        let disk = self.disk(t, y);
+        let (disk_kinetic, potential) = self.disk_energies(disk.as_ref());
+        let kinetic = kinetic + disk_kinetic;
         let now = load_displacements(self.beam, &self.setup.loads, q);
         let work = self.work.done
-            + work_since(&self.setup.loads, self.work.t, t, &self.work.at_loads, &now);
-        self.energy
-            .record(kinetic + strain - work, kinetic + strain);
+            + work_since(&self.setup.loads, self.work.t, t, &self.work.at_loads, &now)
+            + self.moving_work(t, y);
+        self.energy.record(
+            kinetic + strain + potential - work,
+            kinetic + strain + potential.abs(),
+        );
         let probes = self
             .setup
             .probes
             .iter()
             .map(|p| self.beam.displacement_at(q, p.x))
             .collect();
-        let mut a = vec![0.0; n];
-        self.loaded.force(t, q, &y[n..], &mut a);
-        self.mass_lu.solve_in_place(&mut a);
-        let acting: Vec<(f64, [f64; 2], f64)> = self
+        let mut acting: Vec<(f64, [f64; 2], f64)> = self
             .loaded
             .active(t)
             .map(|l| (l.x, l.force, l.mz))
             .collect();
+        let a = match self.coupled {
+            Some(c) => {
+                let d = disk.expect("observed while coupled");
+                let z = &y[..self.nz];
+                let at_s = c.contact_frame(t, z, &y[self.nz..]);
+                let on_disk = [
+                    d.rt * at_s[0][0] + d.rn * at_s[1][0],
+                    d.rt * at_s[0][1] + d.rn * at_s[1][1],
+                ];
+                acting.push((d.s, [-on_disk[0], -on_disk[1]], 0.0));
+                c.acceleration(t, z, &y[self.nz..])
+                    .map(|a| a[..n].to_vec())
+                    .unwrap_or_else(|| vec![f64::NAN; n])
+            }
+            None => {
+                let mut a = vec![0.0; n];
+                self.loaded.force(t, q, v, &mut a);
+                self.mass_lu.solve_in_place(&mut a);
+                a
+            }
+        };
         let reactions = self.beam.support_reactions(q, &acting, Some(&a));
         self.rows.push(BeamRow {
             t,
             probes,
+            disk,
             kinetic,
             strain,
+            potential,
             work,
             reactions,
         });
@@ -172,13 +250,68 @@ impl Observer for Recorder<'_> {
         self.work.done += work_since(&self.setup.loads, self.work.t, t, &self.work.at_loads, &now);
         self.work.t = t;
         self.work.at_loads = now;
+        if let Some(c) = self.coupled.filter(|c| !c.disk_in_system()) {
+            let p = c.power_on_beam(t, &y[..self.nz], &y[self.nz..]);
+            let w = self.moving_work(t, y);
+            self.moving = (t, p, w);
+        }
         let (kinetic, strain) = self.energies(y);
-        self.energy
-            .record(kinetic + strain - self.work.done, kinetic + strain);
+        let disk = if self.coupled.is_some_and(|c| c.disk_in_system()) {
+            self.disk(t, y)
+        } else {
+            None
+        };
+        let (disk_kinetic, potential) = match disk {
+            Some(d) => (d.kinetic, d.potential),
+            None if self.coupled.is_some() => (0.0, 0.0),
+            None => self.disk_energy,
+        };
+        let kinetic = kinetic + disk_kinetic;
+        self.energy.record(
+            kinetic + strain + potential - self.work.done - self.moving.2,
+            kinetic + strain + potential.abs(),
+        );
         if let Some(p) = &mut self.progress {
             p.update(t);
         }
     }
+}
+
+fn solver_error(scene: &Scene, e: ode::SolveError) -> Error {
+    Error::Solver(format!("scene {}: the solver failed: {e}", scene.name))
+}
+
+/// Integrate one structural problem from (q0, v0) at t0 with the run's method.
+#[allow(clippy::too_many_arguments)]
+fn integrate(
+    p: &dyn SecondOrderProblem,
+    rho_inf: f64,
+    t0: f64,
+    q0: &[f64],
+    v0: &[f64],
+    t_end: f64,
+    outputs: &[f64],
+    opts: &ode::Options,
+    rec: &mut Recorder,
+) -> Result<ode::Outcome, ode::SolveError> {
+    match opts.method {
+        Method::GenAlpha => solve_genalpha(p, rho_inf, t0, q0, v0, t_end, outputs, opts, rec),
+        Method::Dopri5 | Method::TrBdf2 => {
+            let first = FirstOrder::new(p);
+            let y0: Vec<f64> = q0.iter().chain(v0).copied().collect();
+            ode::solve(&first, t0, &y0, t_end, outputs, opts, rec)
+        }
+    }
+}
+
+fn add_stats(total: &mut Stats, more: &Stats) {
+    total.steps += more.steps;
+    total.rejected += more.rejected;
+    total.rhs_evals += more.rhs_evals;
+    total.jacobians += more.jacobians;
+    total.factorizations += more.factorizations;
+    total.newton_iterations += more.newton_iterations;
+    total.wall_s += more.wall_s;
 }
 
 pub fn run(
@@ -189,6 +322,10 @@ pub fn run(
 ) -> Result<BeamRun, Error> {
     let beam = Beam::new(setup.beam.clone());
     let loaded = LoadedBeam::new(&beam, &setup.loads);
+    let coupled = setup
+        .disk
+        .clone()
+        .map(|spec| DiskOnBeam::new(&loaded, spec));
     let n = beam.dim();
     let opts = over.options(scene);
     let (method, rtol, atol) = (opts.method, opts.rtol, opts.atol);
@@ -213,9 +350,12 @@ pub fn run(
     let mass_lu = SparseLu::factor(beam.mass(), None).ok_or_else(|| {
         Error::Solver(format!("scene {}: the mass matrix is singular", scene.name))
     })?;
+    let unknowns = coupled.as_ref().map_or(n, |c| c.dim());
     let mut rec = Recorder {
         beam: &beam,
         loaded: &loaded,
+        coupled: coupled.as_ref(),
+        nz: unknowns,
         mass_lu,
         setup,
         envelope: Envelope {
@@ -231,6 +371,8 @@ pub fn run(
             done: 0.0,
             at_loads: vec![zero; setup.loads.len()],
         },
+        moving: (0.0, 0.0, 0.0),
+        disk_energy: (0.0, 0.0),
         energy: EnergyCheck::new(0.0, 0.0),
         progress: if show_progress {
             Progress::new(scene.duration)
@@ -239,33 +381,83 @@ pub fn run(
         },
         mv: vec![0.0; n],
     };
-    let zeros = vec![0.0; n];
-    let out = match method {
-        Method::GenAlpha => solve_genalpha(
-            &loaded,
-            setup.rho_inf,
-            0.0,
-            &zeros,
-            &zeros,
-            scene.duration,
-            &outputs,
-            &opts,
-            &mut rec,
-        ),
-        Method::Dopri5 | Method::TrBdf2 => {
-            let first = FirstOrder::new(&loaded);
-            ode::solve(
-                &first,
+    let mut stop = Stop::End;
+    let mut left_track_t = None;
+    let mut stats = Stats::default();
+    let (t_end, y_end) = 'phases: {
+        let (mut t0, mut q0, mut v0) = (0.0, vec![0.0; n], vec![0.0; n]);
+        if let Some(c) = &coupled {
+            let (z0, zd0) = c.initial_state();
+            let first = c.observe(0.0, &z0, &zd0);
+            let (dk, dp) = if c.disk_in_system() {
+                (first.kinetic, first.potential)
+            } else {
+                (0.0, 0.0)
+            };
+            rec.energy = EnergyCheck::new(dk + dp, dk + dp.abs());
+            if !c.spec.coupling.rolls() {
+                rec.moving = (0.0, c.power_on_beam(0.0, &z0, &zd0), 0.0);
+            }
+            let until = c
+                .exit_time()
+                .map_or(scene.duration, |te| te.min(scene.duration));
+            let out = integrate(
+                c,
+                setup.rho_inf,
                 0.0,
-                &vec![0.0; 2 * n],
-                scene.duration,
+                &z0,
+                &zd0,
+                until,
                 &outputs,
                 &opts,
                 &mut rec,
             )
+            .map_err(|e| solver_error(scene, e))?;
+            add_stats(&mut stats, &out.stats);
+            let nz = c.dim();
+            let (z, zd) = out.y.split_at(nz);
+            let left = match &out.stopped_by {
+                None => out.t < scene.duration,
+                Some(hit) if hit.name == "left-track" => true,
+                Some(hit) => {
+                    stop = Stop::Event(StopReason::from_name(hit.name).expect("a named stop"));
+                    false
+                }
+            };
+            if !left {
+                break 'phases (out.t, out.y.clone());
+            }
+            t0 = out.t;
+            q0.copy_from_slice(&z[..n]);
+            v0.copy_from_slice(&zd[..n]);
+            left_track_t = Some(out.t);
+            let d = c.observe(out.t, z, zd);
+            rec.disk_energy = if c.disk_in_system() {
+                (d.kinetic, d.potential)
+            } else {
+                (0.0, 0.0)
+            };
+            rec.work.done += rec.moving.2;
+            rec.moving = (out.t, 0.0, 0.0);
         }
-    }
-    .map_err(|e| Error::Solver(format!("scene {}: the solver failed: {e}", scene.name)))?;
+        rec.coupled = None;
+        rec.nz = n;
+        let rest: Vec<f64> = outputs.iter().copied().filter(|&o| o > t0).collect();
+        let out = integrate(
+            &loaded,
+            setup.rho_inf,
+            t0,
+            &q0,
+            &v0,
+            scene.duration,
+            &rest,
+            &opts,
+            &mut rec,
+        )
+        .map_err(|e| solver_error(scene, e))?;
+        add_stats(&mut stats, &out.stats);
+        (out.t, out.y)
+    };
     if let Some(p) = &rec.progress {
         p.finish();
     }
@@ -278,10 +470,12 @@ pub fn run(
         rows: rec.rows,
         envelope: rec.envelope,
         shapes: rec.shapes,
-        stop: Stop::End,
-        t_end: out.t,
-        y_end: out.y,
-        stats: out.stats,
+        stop,
+        t_end,
+        left_track_t,
+        unknowns,
+        y_end,
+        stats,
         energy: rec.energy,
         beam,
     })

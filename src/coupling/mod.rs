@@ -1,0 +1,660 @@
+//! The disk on the beam: the two bodies moving together, coupled in one of four ways.
+//!
+//! - [`Coupling::Consistent`] (the default): the disk stays on the moving beam. Unknowns
+//!   z = (q, s), s the material point of contact; the disk's rotation θ is not an unknown.
+//!   Centre c(q, s) = r(s) + a n(s). Rolling without slip, measured against the beam's own
+//!   material velocity at s, is θ̇ = dψ/dt − |r'| ṡ / a: a velocity constraint B(z) ż − θ̇ = 0,
+//!   not integrable once the axis stretches. Lagrange–d'Alembert with the multiplier λ gives
+//!   C θ̈ = λ for θ, and for z, with T_z = ½ q̇ᵀ M q̇ + ½ m |ċ|², V = U(q) + m g c_Y:
+//!     (M ⊕ 0 + m J_cᵀ J_c + C Bᵀ B) z̈ = F(q) − m J_cᵀ (J̇_c ż − g) − C Bᵀ (Ḃ ż),
+//!   J_c = ∂c/∂z. The power of the constraint force is λ (B ż − θ̇) = 0, so the total energy
+//!   T_z + ½ C θ̇² + V is conserved. Eliminating λ shows the beam feels exactly −F_contact at s
+//!   through the shape functions: the terms of the normal's rotation cancel with the torque.
+//! - [`Coupling::Thesis`]: thesis Table 9 as published (errata 2–3 corrected): the disk rolls on
+//!   the axis as if it were frozen, v_x = ṡ (|r'| − a ψ_s), v̇_x = m g·t / (m + C/a²), and the
+//!   contact force R_x = m v̇_x − m g·t, R_y = m v_x ψ_s ṡ − m g·n is turned to global axes with the
+//!   section rotation φ (5.13). Its (s, v_x) system is integrated here as (s, ṡ), the same
+//!   solution: s̈ = (v̇_x − ṡ d(|r'| − a ψ_s)/dt) / (|r'| − a ψ_s).
+//! - [`Coupling::MovingMass`]: a point mass at s = s0 + v0 t on the axis, following its
+//!   displacement with its inertia; [`Coupling::MovingForce`]: the constant weight m g at
+//!   s = s0 + v0 t. Both are prescribed motions: the system is the beam alone, and the work the
+//!   moving load does on it is the `work` of the energy budget.
+
+pub mod contact;
+
+use std::borrow::Cow;
+use std::cell::RefCell;
+use std::ops::Range;
+
+use contact::{dot, AxisPoint, Row};
+
+use crate::beam::dynamics::LoadedBeam;
+use crate::beam::Beam;
+use crate::disk::Disk;
+use crate::linalg::{self, Assembly, Sparse, SparseLu};
+use crate::ode::second_order::SecondOrderProblem;
+use crate::ode::EventSpec;
+use crate::rolling::{DiskObservation, FIT_MARGIN};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Coupling {
+    Consistent,
+    Thesis,
+    MovingMass,
+    MovingForce,
+}
+
+impl Coupling {
+    pub const ALL: [Coupling; 4] = [
+        Coupling::Consistent,
+        Coupling::Thesis,
+        Coupling::MovingMass,
+        Coupling::MovingForce,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Coupling::Consistent => "consistent",
+            Coupling::Thesis => "thesis",
+            Coupling::MovingMass => "moving-mass",
+            Coupling::MovingForce => "moving-force",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Coupling> {
+        Coupling::ALL.into_iter().find(|c| c.name() == name)
+    }
+
+    /// The disk's path is an unknown (not prescribed).
+    pub fn rolls(self) -> bool {
+        matches!(self, Coupling::Consistent | Coupling::Thesis)
+    }
+}
+
+/// The disk as a beam scene names it.
+#[derive(Clone, Debug)]
+pub struct DiskOnBeamSpec {
+    pub disk: Disk,
+    /// Material point of first contact, along the undeformed axis.
+    pub s0: f64,
+    pub omega0: f64,
+    pub coupling: Coupling,
+    pub mu: Option<f64>,
+    pub gravity: f64,
+    /// Half-width of the contact patch over which the disk touches the axis.
+    pub patch: f64,
+}
+
+impl DiskOnBeamSpec {
+    /// Speed along the axis at t = 0 (Ω < 0 rolls towards +s).
+    pub fn v0(&self) -> f64 {
+        -self.disk.radius * self.omega0
+    }
+}
+
+const EVENTS: [EventSpec; 5] = [
+    EventSpec {
+        name: "left-track",
+        terminal: true,
+    },
+    EventSpec {
+        name: "left-track",
+        terminal: true,
+    },
+    EventSpec {
+        name: "contact-lost",
+        terminal: true,
+    },
+    EventSpec {
+        name: "no-fit",
+        terminal: true,
+    },
+    EventSpec {
+        name: "slip",
+        terminal: true,
+    },
+];
+
+/// Mass added by the disk: Σ_k w_k g_k g_kᵀ, with sparse rows g_k.
+type AddedMass = Vec<(f64, Row)>;
+
+pub struct DiskOnBeam<'a> {
+    pub loaded: &'a LoadedBeam<'a>,
+    pub spec: DiskOnBeamSpec,
+    /// Gravity's acceleration in the beam frame.
+    gravity: [f64; 2],
+    n: usize,
+    /// The last observation, keyed by (t, s, ṡ): every event function of one state needs it.
+    cache: RefCell<Option<([f64; 3], DiskObservation)>>,
+    /// Beam mass on a pattern that holds whatever the disk adds wherever it is (the
+    /// displacements of any two nodes one patch apart, the contact coordinate's row and
+    /// column): one symbolic factorisation serves the whole run.
+    template: Sparse,
+    /// The beam's own mass matrix, factorised once.
+    lu: RefCell<Option<SparseLu>>,
+}
+
+/// The terms of one coupling at the contact.
+struct Terms {
+    added: AddedMass,
+    /// Generalised force of the disk on z (beam rows, and s for the rolling couplings).
+    force: Vec<(usize, f64)>,
+}
+
+impl<'a> DiskOnBeam<'a> {
+    pub fn new(loaded: &'a LoadedBeam<'a>, spec: DiskOnBeamSpec) -> Self {
+        let gravity = loaded.beam.to_local([0.0, -spec.gravity]);
+        let n = loaded.beam.dim();
+        let nz = n + usize::from(spec.coupling.rolls());
+        let mut a = Assembly::new(nz);
+        a.add_sparse(loaded.beam.mass(), 1.0, 0, 0);
+        a.add_sparse(&loaded.beam.tangent(&vec![0.0; n]), 0.0, 0, 0);
+        let beam = loaded.beam;
+        let spacing = beam.length / (beam.spec.elements * beam.spec.order) as f64;
+        let reach =
+            ((2.0 * spec.patch / spacing).ceil() as usize + 2 * beam.spec.order).min(beam.nodes());
+        for i in 0..beam.nodes() {
+            for j in i.saturating_sub(reach)..(i + reach + 1).min(beam.nodes()) {
+                for (ci, cj) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+                    if let (Some(r), Some(c)) = (beam.eq_of(i, ci), beam.eq_of(j, cj)) {
+                        a.add(r, c, 0.0);
+                    }
+                }
+            }
+        }
+        if nz > n {
+            for i in 0..nz {
+                a.add(i, n, 0.0);
+                a.add(n, i, 0.0);
+            }
+        }
+        DiskOnBeam {
+            n,
+            loaded,
+            spec,
+            gravity,
+            cache: RefCell::new(None),
+            template: a.build(),
+            lu: RefCell::new(None),
+        }
+    }
+
+    pub fn beam(&self) -> &Beam {
+        self.loaded.beam
+    }
+
+    /// Unknowns of the beam.
+    pub fn beam_dim(&self) -> usize {
+        self.n
+    }
+
+    /// (z, ż) at t = 0: beam at rest and undeformed, the disk at s0 rolling at Ω0.
+    pub fn initial_state(&self) -> (Vec<f64>, Vec<f64>) {
+        let nz = self.dim();
+        let mut z = vec![0.0; nz];
+        let mut zd = vec![0.0; nz];
+        if self.spec.coupling.rolls() {
+            z[self.n] = self.spec.s0;
+            let at = AxisPoint::at(
+                self.beam(),
+                &z[..self.n],
+                &zd[..self.n],
+                self.spec.s0,
+                0.0,
+                self.spec.patch,
+            );
+            // θ̇ = (ψ_s − |r'|/a) ṡ on the beam at rest; the thesis' v_x = ṡ (|r'| − a ψ_s) is
+            // the same condition.
+            zd[self.n] = self.spec.v0() / (at.rp.v - self.spec.disk.radius * at.psi_s.v);
+        }
+        (z, zd)
+    }
+
+    /// Where the prescribed load is at time t, and how fast it moves.
+    fn travel(&self, t: f64) -> (f64, f64) {
+        let v0 = self.spec.v0();
+        (self.spec.s0 + v0 * t, v0)
+    }
+
+    /// The time a prescribed load leaves the beam, if it does.
+    pub fn exit_time(&self) -> Option<f64> {
+        if self.spec.coupling.rolls() {
+            return None;
+        }
+        let v0 = self.spec.v0();
+        let l = self.beam().length;
+        if v0 > 0.0 {
+            Some((l - self.spec.s0) / v0)
+        } else if v0 < 0.0 {
+            Some(-self.spec.s0 / v0)
+        } else {
+            None
+        }
+    }
+
+    fn contact(&self, t: f64, z: &[f64], zd: &[f64]) -> AxisPoint {
+        let (s, sdot) = if self.spec.coupling.rolls() {
+            (z[self.n], zd[self.n])
+        } else {
+            self.travel(t)
+        };
+        AxisPoint::at(
+            self.beam(),
+            &z[..self.n],
+            &zd[..self.n],
+            s,
+            sdot,
+            self.spec.patch,
+        )
+    }
+
+    fn terms(&self, t: f64, z: &[f64], zd: &[f64]) -> Terms {
+        let at = self.contact(t, z, zd);
+        let m = self.spec.disk.mass;
+        let a = self.spec.disk.radius;
+        let g = self.gravity;
+        let tg = at.tangent();
+        let added = self.added_mass(&at);
+        let mut force: Vec<(usize, f64)> = Vec::new();
+        match self.spec.coupling {
+            Coupling::Consistent => {
+                let [gx, gy, gb] = self.consistent_rows(&at);
+                let c = at.centre(a);
+                let theta_quad = at.psi.d2 - at.rp.d1 * at.sdot / a;
+                let inertia = self.spec.disk.inertia();
+                for (row, w) in [
+                    (&gx, -m * (c[0].d2 - g[0])),
+                    (&gy, -m * (c[1].d2 - g[1])),
+                    (&gb, -inertia * theta_quad),
+                ] {
+                    force.extend(row.iter().map(|&(i, v)| (i, v * w)));
+                }
+            }
+            Coupling::Thesis => {
+                let (rx, ry, _) = self.thesis_reactions(&at);
+                // (5.13): the reaction turned with the section rotation φ, not with ψ.
+                let (sp, cp) = at.phi.v.sin_cos();
+                let p = [-(rx * cp - ry * sp), -(rx * sp + ry * cp)];
+                let mut f = vec![0.0; self.n];
+                at.spread(p, &mut f);
+                force.extend(
+                    f.iter()
+                        .enumerate()
+                        .filter(|(_, v)| **v != 0.0)
+                        .map(|(i, v)| (i, *v)),
+                );
+                let mr = self.spec.disk.rolling_mass();
+                let gs_rate = at.rp.d1 - a * at.psi_s.d1;
+                force.push((
+                    self.n,
+                    m * (g[0] * tg[0] + g[1] * tg[1]) - mr * at.sdot * gs_rate,
+                ));
+            }
+            Coupling::MovingMass => {
+                let [gx, gy] = at.position_gradient();
+                for (row, w) in [(&gx, -m * (at.x.d2 - g[0])), (&gy, -m * (at.y.d2 - g[1]))] {
+                    force.extend(row.iter().map(|&(i, v)| (i, v * w)));
+                }
+            }
+            Coupling::MovingForce => {
+                let mut f = vec![0.0; self.n];
+                at.spread([m * g[0], m * g[1]], &mut f);
+                force.extend(
+                    f.iter()
+                        .enumerate()
+                        .filter(|(_, v)| **v != 0.0)
+                        .map(|(i, v)| (i, *v)),
+                );
+            }
+        }
+        Terms { added, force }
+    }
+
+    /// The disk's inertia as seen by z.
+    fn added_mass(&self, at: &AxisPoint) -> AddedMass {
+        let m = self.spec.disk.mass;
+        match self.spec.coupling {
+            Coupling::Consistent => {
+                let [gx, gy, gb] = self.consistent_rows(at);
+                vec![(m, gx), (m, gy), (self.spec.disk.inertia(), gb)]
+            }
+            Coupling::Thesis => {
+                let a = self.spec.disk.radius;
+                let gs = at.rp.v - a * at.psi_s.v;
+                vec![(self.spec.disk.rolling_mass() * gs, vec![(self.n, 1.0)])]
+            }
+            Coupling::MovingMass => {
+                let [gx, gy] = at.position_gradient();
+                vec![(m, gx), (m, gy)]
+            }
+            Coupling::MovingForce => Vec::new(),
+        }
+    }
+
+    /// ∂c_X/∂z, ∂c_Y/∂z and B = ∂θ̇/∂ż for the consistent coupling.
+    fn consistent_rows(&self, at: &AxisPoint) -> [Row; 3] {
+        let a = self.spec.disk.radius;
+        let tg = at.tangent();
+        let dpsi = at.psi_gradient();
+        let [mut gx, mut gy] = at.position_gradient();
+        for &(i, d) in &dpsi {
+            gx.push((i, -a * d * tg[0]));
+            gy.push((i, -a * d * tg[1]));
+        }
+        let along = at.rp.v - a * at.psi_s.v;
+        gx.push((self.n, along * tg[0]));
+        gy.push((self.n, along * tg[1]));
+        let mut gb = dpsi;
+        gb.push((self.n, at.psi_s.v - at.rp.v / a));
+        [gx, gy, gb]
+    }
+
+    /// Thesis Table 9: R_xK, R_yK (tangent and normal contact force on the disk) and v_x.
+    fn thesis_reactions(&self, at: &AxisPoint) -> (f64, f64, f64) {
+        let m = self.spec.disk.mass;
+        let a = self.spec.disk.radius;
+        let g = self.gravity;
+        let tg = at.tangent();
+        let nm = at.normal();
+        let vx = at.sdot * (at.rp.v - a * at.psi_s.v);
+        let g_t = g[0] * tg[0] + g[1] * tg[1];
+        let g_n = g[0] * nm[0] + g[1] * nm[1];
+        let vx_rate = m * g_t / self.spec.disk.rolling_mass();
+        (
+            m * vx_rate - m * g_t,
+            m * vx * at.psi_s.v * at.sdot - m * g_n,
+            vx,
+        )
+    }
+
+    fn mass_matrix(&self, added: &AddedMass) -> Sparse {
+        let mut m = self.template.clone();
+        for (w, row) in added {
+            for &(i, gi) in row {
+                for &(j, gj) in row {
+                    let k =
+                        linalg::position(&m, i, j).expect("the template holds the contact block");
+                    m.val_mut()[k] += w * gi * gj;
+                }
+            }
+        }
+        m
+    }
+
+    /// The true acceleration at a state: M(z) z̈ = f(z, ż). M(z) is the constant beam mass
+    /// plus a few rank-one terms, so it is solved by the Woodbury identity with the beam mass
+    /// factorised once (a unit mass stands in on the contact coordinate and is taken back out
+    /// as one more rank-one term).
+    pub fn acceleration(&self, t: f64, z: &[f64], zd: &[f64]) -> Option<Vec<f64>> {
+        let terms = self.terms(t, z, zd);
+        let mut f = vec![0.0; self.dim()];
+        self.force_from(t, z, zd, &terms, &mut f);
+        let mut added = terms.added;
+        if self.dim() > self.n {
+            added.push((-1.0, vec![(self.n, 1.0)]));
+        }
+        if self.lu.borrow().is_none() {
+            *self.lu.borrow_mut() = Some(SparseLu::factor(self.beam().mass(), None)?);
+        }
+        let lu = self.lu.borrow();
+        let lu = lu.as_ref().expect("factorised above");
+        let base_solve = |x: &mut [f64]| lu.solve_in_place(&mut x[..self.n]);
+        let mut y = f;
+        base_solve(&mut y);
+        let cols: Vec<Vec<f64>> = added
+            .iter()
+            .map(|(_, row)| {
+                let mut c = vec![0.0; self.dim()];
+                for &(i, v) in row {
+                    c[i] += v;
+                }
+                base_solve(&mut c);
+                c
+            })
+            .collect();
+        let r = added.len();
+        let cap = nalgebra::DMatrix::from_fn(r, r, |i, j| {
+            dot(&added[i].1, &cols[j]) + if i == j { 1.0 / added[i].0 } else { 0.0 }
+        });
+        let rhs = nalgebra::DVector::from_fn(r, |i, _| dot(&added[i].1, &y));
+        let coef = cap.lu().solve(&rhs)?;
+        for (k, c) in cols.iter().enumerate() {
+            y.iter_mut().zip(c).for_each(|(yi, ci)| *yi -= coef[k] * ci);
+        }
+        y.iter().all(|v| v.is_finite()).then_some(y)
+    }
+
+    fn force_from(&self, t: f64, z: &[f64], zd: &[f64], terms: &Terms, f: &mut [f64]) {
+        self.loaded
+            .force(t, &z[..self.n], &zd[..self.n], &mut f[..self.n]);
+        if f.len() > self.n {
+            f[self.n] = 0.0;
+        }
+        for &(i, v) in &terms.force {
+            f[i] += v;
+        }
+    }
+
+    /// What the run reports of the disk at a state (global axes).
+    pub fn observe(&self, t: f64, z: &[f64], zd: &[f64]) -> DiskObservation {
+        let key = [t, z[self.n.min(z.len() - 1)], zd[self.n.min(zd.len() - 1)]];
+        if let Some((k, o)) = self.cache.borrow().as_ref() {
+            if *k == key {
+                return *o;
+            }
+        }
+        let zdd = self
+            .acceleration(t, z, zd)
+            .unwrap_or_else(|| vec![f64::NAN; self.dim()]);
+        let obs = self.observe_with(t, z, zd, &zdd);
+        *self.cache.borrow_mut() = Some((key, obs));
+        obs
+    }
+
+    fn observe_with(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> DiskObservation {
+        let at = self.contact(t, z, zd);
+        let m = self.spec.disk.mass;
+        let a = self.spec.disk.radius;
+        let g = self.gravity;
+        let tg = at.tangent();
+        let nm = at.normal();
+        let c = at.centre(a);
+        let beam = self.beam();
+        let (centre, velocity, omega, contact, kinetic, potential);
+        match self.spec.coupling {
+            Coupling::Consistent => {
+                let [gx, gy, gb] = self.consistent_rows(&at);
+                let acc = [dot(&gx, zdd) + c[0].d2, dot(&gy, zdd) + c[1].d2];
+                contact = [m * (acc[0] - g[0]), m * (acc[1] - g[1])];
+                velocity = [c[0].d1, c[1].d1];
+                omega = dot(&gb, zd);
+                kinetic = 0.5 * m * (velocity[0].powi(2) + velocity[1].powi(2))
+                    + 0.5 * self.spec.disk.inertia() * omega * omega;
+                centre = [c[0].v, c[1].v];
+                potential = f64::NAN;
+            }
+            Coupling::Thesis => {
+                let (rx, ry, vx) = self.thesis_reactions(&at);
+                contact = [rx * tg[0] + ry * nm[0], rx * tg[1] + ry * nm[1]];
+                velocity = [vx * tg[0], vx * tg[1]];
+                omega = -vx / a;
+                kinetic = 0.5 * self.spec.disk.rolling_mass() * vx * vx;
+                centre = [c[0].v, c[1].v];
+                potential = f64::NAN;
+            }
+            Coupling::MovingMass | Coupling::MovingForce => {
+                contact = if self.spec.coupling == Coupling::MovingMass {
+                    let [gx, gy] = at.position_gradient();
+                    let acc = [dot(&gx, zdd) + at.x.d2, dot(&gy, zdd) + at.y.d2];
+                    [m * (acc[0] - g[0]), m * (acc[1] - g[1])]
+                } else {
+                    [-m * g[0], -m * g[1]]
+                };
+                velocity = [
+                    at.x.d1 - a * at.psi.d1 * tg[0],
+                    at.y.d1 - a * at.psi.d1 * tg[1],
+                ];
+                omega = self.spec.omega0;
+                centre = [c[0].v, c[1].v];
+                kinetic = 0.0;
+                potential = 0.0;
+            }
+        }
+        let origin = beam.spec.from;
+        let cg = beam.to_global(centre);
+        let vg = beam.to_global(velocity);
+        let potential = if potential.is_nan() {
+            m * self.spec.gravity * (origin[1] + cg[1])
+        } else {
+            potential
+        };
+        DiskObservation {
+            s: if self.spec.coupling.rolls() {
+                z[self.n]
+            } else {
+                self.travel(t).0
+            },
+            x: origin[0] + cg[0],
+            y: origin[1] + cg[1],
+            vx: vg[0],
+            vy: vg[1],
+            omega,
+            phi: 0.0,
+            rt: contact[0] * tg[0] + contact[1] * tg[1],
+            rn: contact[0] * nm[0] + contact[1] * nm[1],
+            kinetic,
+            potential,
+        }
+    }
+
+    /// Tangent and normal of the axis at the contact, global axes.
+    pub fn contact_frame(&self, t: f64, z: &[f64], zd: &[f64]) -> [[f64; 2]; 2] {
+        let at = self.contact(t, z, zd);
+        [
+            self.beam().to_global(at.tangent()),
+            self.beam().to_global(at.normal()),
+        ]
+    }
+
+    /// Power of the prescribed moving load on the beam (zero for the rolling couplings, whose
+    /// disk belongs to the system): F_beam · ∂r/∂t at s.
+    pub fn power_on_beam(&self, t: f64, z: &[f64], zd: &[f64]) -> f64 {
+        if self.spec.coupling.rolls() {
+            return 0.0;
+        }
+        let obs = self.observe(t, z, zd);
+        let at = self.contact(t, z, zd);
+        let tg = at.tangent();
+        let nm = at.normal();
+        let on_disk = [
+            obs.rt * tg[0] + obs.rn * nm[0],
+            obs.rt * tg[1] + obs.rn * nm[1],
+        ];
+        let vm = at.material_velocity();
+        -(on_disk[0] * vm[0] + on_disk[1] * vm[1])
+    }
+
+    /// The disk's energy belongs to the system's budget.
+    pub fn disk_in_system(&self) -> bool {
+        self.spec.coupling.rolls()
+    }
+}
+
+impl SecondOrderProblem for DiskOnBeam<'_> {
+    fn dim(&self) -> usize {
+        self.n + usize::from(self.spec.coupling.rolls())
+    }
+
+    fn mass(&self, t: f64, q: &[f64]) -> Cow<'_, Sparse> {
+        let zero = vec![0.0; q.len()];
+        Cow::Owned(self.mass_matrix(&self.added_mass(&self.contact(t, q, &zero))))
+    }
+
+    fn mass_is_constant(&self) -> bool {
+        false
+    }
+
+    /// Within one element the disk's added mass drifts slowly, and modified Newton absorbs
+    /// it; on a new element it sits on other unknowns, and the iteration matrix must follow.
+    fn iteration_key(&self, t: f64, q: &[f64]) -> usize {
+        let s = if self.spec.coupling.rolls() {
+            q[self.n]
+        } else {
+            self.travel(t).0
+        };
+        self.beam().element_of(s)
+    }
+
+    fn mass_mul(&self, t: f64, q: &[f64], a: &[f64], out: &mut [f64]) {
+        linalg::mul(self.beam().mass(), &a[..self.n], &mut out[..self.n]);
+        if out.len() > self.n {
+            out[self.n] = 0.0;
+        }
+        let zero = vec![0.0; q.len()];
+        for (w, row) in self.added_mass(&self.contact(t, q, &zero)) {
+            let ga = w * dot(&row, a);
+            for (i, gi) in row {
+                out[i] += gi * ga;
+            }
+        }
+    }
+
+    fn force(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
+        let terms = self.terms(t, q, v);
+        self.force_from(t, q, v, &terms, f);
+    }
+
+    fn stiffness(&self, t: f64, q: &[f64]) -> Sparse {
+        let k = self.loaded.stiffness(t, &q[..self.n]);
+        if self.dim() == self.n {
+            return k;
+        }
+        let mut a = Assembly::new(self.dim());
+        a.add_sparse(&k, 1.0, 0, 0);
+        a.build()
+    }
+
+    fn norm_groups(&self) -> Vec<Range<usize>> {
+        let mut g = vec![0..self.n];
+        if self.dim() > self.n {
+            g.push(self.n..self.dim());
+        }
+        g
+    }
+
+    fn breakpoints(&self) -> Vec<f64> {
+        self.loaded.breakpoints()
+    }
+
+    fn enter_segment(&self, start: f64, end: f64) {
+        self.loaded.enter_segment(start, end)
+    }
+
+    fn events(&self) -> &[EventSpec] {
+        if !self.spec.coupling.rolls() {
+            return &[];
+        }
+        if self.spec.mu.is_some() {
+            &EVENTS
+        } else {
+            &EVENTS[..4]
+        }
+    }
+
+    fn event(&self, index: usize, t: f64, q: &[f64], v: &[f64]) -> f64 {
+        let s = q[self.n];
+        match index {
+            0 => self.beam().length - s,
+            1 => s,
+            2 => self.observe(t, q, v).rn,
+            3 => {
+                let at = self.contact(t, q, v);
+                1.0 - self.spec.disk.radius * at.psi_s.v / at.rp.v - FIT_MARGIN
+            }
+            _ => {
+                let o = self.observe(t, q, v);
+                self.spec.mu.unwrap_or(f64::INFINITY) * o.rn - o.rt.abs()
+            }
+        }
+    }
+}
