@@ -38,6 +38,9 @@ enum Command {
         rtol: Option<f64>,
         #[arg(long, allow_negative_numbers = true)]
         atol: Option<f64>,
+        /// Also write animation.svg: the disk rolling on the magnified beam (beam scenes).
+        #[arg(long)]
+        animate: bool,
     },
     /// Validate a scene and print the model it would build; runs nothing.
     Check { scene: PathBuf },
@@ -117,8 +120,14 @@ fn dispatch(command: Command) -> Result<(), Error> {
             method,
             rtol,
             atol,
+            animate,
         } => {
             let scene = Scene::load(&scene)?;
+            if animate && scene.beam().is_none() {
+                return Err(Error::Input(
+                    "--animate draws a beam scene; a rigid curve's positions are drawn in track.svg".into(),
+                ));
+            }
             let method = match method {
                 None => None,
                 Some(m) => Some(Method::from_name(&m).ok_or_else(|| {
@@ -140,6 +149,9 @@ fn dispatch(command: Command) -> Result<(), Error> {
             let result = run::run(&scene, &over, true)?;
             let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
             output::write_all(&result, &dir)?;
+            if let (true, Run::Beam(b)) = (animate, &result) {
+                output::animation::write_animation(b, &dir.join("animation.svg"))?;
+            }
             println!("{}: {}", scene.name, result.stop().sentence(result.t_end()));
             match &result {
                 Run::Rolling(r) => {

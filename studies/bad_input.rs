@@ -358,10 +358,60 @@ fn bad_beams() {
         &beam_scene(&[], "output:\n  probes: [{name: p, x: -1}]\n"),
         &["output.probes.x", "outside the beam"],
     );
+}
+
+/// A disk on a beam: each bad setting is named with its key.
+#[test]
+fn bad_disks_on_beams() {
+    let disk = |body: &str| beam_scene(&[], &format!("disk:\n{body}"));
     rejected(
-        "disk-on-beam",
-        &beam_scene(&[], "disk:\n  mass: 1500\n  radius: 0.4\n"),
-        &["coupled disk–beam scenes are not supported yet"],
+        "coupling",
+        &disk("  mass: 1500\n  radius: 0.4\n  s0: 1\n  coupling: rigid\n"),
+        &[
+            "disk.coupling",
+            "'rigid'",
+            "consistent, thesis, moving-mass, moving-force",
+        ],
+    );
+    rejected(
+        "s0-beyond",
+        &disk("  mass: 1500\n  radius: 0.4\n  s0: 9\n  omega0: -10\n"),
+        &["disk.s0", "off the beam", "[0, 8]"],
+    );
+    rejected(
+        "s0-negative",
+        &disk("  mass: 1500\n  radius: 0.4\n  s0: -0.5\n  omega0: -10\n"),
+        &["disk.s0", "off the beam"],
+    );
+    rejected(
+        "radius",
+        &disk("  mass: 1500\n  radius: 0\n  s0: 1\n"),
+        &["disk.radius", "must be positive"],
+    );
+    rejected(
+        "mass",
+        &disk("  mass: -3\n  radius: 0.4\n  s0: 1\n"),
+        &["disk.mass", "must be positive"],
+    );
+    rejected(
+        "moving-without-speed",
+        &disk("  mass: 1500\n  radius: 0.4\n  s0: 1\n  coupling: moving-force\n"),
+        &["disk.omega0", "is 0", "moving-force", "non-zero omega0"],
+    );
+    rejected(
+        "rolls-off-its-support",
+        &disk("  mass: 1500\n  radius: 0.4\n  s0: 0\n  omega0: 20\n"),
+        &["disk.omega0", "rolls the disk off the end", "s0 = 0"],
+    );
+    rejected(
+        "resting-on-support",
+        &disk("  mass: 1500\n  radius: 0.4\n  s0: 8\n"),
+        &["disk.s0", "at rest on the end support"],
+    );
+    rejected(
+        "formulation-on-beam",
+        &disk("  mass: 1500\n  radius: 0.4\n  s0: 1\n  formulation: thesis\n"),
+        &["disk.formulation", "rigid curves only"],
     );
 }
 

@@ -413,6 +413,9 @@ impl<'a> DiskOnBeam<'a> {
             })
             .collect();
         let r = added.len();
+        if r == 0 {
+            return y.iter().all(|v| v.is_finite()).then_some(y);
+        }
         let cap = nalgebra::DMatrix::from_fn(r, r, |i, j| {
             dot(&added[i].1, &cols[j]) + if i == j { 1.0 / added[i].0 } else { 0.0 }
         });

@@ -20,8 +20,67 @@ struct Summary {
     model: Model,
     solver: super::summary::Solver,
     energy: super::summary::Energy,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disk: Option<BeamDiskSummary>,
     probes: BTreeMap<String, ProbeSummary>,
     envelope: EnvelopeSummary,
+}
+
+/// The disk's final values (where it left the beam, or at the end) and extremes while on it.
+#[derive(Serialize)]
+struct BeamDiskSummary {
+    coupling: &'static str,
+    #[serde(flatten)]
+    common: super::summary::DiskSummary,
+    /// The lowest deflection of the beam under the disk, and when.
+    w_under_min: f64,
+    w_under_min_t: f64,
+}
+
+fn disk_summary(r: &BeamRun) -> Option<BeamDiskSummary> {
+    let spec = r.setup.disk.as_ref()?;
+    let on: Vec<_> = r
+        .rows
+        .iter()
+        .filter_map(|row| row.disk.map(|d| (row, d)))
+        .collect();
+    let (_, last) = on.last()?;
+    let fold = |f: fn(&crate::rolling::DiskObservation) -> f64| {
+        on.iter()
+            .map(|(_, d)| f(d))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            })
+    };
+    let (rn_min, rn_max) = fold(|d| d.rn);
+    let (rt_min, rt_max) = fold(|d| d.rt);
+    let (_, mu_needed_max) = fold(|d| d.rt.abs() / d.rn);
+    let (w_under_min, w_under_min_t) = on.iter().fold((f64::INFINITY, 0.0), |(w, t), (row, _)| {
+        if row.w_under < w {
+            (row.w_under, row.t)
+        } else {
+            (w, t)
+        }
+    });
+    Some(BeamDiskSummary {
+        coupling: spec.coupling.name(),
+        common: super::summary::DiskSummary {
+            s: last.s,
+            x: last.x,
+            y: last.y,
+            vx: last.vx,
+            vy: last.vy,
+            omega: last.omega,
+            rn_min,
+            rn_max,
+            rt_min,
+            rt_max,
+            mu_needed_max,
+            left_track_t: r.left_track_t,
+        },
+        w_under_min,
+        w_under_min_t,
+    })
 }
 
 /// Extremes over time and over the whole beam, and where along it they occur.
@@ -84,6 +143,8 @@ fn envelope_summary(r: &BeamRun) -> EnvelopeSummary {
 struct Model {
     track: &'static str,
     unknowns: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    coupling: Option<&'static str>,
     elements: usize,
     order: usize,
     quadrature: &'static str,
@@ -101,6 +162,9 @@ struct ProbeSummary {
     u_max: f64,
     phi_min: f64,
     phi_max: f64,
+    /// Half the range of w after the disk left the beam: the residual vibration.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    w_amplitude_after_exit: Option<f64>,
 }
 
 fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
@@ -126,6 +190,20 @@ fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
     };
     let (u_min, u_max) = fold(|d| d.u);
     let (phi_min, phi_max) = fold(|d| d.phi);
+    let w_amplitude_after_exit = r.left_track_t.map(|te| {
+        let (lo, hi) = rows
+            .iter()
+            .filter(|row| row.t > te)
+            .map(|row| row.probes[k].w)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            });
+        if hi >= lo {
+            0.5 * (hi - lo)
+        } else {
+            0.0
+        }
+    });
     ProbeSummary {
         x: r.setup.probes[k].x,
         w_min,
@@ -136,6 +214,7 @@ fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
         u_max,
         phi_min,
         phi_max,
+        w_amplitude_after_exit,
     }
 }
 
@@ -149,7 +228,8 @@ pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
         },
         model: Model {
             track: "beam",
-            unknowns: r.beam.dim(),
+            unknowns: r.unknowns,
+            coupling: r.setup.disk.as_ref().map(|d| d.coupling.name()),
             elements: r.beam.spec.elements,
             order: r.beam.spec.order,
             quadrature: r.beam.spec.quadrature.name(),
@@ -172,6 +252,7 @@ pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             last: r.energy.last,
             max_rel_drift: r.energy.max_rel_drift(),
         },
+        disk: disk_summary(r),
         probes: (0..r.setup.probes.len())
             .map(|k| (r.setup.probes[k].name.clone(), probe_summary(r, k)))
             .collect(),
@@ -289,11 +370,15 @@ fn figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             ("kinetic", e.iter().map(|r| (r.t, r.kinetic)).collect()),
             ("strain", e.iter().map(|r| (r.t, r.strain)).collect()),
             (
+                "potential (disk)",
+                e.iter().map(|r| (r.t, r.potential)).collect(),
+            ),
+            (
                 "work of the loads",
                 e.iter().map(|r| (r.t, r.work)).collect(),
             ),
             (
-                "kinetic + strain − work",
+                "total: kinetic + strain + potential − work",
                 e.iter().map(|r| (r.t, r.total())).collect(),
             ),
         ],
@@ -353,7 +438,65 @@ fn figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             ],
         )?;
     }
+    if r.setup.disk.is_some() {
+        disk_figures(r, dir)?;
+    }
     shapes(r, &dir.join("shapes.svg"))
+}
+
+/// The disk's quantities while it is on the beam (thesis figures 31, 34, 38, 42).
+fn disk_figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
+    let name = &r.scene.name;
+    let on: Vec<(f64, crate::rolling::DiskObservation)> = r
+        .rows
+        .iter()
+        .filter_map(|row| row.disk.map(|d| (row.t, d)))
+        .collect();
+    let series = |f: fn(&crate::rolling::DiskObservation) -> f64| -> Vec<(f64, f64)> {
+        on.iter().map(|(t, d)| (*t, f(d))).collect()
+    };
+    line_chart(
+        &dir.join("disk-velocity.svg"),
+        &format!("{name}: centre velocity of the disk"),
+        "t (s)",
+        "v (m/s)",
+        &[("v_X", series(|d| d.vx)), ("v_Y", series(|d| d.vy))],
+    )?;
+    line_chart(
+        &dir.join("disk-omega.svg"),
+        &format!("{name}: angular velocity of the disk"),
+        "t (s)",
+        "Ω (1/s)",
+        &[("Ω", series(|d| d.omega))],
+    )?;
+    line_chart(
+        &dir.join("disk-forces.svg"),
+        &format!("{name}: contact force on the disk"),
+        "t (s)",
+        "R (N)",
+        &[
+            ("R_n (normal)", series(|d| d.rn)),
+            ("R_t (tangential)", series(|d| d.rt)),
+        ],
+    )
+}
+
+/// Where the disk stood on the magnified axis at time t: its centre in plot coordinates.
+fn disk_in_plot(r: &BeamRun, t: f64, along: &[crate::beam::PointDisplacement]) -> Option<[f64; 2]> {
+    let row = r.rows.iter().find(|row| (row.t - t).abs() < 1e-9)?;
+    let s = row.disk?.s;
+    let xs = &r.envelope.x;
+    let k = xs.partition_point(|&x| x < s).clamp(1, xs.len() - 1);
+    let f = ((s - xs[k - 1]) / (xs[k] - xs[k - 1])).clamp(0.0, 1.0);
+    let (u, w) = (
+        along[k - 1].u + f * (along[k].u - along[k - 1].u),
+        along[k - 1].w + f * (along[k].w - along[k - 1].w),
+    );
+    let p = r.beam.reference_point(s);
+    let mag = r.setup.magnify;
+    let a = r.setup.disk.as_ref()?.disk.radius;
+    let (sn, cs) = r.beam.angle.sin_cos();
+    Some([p[0] + mag * u - a * sn, p[1] + mag * w + a * cs])
 }
 
 /// The deformed axis at the requested times, displacements magnified, over the undeformed axis.
@@ -376,10 +519,25 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
             )
         })
         .collect();
+    let radius = r.setup.disk.as_ref().map_or(0.0, |d| d.disk.radius);
+    let disks: Vec<Option<[f64; 2]>> = r
+        .shapes
+        .iter()
+        .map(|(t, disp)| disk_in_plot(r, *t, disp))
+        .collect();
+    let circle = |c: [f64; 2]| -> Vec<(f64, f64)> {
+        (0..=48)
+            .map(|k| {
+                let th = 2.0 * std::f64::consts::PI * k as f64 / 48.0;
+                (c[0] + radius * th.cos(), c[1] + radius * th.sin())
+            })
+            .collect()
+    };
     let all = axis
         .iter()
         .map(|p| (p[0], p[1]))
-        .chain(lines.iter().flat_map(|l| l.1.iter().copied()));
+        .chain(lines.iter().flat_map(|l| l.1.iter().copied()))
+        .chain(disks.iter().flatten().flat_map(|c| circle(*c)));
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -436,6 +594,11 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
             });
+        if let Some(c) = disks[i] {
+            chart
+                .draw_series(LineSeries::new(circle(c), color.stroke_width(2)))
+                .map_err(|e| err(&e))?;
+        }
     }
     chart
         .configure_series_labels()

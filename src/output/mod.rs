@@ -1,5 +1,6 @@
 //! What a run leaves in its output directory: `summary.yaml`, `history.csv` and SVG figures.
 
+pub mod animation;
 pub mod beam;
 pub mod history;
 pub mod plots;

@@ -19,6 +19,16 @@ use crate::scene::{BeamScene, PointLoad, Scene};
 
 /// Points along the beam where envelopes and shapes are sampled.
 pub const SAMPLES: usize = 201;
+/// Frames an animation of a run holds at most.
+pub const FRAMES: usize = 240;
+
+#[derive(Clone, Debug)]
+pub struct Frame {
+    pub t: f64,
+    pub along: Vec<PointDisplacement>,
+    /// Contact point s and the angle the disk has turned through, while it is on the beam.
+    pub disk: Option<(f64, f64)>,
+}
 
 #[derive(Clone, Debug)]
 pub struct BeamRow {
@@ -27,6 +37,8 @@ pub struct BeamRow {
     pub probes: Vec<PointDisplacement>,
     /// While the disk is on the beam.
     pub disk: Option<DiskObservation>,
+    /// Deflection w of the beam under the disk (NaN without one).
+    pub w_under: f64,
     pub kinetic: f64,
     pub strain: f64,
     /// The disk's gravity potential (zero without a disk in the system).
@@ -61,6 +73,9 @@ pub struct BeamRun {
     pub envelope: Envelope,
     /// Displacements at the sample points at each requested shape time.
     pub shapes: Vec<(f64, Vec<PointDisplacement>)>,
+    /// Displacements at the sample points on a coarse grid of times (at most [`FRAMES`]),
+    /// with the disk's contact point and turned angle while it is on the beam: the animation.
+    pub frames: Vec<Frame>,
     pub stop: Stop,
     pub t_end: f64,
     /// When the disk left the beam, if it did.
@@ -116,6 +131,10 @@ struct Recorder<'a> {
     rows: Vec<BeamRow>,
     envelope: Envelope,
     shapes: Vec<(f64, Vec<PointDisplacement>)>,
+    frames: Vec<Frame>,
+    frame_every: f64,
+    /// The disk's turned angle, by the trapezoidal rule on the output rows: (t, Ω, angle).
+    turned: (f64, f64, f64),
     work: Work,
     /// Work of a moving load, by the trapezoidal rule over the steps: (t, power, work).
     moving: (f64, f64, f64),
@@ -215,10 +234,12 @@ impl Observer for Recorder<'_> {
             }
         };
         let reactions = self.beam.support_reactions(q, &acting, Some(&a));
+        let w_under = disk.map_or(f64::NAN, |d| self.beam.displacement_at(q, d.s).w);
         self.rows.push(BeamRow {
             t,
             probes,
             disk,
+            w_under,
             kinetic,
             strain,
             potential,
@@ -238,6 +259,21 @@ impl Observer for Recorder<'_> {
             hi.u = hi.u.max(d.u);
             hi.w = hi.w.max(d.w);
             hi.phi = hi.phi.max(d.phi);
+        }
+        if let Some(d) = disk {
+            let (t0, w0, angle) = self.turned;
+            self.turned = (t, d.omega, angle + 0.5 * (w0 + d.omega) * (t - t0));
+        }
+        if self
+            .frames
+            .last()
+            .is_none_or(|f| t >= f.t + self.frame_every - 1e-9)
+        {
+            self.frames.push(Frame {
+                t,
+                along: along.clone(),
+                disk: disk.map(|d| (d.s, self.turned.2)),
+            });
         }
         if self.setup.shapes.iter().any(|&s| (s - t).abs() < 1e-9) {
             self.shapes.push((t, along));
@@ -366,6 +402,9 @@ pub fn run(
         xs,
         rows: Vec::with_capacity(outputs.len()),
         shapes: Vec::new(),
+        frames: Vec::new(),
+        frame_every: scene.duration / (FRAMES - 1) as f64,
+        turned: (0.0, setup.disk.as_ref().map_or(0.0, |d| d.omega0), 0.0),
         work: Work {
             t: 0.0,
             done: 0.0,
@@ -470,6 +509,7 @@ pub fn run(
         rows: rec.rows,
         envelope: rec.envelope,
         shapes: rec.shapes,
+        frames: rec.frames,
         stop,
         t_end,
         left_track_t,

@@ -1,0 +1,179 @@
+//! `animation.svg` (`rollbeam run --animate`): the disk rolling on the magnified beam, as an
+//! SVG that animates itself (SMIL), so any browser plays it with no player or codec. Each
+//! frame of the run is one value of a discrete animation: the beam's polyline, the disk's
+//! centre and a spoke that shows how far it has turned.
+
+use std::fmt::Write;
+use std::path::Path;
+
+use super::write;
+use crate::error::Error;
+use crate::run::beam::BeamRun;
+
+const WIDTH: f64 = 960.0;
+const MARGIN: f64 = 30.0;
+
+pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
+    let frames = &r.frames;
+    if frames.len() < 2 {
+        return Err(Error::Output(format!(
+            "cannot animate {}: the run has fewer than two frames",
+            r.scene.name
+        )));
+    }
+    let mag = r.setup.magnify;
+    let radius = r.setup.disk.as_ref().map_or(0.0, |d| d.disk.radius);
+    let xs = &r.envelope.x;
+    let (sn, cs) = r.beam.angle.sin_cos();
+    let shape = |along: &[crate::beam::PointDisplacement]| -> Vec<[f64; 2]> {
+        xs.iter()
+            .zip(along)
+            .map(|(&x, d)| {
+                let p = r.beam.reference_point(x);
+                [p[0] + mag * d.u, p[1] + mag * d.w]
+            })
+            .collect()
+    };
+    let shapes: Vec<Vec<[f64; 2]>> = frames.iter().map(|f| shape(&f.along)).collect();
+    // The disk on the magnified axis; off the beam it is drawn where it left, faded.
+    let disks: Vec<Option<([f64; 2], f64)>> = frames
+        .iter()
+        .zip(&shapes)
+        .map(|(f, pts)| {
+            f.disk.map(|(s, turned)| {
+                let k = xs.partition_point(|&x| x < s).clamp(1, xs.len() - 1);
+                let g = ((s - xs[k - 1]) / (xs[k] - xs[k - 1])).clamp(0.0, 1.0);
+                let p = [
+                    pts[k - 1][0] + g * (pts[k][0] - pts[k - 1][0]),
+                    pts[k - 1][1] + g * (pts[k][1] - pts[k - 1][1]),
+                ];
+                ([p[0] - radius * sn, p[1] + radius * cs], turned)
+            })
+        })
+        .collect();
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for p in shapes.iter().flatten() {
+        (x0, x1, y0, y1) = (x0.min(p[0]), x1.max(p[0]), y0.min(p[1]), y1.max(p[1]));
+    }
+    for (c, _) in disks.iter().flatten() {
+        (x0, x1) = (x0.min(c[0] - radius), x1.max(c[0] + radius));
+        (y0, y1) = (y0.min(c[1] - radius), y1.max(c[1] + radius));
+    }
+    let k = (WIDTH - 2.0 * MARGIN) / (x1 - x0).max(1e-9);
+    let height = (y1 - y0) * k + 2.0 * MARGIN + 30.0;
+    let to_svg = |p: [f64; 2]| (MARGIN + (p[0] - x0) * k, MARGIN + 30.0 + (y1 - p[1]) * k);
+    let duration = frames.last().map_or(1.0, |f| f.t).max(1e-9);
+    let key_times: Vec<String> = frames
+        .iter()
+        .map(|f| format!("{:.5}", f.t / duration))
+        .collect();
+    let key_times = key_times.join(";");
+    let animate = |attr: &str, values: &[String]| {
+        format!(
+            r#"<animate attributeName="{attr}" dur="{duration}s" repeatCount="indefinite" calcMode="discrete" keyTimes="{key_times}" values="{}"/>"#,
+            values.join(";")
+        )
+    };
+    let points: Vec<String> = shapes
+        .iter()
+        .map(|pts| {
+            pts.iter()
+                .map(|&p| {
+                    let (x, y) = to_svg(p);
+                    format!("{x:.1},{y:.1}")
+                })
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect();
+    let last_disk = disks.iter().flatten().last().copied();
+    let held: Vec<([f64; 2], f64, bool)> = disks
+        .iter()
+        .scan(None, |prev: &mut Option<([f64; 2], f64)>, d| {
+            if d.is_some() {
+                *prev = *d;
+            }
+            Some(prev.or(last_disk).map(|(c, a)| (c, a, d.is_some())))
+        })
+        .map(|d| d.unwrap_or(([x0, y0], 0.0, false)))
+        .collect();
+    let coord = |f: fn((f64, f64)) -> f64| -> Vec<String> {
+        held.iter()
+            .map(|(c, _, _)| format!("{:.1}", f(to_svg(*c))))
+            .collect()
+    };
+    let rim = |f: fn((f64, f64)) -> f64| -> Vec<String> {
+        held.iter()
+            .map(|(c, turned, _)| {
+                let p = [
+                    c[0] + radius * (turned + 0.5 * std::f64::consts::PI).cos(),
+                    c[1] + radius * (turned + 0.5 * std::f64::consts::PI).sin(),
+                ];
+                format!("{:.1}", f(to_svg(p)))
+            })
+            .collect()
+    };
+    let opacity: Vec<String> = held
+        .iter()
+        .map(|(_, _, on)| if *on { "1" } else { "0.25" }.to_string())
+        .collect();
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{height:.0}" viewBox="0 0 {WIDTH} {height:.0}">"#
+    );
+    let _ = writeln!(svg, r#"<rect width="100%" height="100%" fill="white"/>"#);
+    let _ = writeln!(
+        svg,
+        r#"<text x="{MARGIN}" y="20" font-family="sans-serif" font-size="15">{}: displacements × {mag}, disk to scale, {duration:.3} s of motion per loop</text>"#,
+        r.scene.name
+    );
+    let reference: Vec<String> = [0.0, r.beam.length]
+        .iter()
+        .map(|&x| {
+            let (a, b) = to_svg(r.beam.reference_point(x));
+            format!("{a:.1},{b:.1}")
+        })
+        .collect();
+    let _ = writeln!(
+        svg,
+        r##"<polyline points="{}" fill="none" stroke="#999" stroke-dasharray="4 4"/>"##,
+        reference.join(" ")
+    );
+    let _ = writeln!(
+        svg,
+        r##"<polyline points="{}" fill="none" stroke="#1f77b4" stroke-width="3">{}</polyline>"##,
+        points[0],
+        animate("points", &points)
+    );
+    if r.setup.disk.is_some() {
+        let r_px = radius * k;
+        let (cx, cy) = (coord(|p| p.0), coord(|p| p.1));
+        let (rx, ry) = (rim(|p| p.0), rim(|p| p.1));
+        // The first frame as plain attributes, for viewers that do not animate.
+        let _ = writeln!(
+            svg,
+            r##"<g>{}<circle r="{r_px:.1}" cx="{}" cy="{}" fill="#f2c14e" stroke="#333" stroke-width="2">{}{}</circle><line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#333" stroke-width="2">{}{}{}{}</line></g>"##,
+            animate("opacity", &opacity),
+            cx[0],
+            cy[0],
+            animate("cx", &cx),
+            animate("cy", &cy),
+            cx[0],
+            cy[0],
+            rx[0],
+            ry[0],
+            animate("x1", &cx),
+            animate("y1", &cy),
+            animate("x2", &rx),
+            animate("y2", &ry),
+        );
+    }
+    svg.push_str("</svg>\n");
+    write(path, &svg)
+}

@@ -1,0 +1,374 @@
+//! Studies 4–6: the disk rolling on the beam (thesis chapter 5), and the checks of the four
+//! couplings against closed forms, limits and each other.
+
+mod common;
+
+use std::f64::consts::PI;
+
+use common::{load, log_slope, parse, run_beam, studies_dir};
+use rollbeam::coupling::Coupling;
+use rollbeam::ode::Method;
+use rollbeam::run::beam::BeamRun;
+use rollbeam::scene::Scene;
+
+/// A study scene with some of its lines replaced (each `from` must occur), without its
+/// shape snapshots (a shortened run would not reach them).
+fn variant(file: &str, changes: &[(&str, &str)]) -> Scene {
+    let mut text = std::fs::read_to_string(studies_dir().join(file)).expect("study file");
+    for (from, to) in changes {
+        assert!(text.contains(from), "{file} has no '{from}'");
+        text = text.replace(from, to);
+    }
+    let text: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("shapes:"))
+        .collect();
+    parse(&text.join("\n"))
+}
+
+fn with_coupling(file: &str, c: Coupling) -> Scene {
+    let mut text = std::fs::read_to_string(studies_dir().join(file)).expect("study file");
+    text = text.replace("coupling: consistent", &format!("coupling: {}", c.name()));
+    parse(&text)
+}
+
+fn probe(r: &BeamRun, name: &str) -> usize {
+    r.setup
+        .probes
+        .iter()
+        .position(|p| p.name == name)
+        .expect("probe")
+}
+
+/// Half the range of w at a probe after the disk has left: the residual vibration.
+fn residual(r: &BeamRun, name: &str) -> f64 {
+    let k = probe(r, name);
+    let te = r.left_track_t.expect("the disk left the beam");
+    let (lo, hi) = r
+        .rows
+        .iter()
+        .filter(|row| row.t > te)
+        .map(|row| row.probes[k].w)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), w| {
+            (l.min(w), h.max(w))
+        });
+    0.5 * (hi - lo)
+}
+
+/// Frýba (Vibration of Solids and Structures under Moving Loads, 3rd ed., 1999, §1.3, eq.
+/// 1.25 undamped): a force P moving at v over a simply supported Euler–Bernoulli beam from
+/// rest excites each mode j as q_j'' + ω_j² q_j = (2P/(μL)) sin(jπvt/L) while it is on the beam;
+/// after it leaves, each mode vibrates freely. Midspan deflection (positive down).
+fn fryba_midspan(p: f64, l: f64, ei: f64, mu: f64, v: f64, t: f64) -> f64 {
+    let exit = l / v;
+    (1..=301)
+        .map(|j| {
+            let j = j as f64;
+            let wj = (j * PI / l).powi(2) * (ei / mu).sqrt();
+            let om = j * PI * v / l;
+            let amp = 2.0 * p / (mu * l) / (wj * wj - om * om);
+            let q = |t: f64| amp * ((om * t).sin() - om / wj * (wj * t).sin());
+            let qd = |t: f64| amp * om * ((om * t).cos() - (wj * t).cos());
+            let qj = if t <= exit {
+                q(t)
+            } else {
+                let d = t - exit;
+                q(exit) * (wj * d).cos() + qd(exit) / wj * (wj * d).sin()
+            };
+            qj * (j * PI / 2.0).sin()
+        })
+        .sum()
+}
+
+/// The moving force on the bridge with shear made stiff (G × 10⁴, the Euler–Bernoulli limit)
+/// against Frýba's modal series, during the crossing and after it. Tolerance 0.5 % of the
+/// peak: rotary inertia (ρI/(ρA L²) = 6·10⁻⁵) and the contact patch spreading the force over
+/// ±5 cm move the response by far less; the integration error at rtol 10⁻⁶ is below 10⁻⁴.
+#[test]
+fn moving_force_matches_frybas_series() {
+    let scene = variant(
+        "bridge-d44.yaml",
+        &[
+            ("G: 81.0e9", "G: 81.0e13"),
+            (
+                "coupling: consistent",
+                "coupling: moving-force\n  patch: 0.05",
+            ),
+            ("duration: 3.0", "duration: 2.0"),
+        ],
+    );
+    let r = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-10);
+    let k = probe(&r, "mid");
+    let (p, l, ei, mu, v) = (
+        1500.0 * 9.81,
+        20.0,
+        210.0e9 * 43190.0e-8,
+        7850.0 * 181.0e-4,
+        17.6,
+    );
+    let peak = r
+        .rows
+        .iter()
+        .map(|row| fryba_midspan(p, l, ei, mu, v, row.t).abs())
+        .fold(0.0, f64::max);
+    let worst = r
+        .rows
+        .iter()
+        .map(|row| (row.probes[k].w + fryba_midspan(p, l, ei, mu, v, row.t)).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        worst <= 5e-3 * peak,
+        "midspan off Frýba's series by {worst:.3e} m, peak {peak:.3e} m"
+    );
+}
+
+/// The bridge claim, coupling by coupling (REPORT.md gives the numbers): the thesis says the
+/// beam is almost still after the disk leaves at −44 1/s and vibrates strongly at −50 1/s. For
+/// a force without inertia (moving-force, and the thesis coupling, whose disk does not follow
+/// the beam) that is the first-mode cancellation of the closed form
+/// A1 = w0 · 2α|cos(π/(2α))| / |1 − α²|: 1.5 mm against 7.9 mm. The disk's own inertia
+/// (1500 kg on a 2842 kg span) lowers the loaded frequency and moves the cancellation: with
+/// moving-mass and consistent the order reverses. Asserted with a factor 3 between the speeds.
+#[test]
+fn residual_vibration_after_exit_by_coupling() {
+    let a1 = |v: f64| {
+        let (p, l, ei, mu): (f64, f64, f64, f64) =
+            (1500.0 * 9.81, 20.0, 210.0e9 * 43190.0e-8, 7850.0 * 181.0e-4);
+        let f1 = PI / (2.0 * l * l) * (ei / mu).sqrt();
+        let alpha = v / (2.0 * f1 * l);
+        let w0 = 2.0 * p * l.powi(3) / (PI.powi(4) * ei);
+        w0 * 2.0 * alpha * (PI / (2.0 * alpha)).cos().abs() / (1.0 - alpha * alpha).abs()
+    };
+    for c in Coupling::ALL {
+        let d44 = run_beam(
+            &with_coupling("bridge-d44.yaml", c),
+            Method::GenAlpha,
+            1e-5,
+            1e-9,
+        );
+        let d50 = run_beam(
+            &with_coupling("bridge-d50.yaml", c),
+            Method::GenAlpha,
+            1e-5,
+            1e-9,
+        );
+        let (r44, r50) = (residual(&d44, "mid"), residual(&d50, "mid"));
+        match c {
+            Coupling::MovingForce | Coupling::Thesis => {
+                assert!(r50 > 3.0 * r44, "{}: {r44:.3e} vs {r50:.3e}", c.name());
+            }
+            Coupling::MovingMass | Coupling::Consistent => {
+                assert!(r44 > 3.0 * r50, "{}: {r44:.3e} vs {r50:.3e}", c.name());
+            }
+        }
+        if c == Coupling::MovingForce {
+            // Mode 1 dominates the free vibration; the higher modes add a few per cent at D50
+            // and about 15 % of the (small) D44 value.
+            assert!(
+                (r50 / a1(20.0) - 1.0).abs() < 0.05,
+                "D50 {r50:.4e} vs {:.4e}",
+                a1(20.0)
+            );
+            assert!(
+                (r44 / a1(17.6) - 1.0).abs() < 0.25,
+                "D44 {r44:.4e} vs {:.4e}",
+                a1(17.6)
+            );
+        }
+    }
+}
+
+/// Largest |total(t) − total(0)| relative to the largest energy, over a window of the run.
+fn drift(r: &BeamRun) -> f64 {
+    r.energy.max_rel_drift()
+}
+
+/// The consistent coupling conserves beam + disk energy: its drift is an integration error
+/// and falls with rtol, to ≤ 10⁻⁶ at rtol 10⁻⁸ (generalized-α at ρ∞ = 1, energy-neutral for
+/// the linear part). The thesis coupling's error is a model error: it stays when rtol falls.
+/// On the first 0.25 s of each study (the disk on the beam throughout).
+#[test]
+fn energy_consistent_conserves_thesis_does_not() {
+    for file in [
+        "bridge-d44.yaml",
+        "bridge-d50.yaml",
+        "zipline.yaml",
+        "rubber.yaml",
+    ] {
+        let window = |c: Coupling| {
+            let mut s = variant(
+                file,
+                &[("coupling: consistent", &format!("coupling: {}", c.name()))],
+            );
+            s.duration = 0.25;
+            if let rollbeam::scene::Model::Beam(b) = &mut s.model {
+                b.rho_inf = 1.0;
+            }
+            s
+        };
+        let loose = drift(&run_beam(
+            &window(Coupling::Consistent),
+            Method::GenAlpha,
+            1e-6,
+            1e-12,
+        ));
+        let tight = drift(&run_beam(
+            &window(Coupling::Consistent),
+            Method::GenAlpha,
+            1e-8,
+            1e-14,
+        ));
+        assert!(
+            tight <= 1e-6,
+            "{file}: consistent drift {tight:.2e} at rtol 1e-8"
+        );
+        assert!(
+            tight < loose,
+            "{file}: drift {tight:.2e} (1e-8) vs {loose:.2e} (1e-6)"
+        );
+        let t_loose = drift(&run_beam(
+            &window(Coupling::Thesis),
+            Method::GenAlpha,
+            1e-6,
+            1e-12,
+        ));
+        let t_tight = drift(&run_beam(
+            &window(Coupling::Thesis),
+            Method::GenAlpha,
+            1e-8,
+            1e-14,
+        ));
+        assert!(
+            t_tight > 0.3 * t_loose && t_tight > 10.0 * tight,
+            "{file}: thesis error {t_tight:.2e} (1e-8) vs {t_loose:.2e} (1e-6)"
+        );
+    }
+}
+
+/// As the disk's mass goes to zero its inertia stops mattering: every coupling's deflection per
+/// unit weight tends to the moving force's. With m = 1 g the disk's inertia is 10⁻⁶ of the
+/// span's, so the responses agree to 10⁻⁴ of the peak.
+#[test]
+fn light_disk_every_coupling_is_a_moving_force() {
+    let light = |c: Coupling| {
+        let s = variant(
+            "bridge-d44.yaml",
+            &[
+                ("mass: 1500", "mass: 0.001"),
+                ("coupling: consistent", &format!("coupling: {}", c.name())),
+                ("duration: 3.0", "duration: 1.0"),
+            ],
+        );
+        run_beam(&s, Method::GenAlpha, 1e-7, 1e-15)
+    };
+    let reference = light(Coupling::MovingForce);
+    let k = probe(&reference, "mid");
+    let peak = reference
+        .rows
+        .iter()
+        .map(|r| r.probes[k].w.abs())
+        .fold(0.0, f64::max);
+    for c in [Coupling::MovingMass, Coupling::Thesis, Coupling::Consistent] {
+        let r = light(c);
+        let worst = r
+            .rows
+            .iter()
+            .zip(&reference.rows)
+            .map(|(a, b)| (a.probes[k].w - b.probes[k].w).abs())
+            .fold(0.0, f64::max);
+        assert!(
+            worst <= 1e-4 * peak,
+            "{}: {worst:.3e} of {peak:.3e}",
+            c.name()
+        );
+    }
+}
+
+/// On a beam a million times stiffer the consistent coupling is the disk on a rigid incline:
+/// s(t) = v0 t + ½ (2/3) g sin β t² for a uniform disk. The zip-line geometry, 1 s: the beam's
+/// own deflection (10⁻⁷ m) moves s by less than 10⁻⁶ relative.
+#[test]
+fn stiff_beam_is_the_rigid_track() {
+    let s = variant(
+        "zipline.yaml",
+        &[
+            ("E: 195.0e9", "E: 195.0e15"),
+            ("G: 75.0e9", "G: 75.0e15"),
+            ("duration: 7.0", "duration: 1.0"),
+        ],
+    );
+    let r = run_beam(&s, Method::GenAlpha, 1e-8, 1e-12);
+    let sin_b = 3.0 / 15.0f64.hypot(3.0);
+    let last = r.rows.last().expect("rows");
+    let d = last.disk.expect("on the beam");
+    let t = last.t;
+    let expect = 2.0 * t + 0.5 * (2.0 / 3.0) * 9.81 * sin_b * t * t;
+    assert!(
+        (d.s / expect - 1.0).abs() < 1e-6,
+        "s = {} against {expect}",
+        d.s
+    );
+    let speed = d.vx.hypot(d.vy);
+    let v_expect = 2.0 + (2.0 / 3.0) * 9.81 * sin_b * t;
+    assert!(
+        (speed / v_expect - 1.0).abs() < 1e-6,
+        "v = {speed} against {v_expect}"
+    );
+}
+
+/// Mesh convergence of the peak deflection under the disk (consistent coupling, D44, degree 2
+/// elements): the differences to the finest mesh fall at a measured order near 2 or better.
+#[test]
+fn peak_under_disk_converges_with_the_mesh() {
+    let peak = |elements: usize| {
+        let s = variant(
+            "bridge-d44.yaml",
+            &[
+                ("elements: 10", &format!("elements: {elements}")),
+                ("order: 4", "order: 2"),
+                ("duration: 3.0", "duration: 1.2"),
+            ],
+        );
+        let r = run_beam(&s, Method::GenAlpha, 1e-7, 1e-12);
+        r.rows
+            .iter()
+            .map(|row| row.w_under)
+            .filter(|w| w.is_finite())
+            .fold(f64::INFINITY, f64::min)
+    };
+    let meshes = [4, 8, 16];
+    let values: Vec<f64> = meshes.iter().map(|&e| peak(e)).collect();
+    let finest = peak(48);
+    let errors: Vec<f64> = values.iter().map(|v| (v - finest).abs()).collect();
+    let h: Vec<f64> = meshes.iter().map(|&e| 20.0 / e as f64).collect();
+    let order = log_slope(&h, &errors);
+    assert!(order > 1.8, "order {order:.2}, errors {errors:?}");
+}
+
+/// Converged headline numbers of each study and coupling (REPORT.md): peak deflection under
+/// the disk and after-exit residual at midspan, both in mm to 2 significant digits, which
+/// rtol 10⁻⁵ → 10⁻⁶ and 10 → 20 elements leave unchanged.
+#[test]
+fn headline_numbers() {
+    let mut lines = Vec::new();
+    let sig = |x: f64| format!("{:.1e}", x);
+    for file in ["bridge-d44.yaml", "bridge-d50.yaml"] {
+        for c in Coupling::ALL {
+            let r = run_beam(&with_coupling(file, c), Method::GenAlpha, 1e-5, 1e-9);
+            let peak = r
+                .rows
+                .iter()
+                .map(|row| row.w_under)
+                .filter(|w| w.is_finite())
+                .fold(f64::INFINITY, f64::min);
+            lines.push(format!(
+                "{} {}: w under disk {} m, residual at midspan {} m",
+                load(file).name,
+                c.name(),
+                sig(peak),
+                sig(residual(&r, "mid"))
+            ));
+        }
+    }
+    insta::assert_snapshot!("disk-on-beam-headlines", lines.join("\n"));
+}
