@@ -229,12 +229,30 @@ fn dispatch(command: Command) -> Result<(), Error> {
                         spec.supports[1].name()
                     );
                     println!(
-                        "  mesh: {} elements of degree {}, {} quadrature, {} unknowns (no disk)",
+                        "  mesh: {} elements of degree {}, {} quadrature, {} beam unknowns",
                         spec.elements,
                         spec.order,
                         spec.quadrature.name(),
                         b.dim()
                     );
+                    match &setup.disk {
+                        None => println!("  disk: none (no disk unknowns)"),
+                        Some(d) => println!(
+                            "  disk: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}), contact patch ±{} m{}",
+                            d.disk.mass,
+                            d.disk.radius,
+                            d.s0,
+                            d.omega0,
+                            d.coupling.name(),
+                            if d.coupling.rolls() {
+                                "1 more unknown: the contact point s"
+                            } else {
+                                "prescribed travel, no disk unknowns"
+                            },
+                            d.patch,
+                            d.mu.map_or(String::new(), |m| format!(", mu = {m}"))
+                        ),
+                    }
                     println!(
                         "  loads: {}, probes: {}",
                         setup.loads.len(),

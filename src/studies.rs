@@ -33,6 +33,11 @@ pub fn run_all(studies: &Path, out: &Path, figures: &Path) -> Result<Vec<Run>, E
         let result = run::run(&scene, &Overrides::default(), true)?;
         let dir = out.join(&scene.name);
         output::write_all(&result, &dir)?;
+        if let Run::Beam(b) = &result {
+            if b.setup.disk.is_some() {
+                output::animation::write_animation(b, &dir.join("animation.svg"))?;
+            }
+        }
         for fig in result.figures() {
             let from = dir.join(format!("{fig}.svg"));
             let to = figures.join(format!("{}-{fig}.svg", scene.name));

@@ -296,12 +296,14 @@ impl Beam {
 
     /// Like [`Beam::basis_at`], but for the axis averaged over a contact patch of half-width
     /// `half` around s with the smooth kernel K(ξ) = 315/(256 b) (1 − (ξ/b)²)⁴: the weights are
-    /// S_a^(k)(s) = ∫ K^(k)(s − x) N_a(x) dx, integrated exactly element by element (the end
-    /// elements extended past the ends). K and its first three derivatives vanish at the
-    /// patch's edges, so the averaged axis has three continuous derivatives in s even though
-    /// the elements meet with kinks.
+    /// S_a^(k)(s) = ∫ K^(k)(s − x) N_a(x) dx, integrated exactly element by element. Past
+    /// an end the track is the undisplaced extension of the axis, as a bridge's approach slab:
+    /// a disk entering at a support loads the beam gradually. K and its first three
+    /// derivatives vanish at the patch's edges, so the averaged axis has three continuous
+    /// derivatives in s even though the elements meet with kinks (and where an end holds the
+    /// displacement, also as the patch crosses it).
     pub fn patch_basis_at(&self, s: f64, half: f64) -> Vec<NodeBasis> {
-        let (lo, hi) = (s - half, s + half);
+        let (lo, hi) = ((s - half).max(0.0), (s + half).min(self.length));
         let (e_lo, e_hi) = (self.element_of(lo), self.element_of(hi));
         let p = self.spec.order;
         let first = e_lo * p;

@@ -96,6 +96,8 @@ struct EnvelopeSummary {
     phi_min_x: f64,
     phi_max: f64,
     phi_max_x: f64,
+    /// Largest length of the deformed axis minus L.
+    stretch_max: f64,
 }
 
 fn envelope_summary(r: &BeamRun) -> EnvelopeSummary {
@@ -136,6 +138,7 @@ fn envelope_summary(r: &BeamRun) -> EnvelopeSummary {
         phi_min_x,
         phi_max,
         phi_max_x,
+        stretch_max: e.stretch_max,
     }
 }
 

@@ -60,6 +60,8 @@ pub struct Envelope {
     pub x: Vec<f64>,
     pub min: Vec<PointDisplacement>,
     pub max: Vec<PointDisplacement>,
+    /// The largest length the deformed axis reached minus L (over the sample polyline).
+    pub stretch_max: f64,
 }
 
 pub struct BeamRun {
@@ -251,6 +253,13 @@ impl Observer for Recorder<'_> {
             .iter()
             .map(|&x| self.beam.displacement_at(q, x))
             .collect();
+        let length: f64 = self
+            .xs
+            .windows(2)
+            .zip(along.windows(2))
+            .map(|(x, d)| (x[1] + d[1].u - x[0] - d[0].u).hypot(d[1].w - d[0].w))
+            .sum();
+        self.envelope.stretch_max = self.envelope.stretch_max.max(length - self.beam.length);
         for (k, d) in along.iter().enumerate() {
             let (lo, hi) = (&mut self.envelope.min[k], &mut self.envelope.max[k]);
             lo.u = lo.u.min(d.u);
@@ -398,6 +407,7 @@ pub fn run(
             x: xs.clone(),
             min: vec![big; SAMPLES],
             max: vec![small; SAMPLES],
+            stretch_max: f64::NEG_INFINITY,
         },
         xs,
         rows: Vec::with_capacity(outputs.len()),

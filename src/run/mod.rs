@@ -186,6 +186,19 @@ impl Run {
     pub fn figures(&self) -> &'static [&'static str] {
         match self {
             Run::Rolling(_) => &["track", "velocities", "omega", "reactions", "energy"],
+            Run::Beam(b) if b.setup.disk.is_some() => &[
+                "probes",
+                "shapes",
+                "envelope-u",
+                "envelope-w",
+                "envelope-phi",
+                "energy",
+                "reactions",
+                "disk-velocity",
+                "disk-omega",
+                "disk-forces",
+                "animation",
+            ],
             Run::Beam(_) => &[
                 "probes",
                 "shapes",
