@@ -14,3 +14,13 @@ pub mod rolling;
 pub mod run;
 pub mod scene;
 pub mod studies;
+
+/// println! that does not panic when stdout is closed (`rollbeam run … | head -1`): what a
+/// reader stopped reading is not an error of the run.
+#[macro_export]
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+    }};
+}

@@ -10,7 +10,7 @@ use rollbeam::error::Error;
 use rollbeam::ode::Method;
 use rollbeam::run::{self, Overrides, Run};
 use rollbeam::scene::{method_names, BeamScene, Model, Scene};
-use rollbeam::{output, studies};
+use rollbeam::{output, say, studies};
 
 #[derive(Parser)]
 #[command(
@@ -152,11 +152,11 @@ fn dispatch(command: Command) -> Result<(), Error> {
             if let (true, Run::Beam(b)) = (animate, &result) {
                 output::animation::write_animation(b, &dir.join("animation.svg"))?;
             }
-            println!("{}: {}", scene.name, result.stop().sentence(result.t_end()));
+            say!("{}: {}", scene.name, result.stop().sentence(result.t_end()));
             match &result {
                 Run::Rolling(r) => {
                     let d = &r.last.disk;
-                    println!("  disk at s = {:.6}, centre ({:.6}, {:.6}) m, velocity ({:.6}, {:.6}) m/s, Ω = {:.6} 1/s", d.s, d.x, d.y, d.vx, d.vy, d.omega);
+                    say!("  disk at s = {:.6}, centre ({:.6}, {:.6}) m, velocity ({:.6}, {:.6}) m/s, Ω = {:.6} 1/s", d.s, d.x, d.y, d.vx, d.vy, d.omega);
                 }
                 Run::Beam(b) => {
                     for (k, p) in b.setup.probes.iter().enumerate() {
@@ -167,14 +167,15 @@ fn dispatch(command: Command) -> Result<(), Error> {
                             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, c), w| {
                                 (a.min(w), c.max(w))
                             });
-                        println!(
+                        say!(
                             "  probe {} (x = {} m): w from {lo:.6e} to {hi:.6e} m",
-                            p.name, p.x
+                            p.name,
+                            p.x
                         );
                     }
                 }
             }
-            println!(
+            say!(
                 "  energy drift {:.2e} (relative)",
                 result.energy().max_rel_drift()
             );
@@ -183,27 +184,27 @@ fn dispatch(command: Command) -> Result<(), Error> {
                 Run::Rolling(r) => (r.method, r.rtol, r.atol),
                 Run::Beam(b) => (b.method, b.rtol, b.atol),
             };
-            println!(
+            say!(
                 "  {} rtol {rt:e} atol {at:e}: {} steps, {} rejected, {} rhs evaluations, {} Jacobians, {} factorisations, {:.3} s",
                 m.name(), s.steps, s.rejected, s.rhs_evals, s.jacobians, s.factorizations, s.wall_s
             );
-            println!("  wrote {}", dir.display());
+            say!("  wrote {}", dir.display());
             Ok(())
         }
         Command::Check { scene } => {
             let scene = Scene::load(&scene)?;
-            println!("scene {}: valid", scene.name);
+            say!("scene {}: valid", scene.name);
             match &scene.model {
                 Model::Rolling(setup) => {
                     let r = &setup.rolling;
-                    println!(
+                    say!(
                         "  track: rigid {} curve{}",
                         r.curve.kind(),
                         r.curve
                             .domain()
                             .map_or(String::new(), |(a, b)| format!(", s in [{a}, {b}]"))
                     );
-                    println!(
+                    say!(
                         "  disk: m = {} kg, a = {} m, C = {} kg m², s0 = {}, Ω0 = {} 1/s{}",
                         r.disk.mass,
                         r.disk.radius,
@@ -212,7 +213,7 @@ fn dispatch(command: Command) -> Result<(), Error> {
                         r.omega0,
                         r.mu.map_or(String::new(), |m| format!(", mu = {m}"))
                     );
-                    println!(
+                    say!(
                         "  model: {} formulation, {} unknowns (no beam)",
                         setup.formulation.name(),
                         run::model(setup).initial_state().len()
@@ -221,14 +222,14 @@ fn dispatch(command: Command) -> Result<(), Error> {
                 Model::Beam(setup) => {
                     let b = Beam::new(setup.beam.clone());
                     let spec = &b.spec;
-                    println!(
+                    say!(
                         "  track: Reissner beam, L = {:.6} m at {:.4}° , supports {} / {}",
                         b.length,
                         b.angle.to_degrees(),
                         spec.supports[0].name(),
                         spec.supports[1].name()
                     );
-                    println!(
+                    say!(
                         "  mesh: {} elements of degree {}, {} quadrature, {} beam unknowns",
                         spec.elements,
                         spec.order,
@@ -236,8 +237,8 @@ fn dispatch(command: Command) -> Result<(), Error> {
                         b.dim()
                     );
                     match &setup.disk {
-                        None => println!("  disk: none (no disk unknowns)"),
-                        Some(d) => println!(
+                        None => say!("  disk: none (no disk unknowns)"),
+                        Some(d) => say!(
                             "  disk: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}), contact patch ±{} m{}",
                             d.disk.mass,
                             d.disk.radius,
@@ -253,7 +254,7 @@ fn dispatch(command: Command) -> Result<(), Error> {
                             d.mu.map_or(String::new(), |m| format!(", mu = {m}"))
                         ),
                     }
-                    println!(
+                    say!(
                         "  loads: {}, probes: {}",
                         setup.loads.len(),
                         setup
@@ -265,7 +266,7 @@ fn dispatch(command: Command) -> Result<(), Error> {
                     );
                 }
             }
-            println!(
+            say!(
                 "  solver: {} rtol {:e} atol {:e}; duration {} s, output every {} s",
                 scene.solver.method.name(),
                 scene.solver.rtol,

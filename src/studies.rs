@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use crate::error::Error;
 use crate::output::{self, io_error, plots};
 use crate::run::{self, Overrides, Run, RunResult};
+use crate::say;
 use crate::scene::Scene;
 
 /// The scenes under `dir`, sorted by file name.
@@ -43,7 +44,7 @@ pub fn run_all(studies: &Path, out: &Path, figures: &Path) -> Result<Vec<Run>, E
             let to = figures.join(format!("{}-{fig}.svg", scene.name));
             std::fs::copy(&from, &to).map_err(|e| io_error(&to, e))?;
         }
-        println!(
+        say!(
             "{:<14} {:<12} t = {:>7.3} s  steps {:>6}  rejected {:>4}  energy drift {:.1e}  {:.3} s",
             scene.name,
             result.stop().name(),

@@ -321,7 +321,9 @@ fn stiff_beam_is_the_rigid_track() {
 }
 
 /// Mesh convergence of the peak deflection under the disk (consistent coupling, D44, degree 2
-/// elements): the differences to the finest mesh fall at a measured order near 2 or better.
+/// elements): the differences to a 48-element mesh fall at a measured order; displacements of
+/// degree-p elements converge as h^(p+1), and 3.1 is measured (REPORT.md). Asserted above 1.8
+/// so that the peak's sampling on the output grid cannot fail it.
 #[test]
 fn peak_under_disk_converges_with_the_mesh() {
     let peak = |elements: usize| {

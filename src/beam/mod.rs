@@ -73,7 +73,8 @@ pub struct PointDisplacement {
     pub phi: f64,
 }
 
-/// One node's free unknowns (`None` where a support holds it) and N, N', N'', N''' at a point.
+/// One node's free unknowns (`None` where a support holds it) and its weight at a point with
+/// the weight's first three derivatives in x.
 #[derive(Clone, Copy, Debug)]
 pub struct NodeBasis {
     pub u: Option<usize>,
@@ -266,36 +267,9 @@ impl Beam {
         ((x / self.h).floor().max(0.0) as usize).min(self.spec.elements - 1)
     }
 
-    /// The free unknowns of each node of the element holding material point x, with the node's
-    /// shape function and its first three derivatives in x there: what a body riding on the
-    /// axis at x needs to follow its position, slope and curvature.
-    pub fn basis_at(&self, x: f64) -> Vec<NodeBasis> {
-        let e = self.element_of(x);
-        let xi = 2.0 * (x - e as f64 * self.h) / self.h - 1.0;
-        let mut d = vec![[0.0; 4]; self.spec.order + 1];
-        self.basis.eval_derivatives(xi, &mut d);
-        let scale = 2.0 / self.h;
-        d.iter()
-            .enumerate()
-            .map(|(a, da)| {
-                let node = e * self.spec.order + a;
-                NodeBasis {
-                    u: self.eq[3 * node],
-                    w: self.eq[3 * node + 1],
-                    phi: self.eq[3 * node + 2],
-                    d: [
-                        da[0],
-                        da[1] * scale,
-                        da[2] * scale * scale,
-                        da[3] * scale * scale * scale,
-                    ],
-                }
-            })
-            .collect()
-    }
-
-    /// Like [`Beam::basis_at`], but for the axis averaged over a contact patch of half-width
-    /// `half` around s with the smooth kernel K(ξ) = 315/(256 b) (1 − (ξ/b)²)⁴: the weights are
+    /// The free unknowns of the nodes under a contact patch of half-width `half` around
+    /// material point s, with the weights S_a and their first three derivatives: the axis
+    /// averaged over the patch with the smooth kernel K(ξ) = 315/(256 b) (1 − (ξ/b)²)⁴: the weights are
     /// S_a^(k)(s) = ∫ K^(k)(s − x) N_a(x) dx, integrated exactly element by element. Past
     /// an end the track is the undisplaced extension of the axis, as a bridge's approach slab:
     /// a disk entering at a support loads the beam gradually. K and its first three

@@ -6,7 +6,7 @@
 //!   material velocity at s, is θ̇ = dψ/dt − |r'| ṡ / a: a velocity constraint B(z) ż − θ̇ = 0,
 //!   not integrable once the axis stretches. Lagrange–d'Alembert with the multiplier λ gives
 //!   C θ̈ = λ for θ, and for z, with T_z = ½ q̇ᵀ M q̇ + ½ m |ċ|², V = U(q) + m g c_Y:
-//!     (M ⊕ 0 + m J_cᵀ J_c + C Bᵀ B) z̈ = F(q) − m J_cᵀ (J̇_c ż − g) − C Bᵀ (Ḃ ż),
+//!   (M ⊕ 0 + m J_cᵀ J_c + C Bᵀ B) z̈ = F(q) − m J_cᵀ (J̇_c ż − g) − C Bᵀ (Ḃ ż),
 //!   J_c = ∂c/∂z. The power of the constraint force is λ (B ż − θ̇) = 0, so the total energy
 //!   T_z + ½ C θ̇² + V is conserved. Eliminating λ shows the beam feels exactly −F_contact at s
 //!   through the shape functions: the terms of the normal's rotation cancel with the torque.
@@ -181,11 +181,6 @@ impl<'a> DiskOnBeam<'a> {
 
     pub fn beam(&self) -> &Beam {
         self.loaded.beam
-    }
-
-    /// Unknowns of the beam.
-    pub fn beam_dim(&self) -> usize {
-        self.n
     }
 
     /// (z, ż) at t = 0: beam at rest and undeformed, the disk at s0 rolling at Ω0.

@@ -1,0 +1,38 @@
+//! Study D44 (the disk crossing the bridge, consistent coupling) whole, with the default
+//! solver (generalized-α, the scene's ρ∞ = 0.8) at rtol 10⁻⁶ and 10⁻⁸: the cost of accuracy
+//! on the coupled problem. Ten samples each; the 10⁻⁸ run takes about 8 s per sample.
+
+use std::path::Path;
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use rollbeam::run::{run, Overrides};
+use rollbeam::scene::{Model, Scene};
+
+fn d44() -> Scene {
+    let mut scene =
+        Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/bridge-d44.yaml"))
+            .expect("D44 is valid");
+    if let Model::Beam(b) = &mut scene.model {
+        b.shapes.clear();
+    }
+    scene
+}
+
+fn whole(c: &mut Criterion) {
+    let mut group = c.benchmark_group("bridge-d44-whole");
+    group.sample_size(10);
+    let scene = d44();
+    for rtol in [1e-6, 1e-8] {
+        let over = Overrides {
+            rtol: Some(rtol),
+            ..Default::default()
+        };
+        group.bench_with_input(BenchmarkId::from_parameter(rtol), &scene, |b, s| {
+            b.iter(|| run(s, &over, false).expect("runs"))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, whole);
+criterion_main!(benches);
