@@ -13,14 +13,16 @@
 //! - [`Coupling::Thesis`]: thesis Table 9 as published (errata 2–3 corrected): the disk rolls on
 //!   the axis as if it were frozen, v_x = ṡ (|r'| − a ψ_s), v̇_x = m g·t / (m + C/a²), and the
 //!   contact force R_x = m v̇_x − m g·t, R_y = m v_x ψ_s ṡ − m g·n is turned to global axes with the
-//!   section rotation φ (5.13). Its (s, v_x) system is integrated here as (s, ṡ), the same
-//!   solution: s̈ = (v̇_x − ṡ d(|r'| − a ψ_s)/dt) / (|r'| − a ψ_s).
+//!   section rotation φ (5.13). With generalized-α its (s, v_x) system is integrated as
+//!   (s, ṡ), the same solution: s̈ = (v̇_x − ṡ d(|r'| − a ψ_s)/dt) / (|r'| − a ψ_s); with a
+//!   first-order integrator the run takes the published 3n + 6 system of [`thesis_system`].
 //! - [`Coupling::MovingMass`]: a point mass at s = s0 + v0 t on the axis, following its
 //!   displacement with its inertia; [`Coupling::MovingForce`]: the constant weight m g at
 //!   s = s0 + v0 t. Both are prescribed motions: the system is the beam alone, and the work the
 //!   moving load does on it is the `work` of the energy budget.
 
 pub mod contact;
+pub mod thesis_system;
 
 use std::borrow::Cow;
 use std::cell::RefCell;
@@ -227,7 +229,8 @@ impl<'a> DiskOnBeam<'a> {
         }
     }
 
-    fn contact(&self, t: f64, z: &[f64], zd: &[f64]) -> AxisPoint {
+    /// The axis at the contact for the state (z, ż).
+    pub fn contact(&self, t: f64, z: &[f64], zd: &[f64]) -> AxisPoint {
         let (s, sdot) = if self.spec.coupling.rolls() {
             (z[self.n], zd[self.n])
         } else {
@@ -420,6 +423,15 @@ impl<'a> DiskOnBeam<'a> {
             y.iter_mut().zip(c).for_each(|(yi, ci)| *yi -= coef[k] * ci);
         }
         y.iter().all(|v| v.is_finite()).then_some(y)
+    }
+
+    /// Add the disk's generalised force on the beam's unknowns (not on s) to f.
+    pub fn add_disk_force_on_beam(&self, t: f64, z: &[f64], zd: &[f64], f: &mut [f64]) {
+        for (i, v) in self.terms(t, z, zd).force {
+            if i < self.n {
+                f[i] += v;
+            }
+        }
     }
 
     fn force_from(&self, t: f64, z: &[f64], zd: &[f64], terms: &Terms, f: &mut [f64]) {

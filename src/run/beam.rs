@@ -8,7 +8,8 @@
 use super::{EnergyCheck, Overrides, Progress, Stop};
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::{Beam, PointDisplacement};
-use crate::coupling::DiskOnBeam;
+use crate::coupling::thesis_system::ThesisSystem;
+use crate::coupling::{Coupling, DiskOnBeam};
 use crate::error::Error;
 use crate::linalg::{self, SparseLu};
 use crate::ode::second_order::SecondOrderProblem;
@@ -322,6 +323,23 @@ impl Observer for Recorder<'_> {
     }
 }
 
+/// Hands the recorder the reduced state (q, s; v, ṡ) of the literal thesis system.
+struct Literal<'a, 'r> {
+    sys: &'a ThesisSystem<'a>,
+    rec: &'a mut Recorder<'r>,
+}
+
+impl Observer for Literal<'_, '_> {
+    fn output(&mut self, t: f64, y: &[f64]) {
+        let r = self.sys.reduced(t, y);
+        self.rec.output(t, &r);
+    }
+    fn step(&mut self, t: f64, y: &[f64]) {
+        let r = self.sys.reduced(t, y);
+        self.rec.step(t, &r);
+    }
+}
+
 fn solver_error(scene: &Scene, e: ode::SolveError) -> Error {
     Error::Solver(format!("scene {}: the solver failed: {e}", scene.name))
 }
@@ -395,12 +413,21 @@ pub fn run(
     let mass_lu = SparseLu::factor(beam.mass(), None).ok_or_else(|| {
         Error::Solver(format!("scene {}: the mass matrix is singular", scene.name))
     })?;
-    let unknowns = coupled.as_ref().map_or(n, |c| c.dim());
+    // The thesis coupling with a first-order integrator is the published 3n + 6 system.
+    let literal = coupled
+        .as_ref()
+        .is_some_and(|c| c.spec.coupling == Coupling::Thesis)
+        && method != Method::GenAlpha;
+    let unknowns = match &coupled {
+        None => n,
+        Some(_) if literal => n + 6,
+        Some(c) => c.dim(),
+    };
     let mut rec = Recorder {
         beam: &beam,
         loaded: &loaded,
         coupled: coupled.as_ref(),
-        nz: unknowns,
+        nz: coupled.as_ref().map_or(n, |c| c.dim()),
         mass_lu,
         setup,
         envelope: Envelope {
@@ -450,21 +477,43 @@ pub fn run(
             let until = c
                 .exit_time()
                 .map_or(scene.duration, |te| te.min(scene.duration));
-            let out = integrate(
-                c,
-                setup.rho_inf,
-                0.0,
-                &z0,
-                &zd0,
-                until,
-                &outputs,
-                &opts,
-                &mut rec,
-            )
-            .map_err(|e| solver_error(scene, e))?;
+            let (out, y_end) = if literal {
+                let sys = ThesisSystem { coupled: c };
+                let mut through = Literal {
+                    sys: &sys,
+                    rec: &mut rec,
+                };
+                let out = ode::solve(
+                    &sys,
+                    0.0,
+                    &sys.initial_state(),
+                    until,
+                    &outputs,
+                    &opts,
+                    &mut through,
+                )
+                .map_err(|e| solver_error(scene, e))?;
+                let y = sys.reduced(out.t, &out.y);
+                (out, y)
+            } else {
+                let out = integrate(
+                    c,
+                    setup.rho_inf,
+                    0.0,
+                    &z0,
+                    &zd0,
+                    until,
+                    &outputs,
+                    &opts,
+                    &mut rec,
+                )
+                .map_err(|e| solver_error(scene, e))?;
+                let y = out.y.clone();
+                (out, y)
+            };
             add_stats(&mut stats, &out.stats);
             let nz = c.dim();
-            let (z, zd) = out.y.split_at(nz);
+            let (z, zd) = y_end.split_at(nz);
             let left = match &out.stopped_by {
                 None => out.t < scene.duration,
                 Some(hit) if hit.name == "left-track" => true,
@@ -474,7 +523,7 @@ pub fn run(
                 }
             };
             if !left {
-                break 'phases (out.t, out.y.clone());
+                break 'phases (out.t, y_end.clone());
             }
             t0 = out.t;
             q0.copy_from_slice(&z[..n]);
