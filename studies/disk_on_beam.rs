@@ -474,3 +474,42 @@ fn headline_numbers_rubber_and_zipline() {
         insta::assert_snapshot!("disk-on-beam-headlines-rubber-zipline", lines.join("\n"));
     });
 }
+
+/// Events on the beam. A disk rolling off either end leaves the model at the moment its
+/// contact point passes the end (closed form on a nearly straight beam: distance over speed,
+/// to 0.5 % for the sag and the speed change), and the beam goes on to the end of the run.
+/// With a friction coefficient below what rolling needs (max |R_t|/R_n = 1.2·10⁻³ on D44) the
+/// run stops with `slip`.
+#[test]
+fn leaving_at_either_end_and_slipping() {
+    for (s0, omega0, distance) in [("19.0", "-44", 1.0), ("1.0", "44", 1.0)] {
+        let scene = variant(
+            "bridge-d44.yaml",
+            &[
+                ("s0: 0.0", &format!("s0: {s0}")),
+                ("omega0: -44", &format!("omega0: {omega0}")),
+                ("duration: 3.0", "duration: 0.3"),
+            ],
+        );
+        let r = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-9);
+        assert_eq!(r.stop.name(), "end");
+        assert!((r.t_end - 0.3).abs() < 1e-12);
+        let left = r.left_track_t.expect("the disk left the beam");
+        let expect = distance / 17.6;
+        assert!(
+            (left / expect - 1.0).abs() < 5e-3,
+            "left at {left}, expected {expect}"
+        );
+        assert!(r.rows.iter().any(|row| row.t > left && row.disk.is_none()));
+    }
+    let scene = variant(
+        "bridge-d44.yaml",
+        &[
+            ("coupling: consistent", "coupling: consistent\n  mu: 0.0005"),
+            ("duration: 3.0", "duration: 1.2"),
+        ],
+    );
+    let r = run_beam(&scene, Method::GenAlpha, 1e-5, 1e-9);
+    assert_eq!(r.stop.name(), "slip");
+    assert!(r.t_end < 1.1, "slipped at {}", r.t_end);
+}
