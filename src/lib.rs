@@ -14,6 +14,7 @@ pub mod rolling;
 pub mod run;
 pub mod scene;
 pub mod studies;
+pub mod sweep;
 
 /// println! that does not panic when stdout is closed (`rollbeam run … | head -1`): what a
 /// reader stopped reading is not an error of the run.

@@ -10,7 +10,7 @@ use rollbeam::error::Error;
 use rollbeam::ode::Method;
 use rollbeam::run::{self, Overrides, Run};
 use rollbeam::scene::{method_names, BeamScene, Model, Scene};
-use rollbeam::{output, say, studies};
+use rollbeam::{output, say, studies, sweep};
 
 #[derive(Parser)]
 #[command(
@@ -57,6 +57,23 @@ enum Command {
         count: Option<usize>,
         #[arg(long)]
         out: Option<PathBuf>,
+    },
+    /// Run one scene over a range of one parameter, in parallel on all cores; writes
+    /// sweep.csv (one row per run) and sweep.svg.
+    Sweep {
+        scene: PathBuf,
+        /// KEY=FROM:TO:COUNT, e.g. disk.omega0=-10:-120:111 (any number the scene holds).
+        #[arg(long = "set")]
+        set: String,
+        /// Output folder (default out/<scene name>-sweep).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        #[arg(long)]
+        method: Option<String>,
+        #[arg(long, allow_negative_numbers = true)]
+        rtol: Option<f64>,
+        #[arg(long, allow_negative_numbers = true)]
+        atol: Option<f64>,
     },
     /// Rerun every scene under studies/ and regenerate the report's figures.
     Studies {
@@ -295,6 +312,60 @@ fn dispatch(command: Command) -> Result<(), Error> {
             let result =
                 rollbeam::analysis::report::modes(&scene, setup, count.unwrap_or(6), &dir)?;
             print!("{result}");
+            Ok(())
+        }
+        Command::Sweep {
+            scene: path,
+            set,
+            out,
+            method,
+            rtol,
+            atol,
+        } => {
+            let scene = Scene::load(&path)?;
+            let setting = sweep::Setting::parse(&set)?;
+            let method = match method {
+                None => None,
+                Some(m) => Some(Method::from_name(&m).ok_or_else(|| {
+                    Error::Input(format!(
+                        "--method '{m}' is unknown; use one of {}",
+                        method_names()
+                    ))
+                })?),
+            };
+            let over = Overrides {
+                method,
+                rtol: positive(rtol, "--rtol")?,
+                atol: positive(atol, "--atol")?,
+                fixed_step: None,
+            };
+            let text = std::fs::read_to_string(&path).map_err(|e| {
+                Error::Input(format!("cannot read scene file {}: {e}", path.display()))
+            })?;
+            let stem = path
+                .file_stem()
+                .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+            let rows = sweep::run_sweep(
+                &text,
+                &path.display().to_string(),
+                &stem,
+                &setting,
+                &over,
+                true,
+            )?;
+            let dir = out.unwrap_or_else(|| Path::new("out").join(format!("{}-sweep", scene.name)));
+            sweep::write_sweep(&rows, &setting, &dir)?;
+            let failed = rows.iter().filter(|r| r.outcome.is_err()).count();
+            say!(
+                "{}: {} runs over {} from {} to {}, {} failed; wrote {}",
+                scene.name,
+                rows.len(),
+                setting.key,
+                setting.from,
+                setting.to,
+                failed,
+                dir.display()
+            );
             Ok(())
         }
         Command::Studies { out } => {

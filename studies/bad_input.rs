@@ -438,3 +438,42 @@ fn static_solution_of_a_mechanism() {
         "{err}"
     );
 }
+
+/// `sweep`: a malformed range or a key the scene cannot hold is one sentence and exit 1; a
+/// value only some runs cannot take is a failed row, not a failed command.
+#[test]
+fn sweep_ranges_and_keys() {
+    let path = scene_path(
+        "sweep",
+        &beam_scene(&[], "disk:\n  mass: 10\n  radius: 0.1\n  s0: 1\n"),
+    );
+    let p = path.to_str().expect("utf-8 path");
+    let out = format!("{p}.sweep");
+    for (set, needles) in [
+        ("disk.mass=1:2", vec!["--set", "three fields"]),
+        ("disk.mass=a:2:3", vec!["--set", "'a'", "finite number"]),
+        ("disk.mass=1:2:0", vec!["--set", "count of at least 1"]),
+        (
+            "disk.nothing=1:2:2",
+            vec!["--set disk.nothing", "unknown field `nothing`"],
+        ),
+        (
+            "track.curve.k=1:2:2",
+            vec!["--set track.curve.k", "no `track.curve`"],
+        ),
+    ] {
+        let (code, err) = rollbeam(&["sweep", p, "--set", set, "--out", &out]);
+        assert_eq!(code, 1, "{set}: exit {code}, {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{set}: {err}");
+        for n in needles {
+            assert!(err.contains(n), "{set}: '{n}' missing from {err}");
+        }
+    }
+    let (code, err) = rollbeam(&["sweep", p, "--set", "disk.mass=-10:10:3", "--out", &out]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(format!("{out}/sweep.csv")).expect("sweep.csv");
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(rows.len(), 3);
+    assert!(rows[0].contains("failed") && rows[0].contains("must be positive"));
+    assert!(rows[1].contains("failed") && rows[2].contains(",ok,"));
+}

@@ -1,0 +1,408 @@
+//! `rollbeam sweep SCENE.yaml --set KEY=FROM:TO:COUNT`: one scene over an evenly spaced range
+//! of one of its numbers, the runs spread over every core. Each value is written into the
+//! scene's text and the scene read again, so a value the scene cannot take is refused with
+//! the same sentence a scene file would get. One summary row per run; a run that fails is a
+//! row with its reason.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::error::Error;
+use crate::output::plots::line_chart;
+use crate::output::write;
+use crate::run::{self, Overrides, Run};
+use crate::scene::Scene;
+
+/// KEY=FROM:TO:COUNT.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Setting {
+    pub key: String,
+    pub from: f64,
+    pub to: f64,
+    pub count: usize,
+}
+
+impl Setting {
+    pub fn parse(arg: &str) -> Result<Setting, Error> {
+        let bad = |why: &str| {
+            Error::Input(format!(
+                "--set '{arg}' {why}; write KEY=FROM:TO:COUNT, e.g. disk.omega0=-10:-120:111"
+            ))
+        };
+        let (key, range) = arg.split_once('=').ok_or_else(|| bad("has no '='"))?;
+        let parts: Vec<&str> = range.split(':').collect();
+        let [from, to, count] = parts[..] else {
+            return Err(bad("needs three fields after '='"));
+        };
+        let number = |s: &str| {
+            s.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| bad(&format!("has '{s}' where a finite number belongs")))
+        };
+        let count = count
+            .trim()
+            .parse::<usize>()
+            .ok()
+            .filter(|&c| c >= 1)
+            .ok_or_else(|| {
+                bad(&format!(
+                    "has '{count}' where a count of at least 1 belongs"
+                ))
+            })?;
+        if key.split('.').any(|k| k.trim().is_empty()) {
+            return Err(bad("has an empty key"));
+        }
+        Ok(Setting {
+            key: key.trim().to_string(),
+            from: number(from)?,
+            to: number(to)?,
+            count,
+        })
+    }
+
+    pub fn values(&self) -> Vec<f64> {
+        if self.count == 1 {
+            return vec![self.from];
+        }
+        (0..self.count)
+            .map(|i| self.from + (self.to - self.from) * i as f64 / (self.count - 1) as f64)
+            .collect()
+    }
+}
+
+/// Write `value` at the dotted `key` of a scene written in block style (as the scene files
+/// are): each segment is looked for among the lines indented under its parent; a missing last
+/// segment is added under its parent.
+pub fn set_key(text: &str, key: &str, value: f64) -> Result<String, Error> {
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let indent = |l: &str| l.len() - l.trim_start().len();
+    let (mut lo, mut hi, mut parent_indent) = (0, lines.len(), None::<usize>);
+    let segments: Vec<&str> = key.split('.').collect();
+    for (k, seg) in segments.iter().enumerate() {
+        let last = k + 1 == segments.len();
+        let found = (lo..hi).find(|&i| {
+            let l = &lines[i];
+            let t = l.trim_start();
+            !t.starts_with('#')
+                && parent_indent.is_none_or(|p| indent(l) > p)
+                && (t.strip_prefix(seg).is_some_and(|r| r.starts_with(':')))
+        });
+        match found {
+            Some(i) => {
+                if last {
+                    let ind = indent(&lines[i]);
+                    lines[i] = format!("{}{seg}: {value:e}", " ".repeat(ind));
+                    return Ok(lines.join("\n") + "\n");
+                }
+                let ind = indent(&lines[i]);
+                if lines[i].trim_start()[seg.len() + 1..]
+                    .trim()
+                    .starts_with('{')
+                {
+                    return Err(Error::Input(format!(
+                        "--set {key}: `{seg}` is written inline in the scene; write it as a block to sweep inside it"
+                    )));
+                }
+                lo = i + 1;
+                hi = (lo..lines.len())
+                    .find(|&j| {
+                        let t = lines[j].trim_start();
+                        !t.is_empty() && !t.starts_with('#') && indent(&lines[j]) <= ind
+                    })
+                    .unwrap_or(lines.len());
+                parent_indent = Some(ind);
+            }
+            None if last && k > 0 => {
+                let ind = parent_indent.map_or(0, |p| p + 2);
+                lines.insert(lo, format!("{}{seg}: {value:e}", " ".repeat(ind)));
+                return Ok(lines.join("\n") + "\n");
+            }
+            None => {
+                return Err(Error::Input(format!(
+                    "--set {key}: the scene has no `{}`",
+                    segments[..=k].join(".")
+                )))
+            }
+        }
+    }
+    unreachable!("the loop returns at the last segment")
+}
+
+/// What one run of the sweep reports.
+#[derive(Clone, Debug)]
+pub struct SweepRow {
+    pub value: f64,
+    pub outcome: Result<Summary, String>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Summary {
+    pub stop: &'static str,
+    pub t_end: f64,
+    pub energy_drift: f64,
+    pub steps: usize,
+    pub wall_s: f64,
+    /// Beam scenes: per probe (name, w_min, w_max, amplitude after the disk left or NaN).
+    pub probes: Vec<(String, f64, f64, f64)>,
+    /// With a disk: (rn_min, rn_max, left_track_t or NaN).
+    pub disk: Option<(f64, f64, f64)>,
+}
+
+fn summarise(r: &Run) -> Summary {
+    let mut probes = Vec::new();
+    let mut disk = None;
+    match r {
+        Run::Beam(b) => {
+            for (k, p) in b.setup.probes.iter().enumerate() {
+                let w = b.rows.iter().map(|row| row.probes[k].w);
+                let (lo, hi) = w.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                    (l.min(v), h.max(v))
+                });
+                let after = b.left_track_t.map_or(f64::NAN, |te| {
+                    let (l, h) = b
+                        .rows
+                        .iter()
+                        .filter(|row| row.t > te)
+                        .map(|row| row.probes[k].w)
+                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                            (l.min(v), h.max(v))
+                        });
+                    if h >= l {
+                        0.5 * (h - l)
+                    } else {
+                        f64::NAN
+                    }
+                });
+                probes.push((p.name.clone(), lo, hi, after));
+            }
+            let on: Vec<_> = b.rows.iter().filter_map(|row| row.disk).collect();
+            if !on.is_empty() {
+                let (lo, hi) = on
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), d| {
+                        (l.min(d.rn), h.max(d.rn))
+                    });
+                disk = Some((lo, hi, b.left_track_t.unwrap_or(f64::NAN)));
+            }
+        }
+        Run::Rolling(rr) => {
+            let (lo, hi) = rr
+                .rows
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), row| {
+                    (l.min(row.disk.rn), h.max(row.disk.rn))
+                });
+            disk = Some((lo, hi, f64::NAN));
+        }
+    }
+    Summary {
+        stop: r.stop().name(),
+        t_end: r.t_end(),
+        energy_drift: r.energy().max_rel_drift(),
+        steps: r.stats().steps,
+        wall_s: r.stats().wall_s,
+        probes,
+        disk,
+    }
+}
+
+/// Run the scene text at every value of the setting, on every core.
+pub fn run_sweep(
+    text: &str,
+    file: &str,
+    stem: &str,
+    setting: &Setting,
+    over: &Overrides,
+    show_progress: bool,
+) -> Result<Vec<SweepRow>, Error> {
+    // A key the scene cannot hold at either end of the range is the command's error, not
+    // every run's.
+    let check = |v: f64| set_key(text, &setting.key, v).and_then(|t| Scene::parse(&t, file, stem));
+    if let (Err(e), Err(_)) = (check(setting.from), check(setting.to)) {
+        return Err(Error::Input(format!("--set {}: {e}", setting.key)));
+    }
+    let values = setting.values();
+    let next = AtomicUsize::new(0);
+    let rows = Mutex::new(Vec::with_capacity(values.len()));
+    let bar = if show_progress
+        && std::io::IsTerminal::is_terminal(&std::io::stderr())
+        && std::env::var_os("CI").is_none()
+    {
+        let b =
+            ProgressBar::with_draw_target(Some(values.len() as u64), ProgressDrawTarget::stderr());
+        if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} runs {elapsed}") {
+            b.set_style(style);
+        }
+        b
+    } else {
+        ProgressBar::hidden()
+    };
+    let workers = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(values.len());
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                let Some(&value) = values.get(i) else { break };
+                let outcome = set_key(text, &setting.key, value)
+                    .and_then(|t| Scene::parse(&t, file, stem))
+                    .and_then(|scene| run::run(&scene, over, false))
+                    .map(|r| summarise(&r))
+                    .map_err(|e| e.to_string());
+                rows.lock()
+                    .expect("a worker panicked")
+                    .push(SweepRow { value, outcome });
+                bar.inc(1);
+            });
+        }
+    });
+    bar.finish_and_clear();
+    let mut rows = rows.into_inner().expect("a worker panicked");
+    rows.sort_by(|a, b| a.value.total_cmp(&b.value));
+    Ok(rows)
+}
+
+/// `sweep.csv` (one row per run) and `sweep.svg` (the probes' extreme deflections, or the
+/// disk's normal reaction on a rigid curve, against the parameter).
+pub fn write_sweep(rows: &[SweepRow], setting: &Setting, dir: &Path) -> Result<(), Error> {
+    std::fs::create_dir_all(dir).map_err(|e| crate::output::io_error(dir, e))?;
+    let probe_names: Vec<String> = rows
+        .iter()
+        .find_map(|r| r.outcome.as_ref().ok())
+        .map_or(Vec::new(), |s| {
+            s.probes.iter().map(|p| p.0.clone()).collect()
+        });
+    let mut csv = format!(
+        "{},status,stopped,t_end,energy_drift,steps,wall_s,disk.rn_min,disk.rn_max,disk.left_track_t",
+        setting.key
+    );
+    for p in &probe_names {
+        let _ = write!(csv, ",{p}.w_min,{p}.w_max,{p}.w_amplitude_after_exit");
+    }
+    csv.push('\n');
+    let cell = |v: f64| {
+        if v.is_nan() {
+            String::new()
+        } else {
+            format!("{v}")
+        }
+    };
+    for r in rows {
+        match &r.outcome {
+            Ok(s) => {
+                let (lo, hi, left) = s.disk.unwrap_or((f64::NAN, f64::NAN, f64::NAN));
+                let _ = write!(
+                    csv,
+                    "{},ok,{},{},{},{},{},{},{},{}",
+                    r.value,
+                    s.stop,
+                    s.t_end,
+                    s.energy_drift,
+                    s.steps,
+                    s.wall_s,
+                    cell(lo),
+                    cell(hi),
+                    cell(left)
+                );
+                for p in &s.probes {
+                    let _ = write!(csv, ",{},{},{}", p.1, p.2, cell(p.3));
+                }
+            }
+            Err(e) => {
+                let _ = write!(
+                    csv,
+                    "{},\"failed: {}\",,,,,,,,",
+                    r.value,
+                    e.replace('"', "'")
+                );
+                for _ in &probe_names {
+                    csv.push_str(",,,");
+                }
+            }
+        }
+        csv.push('\n');
+    }
+    write(&dir.join("sweep.csv"), &csv)?;
+    let ok: Vec<(f64, &Summary)> = rows
+        .iter()
+        .filter_map(|r| r.outcome.as_ref().ok().map(|s| (r.value, s)))
+        .collect();
+    let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for (k, p) in probe_names.iter().enumerate() {
+        series.push((
+            format!("{p}: lowest w"),
+            ok.iter().map(|(v, s)| (*v, s.probes[k].1)).collect(),
+        ));
+        series.push((
+            format!("{p}: amplitude after the disk left"),
+            ok.iter()
+                .filter(|(_, s)| s.probes[k].3.is_finite())
+                .map(|(v, s)| (*v, s.probes[k].3))
+                .collect(),
+        ));
+    }
+    let (y_desc, series) = if series.is_empty() {
+        (
+            "R_n (N)",
+            vec![
+                (
+                    "lowest R_n".to_string(),
+                    ok.iter()
+                        .filter_map(|(v, s)| s.disk.map(|d| (*v, d.0)))
+                        .collect(),
+                ),
+                (
+                    "highest R_n".to_string(),
+                    ok.iter()
+                        .filter_map(|(v, s)| s.disk.map(|d| (*v, d.1)))
+                        .collect(),
+                ),
+            ],
+        )
+    } else {
+        ("w (m)", series)
+    };
+    let series: Vec<(&str, Vec<(f64, f64)>)> = series
+        .iter()
+        .filter(|(_, pts)| !pts.is_empty())
+        .map(|(n, pts)| (n.as_str(), pts.clone()))
+        .collect();
+    if series.is_empty() {
+        return Ok(());
+    }
+    line_chart(
+        &dir.join("sweep.svg"),
+        &format!("sweep over {}", setting.key),
+        &setting.key,
+        y_desc,
+        &series,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Keys are found under their parents, added when missing, and refused when absent.
+    #[test]
+    fn set_key_walks_the_blocks() {
+        let text = "duration: 1.0\ntrack:\n  beam:\n    E: 1.0\n    G: 2.0\ndisk:\n  mass: 3.0\n";
+        let out = set_key(text, "track.beam.G", 5.0).unwrap();
+        assert!(out.contains("    G: 5e0\n") && out.contains("    E: 1.0\n"));
+        let out = set_key(text, "disk.omega0", -44.0).unwrap();
+        assert!(out.contains("disk:\n  omega0: -4.4e1\n  mass: 3.0"));
+        assert!(set_key(text, "solver.rtol", 1e-6).is_err());
+        assert_eq!(
+            Setting::parse("disk.omega0=-10:-120:111").unwrap().values()[110],
+            -120.0
+        );
+        assert!(Setting::parse("disk.omega0=-10:-120").is_err());
+    }
+}
