@@ -3,11 +3,14 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::analysis::moving_load::MovingForce;
+use crate::coupling::Coupling;
 use crate::error::Error;
 use crate::output::{self, io_error, plots};
 use crate::run::{self, Overrides, Run, RunResult};
 use crate::say;
 use crate::scene::Scene;
+use crate::sweep::{run_sweep, Setting};
 
 /// The scenes under `dir`, sorted by file name.
 pub fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, Error> {
@@ -67,6 +70,7 @@ pub fn run_all(studies: &Path, out: &Path, figures: &Path) -> Result<Vec<Run>, E
         })
         .collect();
     compare_parabola(&rolling, figures)?;
+    bridge_speed_sweep(studies, figures)?;
     Ok(results)
 }
 
@@ -128,5 +132,76 @@ fn compare_parabola(results: &[&RunResult], figures: &Path) -> Result<(), Error>
         "t (s)",
         "R_t (N)",
         &pick(|r| r.disk.rt),
+    )
+}
+
+/// Dynamic amplification of the bridge's midspan deflection (largest over the run, crossing
+/// and free vibration, over the static P L³/(48 EI)) against the disk's speed: D44's scene
+/// swept over Ω0 with the moving force and with the consistent coupling, beside Frýba's
+/// closed form for the moving force.
+fn bridge_speed_sweep(studies: &Path, figures: &Path) -> Result<(), Error> {
+    let file = studies.join("bridge-d44.yaml");
+    let Ok(text) = std::fs::read_to_string(&file) else {
+        return Ok(());
+    };
+    let scene = Scene::load(&file)?;
+    let Some(beam) = scene.beam() else {
+        return Ok(());
+    };
+    let Some(disk) = &beam.disk else {
+        return Ok(());
+    };
+    let section = &beam.beam.section;
+    let span = (beam.beam.to[0] - beam.beam.from[0]).hypot(beam.beam.to[1] - beam.beam.from[1]);
+    let radius = disk.disk.radius;
+    let fryba = |v: f64| MovingForce {
+        p: disk.disk.mass * disk.gravity,
+        span,
+        ei: section.ei,
+        mu: section.rho_a,
+        v,
+    };
+    let setting = Setting::parse("disk.omega0=-10:-120:23")?;
+    let mut series = Vec::new();
+    for coupling in [Coupling::MovingForce, Coupling::Consistent] {
+        let swept = text.replace(
+            &format!("coupling: {}", disk.coupling.name()),
+            &format!("coupling: {}", coupling.name()),
+        );
+        let rows = run_sweep(
+            &swept,
+            &file.display().to_string(),
+            "bridge-d44",
+            &setting,
+            &Overrides::default(),
+            true,
+        )?;
+        let points: Vec<(f64, f64)> = rows
+            .iter()
+            .filter_map(|r| {
+                let s = r.outcome.as_ref().ok()?;
+                let mid = s.probes.iter().find(|p| p.0 == "mid")?;
+                Some((-radius * r.value, -mid.1 / fryba(1.0).static_midspan()))
+            })
+            .collect();
+        series.push((format!("{} (rollbeam)", coupling.name()), points));
+    }
+    let closed: Vec<(f64, f64)> = (0..=110)
+        .map(|k| {
+            let v = 4.0 + 44.0 * k as f64 / 110.0;
+            (v, fryba(v).amplification(scene.duration, 2e-3))
+        })
+        .collect();
+    series.push(("moving force, Frýba's closed form".to_string(), closed));
+    let borrowed: Vec<(&str, Vec<(f64, f64)>)> = series
+        .iter()
+        .map(|(n, p)| (n.as_str(), p.clone()))
+        .collect();
+    plots::line_chart(
+        &figures.join("bridge-speed-sweep.svg"),
+        "bridge D44: dynamic amplification of the midspan deflection",
+        "speed v = −a Ω0 (m/s)",
+        "max |w_mid| / static",
+        &borrowed,
     )
 }

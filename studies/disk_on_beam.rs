@@ -6,6 +6,7 @@ mod common;
 use std::f64::consts::PI;
 
 use common::{load, log_slope, parse, run_beam, studies_dir};
+use rollbeam::analysis::moving_load::MovingForce;
 use rollbeam::coupling::Coupling;
 use rollbeam::ode::Method;
 use rollbeam::run::beam::BeamRun;
@@ -55,33 +56,9 @@ fn residual(r: &BeamRun, name: &str) -> f64 {
     0.5 * (hi - lo)
 }
 
-/// Frýba (Vibration of Solids and Structures under Moving Loads, 3rd ed., 1999, §1.3, eq.
-/// 1.25 undamped): a force P moving at v over a simply supported Euler–Bernoulli beam from
-/// rest excites each mode j as q_j'' + ω_j² q_j = (2P/(μL)) sin(jπvt/L) while it is on the beam;
-/// after it leaves, each mode vibrates freely. Midspan deflection (positive down).
-fn fryba_midspan(p: f64, l: f64, ei: f64, mu: f64, v: f64, t: f64) -> f64 {
-    let exit = l / v;
-    (1..=301)
-        .map(|j| {
-            let j = j as f64;
-            let wj = (j * PI / l).powi(2) * (ei / mu).sqrt();
-            let om = j * PI * v / l;
-            let amp = 2.0 * p / (mu * l) / (wj * wj - om * om);
-            let q = |t: f64| amp * ((om * t).sin() - om / wj * (wj * t).sin());
-            let qd = |t: f64| amp * om * ((om * t).cos() - (wj * t).cos());
-            let qj = if t <= exit {
-                q(t)
-            } else {
-                let d = t - exit;
-                q(exit) * (wj * d).cos() + qd(exit) / wj * (wj * d).sin()
-            };
-            qj * (j * PI / 2.0).sin()
-        })
-        .sum()
-}
-
 /// The moving force on the bridge with shear made stiff (G × 10⁴, the Euler–Bernoulli limit)
-/// against Frýba's modal series, during the crossing and after it. Tolerance 0.5 % of the
+/// against Frýba's modal series (Vibration of Solids and Structures under Moving Loads, 3rd
+/// ed., 1999, §1.3, eq. 1.25; `analysis::moving_load`), during the crossing and after it. Tolerance 0.5 % of the
 /// peak: rotary inertia (ρI/(ρA L²) = 6·10⁻⁵) and the contact patch spreading the force over
 /// ±5 cm move the response by far less; the integration error at rtol 10⁻⁶ is below 10⁻⁴.
 #[test]
@@ -99,22 +76,23 @@ fn moving_force_matches_frybas_series() {
     );
     let r = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-10);
     let k = probe(&r, "mid");
-    let (p, l, ei, mu, v) = (
-        1500.0 * 9.81,
-        20.0,
-        210.0e9 * 43190.0e-8,
-        7850.0 * 181.0e-4,
-        17.6,
-    );
+    let fryba = MovingForce {
+        p: 1500.0 * 9.81,
+        span: 20.0,
+        ei: 210.0e9 * 43190.0e-8,
+        mu: 7850.0 * 181.0e-4,
+        v: 17.6,
+    };
+    let midspan = |t: f64| fryba.deflection(10.0, t, 301);
     let peak = r
         .rows
         .iter()
-        .map(|row| fryba_midspan(p, l, ei, mu, v, row.t).abs())
+        .map(|row| midspan(row.t).abs())
         .fold(0.0, f64::max);
     let worst = r
         .rows
         .iter()
-        .map(|row| (row.probes[k].w + fryba_midspan(p, l, ei, mu, v, row.t)).abs())
+        .map(|row| (row.probes[k].w + midspan(row.t)).abs())
         .fold(0.0, f64::max);
     assert!(
         worst <= 5e-3 * peak,
