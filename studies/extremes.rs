@@ -149,3 +149,50 @@ fn thin_and_thick_beams_at_every_degree() {
         }
     }
 }
+
+/// A long run: the disk of P1 rocking in the parabola for 3770 s, about 1000 oscillations.
+/// Dormand–Prince is not symmetric: its energy error grows secularly, in proportion to time
+/// (the drift over the whole run is about twice that over its first half), and stays below
+/// 10⁻⁶ of the energy at rtol 10⁻¹⁰. TR-BDF2 is L-stable and dissipative: at rtol 10⁻⁶ it
+/// loses energy steadily, a few per cent over the run, and never gains any.
+#[test]
+fn a_thousand_oscillations() {
+    let text = std::fs::read_to_string(studies_dir().join("parabola-p1.yaml"))
+        .expect("study")
+        .replace("duration: 5.0", "duration: 3770.0")
+        .replace("interval: 0.01", "interval: 0.5");
+    let scene = parse(&text);
+    let drift_until = |r: &rollbeam::run::RunResult, t_end: f64| {
+        let e0 = r.rows[0].disk.kinetic + r.rows[0].disk.potential;
+        let scale = r
+            .rows
+            .iter()
+            .map(|row| row.disk.kinetic.abs() + row.disk.potential.abs())
+            .fold(0.0, f64::max);
+        r.rows
+            .iter()
+            .filter(|row| row.t <= t_end)
+            .map(|row| (row.disk.kinetic + row.disk.potential - e0).abs())
+            .fold(0.0, f64::max)
+            / scale
+    };
+    let dp = run_with(&scene, Method::Dopri5, 1e-10, 1e-12);
+    let (half, whole) = (drift_until(&dp, 1885.0), drift_until(&dp, 3770.0));
+    assert!(whole <= 1e-6, "dopri5 drift {whole:.2e}");
+    assert!(
+        (1.5..2.5).contains(&(whole / half)),
+        "dopri5 drift {half:.2e} at half time, {whole:.2e} at the end"
+    );
+    let tr = run_with(&scene, Method::TrBdf2, 1e-6, 1e-12);
+    let totals: Vec<f64> = tr
+        .rows
+        .iter()
+        .map(|row| row.disk.kinetic + row.disk.potential)
+        .collect();
+    let loss = (totals[0] - totals[totals.len() - 1]) / totals[0].abs();
+    assert!(
+        totals.iter().all(|e| *e <= totals[0] * (1.0 + 1e-6)),
+        "trbdf2 gained energy"
+    );
+    assert!(loss > 0.0 && loss < 0.05, "trbdf2 lost {loss:.3e}");
+}
