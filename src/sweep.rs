@@ -164,21 +164,7 @@ fn summarise(r: &Run) -> Summary {
                 let (lo, hi) = w.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
                     (l.min(v), h.max(v))
                 });
-                let after = b.left_track_t.map_or(f64::NAN, |te| {
-                    let (l, h) = b
-                        .rows
-                        .iter()
-                        .filter(|row| row.t > te)
-                        .map(|row| row.probes[k].w)
-                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
-                            (l.min(v), h.max(v))
-                        });
-                    if h >= l {
-                        0.5 * (h - l)
-                    } else {
-                        f64::NAN
-                    }
-                });
+                let after = b.amplitude_after_exit(k).unwrap_or(f64::NAN);
                 probes.push((p.name.clone(), lo, hi, after));
             }
             let on: Vec<_> = b.rows.iter().filter_map(|row| row.disk).collect();

@@ -92,6 +92,8 @@ pub struct Beam {
     pub angle: f64,
     basis: Lagrange,
     stiff: Tabulated,
+    /// Integrates a contact-patch kernel (degree 8) times a shape function (degree p) exactly.
+    patch_rule: quadrature::Rule,
     h: f64,
     /// Equation number of each global unknown (3 per node), `None` where a support holds it.
     eq: Vec<Option<usize>>,
@@ -108,6 +110,7 @@ impl Beam {
         let basis = Lagrange::new(spec.order);
         let h = length / spec.elements as f64;
         let stiff = Tabulated::new(&basis, &spec.quadrature.rule(spec.order), h);
+        let patch_rule = quadrature::gauss((spec.order + 10) / 2);
         let nodes = spec.elements * spec.order + 1;
         let mut held = vec![false; 3 * nodes];
         for (end, support) in spec.supports.iter().enumerate() {
@@ -132,6 +135,7 @@ impl Beam {
             angle,
             basis,
             stiff,
+            patch_rule,
             h,
             eq,
             n_free: next,
@@ -282,8 +286,7 @@ impl Beam {
         let p = self.spec.order;
         let first = e_lo * p;
         let mut weights = vec![[0.0; 4]; (e_hi - e_lo) * p + p + 1];
-        // Kernel (degree 8) times shape function (degree p): exact with (p + 10) / 2 points.
-        let rule = quadrature::gauss((p + 10) / 2);
+        let rule = &self.patch_rule;
         let mut n = vec![0.0; p + 1];
         let mut dn = vec![0.0; p + 1];
         let c = 315.0 / 256.0;

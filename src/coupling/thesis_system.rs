@@ -17,21 +17,6 @@ use crate::ode::{EventSpec, Problem};
 
 use super::DiskOnBeam;
 
-const EVENTS: [EventSpec; 3] = [
-    EventSpec {
-        name: "left-track",
-        terminal: true,
-    },
-    EventSpec {
-        name: "left-track",
-        terminal: true,
-    },
-    EventSpec {
-        name: "contact-lost",
-        terminal: true,
-    },
-];
-
 pub struct ThesisSystem<'a> {
     pub coupled: &'a DiskOnBeam<'a>,
 }
@@ -150,7 +135,8 @@ impl Problem for ThesisSystem<'_> {
     }
 
     fn events(&self) -> &[EventSpec] {
-        &EVENTS
+        // Off either end, and contact lost: the rolling couplings' first three.
+        &super::EVENTS[..3]
     }
 
     fn event(&self, index: usize, t: f64, y: &[f64]) -> f64 {

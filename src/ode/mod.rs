@@ -441,34 +441,13 @@ pub fn solve(
         let t_new = if last { target } else { t + h_try };
 
         // Earliest sign change from ≥ 0 to < 0 in this step, located on the dense output.
-        let mut first: Option<(usize, f64)> = None;
-        let mut g_new = vec![0.0; specs.len()];
-        for i in 0..specs.len() {
-            g_new[i] = p.event(i, t_new, stepper.y_new());
-            if g[i] >= 0.0 && g_new[i] < 0.0 {
-                let te = locate(
-                    |tt| {
-                        stepper.interpolate(tt, &mut y_tmp);
-                        p.event(i, tt, &y_tmp)
-                    },
-                    t,
-                    g[i],
-                    t_new,
-                    g_new[i],
-                );
-                if specs[i].terminal {
-                    if first.is_none_or(|(_, tf)| te < tf) {
-                        first = Some((i, te));
-                    }
-                } else {
-                    events.push(EventHit {
-                        index: i,
-                        name: specs[i].name,
-                        t: te,
-                    });
-                }
-            }
-        }
+        let g_new: Vec<f64> = (0..specs.len())
+            .map(|i| p.event(i, t_new, stepper.y_new()))
+            .collect();
+        let first = crossings(specs, &g, &g_new, t, t_new, &mut events, |i, tt| {
+            stepper.interpolate(tt, &mut y_tmp);
+            p.event(i, tt, &y_tmp)
+        });
         let t_stop = first.map_or(t_new, |(_, te)| te);
         while next_out < outputs.len() && outputs[next_out] <= t_stop {
             stepper.interpolate(outputs[next_out], &mut y_tmp);
@@ -511,14 +490,41 @@ pub(crate) fn breakpoints_within(mut breaks: Vec<f64>, t0: f64, t_end: f64) -> V
     breaks
 }
 
+/// The events of one step [t0, t1] whose g passes from ≥ 0 (g0) to < 0 (g1), each located on
+/// `g_at(index, t)`: non-terminal ones are recorded in `events`, and the earliest terminal one
+/// is returned.
+pub(crate) fn crossings(
+    specs: &[EventSpec],
+    g0: &[f64],
+    g1: &[f64],
+    t0: f64,
+    t1: f64,
+    events: &mut Vec<EventHit>,
+    mut g_at: impl FnMut(usize, f64) -> f64,
+) -> Option<(usize, f64)> {
+    let mut first: Option<(usize, f64)> = None;
+    for i in 0..specs.len() {
+        if !(g0[i] >= 0.0 && g1[i] < 0.0) {
+            continue;
+        }
+        let te = locate(|tt| g_at(i, tt), t0, g0[i], t1, g1[i]);
+        if specs[i].terminal {
+            if first.is_none_or(|(_, tf)| te < tf) {
+                first = Some((i, te));
+            }
+        } else {
+            events.push(EventHit {
+                index: i,
+                name: specs[i].name,
+                t: te,
+            });
+        }
+    }
+    first
+}
+
 /// Illinois (modified regula falsi) on g over [a, b] with g(a) ≥ 0 > g(b).
-pub(crate) fn locate(
-    mut g: impl FnMut(f64) -> f64,
-    mut a: f64,
-    mut ga: f64,
-    mut b: f64,
-    mut gb: f64,
-) -> f64 {
+fn locate(mut g: impl FnMut(f64) -> f64, mut a: f64, mut ga: f64, mut b: f64, mut gb: f64) -> f64 {
     if ga == 0.0 {
         return a;
     }

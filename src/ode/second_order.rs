@@ -8,7 +8,7 @@ use std::borrow::Cow;
 use std::ops::Range;
 use std::time::Instant;
 
-use super::{locate, EventHit, EventSpec, Observer, Options, Outcome, Problem, SolveError, Stats};
+use super::{EventHit, EventSpec, Observer, Options, Outcome, Problem, SolveError, Stats};
 use crate::linalg::{self, Assembly, Combination, Sparse, SparseLu};
 
 pub trait SecondOrderProblem {
@@ -184,11 +184,12 @@ impl Ga<'_> {
     fn factor(&mut self, t: f64, q: &[f64], h: f64) -> Result<(), SolveError> {
         let constant = self.p.mass_is_constant();
         let key = self.p.iteration_key(t, q);
-        if key == self.key && matches!(self.iteration, Some((hh, _)) if hh == h) {
+        let fresh_k_due = self.k.is_none();
+        if !fresh_k_due && key == self.key && matches!(self.iteration, Some((hh, _)) if hh == h) {
             return Ok(());
         }
         self.key = key;
-        if self.k.is_none() {
+        if fresh_k_due {
             self.k = Some(self.p.stiffness(t, q));
             self.stats.jacobians += 1;
             self.k_fresh = true;
@@ -421,9 +422,8 @@ pub fn solve_genalpha(
         let h_try = if last { target - s.t } else { h };
         let Some((mut s1, err)) = ga.step(&s, h_try)? else {
             if !ga.k_fresh {
+                // A fresh tangent; the factorisation keeps its symbolic analysis.
                 ga.k = None;
-                ga.iteration = None;
-                ga.combination = None;
                 continue;
             }
             if opts.fixed_step.is_some() {
@@ -460,34 +460,13 @@ pub fn solve_genalpha(
         ga.k_fresh = false;
 
         // Earliest terminal sign change in this step, located on the Hermite interpolant.
-        let mut first: Option<(usize, f64)> = None;
-        let mut g_new = vec![0.0; specs.len()];
-        for i in 0..specs.len() {
-            g_new[i] = p.event(i, s1.t, &s1.q, &s1.v);
-            if g[i] >= 0.0 && g_new[i] < 0.0 {
-                let te = locate(
-                    |tt| {
-                        interpolate(&s, &s1, tt, &mut y);
-                        p.event(i, tt, &y[..n], &y[n..])
-                    },
-                    s.t,
-                    g[i],
-                    s1.t,
-                    g_new[i],
-                );
-                if specs[i].terminal {
-                    if first.is_none_or(|(_, tf)| te < tf) {
-                        first = Some((i, te));
-                    }
-                } else {
-                    events.push(EventHit {
-                        index: i,
-                        name: specs[i].name,
-                        t: te,
-                    });
-                }
-            }
-        }
+        let g_new: Vec<f64> = (0..specs.len())
+            .map(|i| p.event(i, s1.t, &s1.q, &s1.v))
+            .collect();
+        let first = super::crossings(specs, &g, &g_new, s.t, s1.t, &mut events, |i, tt| {
+            interpolate(&s, &s1, tt, &mut y);
+            p.event(i, tt, &y[..n], &y[n..])
+        });
         let t_stop = first.map_or(s1.t, |(_, te)| te);
         while next_out < outputs.len() && outputs[next_out] <= t_stop {
             interpolate(&s, &s1, outputs[next_out], &mut y);

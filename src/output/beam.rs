@@ -193,20 +193,9 @@ fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
     };
     let (u_min, u_max) = fold(|d| d.u);
     let (phi_min, phi_max) = fold(|d| d.phi);
-    let w_amplitude_after_exit = r.left_track_t.map(|te| {
-        let (lo, hi) = rows
-            .iter()
-            .filter(|row| row.t > te)
-            .map(|row| row.probes[k].w)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                (lo.min(v), hi.max(v))
-            });
-        if hi >= lo {
-            0.5 * (hi - lo)
-        } else {
-            0.0
-        }
-    });
+    let w_amplitude_after_exit = r
+        .left_track_t
+        .map(|_| r.amplitude_after_exit(k).unwrap_or(0.0));
     ProbeSummary {
         x: r.setup.probes[k].x,
         w_min,

@@ -91,6 +91,23 @@ pub struct BeamRun {
     pub energy: EnergyCheck,
 }
 
+impl BeamRun {
+    /// Half the range of w at probe k after the disk left the beam: the residual vibration.
+    /// `None` without an exit, or with no output row after it.
+    pub fn amplitude_after_exit(&self, k: usize) -> Option<f64> {
+        let te = self.left_track_t?;
+        let (lo, hi) = self
+            .rows
+            .iter()
+            .filter(|row| row.t > te)
+            .map(|row| row.probes[k].w)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            });
+        (hi >= lo).then(|| 0.5 * (hi - lo))
+    }
+}
+
 /// Work of constant point loads, exact: within a step the active set is fixed, so each load
 /// adds P·Δd (and M_z Δφ) at its point.
 struct Work {

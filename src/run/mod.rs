@@ -183,31 +183,23 @@ impl Run {
     }
 
     /// The SVG figures the run writes (file stems).
-    pub fn figures(&self) -> &'static [&'static str] {
+    pub fn figures(&self) -> Vec<&'static str> {
+        const BEAM: [&str; 7] = [
+            "probes",
+            "shapes",
+            "envelope-u",
+            "envelope-w",
+            "envelope-phi",
+            "energy",
+            "reactions",
+        ];
+        const DISK_ON_BEAM: [&str; 4] = ["disk-velocity", "disk-omega", "disk-forces", "animation"];
         match self {
-            Run::Rolling(_) => &["track", "velocities", "omega", "reactions", "energy"],
-            Run::Beam(b) if b.setup.disk.is_some() => &[
-                "probes",
-                "shapes",
-                "envelope-u",
-                "envelope-w",
-                "envelope-phi",
-                "energy",
-                "reactions",
-                "disk-velocity",
-                "disk-omega",
-                "disk-forces",
-                "animation",
-            ],
-            Run::Beam(_) => &[
-                "probes",
-                "shapes",
-                "envelope-u",
-                "envelope-w",
-                "envelope-phi",
-                "energy",
-                "reactions",
-            ],
+            Run::Rolling(_) => vec!["track", "velocities", "omega", "reactions", "energy"],
+            Run::Beam(b) if b.setup.disk.is_some() => {
+                BEAM.iter().chain(&DISK_ON_BEAM).copied().collect()
+            }
+            Run::Beam(_) => BEAM.to_vec(),
         }
     }
 
