@@ -532,3 +532,31 @@ fn sweep_matches_single_runs() {
         amplitude(1)
     );
 }
+
+/// `rollbeam static` with a disk on the beam loads it with the disk's weight at s0: at
+/// midspan of the bridge the deflection is the Timoshenko closed form
+/// P L³/(48 EI) + P L/(4 G Av), to 10⁻⁴ (the geometrically exact answer differs by
+/// about (w/L)² and the axial shortening; 8·10⁻⁶ is measured).
+#[test]
+fn static_deflection_under_the_disk_weight() {
+    let scene = variant("bridge-d44.yaml", &[("s0: 0.0", "s0: 10.0")]);
+    let setup = scene.beam().expect("a beam scene");
+    let dir = std::env::temp_dir().join(format!("rollbeam-static-{}", std::process::id()));
+    rollbeam::analysis::report::statics(&scene, setup, &dir).expect("static solution");
+    let text = std::fs::read_to_string(dir.join("static.yaml")).expect("static.yaml");
+    let mid = &text[text.find("mid:").expect("mid probe")..];
+    let w: f64 = mid
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("w: "))
+        .expect("w")
+        .parse()
+        .expect("a number");
+    let (p, l, ei, gav) = (
+        1500.0 * 9.81,
+        20.0_f64,
+        210.0e9 * 43190.0e-8,
+        81.0e9 * 46.8e-4,
+    );
+    let exact = -(p * l.powi(3) / (48.0 * ei) + p * l / (4.0 * gav));
+    assert!((w / exact - 1.0).abs() < 1e-4, "w = {w} against {exact}");
+}

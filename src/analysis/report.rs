@@ -39,7 +39,8 @@ struct StaticFile {
     load_steps: usize,
 }
 
-/// Static equilibrium under the loads active at t = 0.
+/// Static equilibrium under the loads active at t = 0 and, with a disk, its weight at s0 (a
+/// point force: the static answer does not depend on how the disk rolls).
 pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, Error> {
     if !statically_supported(setup.beam.supports) {
         return Err(Error::Input(format!(
@@ -56,6 +57,12 @@ pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, E
         .iter()
         .filter(|l| l.active(0.0))
         .map(|l| (l.x, l.force, l.mz))
+        .chain(
+            setup
+                .disk
+                .iter()
+                .map(|d| (d.s0, [0.0, -d.disk.mass * d.gravity], 0.0)),
+        )
         .collect();
     for &(x, force, mz) in &active {
         beam.add_point_load(x, force, mz, &mut f);
