@@ -361,7 +361,7 @@ impl Scene {
                     Ok,
                 )?;
                 if solver.method == Method::GenAlpha && !beam_default {
-                    return c.err(m.referenced.line(), "solver.method", "genalpha integrates structural (beam) scenes; use dopri5 or trbdf2 for a rigid curve");
+                    return c.err(m.referenced.line(), "solver.method", "genalpha integrates structural (beam) scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve");
                 }
             }
             if let Some(r) = &s.rtol {

@@ -100,6 +100,13 @@ impl Problem for FirstOrder<'_> {
         let n = self.inner.dim();
         self.inner.event(index, t, &y[..n], &y[n..])
     }
+    /// The structure's groups, once for the displacements and once for the velocities.
+    fn norm_groups(&self) -> Option<Vec<Range<usize>>> {
+        let n = self.inner.dim();
+        let q = self.inner.norm_groups();
+        let v = q.iter().map(|g| g.start + n..g.end + n);
+        Some(q.iter().cloned().chain(v).collect())
+    }
 }
 
 /// Chung–Hulbert parameters for a given ρ∞ ∈ [0, 1].

@@ -376,7 +376,7 @@ fn integrate(
 ) -> Result<ode::Outcome, ode::SolveError> {
     match opts.method {
         Method::GenAlpha => solve_genalpha(p, rho_inf, t0, q0, v0, t_end, outputs, opts, rec),
-        Method::Dopri5 | Method::TrBdf2 => {
+        Method::Dopri5 | Method::TrBdf2 | Method::Esdirk4 => {
             let first = FirstOrder::new(p);
             let y0: Vec<f64> = q0.iter().chain(v0).copied().collect();
             ode::solve(&first, t0, &y0, t_end, outputs, opts, rec)
