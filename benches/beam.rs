@@ -37,6 +37,7 @@ fn per_step(c: &mut Criterion) {
             rtol: Some(1e-6),
             atol: Some(1e-9),
             fixed_step: Some(h),
+            ..Default::default()
         };
         group.bench_with_input(
             BenchmarkId::from_parameter(12 * elements),
@@ -55,6 +56,7 @@ fn per_step(c: &mut Criterion) {
             rtol: Some(1e-6),
             atol: Some(1e-9),
             fixed_step: Some(1e-5),
+            ..Default::default()
         };
         group.bench_function(method.name(), |b| {
             b.iter(|| run(&scene, &over, false).expect("runs"))

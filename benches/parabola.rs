@@ -19,6 +19,7 @@ fn p1(c: &mut Criterion) {
                 rtol: Some(rtol),
                 atol: Some(rtol * 1e-2),
                 fixed_step: None,
+                ..Default::default()
             };
             group.bench_function(format!("{}-rtol{rtol:e}", method.name()), |b| {
                 b.iter(|| run(&scene, &over, false).expect("P1 runs"))

@@ -10,7 +10,7 @@ use rollbeam::error::Error;
 use rollbeam::ode::Method;
 use rollbeam::run::{self, Overrides, Run};
 use rollbeam::scene::{method_names, BeamScene, Model, Scene};
-use rollbeam::{output, say, studies, sweep};
+use rollbeam::{output, say, studies, sweep, tradeoff};
 
 #[derive(Parser)]
 #[command(
@@ -74,6 +74,27 @@ enum Command {
         rtol: Option<f64>,
         #[arg(long, allow_negative_numbers = true)]
         atol: Option<f64>,
+    },
+    /// Work–precision of a scene: every method over a range of tolerances (and meshes, on a
+    /// beam) against a converged reference; writes tradeoff.csv, tradeoff.svg and
+    /// tradeoff.txt, and names the cheapest settings for 1e-2, 1e-4 and 1e-6.
+    Tradeoff {
+        scene: PathBuf,
+        /// Output folder (default out/<scene name>-tradeoff).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Methods to try, comma-separated (default: every one that fits the scene).
+        #[arg(long, value_delimiter = ',')]
+        methods: Vec<String>,
+        /// Relative tolerances to try, comma-separated (default 1e-2 to 1e-8, or 1e-6 on a beam).
+        #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+        rtols: Vec<f64>,
+        /// Element counts to try on a beam, comma-separated (default: the scene's and half of it).
+        #[arg(long, value_delimiter = ',')]
+        elements: Vec<usize>,
+        /// Steps a run may take before it gives up (default 20000 on a beam, 200000 on a curve).
+        #[arg(long)]
+        max_steps: Option<usize>,
     },
     /// Rerun every scene under studies/ and regenerate the report's figures.
     Studies {
@@ -145,23 +166,13 @@ fn dispatch(command: Command) -> Result<(), Error> {
                     "--animate draws a beam scene; a rigid curve's positions are drawn in track.svg".into(),
                 ));
             }
-            let method = match method {
-                None => None,
-                Some(m) => Some(Method::from_name(&m).ok_or_else(|| {
-                    Error::Input(format!(
-                        "--method '{m}' is unknown; use one of {}",
-                        method_names()
-                    ))
-                })?),
-            };
-            if method == Some(Method::GenAlpha) && scene.beam().is_none() {
-                return Err(Error::Input("--method genalpha integrates beam scenes; use dopri5 or trbdf2 for a rigid curve".into()));
-            }
+            let method = method.map(|m| parse_method(&m, &scene)).transpose()?;
             let over = Overrides {
                 method,
                 rtol: positive(rtol, "--rtol")?,
                 atol: positive(atol, "--atol")?,
                 fixed_step: None,
+                ..Default::default()
             };
             let result = run::run(&scene, &over, true)?;
             let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
@@ -324,20 +335,13 @@ fn dispatch(command: Command) -> Result<(), Error> {
         } => {
             let scene = Scene::load(&path)?;
             let setting = sweep::Setting::parse(&set)?;
-            let method = match method {
-                None => None,
-                Some(m) => Some(Method::from_name(&m).ok_or_else(|| {
-                    Error::Input(format!(
-                        "--method '{m}' is unknown; use one of {}",
-                        method_names()
-                    ))
-                })?),
-            };
+            let method = method.map(|m| parse_method(&m, &scene)).transpose()?;
             let over = Overrides {
                 method,
                 rtol: positive(rtol, "--rtol")?,
                 atol: positive(atol, "--atol")?,
                 fixed_step: None,
+                ..Default::default()
             };
             let text = std::fs::read_to_string(&path).map_err(|e| {
                 Error::Input(format!("cannot read scene file {}: {e}", path.display()))
@@ -368,6 +372,58 @@ fn dispatch(command: Command) -> Result<(), Error> {
             );
             Ok(())
         }
+        Command::Tradeoff {
+            scene: path,
+            out,
+            methods,
+            rtols,
+            elements,
+            max_steps,
+        } => {
+            let scene = Scene::load(&path)?;
+            let mut plan = tradeoff::Plan::default_for(&scene);
+            if !methods.is_empty() {
+                plan.methods = methods
+                    .iter()
+                    .map(|m| parse_method(m, &scene))
+                    .collect::<Result<_, _>>()?;
+            }
+            if !rtols.is_empty() {
+                for &r in &rtols {
+                    positive(Some(r), "--rtols")?;
+                }
+                plan.rtols = rtols;
+            }
+            if !elements.is_empty() {
+                if scene.beam().is_none() {
+                    return Err(Error::Input(
+                        "--elements meshes a beam; this scene has a rigid curve".into(),
+                    ));
+                }
+                if let Some(&bad) = elements.iter().find(|&&n| n == 0 || n > 1000) {
+                    return Err(Error::Input(format!(
+                        "--elements {bad}: an element count is from 1 to 1000"
+                    )));
+                }
+                plan.meshes = elements;
+            }
+            if let Some(m) = max_steps {
+                if m == 0 {
+                    return Err(Error::Input("--max-steps must be at least 1".into()));
+                }
+                plan.max_steps = m;
+            }
+            say!("{}: computing the reference…", scene.name);
+            let reference = tradeoff::reference(&scene, &plan)?;
+            let trials = tradeoff::trials(&scene, &plan, &reference, true);
+            let dir =
+                out.unwrap_or_else(|| Path::new("out").join(format!("{}-tradeoff", scene.name)));
+            for line in tradeoff::write_tradeoff(&scene, &reference, &trials, &dir)? {
+                say!("  {line}");
+            }
+            say!("  wrote {}", dir.display());
+            Ok(())
+        }
         Command::Studies { out } => {
             let root = Path::new(env!("CARGO_MANIFEST_DIR"));
             let here = if Path::new("studies").is_dir() {
@@ -384,6 +440,20 @@ fn dispatch(command: Command) -> Result<(), Error> {
             Ok(())
         }
     }
+}
+
+/// A method named on the command line that can integrate this scene.
+fn parse_method(name: &str, scene: &Scene) -> Result<Method, Error> {
+    let m = Method::from_name(name).ok_or_else(|| {
+        Error::Input(format!(
+            "--method '{name}' is unknown; use one of {}",
+            method_names()
+        ))
+    })?;
+    if m == Method::GenAlpha && scene.beam().is_none() {
+        return Err(Error::Input("--method genalpha integrates beam scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve".into()));
+    }
+    Ok(m)
 }
 
 fn beam_only<'a>(scene: &'a Scene, path: &Path, command: &str) -> Result<&'a BeamScene, Error> {

@@ -4,18 +4,13 @@
 //! the same sentence a scene file would get. One summary row per run; a run that fails is a
 //! row with its reason.
 
-use std::fmt::Write as _;
-use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
-
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-
 use crate::error::Error;
 use crate::output::plots::line_chart;
 use crate::output::write;
 use crate::run::{self, Overrides, Run};
 use crate::scene::Scene;
+use std::fmt::Write as _;
+use std::path::Path;
 
 /// KEY=FROM:TO:COUNT.
 #[derive(Clone, Debug, PartialEq)]
@@ -214,43 +209,18 @@ pub fn run_sweep(
         return Err(Error::Input(format!("--set {}: {e}", setting.key)));
     }
     let values = setting.values();
-    let next = AtomicUsize::new(0);
-    let rows = Mutex::new(Vec::with_capacity(values.len()));
-    let bar = if show_progress
-        && std::io::IsTerminal::is_terminal(&std::io::stderr())
-        && std::env::var_os("CI").is_none()
-    {
-        let b =
-            ProgressBar::with_draw_target(Some(values.len() as u64), ProgressDrawTarget::stderr());
-        if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} runs {elapsed}") {
-            b.set_style(style);
-        }
-        b
-    } else {
-        ProgressBar::hidden()
-    };
-    let workers = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(values.len());
-    std::thread::scope(|scope| {
-        for _ in 0..workers {
-            scope.spawn(|| loop {
-                let i = next.fetch_add(1, Ordering::Relaxed);
-                let Some(&value) = values.get(i) else { break };
-                let outcome = set_key(text, &setting.key, value)
-                    .and_then(|t| Scene::parse(&t, file, stem))
-                    .and_then(|scene| run::run(&scene, over, false))
-                    .map(|r| summarise(&r))
-                    .map_err(|e| e.to_string());
-                rows.lock()
-                    .expect("a worker panicked")
-                    .push(SweepRow { value, outcome });
-                bar.inc(1);
-            });
-        }
+    let outcomes = crate::parallel::map(&values, show_progress, |&value| {
+        set_key(text, &setting.key, value)
+            .and_then(|t| Scene::parse(&t, file, stem))
+            .and_then(|scene| run::run(&scene, over, false))
+            .map(|r| summarise(&r))
+            .map_err(|e| e.to_string())
     });
-    bar.finish_and_clear();
-    let mut rows = rows.into_inner().expect("a worker panicked");
+    let mut rows: Vec<SweepRow> = values
+        .into_iter()
+        .zip(outcomes)
+        .map(|(value, outcome)| SweepRow { value, outcome })
+        .collect();
     rows.sort_by(|a, b| a.value.total_cmp(&b.value));
     Ok(rows)
 }

@@ -477,3 +477,38 @@ fn sweep_ranges_and_keys() {
     assert!(rows[0].contains("failed") && rows[0].contains("must be positive"));
     assert!(rows[1].contains("failed") && rows[2].contains(",ok,"));
 }
+
+/// `tradeoff`: settings a scene cannot take are one sentence and exit 1, before any run; a
+/// good one writes its table, figure and the cheapest settings.
+#[test]
+fn tradeoff_settings() {
+    let path = scene_path("tradeoff", &format!("duration: 0.5\n{PARABOLA}{GOOD_DISK}"));
+    let p = path.to_str().expect("utf-8 path");
+    let out = format!("{p}.tradeoff");
+    for (args, needles) in [
+        (
+            vec!["--methods", "genalpha"],
+            vec!["genalpha", "rigid curve"],
+        ),
+        (vec!["--methods", "euler"], vec!["'euler' is unknown"]),
+        (vec!["--rtols", "1e-3,-1"], vec!["--rtols", "positive"]),
+        (vec!["--elements", "4"], vec!["--elements", "rigid curve"]),
+        (vec!["--max-steps", "0"], vec!["--max-steps", "at least 1"]),
+    ] {
+        let mut all = vec!["tradeoff", p, "--out", &out];
+        all.extend(&args);
+        let (code, err) = rollbeam(&all);
+        assert_eq!(code, 1, "{args:?}: exit {code}, {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        for n in needles {
+            assert!(err.contains(n), "{args:?}: '{n}' missing from {err}");
+        }
+    }
+    let (code, err) = rollbeam(&["tradeoff", p, "--out", &out, "--rtols", "1e-3,1e-5"]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(format!("{out}/tradeoff.csv")).expect("tradeoff.csv");
+    assert_eq!(csv.lines().count(), 1 + 3 * 2);
+    assert!(std::path::Path::new(&format!("{out}/tradeoff.svg")).exists());
+    let txt = std::fs::read_to_string(format!("{out}/tradeoff.txt")).expect("tradeoff.txt");
+    assert!(txt.contains("reference: dopri5") && txt.contains("1e-2:"));
+}

@@ -86,6 +86,8 @@ pub struct Overrides {
     pub atol: Option<f64>,
     /// Fixed step size (no error control), for convergence studies.
     pub fixed_step: Option<f64>,
+    /// Give up after this many steps (a budget, for `tradeoff`).
+    pub max_steps: Option<usize>,
 }
 
 impl Overrides {
@@ -96,7 +98,9 @@ impl Overrides {
             rtol: self.rtol.unwrap_or(scene.solver.rtol),
             atol: self.atol.unwrap_or(scene.solver.atol),
             fixed_step: self.fixed_step,
-            ..Default::default()
+            max_steps: self
+                .max_steps
+                .unwrap_or(crate::ode::Options::default().max_steps),
         }
     }
 }

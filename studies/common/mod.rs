@@ -27,6 +27,7 @@ pub fn run_with(scene: &Scene, method: Method, rtol: f64, atol: f64) -> RunResul
         rtol: Some(rtol),
         atol: Some(atol),
         fixed_step: None,
+        ..Default::default()
     };
     run::run(scene, &over, false)
         .expect("the run completes")
@@ -40,6 +41,7 @@ pub fn run_beam(scene: &Scene, method: Method, rtol: f64, atol: f64) -> BeamRun 
         rtol: Some(rtol),
         atol: Some(atol),
         fixed_step: None,
+        ..Default::default()
     };
     run::run(scene, &over, false)
         .expect("the run completes")
@@ -55,6 +57,7 @@ pub fn run_fixed(scene: &Scene, method: Method, h: f64) -> RunResult {
         rtol: Some(1e-13),
         atol: Some(1e-15),
         fixed_step: Some(h),
+        ..Default::default()
     };
     run::run(scene, &over, false)
         .expect("the run completes")

@@ -1,0 +1,495 @@
+//! `rollbeam tradeoff SCENE.yaml`: the speed–accuracy trade of a scene, measured.
+//!
+//! 1. A reference: the most accurate method for the kind of scene (Dormand–Prince on a rigid
+//!    curve, generalized-α on a beam), on a mesh twice as fine as the finest tried, its rtol
+//!    cut tenfold until its headline quantities move by less than [`REFERENCE_SETTLED`]; how
+//!    far they moved at the last cut is reported, since errors below it mean nothing.
+//! 2. A grid: every method × every rtol × every mesh, run on every core, each run capped at a
+//!    number of steps (a method that needs more "gives up", which is itself the answer).
+//! 3. For every run the largest relative error of the headline quantities (the probes' extreme
+//!    deflections and the disk's extreme normal reaction on a beam; the disk's final position
+//!    and extreme normal reaction on a rigid curve) and of the whole history (probe deflections
+//!    or disk centre, on the output grid), against the reference; wall time, steps, rejected
+//!    steps and right-hand-side evaluations.
+//! 4. tradeoff.csv, tradeoff.svg (headline error against wall time, log–log, a line per method
+//!    and mesh), and the cheapest settings that reach 1e-2, 1e-4 and 1e-6.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use crate::error::Error;
+use crate::ode::Method;
+use crate::output::plots::PALETTE;
+use crate::output::{io_error, write};
+use crate::run::{self, Overrides, Run};
+use crate::scene::{Model, Scene};
+
+/// The reference is taken as settled when a tenfold cut of rtol moves no headline by more than
+/// this (relative): a decade below the tightest accuracy the command reports on.
+pub const REFERENCE_SETTLED: f64 = 1e-7;
+/// At most this many tenfold cuts of the reference's rtol: a second-order reference costs
+/// 10^(1/3) ≈ 2.2 times more per cut.
+const REFERENCE_CUTS: usize = 2;
+/// Runs shorter than this (s) are timed as the mean of repeats that add up to it.
+const TIMING_FLOOR: f64 = 0.05;
+/// The accuracies the command names the cheapest settings for.
+pub const TARGETS: [f64; 3] = [1e-2, 1e-4, 1e-6];
+
+/// What to try.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    pub methods: Vec<Method>,
+    pub rtols: Vec<f64>,
+    /// Element counts (beam scenes; empty on a rigid curve).
+    pub meshes: Vec<usize>,
+    pub max_steps: usize,
+}
+
+impl Plan {
+    /// Every method that can integrate the scene, rtol from 1e-2 to 1e-8 (1e-6 on a beam), and
+    /// on a beam the scene's mesh and one half as fine.
+    pub fn default_for(scene: &Scene) -> Plan {
+        match &scene.model {
+            Model::Rolling(_) => Plan {
+                methods: vec![Method::Dopri5, Method::TrBdf2, Method::Esdirk4],
+                rtols: (2..=8).map(|k| 10f64.powi(-k)).collect(),
+                meshes: Vec::new(),
+                max_steps: 200_000,
+            },
+            Model::Beam(b) => Plan {
+                methods: vec![
+                    Method::GenAlpha,
+                    Method::Esdirk4,
+                    Method::TrBdf2,
+                    Method::Dopri5,
+                ],
+                rtols: (2..=6).map(|k| 10f64.powi(-k)).collect(),
+                meshes: vec![b.beam.elements.div_ceil(2), b.beam.elements],
+                max_steps: 20_000,
+            },
+        }
+    }
+}
+
+/// One quantity a user reads off a run, and the family whose largest value scales its error.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Headline {
+    pub name: String,
+    pub value: f64,
+    family: &'static str,
+}
+
+/// The headline quantities of a run.
+pub fn headlines(r: &Run) -> Vec<Headline> {
+    let h = |name: String, value: f64, family| Headline {
+        name,
+        value,
+        family,
+    };
+    let mut out = Vec::new();
+    match r {
+        Run::Beam(b) => {
+            for (k, p) in b.setup.probes.iter().enumerate() {
+                let (lo, hi) = b
+                    .rows
+                    .iter()
+                    .map(|row| row.probes[k].w)
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, u), w| {
+                        (l.min(w), u.max(w))
+                    });
+                out.push(h(format!("{}.w_min", p.name), lo, "w"));
+                out.push(h(format!("{}.w_max", p.name), hi, "w"));
+            }
+            let rn = b
+                .rows
+                .iter()
+                .filter_map(|row| row.disk.map(|d| d.rn))
+                .fold(f64::NEG_INFINITY, f64::max);
+            if rn.is_finite() {
+                out.push(h("disk.rn_max".into(), rn, "rn"));
+            }
+        }
+        Run::Rolling(rr) => {
+            let d = rr.last.disk;
+            out.push(h("disk.x_end".into(), d.x, "position"));
+            out.push(h("disk.y_end".into(), d.y, "position"));
+            let (lo, hi) = rr
+                .rows
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, u), row| {
+                    (l.min(row.disk.rn), u.max(row.disk.rn))
+                });
+            out.push(h("disk.rn_min".into(), lo, "rn"));
+            out.push(h("disk.rn_max".into(), hi, "rn"));
+        }
+    }
+    out.push(h("t_end".into(), r.t_end(), "t"));
+    out
+}
+
+/// max |a − b| / (largest |b| of the same family), over the headlines.
+pub fn headline_error(a: &[Headline], reference: &[Headline]) -> f64 {
+    let scale = |family: &str| {
+        reference
+            .iter()
+            .filter(|h| h.family == family)
+            .fold(0.0_f64, |m, h| m.max(h.value.abs()))
+            .max(f64::MIN_POSITIVE)
+    };
+    a.iter()
+        .zip(reference)
+        .map(|(x, r)| (x.value - r.value).abs() / scale(r.family))
+        .fold(0.0, |m, e| if e.is_nan() { f64::NAN } else { m.max(e) })
+}
+
+/// The history a run is compared on: per output time, the probes' deflections (beam) or the
+/// disk centre (rigid curve).
+fn history(r: &Run) -> Vec<(f64, Vec<f64>)> {
+    match r {
+        Run::Beam(b) => b
+            .rows
+            .iter()
+            .map(|row| (row.t, row.probes.iter().map(|p| p.w).collect()))
+            .collect(),
+        Run::Rolling(rr) => rr
+            .rows
+            .iter()
+            .map(|row| (row.t, vec![row.disk.x, row.disk.y]))
+            .collect(),
+    }
+}
+
+/// max over the output times both runs reached of |a − b|, relative to the largest |b|; a run
+/// that ended before the reference did counts the missing rows as wholly wrong.
+pub fn history_error(a: &[(f64, Vec<f64>)], reference: &[(f64, Vec<f64>)]) -> f64 {
+    let scale = reference
+        .iter()
+        .flat_map(|(_, v)| v.iter())
+        .fold(0.0_f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    if a.len() < reference.len() {
+        return 1.0;
+    }
+    a.iter()
+        .zip(reference)
+        .flat_map(|((_, x), (_, r))| x.iter().zip(r).map(|(p, q)| (p - q).abs()))
+        .fold(0.0, f64::max)
+        / scale
+}
+
+/// The scene with its beam meshed into `elements`.
+fn with_mesh(scene: &Scene, elements: Option<usize>) -> Scene {
+    let mut s = scene.clone();
+    if let (Model::Beam(b), Some(n)) = (&mut s.model, elements) {
+        b.beam.elements = n;
+    }
+    s
+}
+
+fn overrides(method: Method, rtol: f64, max_steps: usize) -> Overrides {
+    Overrides {
+        method: Some(method),
+        rtol: Some(rtol),
+        atol: Some(rtol * 1e-3),
+        fixed_step: None,
+        max_steps: Some(max_steps),
+    }
+}
+
+/// The reference run and how settled it is.
+pub struct Reference {
+    pub method: Method,
+    pub rtol: f64,
+    pub elements: Option<usize>,
+    /// Largest relative headline change at the last tenfold cut of rtol.
+    pub settled_to: f64,
+    pub headlines: Vec<Headline>,
+    history: Vec<(f64, Vec<f64>)>,
+    pub wall_s: f64,
+}
+
+pub fn reference(scene: &Scene, plan: &Plan) -> Result<Reference, Error> {
+    let (method, elements) = match &scene.model {
+        Model::Rolling(_) => (Method::Dopri5, None),
+        Model::Beam(_) => (
+            Method::GenAlpha,
+            Some(2 * plan.meshes.iter().copied().max().unwrap_or(1)),
+        ),
+    };
+    let fine = with_mesh(scene, elements);
+    let tightest = plan.rtols.iter().copied().fold(1.0, f64::min);
+    let mut rtol = tightest / 10.0;
+    let run_at = |rtol: f64| run::run(&fine, &overrides(method, rtol, usize::MAX), false);
+    let mut last = run_at(rtol)?;
+    let mut wall = last.stats().wall_s;
+    let mut settled_to = f64::INFINITY;
+    for _ in 0..REFERENCE_CUTS {
+        let next = run_at(rtol / 10.0)?;
+        wall += next.stats().wall_s;
+        settled_to = headline_error(&headlines(&last), &headlines(&next));
+        rtol /= 10.0;
+        last = next;
+        if settled_to <= REFERENCE_SETTLED {
+            break;
+        }
+    }
+    Ok(Reference {
+        method,
+        rtol,
+        elements,
+        settled_to,
+        headlines: headlines(&last),
+        history: history(&last),
+        wall_s: wall,
+    })
+}
+
+/// One run of the grid.
+#[derive(Clone, Debug)]
+pub struct Trial {
+    pub method: Method,
+    pub rtol: f64,
+    pub elements: Option<usize>,
+    pub outcome: Result<Measured, String>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Measured {
+    pub headline_error: f64,
+    pub history_error: f64,
+    pub wall_s: f64,
+    pub steps: usize,
+    pub rejected: usize,
+    pub rhs_evals: usize,
+}
+
+pub fn trials(
+    scene: &Scene,
+    plan: &Plan,
+    reference: &Reference,
+    show_progress: bool,
+) -> Vec<Trial> {
+    let meshes: Vec<Option<usize>> = if plan.meshes.is_empty() {
+        vec![None]
+    } else {
+        plan.meshes.iter().map(|&n| Some(n)).collect()
+    };
+    let mut grid = Vec::new();
+    for &method in &plan.methods {
+        for &elements in &meshes {
+            for &rtol in &plan.rtols {
+                grid.push((method, elements, rtol));
+            }
+        }
+    }
+    crate::parallel::map(&grid, show_progress, |&(method, elements, rtol)| {
+        let scene = with_mesh(scene, elements);
+        let over = overrides(method, rtol, plan.max_steps);
+        let outcome = run::run(&scene, &over, false)
+            .and_then(|r| {
+                let wall_s = mean_wall(&scene, &over, r.stats().wall_s)?;
+                Ok(Measured {
+                    headline_error: headline_error(&headlines(&r), &reference.headlines),
+                    history_error: history_error(&history(&r), &reference.history),
+                    wall_s,
+                    steps: r.stats().steps,
+                    rejected: r.stats().rejected,
+                    rhs_evals: r.stats().rhs_evals,
+                })
+            })
+            .map_err(|e| e.to_string());
+        Trial {
+            method,
+            rtol,
+            elements,
+            outcome,
+        }
+    })
+}
+
+/// A run shorter than [`TIMING_FLOOR`] is below the clock's resolution and the noise of a
+/// shared machine: it is repeated until the repeats add up to that, and their mean is its time.
+fn mean_wall(scene: &Scene, over: &Overrides, first: f64) -> Result<f64, Error> {
+    let (mut total, mut count) = (first, 1);
+    while total < TIMING_FLOOR && count < 1000 {
+        total += run::run(scene, over, false)?.stats().wall_s;
+        count += 1;
+    }
+    Ok(total / count as f64)
+}
+
+/// The fastest trial whose headline error is within `target`.
+pub fn cheapest(trials: &[Trial], target: f64) -> Option<&Trial> {
+    trials
+        .iter()
+        .filter(|t| t.outcome.as_ref().is_ok_and(|m| m.headline_error <= target))
+        .min_by(|a, b| {
+            let wall = |t: &Trial| t.outcome.as_ref().map_or(f64::INFINITY, |m| m.wall_s);
+            wall(a).total_cmp(&wall(b))
+        })
+}
+
+impl Trial {
+    /// "genalpha, rtol 1e-4, 10 elements".
+    pub fn settings(&self) -> String {
+        let mesh = self
+            .elements
+            .map_or(String::new(), |n| format!(", {n} elements"));
+        format!("{}, rtol {:e}{mesh}", self.method.name(), self.rtol)
+    }
+}
+
+/// tradeoff.csv and tradeoff.svg in `dir`; the closing lines for the terminal.
+pub fn write_tradeoff(
+    scene: &Scene,
+    reference: &Reference,
+    trials: &[Trial],
+    dir: &Path,
+) -> Result<Vec<String>, Error> {
+    std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
+    let mut csv = String::from(
+        "method,rtol,elements,status,headline_error,history_error,wall_s,steps,rejected,rhs_evals\n",
+    );
+    for t in trials {
+        let mesh = t.elements.map_or(String::new(), |n| n.to_string());
+        let _ = match &t.outcome {
+            Ok(m) => writeln!(
+                csv,
+                "{},{:e},{mesh},ok,{:e},{:e},{},{},{},{}",
+                t.method.name(),
+                t.rtol,
+                m.headline_error,
+                m.history_error,
+                m.wall_s,
+                m.steps,
+                m.rejected,
+                m.rhs_evals
+            ),
+            Err(e) => writeln!(
+                csv,
+                "{},{:e},{mesh},\"failed: {}\",,,,,,",
+                t.method.name(),
+                t.rtol,
+                e.replace('"', "'")
+            ),
+        };
+    }
+    write(&dir.join("tradeoff.csv"), &csv)?;
+    diagram(scene, trials, &dir.join("tradeoff.svg"))?;
+    let mut lines = vec![format!(
+        "reference: {}, rtol {:e}{}: headlines settled to {:.1e} at the last tenfold cut of rtol ({:.2} s)",
+        reference.method.name(),
+        reference.rtol,
+        reference
+            .elements
+            .map_or(String::new(), |n| format!(", {n} elements")),
+        reference.settled_to,
+        reference.wall_s
+    )];
+    for target in TARGETS {
+        lines.push(match cheapest(trials, target) {
+            _ if target < reference.settled_to => format!(
+                "{target:.0e}: below what the reference resolves ({:.1e})",
+                reference.settled_to
+            ),
+            Some(t) => {
+                let m = t.outcome.as_ref().expect("cheapest is a finished run");
+                format!(
+                    "{target:.0e}: {} — error {:.1e}, {:.2e} s, {} steps",
+                    t.settings(),
+                    m.headline_error,
+                    m.wall_s,
+                    m.steps
+                )
+            }
+            None => format!("{target:.0e}: no setting tried reaches it"),
+        });
+    }
+    let mut summary = String::new();
+    for l in &lines {
+        let _ = writeln!(summary, "{l}");
+    }
+    write(&dir.join("tradeoff.txt"), &summary)?;
+    Ok(lines)
+}
+
+/// Headline error against wall time, log–log, a line per method and mesh.
+fn diagram(scene: &Scene, trials: &[Trial], path: &Path) -> Result<(), Error> {
+    let err =
+        |e: &dyn std::fmt::Display| Error::Output(format!("cannot draw {}: {e}", path.display()));
+    let mut lines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for t in trials {
+        let Ok(m) = &t.outcome else { continue };
+        let name = match t.elements {
+            Some(n) => format!("{} ({n} el.)", t.method.name()),
+            None => t.method.name().to_string(),
+        };
+        let point = (m.wall_s.max(1e-5), m.headline_error.max(1e-12));
+        match lines.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, pts)) => pts.push(point),
+            None => lines.push((name, vec![point])),
+        }
+    }
+    let all = lines.iter().flat_map(|(_, p)| p.iter());
+    let (x0, x1, y0, y1) = all.fold(
+        (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ),
+        |(a, b, c, d), &(x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
+    );
+    if !x0.is_finite() {
+        return Ok(());
+    }
+    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(&e))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            format!("{}: work–precision", scene.name),
+            ("sans-serif", 22),
+        )
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(75)
+        .build_cartesian_2d(
+            (x0 / 1.5..x1 * 1.5).log_scale(),
+            (y0 / 3.0..y1 * 3.0).log_scale(),
+        )
+        .map_err(|e| err(&e))?;
+    chart
+        .configure_mesh()
+        .x_desc("wall time (s)")
+        .y_desc("headline error (relative)")
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .draw()
+        .map_err(|e| err(&e))?;
+    for (i, (name, pts)) in lines.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
+        let style = if i < PALETTE.len() {
+            color.stroke_width(2)
+        } else {
+            color.stroke_width(1)
+        };
+        chart
+            .draw_series(LineSeries::new(pts.iter().copied(), style))
+            .map_err(|e| err(&e))?
+            .label(name.as_str())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+        chart
+            .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+            .map_err(|e| err(&e))?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(|e| err(&e))?;
+    root.present().map_err(|e| err(&e))
+}

@@ -1,0 +1,147 @@
+//! The work–precision measurement (`rollbeam tradeoff`) checked on the parabola, where every
+//! run is cheap: the reference settles, every method converges to it as its tolerance is
+//! tightened (an independent check of both), and the fourth-order ESDIRK buys tight accuracy
+//! with fewer right-hand-side evaluations than the second-order TR-BDF2, which is why it is
+//! there. Costs are compared in right-hand-side evaluations, which do not depend on the
+//! machine; wall times are what the command reports, and REPORT.md shows.
+
+mod common;
+
+use common::load;
+use rollbeam::ode::Method;
+use rollbeam::tradeoff::{self, Plan, Trial, REFERENCE_SETTLED};
+
+fn errors(trials: &[Trial], method: Method) -> Vec<(f64, f64, usize)> {
+    trials
+        .iter()
+        .filter(|t| t.method == method)
+        .map(|t| {
+            let m = t.outcome.as_ref().expect("every parabola run completes");
+            (t.rtol, m.headline_error, m.rhs_evals)
+        })
+        .collect()
+}
+
+#[test]
+fn work_precision_on_the_parabola() {
+    let scene = load("parabola-p1.yaml");
+    let plan = Plan::default_for(&scene);
+    let reference = tradeoff::reference(&scene, &plan).expect("the reference runs");
+    assert!(
+        reference.settled_to <= REFERENCE_SETTLED,
+        "reference settled only to {:.1e}",
+        reference.settled_to
+    );
+    let trials = tradeoff::trials(&scene, &plan, &reference, false);
+
+    // Convergence to the reference: from rtol 1e-2 to 1e-8 each method's headline error falls
+    // by at least 10³ (a second-order method gains 10^(6·2/3) = 10⁴ over those six decades;
+    // a shortfall would mean the reference and the runs disagree on what they compute).
+    for method in plan.methods.iter().copied() {
+        let e = errors(&trials, method);
+        let (loose, tight) = (e[0].1, e[e.len() - 1].1);
+        eprintln!("{}: {e:?}", method.name());
+        assert!(
+            tight * 1e3 <= loose,
+            "{}: error {loose:.2e} at rtol 1e-2, {tight:.2e} at 1e-8",
+            method.name()
+        );
+        assert!(tight <= 1e-4, "{}: {tight:.2e} at rtol 1e-8", method.name());
+    }
+
+    // Where the fourth-order implicit method wins: the cheapest run within 1e-4 costs it
+    // fewer evaluations than TR-BDF2's cheapest within 1e-4 (TR-BDF2 does not reach 1e-5
+    // by rtol 1e-8 at all).
+    let cheapest_within = |method: Method, target: f64| {
+        errors(&trials, method)
+            .iter()
+            .filter(|e| e.1 <= target)
+            .map(|e| e.2)
+            .min()
+    };
+    let esdirk = cheapest_within(Method::Esdirk4, 1e-4).expect("ESDIRK4 reaches 1e-4");
+    let trbdf2 = cheapest_within(Method::TrBdf2, 1e-4).expect("TR-BDF2 reaches 1e-4");
+    assert!(
+        esdirk < trbdf2,
+        "to 1e-4: ESDIRK4 {esdirk} evaluations, TR-BDF2 {trbdf2}"
+    );
+
+    // The command's own choice reaches what it names.
+    for target in tradeoff::TARGETS {
+        let t = tradeoff::cheapest(&trials, target).expect("some setting reaches it");
+        let m = t.outcome.as_ref().expect("a finished run");
+        assert!(m.headline_error <= target);
+        // The history follows the headlines: a run within its target at the headlines is
+        // within ten times it over the whole history.
+        assert!(
+            m.history_error <= 10.0 * target.max(reference.settled_to),
+            "{}: history error {:.1e}",
+            t.settings(),
+            m.history_error
+        );
+    }
+}
+
+/// A beam (C1's cantilever under its sudden tip load, 0.1 s, degree-2 elements so that the mesh
+/// has an error of its own). On 2 elements the mesh's error dominates: a hundredfold tighter
+/// rtol leaves the headline error where it was (within a factor 2), for the implicit and the
+/// explicit method alike, while a mesh twice as fine more than halves it. A run past its step
+/// budget is a row with the reason, not a crash.
+#[test]
+fn work_precision_on_a_beam_separates_mesh_and_time_error() {
+    let text = std::fs::read_to_string(common::studies_dir().join("cantilever-c1.yaml"))
+        .expect("study")
+        .replace("duration: 3.0", "duration: 0.1")
+        .replace("order: 4", "order: 2");
+    let text: String = text
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("shapes:"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let scene = common::parse(&text);
+    let plan = Plan {
+        methods: vec![Method::GenAlpha, Method::Dopri5],
+        rtols: vec![1e-3, 1e-5],
+        meshes: vec![2, 4],
+        max_steps: 20_000,
+    };
+    let reference = tradeoff::reference(&scene, &plan).expect("the reference runs");
+    let trials = tradeoff::trials(&scene, &plan, &reference, false);
+    assert_eq!(trials.len(), 8);
+    for method in plan.methods.iter().copied() {
+        let error = |n: usize, rtol: f64| {
+            trials
+                .iter()
+                .find(|t| t.method == method && t.elements == Some(n) && t.rtol == rtol)
+                .and_then(|t| t.outcome.as_ref().ok())
+                .expect("every run completes")
+                .headline_error
+        };
+        let (loose, tight, finer) = (error(2, 1e-3), error(2, 1e-5), error(4, 1e-5));
+        eprintln!(
+            "{}: 2 el. {loose:.2e} → {tight:.2e}; 4 el. {finer:.2e}",
+            method.name()
+        );
+        assert!(tight >= 0.5 * loose, "{}: not mesh-bound", method.name());
+        assert!(
+            finer <= 0.5 * tight,
+            "{}: the finer mesh is no better",
+            method.name()
+        );
+    }
+
+    let starved = Plan {
+        methods: vec![Method::Dopri5],
+        rtols: vec![1e-5],
+        meshes: vec![4],
+        max_steps: 100,
+    };
+    let t = tradeoff::trials(&scene, &starved, &reference, false);
+    assert!(
+        t[0].outcome
+            .as_ref()
+            .is_err_and(|e| e.contains("gave up after 100 steps")),
+        "{:?}",
+        t[0].outcome
+    );
+}
