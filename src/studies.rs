@@ -11,6 +11,7 @@ use crate::run::{self, Overrides, Run, RunResult};
 use crate::say;
 use crate::scene::Scene;
 use crate::sweep::{run_sweep, Setting};
+use crate::tradeoff;
 
 /// The scenes under `dir`, sorted by file name.
 pub fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, Error> {
@@ -71,7 +72,29 @@ pub fn run_all(studies: &Path, out: &Path, figures: &Path) -> Result<Vec<Run>, E
         .collect();
     compare_parabola(&rolling, figures)?;
     bridge_speed_sweep(studies, figures)?;
+    work_precision(studies, out, figures)?;
     Ok(results)
+}
+
+/// The work–precision diagram of P1 (every first-order method, rtol 1e-2 to 1e-8): where each
+/// integrator wins on a smooth, non-stiff problem. The bridge's is made by the command REPORT.md
+/// gives beside it, since it takes minutes.
+fn work_precision(studies: &Path, out: &Path, figures: &Path) -> Result<(), Error> {
+    let file = studies.join("parabola-p1.yaml");
+    if !file.exists() {
+        return Ok(());
+    }
+    let scene = Scene::load(&file)?;
+    let plan = tradeoff::Plan::default_for(&scene);
+    let reference = tradeoff::reference(&scene, &plan)?;
+    let trials = tradeoff::trials(&scene, &plan, &reference, true);
+    let dir = out.join(format!("{}-tradeoff", scene.name));
+    for line in tradeoff::write_tradeoff(&scene, &reference, &trials, &dir)? {
+        say!("{:<14} {line}", "tradeoff P1");
+    }
+    let to = figures.join(format!("{}-tradeoff.svg", scene.name));
+    std::fs::copy(dir.join("tradeoff.svg"), &to).map_err(|e| io_error(&to, e))?;
+    Ok(())
 }
 
 /// Study 1 side by side: the four disks' speeds, angular velocities and normal reactions.
