@@ -31,7 +31,7 @@ enum Command {
         /// Output folder (default out/<scene name>).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Integrator: dopri5, trbdf2 or genalpha (beam scenes).
+        /// Integrator: dopri5, trbdf2, esdirk4 or genalpha (beam scenes).
         #[arg(long)]
         method: Option<String>,
         #[arg(long, allow_negative_numbers = true)]
@@ -264,6 +264,9 @@ fn dispatch(command: Command) -> Result<(), Error> {
                         spec.quadrature.name(),
                         b.dim()
                     );
+                    if let Some(d) = &setup.discretisation {
+                        say!("  chosen for accuracy {:e}: {}", d.accuracy, d.why);
+                    }
                     match &setup.disk {
                         None => say!("  disk: none (no disk unknowns)"),
                         Some(d) => say!(
@@ -292,6 +295,11 @@ fn dispatch(command: Command) -> Result<(), Error> {
                             .collect::<Vec<_>>()
                             .join(", ")
                     );
+                }
+            }
+            if scene.solver.rtol_from_accuracy {
+                if let Some(b) = scene.beam() {
+                    say!("  rtol chosen as a tenth of the accuracy {:e}", b.accuracy);
                 }
             }
             say!(

@@ -7,6 +7,7 @@ use std::path::Path;
 use serde::Deserialize;
 use serde_saphyr::Spanned;
 
+use crate::analysis::discretisation::{self, Discretisation};
 use crate::beam::element::Section;
 use crate::beam::supports::Support;
 use crate::beam::{BeamSpec, Quadrature};
@@ -131,6 +132,7 @@ struct SolverFile {
     rtol: Option<Spanned<f64>>,
     atol: Option<Spanned<f64>>,
     rho_inf: Option<Spanned<f64>>,
+    accuracy: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize)]
@@ -163,6 +165,8 @@ pub struct SolverSettings {
     pub method: Method,
     pub rtol: f64,
     pub atol: f64,
+    /// rtol was left out and taken from the beam scene's accuracy.
+    pub rtol_from_accuracy: bool,
 }
 
 /// A disk on a rigid curve.
@@ -206,6 +210,11 @@ pub struct BeamScene {
     pub magnify: f64,
     /// Spectral radius at infinity of generalized-α.
     pub rho_inf: f64,
+    /// Relative accuracy asked of the peak deflection: what the mesh and tolerances are
+    /// chosen from when the scene leaves them out.
+    pub accuracy: f64,
+    /// The mesh chosen for the scene, when it left elements or order out.
+    pub discretisation: Option<Discretisation>,
 }
 
 /// What the scene models, and only that.
@@ -345,8 +354,12 @@ impl Scene {
             } else {
                 Method::Dopri5
             },
-            rtol: 1e-6,
+            rtol: match &model {
+                Model::Beam(b) => b.accuracy / 10.0,
+                Model::Rolling(_) => 1e-6,
+            },
             atol: 1e-9,
+            rtol_from_accuracy: matches!(model, Model::Beam(_)),
         };
         if let Some(s) = &raw.solver {
             if let Some(m) = &s.method {
@@ -366,6 +379,7 @@ impl Scene {
             }
             if let Some(r) = &s.rtol {
                 solver.rtol = c.positive(r, "solver.rtol")?;
+                solver.rtol_from_accuracy = false;
             }
             if let Some(a) = &s.atol {
                 solver.atol = c.positive(a, "solver.atol")?;
@@ -407,6 +421,13 @@ fn rolling_scene(
             rho.referenced.line(),
             "solver.rho_inf",
             "applies to genalpha on beam tracks only",
+        );
+    }
+    if let Some(a) = raw.solver.as_ref().and_then(|s| s.accuracy.as_ref()) {
+        return c.err(
+            a.referenced.line(),
+            "solver.accuracy",
+            "chooses a beam's mesh and tolerances; on a rigid curve set solver.rtol",
         );
     }
     if let Some(o) = &raw.output {
@@ -584,7 +605,7 @@ fn beam_scene(
         }
     }
     let order = match &b.order {
-        None => 4,
+        None => discretisation::DEFAULT_ORDER,
         Some(n) if (1..=10).contains(&n.value) => n.value as usize,
         Some(n) => {
             return c.err(
@@ -717,6 +738,38 @@ fn beam_scene(
         None => None,
         Some(d) => Some(disk_on_beam(c, d, length, gravity)?),
     };
+    let accuracy = match raw.solver.as_ref().and_then(|s| s.accuracy.as_ref()) {
+        None => discretisation::DEFAULT_ACCURACY,
+        Some(a) => {
+            let v = c.positive(a, "solver.accuracy")?;
+            if v >= 0.5 {
+                return c.err(
+                    a.referenced.line(),
+                    "solver.accuracy",
+                    format!("= {v} is a relative error and must be below 0.5"),
+                );
+            }
+            v
+        }
+    };
+    let mut beam = beam;
+    let discretisation = if b.elements.is_none() || b.order.is_none() {
+        discretisation::choose(
+            &beam,
+            b.elements.as_ref().map(|_| beam.elements),
+            b.order.as_ref().map(|_| beam.order),
+            &loads,
+            disk.as_ref(),
+            &probes,
+            accuracy,
+        )
+    } else {
+        None
+    };
+    if let Some(d) = &discretisation {
+        beam.elements = d.elements;
+        beam.order = d.order;
+    }
     Ok(BeamScene {
         beam,
         disk,
@@ -725,6 +778,8 @@ fn beam_scene(
         shapes,
         magnify,
         rho_inf,
+        accuracy,
+        discretisation,
     })
 }
 

@@ -7,10 +7,12 @@
 //! 2. A grid: every method × every rtol × every mesh, run on every core, each run capped at a
 //!    number of steps (a method that needs more "gives up", which is itself the answer).
 //! 3. For every run the largest relative error of the headline quantities (the probes' extreme
-//!    deflections and the disk's extreme normal reaction on a beam; the disk's final position
-//!    and extreme normal reaction on a rigid curve) and of the whole history (probe deflections
-//!    or disk centre, on the output grid), against the reference; wall time, steps, rejected
-//!    steps and right-hand-side evaluations.
+//!    deflections on a beam; the disk's final position and extreme normal reaction on a rigid
+//!    curve) and of the whole history (probe deflections or disk centre, on the output grid),
+//!    against the reference; wall time, steps, rejected steps and right-hand-side evaluations.
+//!    The disk's largest contact force on a beam is not a headline: it carries the beam's
+//!    high-frequency content, and on D44 its peak moved by 2 % between rtol 1e-8 and 1e-9
+//!    while the deflections had settled.
 //! 4. tradeoff.csv, tradeoff.svg (headline error against wall time, log–log, a line per method
 //!    and mesh), and the cheapest settings that reach 1e-2, 1e-4 and 1e-6.
 
@@ -101,14 +103,6 @@ pub fn headlines(r: &Run) -> Vec<Headline> {
                     });
                 out.push(h(format!("{}.w_min", p.name), lo, "w"));
                 out.push(h(format!("{}.w_max", p.name), hi, "w"));
-            }
-            let rn = b
-                .rows
-                .iter()
-                .filter_map(|row| row.disk.map(|d| d.rn))
-                .fold(f64::NEG_INFINITY, f64::max);
-            if rn.is_finite() {
-                out.push(h("disk.rn_max".into(), rn, "rn"));
             }
         }
         Run::Rolling(rr) => {

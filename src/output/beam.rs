@@ -152,6 +152,18 @@ struct Model {
     order: usize,
     quadrature: &'static str,
     length: f64,
+    /// What was chosen from `solver.accuracy` because the scene left it out, and why.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    chosen: Option<Chosen>,
+}
+
+#[derive(Serialize)]
+struct Chosen {
+    accuracy: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mesh: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rtol: Option<String>,
 }
 
 #[derive(Serialize)]
@@ -226,6 +238,7 @@ pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             order: r.beam.spec.order,
             quadrature: r.beam.spec.quadrature.name(),
             length: r.beam.length,
+            chosen: chosen(r),
         },
         solver: super::summary::Solver {
             method: r.method.name().into(),
@@ -599,4 +612,19 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
         .draw()
         .map_err(|e| err(&e))?;
     root.present().map_err(|e| err(&e))
+}
+
+fn chosen(r: &BeamRun) -> Option<Chosen> {
+    let mesh = r.setup.discretisation.as_ref().map(|d| d.why.clone());
+    let rtol = (r.scene.solver.rtol_from_accuracy && r.rtol == r.scene.solver.rtol).then(|| {
+        format!(
+            "{:e}, a tenth of the accuracy: generalized-alpha at rtol = accuracy measured within 0.4 of it on the bridge and the clamped-pinned beam",
+            r.setup.accuracy / 10.0
+        )
+    });
+    (mesh.is_some() || rtol.is_some()).then(|| Chosen {
+        accuracy: r.setup.accuracy,
+        mesh,
+        rtol,
+    })
 }
