@@ -10,7 +10,7 @@
 //! it (Hairer & Wanner IV.8), so that stiff components do not reject steps whose error they
 //! do not carry.
 
-use super::stage_solver::StageSolver;
+use super::stage_solver::{solve_stages, ImplicitStages, StageSolver};
 use super::{Attempt, Ctx, Problem, SolveError, Stepper};
 use crate::linalg;
 
@@ -93,8 +93,14 @@ impl Esdirk4 {
             newton: StageSolver::new(n),
         }
     }
+}
 
-    /// The five implicit stages; false if Newton fails on one of them.
+impl ImplicitStages for Esdirk4 {
+    fn newton(&mut self) -> &mut StageSolver {
+        &mut self.newton
+    }
+
+    /// The five implicit stages after the explicit first.
     fn stages(
         &mut self,
         p: &dyn Problem,
@@ -155,14 +161,8 @@ impl Stepper for Esdirk4 {
         h: f64,
         ctx: &mut Ctx,
     ) -> Result<Attempt, SolveError> {
-        if !self.stages(p, t, y, h, ctx)? {
-            if self.newton.jac_fresh {
-                return Ok(Attempt::NewtonFailed);
-            }
-            self.newton.refresh_jacobian(p, t, y, ctx);
-            if !self.stages(p, t, y, h, ctx)? {
-                return Ok(Attempt::NewtonFailed);
-            }
+        if !solve_stages(self, p, t, y, h, ctx)? {
+            return Ok(Attempt::NewtonFailed);
         }
         let n = y.len();
         for r in 0..n {

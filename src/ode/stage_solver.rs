@@ -13,6 +13,40 @@ const MAX_NEWTON: usize = 8;
 /// Newton stops when its predicted remaining error is this fraction of the local tolerance.
 const NEWTON_KAPPA: f64 = 0.01;
 
+/// A stepper whose implicit stages a [`StageSolver`] solves.
+pub(crate) trait ImplicitStages {
+    fn newton(&mut self) -> &mut StageSolver;
+    /// All stages of a step of size h from (t, y); false if Newton failed on one of them.
+    fn stages(
+        &mut self,
+        p: &dyn Problem,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        ctx: &mut Ctx,
+    ) -> Result<bool, SolveError>;
+}
+
+/// The stages of a step; if Newton fails on a Jacobian from an earlier step, once more with a
+/// Jacobian evaluated at (t, y). False if that fails too: the driver then shrinks the step.
+pub(crate) fn solve_stages(
+    s: &mut impl ImplicitStages,
+    p: &dyn Problem,
+    t: f64,
+    y: &[f64],
+    h: f64,
+    ctx: &mut Ctx,
+) -> Result<bool, SolveError> {
+    if s.stages(p, t, y, h, ctx)? {
+        return Ok(true);
+    }
+    if s.newton().jac_fresh {
+        return Ok(false);
+    }
+    s.newton().refresh_jacobian(p, t, y, ctx);
+    s.stages(p, t, y, h, ctx)
+}
+
 pub(crate) struct StageSolver {
     jac: Option<Sparse>,
     /// The Jacobian was evaluated at the current step start.

@@ -5,7 +5,7 @@
 //!
 //! The implicit stages are solved by [`StageSolver`].
 
-use super::stage_solver::StageSolver;
+use super::stage_solver::{solve_stages, ImplicitStages, StageSolver};
 use super::{Attempt, Ctx, Problem, SolveError, Stepper};
 
 const GAMMA: f64 = 2.0 - std::f64::consts::SQRT_2;
@@ -48,6 +48,12 @@ impl TrBdf2 {
             h_try: 0.0,
             newton: StageSolver::new(n),
         }
+    }
+}
+
+impl ImplicitStages for TrBdf2 {
+    fn newton(&mut self) -> &mut StageSolver {
+        &mut self.newton
     }
 
     fn stages(
@@ -115,14 +121,8 @@ impl Stepper for TrBdf2 {
         h: f64,
         ctx: &mut Ctx,
     ) -> Result<Attempt, SolveError> {
-        if !self.stages(p, t, y, h, ctx)? {
-            if self.newton.jac_fresh {
-                return Ok(Attempt::NewtonFailed);
-            }
-            self.newton.refresh_jacobian(p, t, y, ctx);
-            if !self.stages(p, t, y, h, ctx)? {
-                return Ok(Attempt::NewtonFailed);
-            }
+        if !solve_stages(self, p, t, y, h, ctx)? {
+            return Ok(Attempt::NewtonFailed);
         }
         let n = y.len();
         let err: Vec<f64> = (0..n)
