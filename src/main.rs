@@ -83,7 +83,8 @@ enum Command {
         /// Output folder (default out/<scene name>-tradeoff).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Methods to try, comma-separated (default: every one that fits the scene).
+        /// Methods to try, comma-separated (default: every one that fits the scene; on a beam all but
+        /// dopri5, which the stiffest mode holds to tiny steps).
         #[arg(long, value_delimiter = ',')]
         methods: Vec<String>,
         /// Relative tolerances to try, comma-separated (default 1e-2 to 1e-8, or 1e-6 on a beam).

@@ -51,7 +51,10 @@ pub struct Plan {
 
 impl Plan {
     /// Every method that can integrate the scene, rtol from 1e-2 to 1e-8 (1e-6 on a beam), and
-    /// on a beam the scene's mesh and one half as fine.
+    /// on a beam the scene's mesh and one half as fine. Dormand–Prince is left out on a beam:
+    /// explicit, it is held to the stability limit of the stiffest mode (its steps grow as √E,
+    /// test `stiffness_from_rubber_to_fifty_times_steel`), and with a disk on the beam it
+    /// factorises the state-dependent mass at every evaluation; `--methods` brings it back.
     pub fn default_for(scene: &Scene) -> Plan {
         match &scene.model {
             Model::Rolling(_) => Plan {
@@ -61,12 +64,7 @@ impl Plan {
                 max_steps: 200_000,
             },
             Model::Beam(b) => Plan {
-                methods: vec![
-                    Method::GenAlpha,
-                    Method::Esdirk4,
-                    Method::TrBdf2,
-                    Method::Dopri5,
-                ],
+                methods: vec![Method::GenAlpha, Method::Esdirk4, Method::TrBdf2],
                 rtols: (2..=6).map(|k| 10f64.powi(-k)).collect(),
                 meshes: vec![b.beam.elements.div_ceil(2), b.beam.elements],
                 max_steps: 20_000,

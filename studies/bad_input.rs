@@ -512,3 +512,20 @@ fn tradeoff_settings() {
     let txt = std::fs::read_to_string(format!("{out}/tradeoff.txt")).expect("tradeoff.txt");
     assert!(txt.contains("reference: dopri5") && txt.contains("1e-2:"));
 }
+
+/// `solver.accuracy`: a relative error, positive and below one half, for beams only.
+#[test]
+fn bad_accuracy() {
+    for (value, needle) in [("-1e-3", "must be positive"), ("0.7", "below 0.5")] {
+        rejected(
+            &format!("accuracy{value}"),
+            &beam_scene(&[], &format!("solver:\n  accuracy: {value}\n")),
+            &["solver.accuracy", needle],
+        );
+    }
+    rejected(
+        "accuracy-on-a-curve",
+        &format!("duration: 1\n{PARABOLA}{GOOD_DISK}solver:\n  accuracy: 1e-3\n"),
+        &["solver.accuracy", "rigid curve"],
+    );
+}
