@@ -300,7 +300,12 @@ fn dispatch(command: Command) -> Result<(), Error> {
             }
             if scene.solver.rtol_from_accuracy {
                 if let Some(b) = scene.beam() {
-                    say!("  rtol chosen as a tenth of the accuracy {:e}", b.accuracy);
+                    let (rtol, why) =
+                        rollbeam::analysis::discretisation::rtol_for(b.accuracy, b.rho_inf);
+                    say!(
+                        "  rtol chosen for accuracy {:e}: {rtol:e}, {why}",
+                        b.accuracy
+                    );
                 }
             }
             say!(

@@ -355,7 +355,7 @@ impl Scene {
                 Method::Dopri5
             },
             rtol: match &model {
-                Model::Beam(b) => b.accuracy / 10.0,
+                Model::Beam(b) => discretisation::rtol_for(b.accuracy, b.rho_inf).0,
                 Model::Rolling(_) => 1e-6,
             },
             atol: 1e-9,

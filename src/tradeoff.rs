@@ -180,6 +180,8 @@ fn with_mesh(scene: &Scene, elements: Option<usize>) -> Scene {
     s
 }
 
+/// atol is a thousandth of rtol, so that the tolerance a run is asked for is its rtol: the
+/// states here are metres, radians and their rates, of order 10⁻² and up.
 fn overrides(method: Method, rtol: f64, max_steps: usize) -> Overrides {
     Overrides {
         method: Some(method),
@@ -371,7 +373,7 @@ pub fn write_tradeoff(
     write(&dir.join("tradeoff.csv"), &csv)?;
     diagram(scene, trials, &dir.join("tradeoff.svg"))?;
     let mut lines = vec![format!(
-        "reference: {}, rtol {:e}{}: headlines settled to {:.1e} at the last tenfold cut of rtol ({:.2} s)",
+        "reference: {}, rtol {:.0e}{}: headlines settled to {:.1e} at the last tenfold cut of rtol ({:.2} s)",
         reference.method.name(),
         reference.rtol,
         reference

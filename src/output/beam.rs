@@ -10,6 +10,7 @@ use serde::Serialize;
 
 use super::plots::{line_chart, PALETTE};
 use super::{write, yaml};
+use crate::analysis::discretisation::rtol_for;
 use crate::error::Error;
 use crate::run::beam::BeamRun;
 
@@ -617,10 +618,8 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
 fn chosen(r: &BeamRun) -> Option<Chosen> {
     let mesh = r.setup.discretisation.as_ref().map(|d| d.why.clone());
     let rtol = (r.scene.solver.rtol_from_accuracy && r.rtol == r.scene.solver.rtol).then(|| {
-        format!(
-            "{:e}, a tenth of the accuracy: generalized-alpha at rtol = accuracy measured within 0.4 of it on the bridge and the clamped-pinned beam",
-            r.setup.accuracy / 10.0
-        )
+        let (rtol, why) = rtol_for(r.setup.accuracy, r.setup.rho_inf);
+        format!("{rtol:e}, {why}")
     });
     (mesh.is_some() || rtol.is_some()).then(|| Chosen {
         accuracy: r.setup.accuracy,
