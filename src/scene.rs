@@ -580,8 +580,9 @@ fn beam_scene(
         support(&b.supports.value.from, "track.beam.supports.from")?,
         support(&b.supports.value.to, "track.beam.supports.to")?,
     ];
+    // Left out, the element count is chosen from the accuracy once the loads are read (below).
     let elements = match &b.elements {
-        None => 10,
+        None => 0,
         Some(n) if n.value >= 1 => n.value as usize,
         Some(n) => {
             return c.err(
@@ -753,7 +754,7 @@ fn beam_scene(
         }
     };
     let mut beam = beam;
-    let discretisation = if b.elements.is_none() || b.order.is_none() {
+    let discretisation = (b.elements.is_none() || b.order.is_none()).then(|| {
         discretisation::choose(
             &beam,
             b.elements.as_ref().map(|_| beam.elements),
@@ -763,9 +764,7 @@ fn beam_scene(
             &probes,
             accuracy,
         )
-    } else {
-        None
-    };
+    });
     if let Some(d) = &discretisation {
         beam.elements = d.elements;
         beam.order = d.order;

@@ -86,3 +86,18 @@ fn what_the_scene_gives_is_kept() {
     assert!(!scene.solver.rtol_from_accuracy);
     assert_eq!(scene.solver.rtol, 1e-5);
 }
+
+/// A beam free at both ends has rigid-body modes and no static deflection to estimate from:
+/// it keeps the default mesh and says why, rather than refining on round-off.
+#[test]
+fn a_free_beam_falls_back_to_the_default_mesh() {
+    let scene = parse(
+        "duration: 0.1\ntrack:\n  beam:\n    from: [0, 0]\n    to: [2, 0]\n    E: 2.1e11\n    G: 8.1e10\n    rho: 7850\n    A: 1e-3\n    Av: 8e-4\n    I: 1e-6\n    supports: {from: free, to: free}\nloads:\n  - {x: 1.0, fy: -100, until: 0.01}\n",
+    );
+    let d = scene
+        .beam()
+        .and_then(|b| b.discretisation.as_ref())
+        .expect("chosen");
+    assert_eq!(d.elements, 10);
+    assert!(d.why.contains("rigid-body"), "{}", d.why);
+}

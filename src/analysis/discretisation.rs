@@ -25,6 +25,8 @@ pub const DEFAULT_ACCURACY: f64 = 1e-3;
 /// Degree of the Lagrange elements when the scene does not say: at degree 4 the frequencies
 /// converge as h⁸, so few elements hold many modes.
 pub const DEFAULT_ORDER: usize = 4;
+/// Elements when no estimate can be made (a beam free at both ends has no static deflection).
+const FALLBACK_ELEMENTS: usize = 10;
 /// Elements of the mesh the modal estimate is made on.
 const ESTIMATION_ELEMENTS: usize = 16;
 /// The confirming refinement stops doubling past this many nodes (the modal check is dense).
@@ -82,6 +84,13 @@ fn estimate(
     for l in loads {
         beam.add_point_load(l[0], [l[1], l[2]], l[3], &mut f);
     }
+    let m = modes(&beam, n)?;
+    // A rigid-body mode (ω ≈ 0 next to the highest) leaves no static deflection, whatever a
+    // factorisation of the near-singular stiffness returns.
+    let highest = m.omega.last().copied().unwrap_or(0.0);
+    if !(m.omega.first().copied().unwrap_or(0.0) > 1e-6 * highest) {
+        return None;
+    }
     let mut q = f.clone();
     SparseLu::factor(&beam.tangent(&vec![0.0; n]), None)?.solve_in_place(&mut q);
     let at = |q: &[f64]| -> Vec<f64> {
@@ -93,7 +102,6 @@ fn estimate(
             })
             .collect()
     };
-    let m = modes(&beam, n)?;
     let mut partial = vec![0.0; n];
     let mut truncated = Vec::with_capacity(n);
     for k in 0..m.omega.len() {
@@ -114,8 +122,7 @@ fn estimate(
     })
 }
 
-/// Choose what the scene left out (`elements` and/or `order` are `None`); `None` if no static
-/// solution exists (a beam free at both ends), in which case the caller keeps its defaults.
+/// Choose what the scene left out (`elements` and/or `order` are `None`).
 pub fn choose(
     spec: &BeamSpec,
     elements: Option<usize>,
@@ -124,8 +131,18 @@ pub fn choose(
     disk: Option<&DiskOnBeamSpec>,
     probes: &[Probe],
     accuracy: f64,
-) -> Option<Discretisation> {
+) -> Discretisation {
     let order = order.unwrap_or(DEFAULT_ORDER);
+    let fallback = |why: &str| Discretisation {
+        accuracy,
+        elements: elements.unwrap_or(FALLBACK_ELEMENTS),
+        order,
+        excited_modes: 0,
+        why: format!(
+            "elements {} of degree {order}: {why}",
+            elements.unwrap_or(FALLBACK_ELEMENTS)
+        ),
+    };
     let spec = BeamSpec {
         order,
         ..spec.clone()
@@ -139,10 +156,13 @@ pub fn choose(
         let weight = d.disk.mass * d.gravity;
         pattern.extend(xs.iter().map(|&x| [x, 0.0, -weight, 0.0]));
     }
-    let est = estimate(&spec, ESTIMATION_ELEMENTS, &pattern, &xs)?;
+    let no_static = "the supports leave a rigid-body motion, so no static deflection to estimate from (default mesh)";
+    let Some(est) = estimate(&spec, ESTIMATION_ELEMENTS, &pattern, &xs) else {
+        return fallback(no_static);
+    };
     let scale = est.static_at_probes.iter().fold(0.0_f64, |m, v| m.max(*v));
     if !(scale > 0.0) {
-        return None;
+        return fallback("the loads do not deflect the probes (default mesh)");
     }
     let within =
         |a: &[f64], b: &[f64], tol: f64| a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol * scale);
@@ -154,51 +174,55 @@ pub fn choose(
             !within(&est.truncated[k], before, accuracy / 4.0)
         })
         .map_or(1, |k| k + 1);
-    let (elements, why) = match elements {
-        Some(n) => (n, format!("elements {n} as the scene gives")),
-        None => {
-            let mut n = excited.div_ceil(2).max(2);
-            loop {
-                let nodes = 2 * n * order + 1;
-                let (Some(a), Some(b)) = (
-                    estimate(&spec, n, &pattern, &xs),
-                    estimate(&spec, 2 * n, &pattern, &xs),
-                ) else {
-                    return None;
-                };
-                let k = excited.min(a.omega.len()) - 1;
-                let df = (a.omega[k] - b.omega[k]).abs() / b.omega[k];
-                let ok = df <= accuracy / 4.0
-                    && within(&a.static_at_probes, &b.static_at_probes, accuracy / 4.0);
-                if ok || nodes > MAX_NODES {
-                    let f_hz = b.omega[k] / std::f64::consts::TAU;
-                    let reason = if ok {
-                        format!(
-                            "on {} elements mode {} ({f_hz:.4} Hz) moves by {df:.1e} and the static deflection at the probes by less than {:.1e}",
-                            2 * n,
-                            k + 1,
-                            accuracy / 4.0
-                        )
-                    } else {
-                        format!("the refinement stopped at {} nodes", 2 * n * order + 1)
-                    };
-                    break (
-                        n,
-                        format!(
-                            "elements {n} of degree {order}: the loads excite {excited} modes (each adds more than {:.1e} of the peak static deflection at the probes); {reason}",
-                            accuracy / 4.0
-                        ),
-                    );
-                }
-                n *= 2;
-            }
-        }
+    if let Some(n) = elements {
+        return Discretisation {
+            accuracy,
+            elements: n,
+            order,
+            excited_modes: excited,
+            why: format!("elements {n} as the scene gives, of degree {order}"),
+        };
+    }
+    let mut n = excited.div_ceil(2).max(2);
+    let Some(mut coarse) = estimate(&spec, n, &pattern, &xs) else {
+        return fallback(no_static);
     };
-    Some(Discretisation {
-        accuracy,
-        elements,
-        order,
-        excited_modes: excited,
-        why,
-    })
+    loop {
+        let Some(fine) = estimate(&spec, 2 * n, &pattern, &xs) else {
+            return fallback(no_static);
+        };
+        let k = excited.min(coarse.omega.len()) - 1;
+        let df = (coarse.omega[k] - fine.omega[k]).abs() / fine.omega[k];
+        let ok = df <= accuracy / 4.0
+            && within(
+                &coarse.static_at_probes,
+                &fine.static_at_probes,
+                accuracy / 4.0,
+            );
+        if ok || 2 * n * order + 1 > MAX_NODES {
+            let f_hz = fine.omega[k] / std::f64::consts::TAU;
+            let reason = if ok {
+                format!(
+                    "on {} elements mode {} ({f_hz:.4} Hz) moves by {df:.1e} and the static deflection at the probes by less than {:.1e}",
+                    2 * n,
+                    k + 1,
+                    accuracy / 4.0
+                )
+            } else {
+                format!("the refinement stopped at {} nodes", 2 * n * order + 1)
+            };
+            return Discretisation {
+                accuracy,
+                elements: n,
+                order,
+                excited_modes: excited,
+                why: format!(
+                    "elements {n} of degree {order}: the loads excite {excited} modes (each adds more than {:.1e} of the peak static deflection at the probes); {reason}",
+                    accuracy / 4.0
+                ),
+            };
+        }
+        n *= 2;
+        coarse = fine;
+    }
 }
