@@ -11,7 +11,7 @@
 //! do not carry.
 
 use super::stage_solver::{solve_stages, ImplicitStages, StageSolver};
-use super::{Attempt, Ctx, Problem, SolveError, Stepper};
+use super::{Attempt, Ctx, Problem, SolveError, StepEnds, Stepper};
 use crate::linalg;
 
 const STAGES: usize = 6;
@@ -59,16 +59,10 @@ pub(crate) const B_HAT: [f64; STAGES] = [
 pub struct Esdirk4 {
     /// Stage derivatives k_i = y'(t + c_i h) of the last attempt.
     k: [Vec<f64>; STAGES],
-    y_old: Vec<f64>,
-    yp_old: Vec<f64>,
-    /// Start of the last accepted step, for dense output.
-    prev_y: Vec<f64>,
-    prev_yp: Vec<f64>,
+    ends: StepEnds,
     y_new: Vec<f64>,
     base: Vec<f64>,
     err: Vec<f64>,
-    t_old: f64,
-    h: f64,
     t_try: f64,
     h_try: f64,
     newton: StageSolver,
@@ -79,15 +73,10 @@ impl Esdirk4 {
         let z = || vec![0.0; n];
         Esdirk4 {
             k: std::array::from_fn(|_| z()),
-            y_old: z(),
-            yp_old: z(),
-            prev_y: z(),
-            prev_yp: z(),
+            ends: StepEnds::new(n),
             y_new: z(),
             base: z(),
             err: z(),
-            t_old: 0.0,
-            h: 0.0,
             t_try: 0.0,
             h_try: 0.0,
             newton: StageSolver::new(n),
@@ -112,7 +101,7 @@ impl ImplicitStages for Esdirk4 {
         let n = y.len();
         let dh = GAMMA * h;
         self.newton.factor(p, t, y, dh, ctx)?;
-        self.k[0].copy_from_slice(&self.yp_old);
+        self.k[0].copy_from_slice(&self.ends.yp);
         let mut z = vec![0.0; n];
         for i in 1..STAGES {
             for r in 0..n {
@@ -147,8 +136,7 @@ impl Stepper for Esdirk4 {
         y0: &[f64],
         ctx: &mut Ctx,
     ) -> Result<(), SolveError> {
-        self.y_old.copy_from_slice(y0);
-        ctx.derivative(p, t0, y0, &mut self.yp_old)?;
+        self.ends.start(p, t0, y0, ctx)?;
         self.newton.refresh_jacobian(p, t0, y0, ctx);
         Ok(())
     }
@@ -189,24 +177,13 @@ impl Stepper for Esdirk4 {
     }
 
     fn accept(&mut self) {
-        self.t_old = self.t_try;
-        self.h = self.h_try;
-        std::mem::swap(&mut self.prev_y, &mut self.y_old);
-        std::mem::swap(&mut self.prev_yp, &mut self.yp_old);
-        self.y_old.copy_from_slice(&self.y_new);
-        self.yp_old.copy_from_slice(&self.k[STAGES - 1]);
+        self.ends
+            .accept(self.t_try, self.h_try, &self.y_new, &self.k[STAGES - 1]);
         self.newton.jac_fresh = false;
     }
 
     fn interpolate(&self, t: f64, out: &mut [f64]) {
-        super::hermite(
-            self.t_old,
-            self.h,
-            (&self.prev_y, &self.prev_yp),
-            (&self.y_old, &self.yp_old),
-            t,
-            out,
-        );
+        self.ends.interpolate(t, out);
     }
 
     fn keep_step(&self, h_old: f64, h_new: f64) -> f64 {

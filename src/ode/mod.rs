@@ -520,22 +520,67 @@ pub fn solve(
     finish(t, y, ctx, None, events)
 }
 
-/// Cubic Hermite interpolation at t in the step [t0, t0 + h] from (y, y') at both ends.
-pub(crate) fn hermite(
+/// The two ends (y, y') of the last accepted step of a one-step method: the next step starts
+/// from the newer one, and dense output inside the step is the cubic Hermite through both
+/// (third order).
+pub(crate) struct StepEnds {
+    /// y and y' = M⁻¹ f at the end of the last accepted step.
+    pub y: Vec<f64>,
+    pub yp: Vec<f64>,
+    prev_y: Vec<f64>,
+    prev_yp: Vec<f64>,
     t0: f64,
     h: f64,
-    start: (&[f64], &[f64]),
-    end: (&[f64], &[f64]),
-    t: f64,
-    out: &mut [f64],
-) {
-    let th = (t - t0) / h;
-    let h00 = (1.0 + 2.0 * th) * (1.0 - th).powi(2);
-    let h10 = th * (1.0 - th).powi(2);
-    let h01 = th * th * (3.0 - 2.0 * th);
-    let h11 = th * th * (th - 1.0);
-    for (i, o) in out.iter_mut().enumerate() {
-        *o = h00 * start.0[i] + h * h10 * start.1[i] + h01 * end.0[i] + h * h11 * end.1[i];
+}
+
+impl StepEnds {
+    pub fn new(n: usize) -> Self {
+        StepEnds {
+            y: vec![0.0; n],
+            yp: vec![0.0; n],
+            prev_y: vec![0.0; n],
+            prev_yp: vec![0.0; n],
+            t0: 0.0,
+            h: 0.0,
+        }
+    }
+
+    /// Start from (t0, y0), with its derivative from the problem.
+    pub fn start(
+        &mut self,
+        p: &dyn Problem,
+        t0: f64,
+        y0: &[f64],
+        ctx: &mut Ctx,
+    ) -> Result<(), SolveError> {
+        self.y.copy_from_slice(y0);
+        ctx.derivative(p, t0, y0, &mut self.yp)
+    }
+
+    /// The step [t, t + h] that ends at (y, y') is accepted.
+    pub fn accept(&mut self, t: f64, h: f64, y: &[f64], yp: &[f64]) {
+        self.t0 = t;
+        self.h = h;
+        std::mem::swap(&mut self.prev_y, &mut self.y);
+        std::mem::swap(&mut self.prev_yp, &mut self.yp);
+        self.y.copy_from_slice(y);
+        self.yp.copy_from_slice(yp);
+    }
+
+    /// y(t) inside the last accepted step.
+    pub fn interpolate(&self, t: f64, out: &mut [f64]) {
+        let h = self.h;
+        let th = (t - self.t0) / h;
+        let h00 = (1.0 + 2.0 * th) * (1.0 - th).powi(2);
+        let h10 = th * (1.0 - th).powi(2);
+        let h01 = th * th * (3.0 - 2.0 * th);
+        let h11 = th * th * (th - 1.0);
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = h00 * self.prev_y[i]
+                + h * h10 * self.prev_yp[i]
+                + h01 * self.y[i]
+                + h * h11 * self.yp[i];
+        }
     }
 }
 

@@ -6,7 +6,7 @@
 //! The implicit stages are solved by [`StageSolver`].
 
 use super::stage_solver::{solve_stages, ImplicitStages, StageSolver};
-use super::{Attempt, Ctx, Problem, SolveError, Stepper};
+use super::{Attempt, Ctx, Problem, SolveError, StepEnds, Stepper};
 
 const GAMMA: f64 = 2.0 - std::f64::consts::SQRT_2;
 const D: f64 = GAMMA / 2.0;
@@ -14,17 +14,11 @@ const D: f64 = GAMMA / 2.0;
 const ERR_CONST: f64 = (-3.0 * GAMMA * GAMMA + 4.0 * GAMMA - 2.0) / (12.0 * (2.0 - GAMMA));
 
 pub struct TrBdf2 {
-    y_old: Vec<f64>,
-    yp_old: Vec<f64>,
-    /// Start of the last accepted step, for dense output.
-    prev_y: Vec<f64>,
-    prev_yp: Vec<f64>,
+    ends: StepEnds,
     y_gamma: Vec<f64>,
     yp_gamma: Vec<f64>,
     y_new: Vec<f64>,
     yp_new: Vec<f64>,
-    t_old: f64,
-    h: f64,
     t_try: f64,
     h_try: f64,
     newton: StageSolver,
@@ -34,16 +28,11 @@ impl TrBdf2 {
     pub fn new(n: usize) -> Self {
         let z = || vec![0.0; n];
         TrBdf2 {
-            y_old: z(),
-            yp_old: z(),
-            prev_y: z(),
-            prev_yp: z(),
+            ends: StepEnds::new(n),
             y_gamma: z(),
             yp_gamma: z(),
             y_new: z(),
             yp_new: z(),
-            t_old: 0.0,
-            h: 0.0,
             t_try: 0.0,
             h_try: 0.0,
             newton: StageSolver::new(n),
@@ -68,8 +57,8 @@ impl ImplicitStages for TrBdf2 {
         let dh = D * h;
         self.newton.factor(p, t, y, dh, ctx)?;
         // Trapezoidal stage: z = y + d h (y'_n + y'_γ).
-        let base: Vec<f64> = (0..n).map(|i| y[i] + dh * self.yp_old[i]).collect();
-        let mut z: Vec<f64> = (0..n).map(|i| y[i] + GAMMA * h * self.yp_old[i]).collect();
+        let base: Vec<f64> = (0..n).map(|i| y[i] + dh * self.ends.yp[i]).collect();
+        let mut z: Vec<f64> = (0..n).map(|i| y[i] + GAMMA * h * self.ends.yp[i]).collect();
         if !self.newton.solve(p, t + GAMMA * h, &base, &mut z, dh, ctx) {
             return Ok(false);
         }
@@ -107,8 +96,7 @@ impl Stepper for TrBdf2 {
         y0: &[f64],
         ctx: &mut Ctx,
     ) -> Result<(), SolveError> {
-        self.y_old.copy_from_slice(y0);
-        ctx.derivative(p, t0, y0, &mut self.yp_old)?;
+        self.ends.start(p, t0, y0, ctx)?;
         self.newton.refresh_jacobian(p, t0, y0, ctx);
         Ok(())
     }
@@ -128,7 +116,7 @@ impl Stepper for TrBdf2 {
         let err: Vec<f64> = (0..n)
             .map(|i| {
                 let upper = (self.yp_new[i] - self.yp_gamma[i]) / (1.0 - GAMMA);
-                let lower = (self.yp_gamma[i] - self.yp_old[i]) / GAMMA;
+                let lower = (self.yp_gamma[i] - self.ends.yp[i]) / GAMMA;
                 2.0 * ERR_CONST * h * (upper - lower)
             })
             .collect();
@@ -144,25 +132,13 @@ impl Stepper for TrBdf2 {
     }
 
     fn accept(&mut self) {
-        self.t_old = self.t_try;
-        self.h = self.h_try;
-        std::mem::swap(&mut self.prev_y, &mut self.y_old);
-        std::mem::swap(&mut self.prev_yp, &mut self.yp_old);
-        self.y_old.copy_from_slice(&self.y_new);
-        self.yp_old.copy_from_slice(&self.yp_new);
+        self.ends
+            .accept(self.t_try, self.h_try, &self.y_new, &self.yp_new);
         self.newton.jac_fresh = false;
     }
 
     fn interpolate(&self, t: f64, out: &mut [f64]) {
-        // Third order, above the method's.
-        super::hermite(
-            self.t_old,
-            self.h,
-            (&self.prev_y, &self.prev_yp),
-            (&self.y_old, &self.yp_old),
-            t,
-            out,
-        );
+        self.ends.interpolate(t, out);
     }
 
     fn keep_step(&self, h_old: f64, h_new: f64) -> f64 {
