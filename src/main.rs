@@ -9,7 +9,7 @@ use rollbeam::beam::Beam;
 use rollbeam::error::Error;
 use rollbeam::ode::Method;
 use rollbeam::run::{self, Overrides, Run};
-use rollbeam::scene::{method_names, BeamScene, Model, Scene};
+use rollbeam::scene::{method_names, BeamScene, BeamStart, Model, Scene};
 use rollbeam::{output, say, studies, sweep, tradeoff};
 
 #[derive(Parser)]
@@ -252,11 +252,20 @@ fn dispatch(command: Command) -> Result<(), Error> {
                     let b = Beam::new(setup.beam.clone());
                     let spec = &b.spec;
                     say!(
-                        "  track: Reissner beam, L = {:.6} m at {:.4}° , supports {} / {}",
+                        "  track: Reissner beam, L = {:.6} m at {:.4}° , supports {} / {}{}, starting {}",
                         b.length,
                         b.angle.to_degrees(),
                         spec.supports[0].name(),
-                        spec.supports[1].name()
+                        spec.supports[1].name(),
+                        if spec.bearings.is_empty() {
+                            String::new()
+                        } else {
+                            format!(", bearings holding w at x = {:?}", spec.bearings)
+                        },
+                        match setup.start {
+                            BeamStart::Rest => "undeformed at rest",
+                            BeamStart::Static => "at rest in static equilibrium",
+                        }
                     );
                     say!(
                         "  mesh: {} elements of degree {}, {} quadrature, {} beam unknowns",

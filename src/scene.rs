@@ -9,7 +9,7 @@ use serde_saphyr::Spanned;
 
 use crate::analysis::discretisation::{self, Discretisation};
 use crate::beam::element::Section;
-use crate::beam::supports::Support;
+use crate::beam::supports::{mesh_multiple, statically_supported, Support};
 use crate::beam::{BeamSpec, Quadrature};
 use crate::coupling::{Coupling, DiskOnBeamSpec};
 use crate::curve::expr::Formula;
@@ -56,6 +56,7 @@ struct BeamFile {
     elements: Option<Spanned<i64>>,
     order: Option<Spanned<i64>>,
     quadrature: Option<Spanned<String>>,
+    initial: Option<Spanned<String>>,
 }
 
 #[derive(Deserialize)]
@@ -63,6 +64,7 @@ struct BeamFile {
 struct SupportsFile {
     from: Spanned<String>,
     to: Spanned<String>,
+    intermediate: Option<Spanned<Vec<Spanned<f64>>>>,
 }
 
 #[derive(Deserialize)]
@@ -198,10 +200,21 @@ pub struct Probe {
     pub x: f64,
 }
 
+/// The beam's state at t = 0.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BeamStart {
+    /// Undeformed, at rest.
+    Rest,
+    /// At rest in static equilibrium under the loads active at t = 0 and the disk's weight at
+    /// s0: a dead load already carried, as on a real bridge.
+    Static,
+}
+
 /// A flexible beam under point loads.
 #[derive(Clone, Debug)]
 pub struct BeamScene {
     pub beam: BeamSpec,
+    pub start: BeamStart,
     /// A disk riding on the beam, if the scene has one.
     pub disk: Option<DiskOnBeamSpec>,
     pub loads: Vec<PointLoad>,
@@ -256,6 +269,8 @@ pub const DEFAULT_GRAVITY: f64 = 9.81;
 const MAX_ROWS: f64 = 1e6;
 /// Mesh nodes a beam may have (three unknowns each).
 const MAX_NODES: f64 = 1e6;
+/// Intermediate bearings must sit at nodes of a uniform mesh of at most this many elements.
+const MAX_SPANS: usize = 1000;
 
 /// Reports problems as "FILE line N: KEY ...".
 struct Checker<'a> {
@@ -580,6 +595,40 @@ fn beam_scene(
         support(&b.supports.value.from, "track.beam.supports.from")?,
         support(&b.supports.value.to, "track.beam.supports.to")?,
     ];
+    let mut bearings = Vec::new();
+    for x in b
+        .supports
+        .value
+        .intermediate
+        .iter()
+        .flat_map(|v| v.value.iter())
+    {
+        let key = "track.beam.supports.intermediate";
+        let v = c.finite(x, key)?;
+        if !(v > 0.0 && v < length) {
+            return c.err(
+                x.referenced.line(),
+                key,
+                format!("has x = {v}, which is not strictly inside the beam (0, {length})"),
+            );
+        }
+        if bearings
+            .iter()
+            .any(|&b: &f64| (b - v).abs() <= 1e-9 * length)
+        {
+            return c.err(x.referenced.line(), key, format!("names x = {v} twice"));
+        }
+        bearings.push(v);
+    }
+    bearings.sort_by(f64::total_cmp);
+    let fractions: Vec<f64> = bearings.iter().map(|x| x / length).collect();
+    let Some(multiple) = mesh_multiple(&fractions, MAX_SPANS) else {
+        return c.err(
+            b.supports.referenced.line(),
+            "track.beam.supports.intermediate",
+            format!("puts bearings at x = {bearings:?}, which do not divide the beam into spans of commensurable length (a uniform mesh of at most {MAX_SPANS} elements needs a node at each)"),
+        );
+    };
     // Left out, the element count is chosen from the accuracy once the loads are read (below).
     let elements = match &b.elements {
         None => 0,
@@ -593,6 +642,16 @@ fn beam_scene(
         }
     };
     if let Some(n) = &b.elements {
+        if n.value as usize % multiple != 0 {
+            return c.err(
+                n.referenced.line(),
+                "track.beam.elements",
+                format!(
+                    "= {} puts no node at an intermediate bearing: use a multiple of {multiple}",
+                    n.value
+                ),
+            );
+        }
         if n.value as f64 * 10.0 > MAX_NODES {
             return c.err(
                 n.referenced.line(),
@@ -641,10 +700,30 @@ fn beam_scene(
         to,
         section,
         supports,
+        bearings,
         elements,
         order,
         quadrature,
     };
+    let start = match &b.initial {
+        None => BeamStart::Rest,
+        Some(v) if v.value == "rest" => BeamStart::Rest,
+        Some(v) if v.value == "static" => BeamStart::Static,
+        Some(v) => {
+            return c.err(
+                v.referenced.line(),
+                "track.beam.initial",
+                format!("is '{}'; use rest or static", v.value),
+            )
+        }
+    };
+    if start == BeamStart::Static && !statically_supported(supports, beam.bearings.len()) {
+        return c.err(
+            b.initial.as_ref().map_or(0, |v| v.referenced.line()),
+            "track.beam.initial",
+            "is static, but the supports leave the beam free to move as a rigid body, so it has no static equilibrium",
+        );
+    }
 
     let within = |x: &Spanned<f64>, key: &str| -> Result<f64, Error> {
         let v = c.finite(x, key)?;
@@ -763,6 +842,8 @@ fn beam_scene(
             disk.as_ref(),
             &probes,
             accuracy,
+            multiple,
+            start,
         )
     });
     if let Some(d) = &discretisation {
@@ -771,6 +852,7 @@ fn beam_scene(
     }
     Ok(BeamScene {
         beam,
+        start,
         disk,
         loads,
         probes,

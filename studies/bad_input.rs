@@ -360,6 +360,71 @@ fn bad_beams() {
     );
 }
 
+/// Intermediate bearings and the static start: each bad setting is named with its key.
+#[test]
+fn bad_bearings_and_starts() {
+    rejected(
+        "bearing-at-end",
+        &beam_scene(
+            &[("supports", "{from: pinned, to: roller, intermediate: [8]}")],
+            "",
+        ),
+        &["track.beam.supports.intermediate", "not strictly inside"],
+    );
+    rejected(
+        "bearing-twice",
+        &beam_scene(
+            &[(
+                "supports",
+                "{from: pinned, to: roller, intermediate: [4, 4]}",
+            )],
+            "",
+        ),
+        &["track.beam.supports.intermediate", "twice"],
+    );
+    rejected(
+        "bearing-incommensurable",
+        &beam_scene(
+            &[(
+                "supports",
+                "{from: pinned, to: roller, intermediate: [2.8284271247461903]}",
+            )],
+            "",
+        ),
+        &["track.beam.supports.intermediate", "commensurable"],
+    );
+    rejected(
+        "bearing-off-node",
+        &beam_scene(
+            &[
+                (
+                    "supports",
+                    "{from: pinned, to: roller, intermediate: [2.0]}",
+                ),
+                ("elements", "2"),
+            ],
+            "",
+        ),
+        &["track.beam.elements", "multiple of 4"],
+    );
+    rejected(
+        "start-unknown",
+        &beam_scene(&[("initial", "deflected")], ""),
+        &["track.beam.initial", "'deflected'", "rest or static"],
+    );
+    rejected(
+        "start-static-mechanism",
+        &beam_scene(
+            &[
+                ("supports", "{from: roller, to: free}"),
+                ("initial", "static"),
+            ],
+            "",
+        ),
+        &["track.beam.initial", "rigid body"],
+    );
+}
+
 /// A disk on a beam: each bad setting is named with its key.
 #[test]
 fn bad_disks_on_beams() {

@@ -35,6 +35,7 @@ fn beam(
         to: [length, 0.0],
         section,
         supports,
+        bearings: Vec::new(),
         elements,
         order,
         quadrature,
@@ -184,6 +185,61 @@ fn clamped_pinned_deflection_under_the_load() {
         );
     }
     assert!(e[3] < e[0], "errors {e:?}");
+}
+
+/// A continuous beam over two equal spans L (pinned, an intermediate bearing, a roller) with
+/// a load P at each midspan. By symmetry the section over the bearing does not turn, so each
+/// span is the clamped–pinned beam above: the bearing carries twice its clamp's share, the ends
+/// its prop force, and the deflection under each load is the closed form's. With nodes under
+/// the loads and at the bearing the cubic solution is reproduced to round-off (1e-6 allows
+/// for the load steps' Newton tolerance); the small-load case keeps the nonlinearity at 1e-9.
+#[test]
+fn continuous_beam_over_an_intermediate_bearing() {
+    let s = shs200();
+    let (l, p) = (8.0, -100.0);
+    let b = Beam::new(BeamSpec {
+        from: [0.0, 0.0],
+        to: [2.0 * l, 0.0],
+        section: s,
+        supports: [Support::Pinned, Support::Roller],
+        bearings: vec![l],
+        elements: 8,
+        order: 4,
+        quadrature: Quadrature::Reduced,
+    });
+    let loads = [(0.5 * l, [0.0, p], 0.0), (1.5 * l, [0.0, p], 0.0)];
+    let mut f = vec![0.0; b.dim()];
+    for (x, force, mz) in loads {
+        b.add_point_load(x, force, mz, &mut f);
+    }
+    let q = statics::solve(&b, &f).expect("converges").q;
+    let a = 0.5 * l;
+    let flexibility = a * a * (3.0 * l - a) / (6.0 * s.ei) + a / s.gav;
+    let prop = p * flexibility / (l.powi(3) / (3.0 * s.ei) + l / s.gav);
+    let under = p * a.powi(3) / (3.0 * s.ei) + p * a / s.gav - prop * flexibility;
+    let [from, to] = b.support_reactions(&q, &loads, None);
+    let bearing = b.bearing_reactions(&q, &loads, None);
+    for (x, w) in [(0.5 * l, under), (1.5 * l, under), (l, 0.0)] {
+        let got = b.displacement_at(&q, x).w;
+        assert!(
+            (got - w).abs() < 1e-6 * under.abs(),
+            "w({x}) = {got} vs {w}"
+        );
+    }
+    for end in [from, to] {
+        assert!(
+            (end[1] + prop).abs() < 1e-6 * p.abs(),
+            "end {} vs {}",
+            end[1],
+            -prop
+        );
+    }
+    let middle = -2.0 * (p - prop);
+    assert!(
+        (bearing[0][1] - middle).abs() < 1e-6 * p.abs(),
+        "bearing {} vs {middle}",
+        bearing[0][1]
+    );
 }
 
 /// Geometric exactness: an end moment M = t·EI/L bends the cantilever into an arc,

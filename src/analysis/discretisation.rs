@@ -2,8 +2,9 @@
 //! it asks for (`solver.accuracy`, relative, of the peak deflection; default 1e-3).
 //!
 //! A priori: the loads excite the modes their static deflection is made of. On an estimation
-//! mesh the static deflection at the probes under every load of the scene (and the disk's
-//! weight at each probe) is expanded in the natural modes, u = Σ φ_k φ_kᵀ f / ω_k², and the
+//! mesh the static deflection at the probes under every load of the scene that changes during
+//! the run (all of them from rest; from a static start, not those carried throughout) and the
+//! disk's weight at each probe is expanded in the natural modes, u = Σ φ_k φ_kᵀ f / ω_k², and the
 //! loading is taken to excite modes up to the last one that adds more than ε/4 of the peak to
 //! it (the tail as a whole converges slowly under a point load, through the shear kink the
 //! elements hold exactly at their nodes, so it is the single modes that count). A mesh of
@@ -18,7 +19,7 @@ use crate::analysis::modes::modes;
 use crate::beam::{Beam, BeamSpec};
 use crate::coupling::DiskOnBeamSpec;
 use crate::linalg::SparseLu;
-use crate::scene::{PointLoad, Probe};
+use crate::scene::{BeamStart, PointLoad, Probe};
 
 /// The accuracy a beam scene asks for when it does not say.
 pub const DEFAULT_ACCURACY: f64 = 1e-3;
@@ -69,10 +70,12 @@ struct Estimate {
     truncated: Vec<Vec<f64>>,
 }
 
+/// `loads` make the static deflection; those flagged `true` change during the run and so
+/// excite the modes (a load carried from a static start excites none).
 fn estimate(
     spec: &BeamSpec,
     elements: usize,
-    loads: &[[f64; 4]],
+    loads: &[([f64; 4], bool)],
     probes: &[f64],
 ) -> Option<Estimate> {
     let beam = Beam::new(BeamSpec {
@@ -80,9 +83,13 @@ fn estimate(
         ..spec.clone()
     });
     let n = beam.dim();
+    let mut all = vec![0.0; n];
     let mut f = vec![0.0; n];
-    for l in loads {
-        beam.add_point_load(l[0], [l[1], l[2]], l[3], &mut f);
+    for (l, excites) in loads {
+        beam.add_point_load(l[0], [l[1], l[2]], l[3], &mut all);
+        if *excites {
+            beam.add_point_load(l[0], [l[1], l[2]], l[3], &mut f);
+        }
     }
     let m = modes(&beam, n)?;
     // A rigid-body mode (ω ≈ 0 next to the highest) leaves no static deflection, whatever a
@@ -91,7 +98,7 @@ fn estimate(
     if !(m.omega.first().copied().unwrap_or(0.0) > 1e-6 * highest) {
         return None;
     }
-    let mut q = f.clone();
+    let mut q = all;
     SparseLu::factor(&beam.tangent(&vec![0.0; n]), None)?.solve_in_place(&mut q);
     let at = |q: &[f64]| -> Vec<f64> {
         probes
@@ -122,7 +129,9 @@ fn estimate(
     })
 }
 
-/// Choose what the scene left out (`elements` and/or `order` are `None`).
+/// Choose what the scene left out (`elements` and/or `order` are `None`). Every element
+/// count tried is a multiple of `multiple`, which puts a node at each intermediate bearing.
+#[allow(clippy::too_many_arguments)]
 pub fn choose(
     spec: &BeamSpec,
     elements: Option<usize>,
@@ -131,16 +140,20 @@ pub fn choose(
     disk: Option<&DiskOnBeamSpec>,
     probes: &[Probe],
     accuracy: f64,
+    multiple: usize,
+    start: BeamStart,
 ) -> Discretisation {
     let order = order.unwrap_or(DEFAULT_ORDER);
+    let admissible = |n: usize| n.div_ceil(multiple) * multiple;
+    let fallback_elements = admissible(FALLBACK_ELEMENTS);
     let fallback = |why: &str| Discretisation {
         accuracy,
-        elements: elements.unwrap_or(FALLBACK_ELEMENTS),
+        elements: elements.unwrap_or(fallback_elements),
         order,
         excited_modes: 0,
         why: format!(
             "elements {} of degree {order}: {why}",
-            elements.unwrap_or(FALLBACK_ELEMENTS)
+            elements.unwrap_or(fallback_elements)
         ),
     };
     let spec = BeamSpec {
@@ -148,16 +161,18 @@ pub fn choose(
         ..spec.clone()
     };
     let xs: Vec<f64> = probes.iter().map(|p| p.x).collect();
-    let mut pattern: Vec<[f64; 4]> = loads
+    let carried =
+        |l: &PointLoad| start == BeamStart::Static && l.active(0.0) && l.until == f64::INFINITY;
+    let mut pattern: Vec<([f64; 4], bool)> = loads
         .iter()
-        .map(|l| [l.x, l.force[0], l.force[1], l.mz])
+        .map(|l| ([l.x, l.force[0], l.force[1], l.mz], !carried(l)))
         .collect();
     if let Some(d) = disk {
         let weight = d.disk.mass * d.gravity;
-        pattern.extend(xs.iter().map(|&x| [x, 0.0, -weight, 0.0]));
+        pattern.extend(xs.iter().map(|&x| ([x, 0.0, -weight, 0.0], true)));
     }
     let no_static = "the supports leave a rigid-body motion, so no static deflection to estimate from (default mesh)";
-    let Some(est) = estimate(&spec, ESTIMATION_ELEMENTS, &pattern, &xs) else {
+    let Some(est) = estimate(&spec, admissible(ESTIMATION_ELEMENTS), &pattern, &xs) else {
         return fallback(no_static);
     };
     let scale = est.static_at_probes.iter().fold(0.0_f64, |m, v| m.max(*v));
@@ -183,7 +198,7 @@ pub fn choose(
             why: format!("elements {n} as the scene gives, of degree {order}"),
         };
     }
-    let mut n = excited.div_ceil(2).max(2);
+    let mut n = admissible(excited.div_ceil(2).max(2));
     let Some(mut coarse) = estimate(&spec, n, &pattern, &xs) else {
         return fallback(no_static);
     };

@@ -34,7 +34,7 @@ struct StaticFile {
     scene: String,
     probes: BTreeMap<String, ProbeState>,
     /// What each support exerts on the beam, global axes.
-    reactions: BTreeMap<&'static str, Reaction>,
+    reactions: BTreeMap<String, Reaction>,
     iterations: usize,
     load_steps: usize,
 }
@@ -42,7 +42,7 @@ struct StaticFile {
 /// Static equilibrium under the loads active at t = 0 and, with a disk, its weight at s0 (a
 /// point force: the static answer does not depend on how the disk rolls).
 pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, Error> {
-    if !statically_supported(setup.beam.supports) {
+    if !statically_supported(setup.beam.supports, setup.beam.bearings.len()) {
         return Err(Error::Input(format!(
             "scene {}: the beam is not supported enough for a static solution (supports {} and {} hold fewer than 3 independent motions)",
             scene.name,
@@ -70,19 +70,28 @@ pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, E
     let sol = statics::solve(&beam, &f)
         .map_err(|e| Error::Solver(format!("scene {}: {e}", scene.name)))?;
     let r = beam.support_reactions(&sol.q, &active, None);
-    let reactions: BTreeMap<&'static str, Reaction> = [("from", r[0]), ("to", r[1])]
-        .into_iter()
-        .map(|(k, v)| {
-            (
-                k,
-                Reaction {
-                    fx: v[0],
-                    fy: v[1],
-                    mz: v[2],
-                },
+    let bearings = beam.bearing_reactions(&sol.q, &active, None);
+    let reactions: BTreeMap<String, Reaction> =
+        [("from".to_string(), r[0]), ("to".to_string(), r[1])]
+            .into_iter()
+            .chain(
+                beam.spec
+                    .bearings
+                    .iter()
+                    .zip(&bearings)
+                    .map(|(x, f)| (format!("bearing at x = {x}"), [f[0], f[1], 0.0])),
             )
-        })
-        .collect();
+            .map(|(k, v)| {
+                (
+                    k,
+                    Reaction {
+                        fx: v[0],
+                        fy: v[1],
+                        mz: v[2],
+                    },
+                )
+            })
+            .collect();
     let probes: BTreeMap<String, ProbeState> = setup
         .probes
         .iter()

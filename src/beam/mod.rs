@@ -60,6 +60,9 @@ pub struct BeamSpec {
     pub to: [f64; 2],
     pub section: Section,
     pub supports: [Support; 2],
+    /// Material points x of intermediate bearings, which hold w there; each lies on an
+    /// element boundary (see [`supports::mesh_multiple`]).
+    pub bearings: Vec<f64>,
     pub elements: usize,
     pub order: usize,
     pub quadrature: Quadrature,
@@ -118,6 +121,10 @@ impl Beam {
             for c in support.held_components() {
                 held[3 * node + c] = true;
             }
+        }
+        for &x in &spec.bearings {
+            let node = (x / h).round() as usize * spec.order;
+            held[3 * node + 1] = true;
         }
         let mut next = 0;
         let eq = held
@@ -380,18 +387,17 @@ impl Beam {
         PointDisplacement { u, w, phi: v[2] }
     }
 
-    /// Forces and moment the supports exert on the beam at each end, global (fx, fy, mz), at q
-    /// under the point loads `loads` (x, global force, moment) and, in motion, with the
-    /// acceleration `a` of the free unknowns: at each held unknown, R = F_int + M a − F_ext.
-    /// Zero where an end is free to move.
-    pub fn support_reactions(
+    /// What holds each unknown, supports included, in equilibrium at q under the point loads
+    /// `loads` (x, global force, moment) and, in motion, with the acceleration `a` of the free
+    /// unknowns: R = F_int + M a − F_ext, in the beam frame. At a held unknown this is the
+    /// support's reaction; at a free one, the residual.
+    fn held_forces(
         &self,
         q: &[f64],
         loads: &[(f64, [f64; 2], f64)],
         a: Option<&[f64]>,
-    ) -> [[f64; 3]; 2] {
-        let nodes = self.nodes();
-        let mut full = vec![0.0; 3 * nodes];
+    ) -> Vec<f64> {
+        let mut full = vec![0.0; 3 * self.nodes()];
         let k = 3 * (self.spec.order + 1);
         let (mut qe, mut fe) = (vec![0.0; k], vec![0.0; k]);
         let kernels = ElementKernels {
@@ -421,8 +427,21 @@ impl Beam {
                 full[3 * node + 2] -= na * mz;
             }
         }
+        full
+    }
+
+    /// Forces and moment the supports exert on the beam at each end, global (fx, fy, mz), at q
+    /// under the point loads `loads` and, in motion, with the acceleration `a` of the free
+    /// unknowns (see [`Beam::held_forces`]). Zero where an end is free to move.
+    pub fn support_reactions(
+        &self,
+        q: &[f64],
+        loads: &[(f64, [f64; 2], f64)],
+        a: Option<&[f64]>,
+    ) -> [[f64; 3]; 2] {
+        let full = self.held_forces(q, loads, a);
         let mut out = [[0.0; 3]; 2];
-        for (end, node) in [0, nodes - 1].into_iter().enumerate() {
+        for (end, node) in [0, self.nodes() - 1].into_iter().enumerate() {
             let mut r = [0.0; 3];
             for &c in self.spec.supports[end].held_components() {
                 r[c] = full[3 * node + c];
@@ -431,6 +450,25 @@ impl Beam {
             out[end] = [g[0], g[1], r[2]];
         }
         out
+    }
+
+    /// The force each intermediate bearing exerts on the beam, global (fx, fy): it acts
+    /// across the undeformed axis.
+    pub fn bearing_reactions(
+        &self,
+        q: &[f64],
+        loads: &[(f64, [f64; 2], f64)],
+        a: Option<&[f64]>,
+    ) -> Vec<[f64; 2]> {
+        let full = self.held_forces(q, loads, a);
+        self.spec
+            .bearings
+            .iter()
+            .map(|&x| {
+                let node = (x / self.h).round() as usize * self.spec.order;
+                self.to_global([0.0, full[3 * node + 1]])
+            })
+            .collect()
     }
 
     /// Position of the undeformed axis at material point x.

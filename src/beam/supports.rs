@@ -1,5 +1,6 @@
 //! Supports at the two ends of the beam, as the unknowns they hold in the beam frame
-//! (0 = u along the undeformed axis, 1 = w across it, 2 = φ).
+//! (0 = u along the undeformed axis, 1 = w across it, 2 = φ), and intermediate bearings
+//! between them, which hold w at a mesh node (a continuous beam over several spans).
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Support {
@@ -41,10 +42,24 @@ impl Support {
     }
 }
 
-/// A straight beam needs three independent support reactions to carry a static load.
-pub fn statically_supported(ends: [Support; 2]) -> bool {
+/// A straight beam needs three independent support reactions to carry a static load; each
+/// intermediate bearing adds one.
+pub fn statically_supported(ends: [Support; 2], bearings: usize) -> bool {
     ends.iter()
         .map(|s| s.held_components().len())
         .sum::<usize>()
+        + bearings
         >= 3
+}
+
+/// The fewest elements of a uniform mesh that put a node at every intermediate bearing (given
+/// as fractions x/L of the length): every admissible element count is a multiple of it.
+/// `None` when no count up to `limit` does, the spans being incommensurable.
+pub fn mesh_multiple(fractions: &[f64], limit: usize) -> Option<usize> {
+    (1..=limit).find(|&m| {
+        fractions.iter().all(|f| {
+            let at = f * m as f64;
+            (at - at.round()).abs() <= 1e-9 * m as f64
+        })
+    })
 }

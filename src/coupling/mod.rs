@@ -185,11 +185,12 @@ impl<'a> DiskOnBeam<'a> {
         self.loaded.beam
     }
 
-    /// (z, ż) at t = 0: beam at rest and undeformed, the disk at s0 rolling at Ω0.
-    pub fn initial_state(&self) -> (Vec<f64>, Vec<f64>) {
+    /// (z, ż) at t = 0: the beam at rest in displacements q0, the disk at s0 rolling at Ω0.
+    pub fn initial_state(&self, q0: &[f64]) -> (Vec<f64>, Vec<f64>) {
         let nz = self.dim();
         let mut z = vec![0.0; nz];
         let mut zd = vec![0.0; nz];
+        z[..self.n].copy_from_slice(q0);
         if self.spec.coupling.rolls() {
             z[self.n] = self.spec.s0;
             let at = AxisPoint::at(
@@ -425,6 +426,18 @@ impl<'a> DiskOnBeam<'a> {
         y.iter().all(|v| v.is_finite()).then_some(y)
     }
 
+    /// Add to f the force of the disk resting at s0 on the beam displaced by q: its weight,
+    /// passed on as the coupling passes it (through the contact patch when it rolls).
+    pub fn add_weight_at_rest(&self, q: &[f64], f: &mut [f64]) {
+        let nz = self.dim();
+        let mut z = vec![0.0; nz];
+        z[..self.n].copy_from_slice(q);
+        if self.spec.coupling.rolls() {
+            z[self.n] = self.spec.s0;
+        }
+        self.add_disk_force_on_beam(0.0, &z, &vec![0.0; nz], f);
+    }
+
     /// Add the disk's generalised force on the beam's unknowns (not on s) to f.
     pub fn add_disk_force_on_beam(&self, t: f64, z: &[f64], zd: &[f64], f: &mut [f64]) {
         for (i, v) in self.terms(t, z, zd).force {
@@ -622,6 +635,17 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
         let mut a = Assembly::new(self.dim());
         a.add_sparse(&k, 1.0, 0, 0);
         a.build()
+    }
+
+    /// The averaged track changes over the patch half-width b and no faster, and a crest
+    /// there shows in the contact force, not in the motion the error estimate measures: a
+    /// step moves a rolling disk by at most b/2, so the contact-loss event sees every crest.
+    fn max_step(&self, _t: f64, _q: &[f64], v: &[f64]) -> f64 {
+        if self.spec.coupling.rolls() {
+            0.5 * self.spec.patch / v[self.n].abs()
+        } else {
+            f64::INFINITY
+        }
     }
 
     fn norm_groups(&self) -> Vec<Range<usize>> {

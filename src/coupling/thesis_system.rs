@@ -26,12 +26,14 @@ impl ThesisSystem<'_> {
         self.coupled.beam().dim()
     }
 
-    /// y at t = 0: the beam at rest and undeformed, the disk on it at s0 (Table 10).
-    pub fn initial_state(&self) -> Vec<f64> {
+    /// y at t = 0: the beam at rest in displacements q0 (undeformed in Table 10), the disk on
+    /// it at s0.
+    pub fn initial_state(&self, q0: &[f64]) -> Vec<f64> {
         let n = self.n();
-        let (z, zd) = self.coupled.initial_state();
+        let (z, zd) = self.coupled.initial_state(q0);
         let o = self.coupled.observe(0.0, &z, &zd);
         let mut y = vec![0.0; 2 * n + 6];
+        y[..n].copy_from_slice(q0);
         let spec = &self.coupled.spec;
         y[2 * n..].copy_from_slice(&[o.x, o.y, spec.v0(), spec.s0, 0.0, spec.omega0]);
         y

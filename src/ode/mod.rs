@@ -58,6 +58,12 @@ pub trait Problem {
     fn event(&self, _index: usize, _t: f64, _y: &[f64]) -> f64 {
         1.0
     }
+    /// The longest step the problem allows from (t, y): features of the problem that its
+    /// unknowns do not feel strongly enough for the error estimate to see them (a crest under a
+    /// rolling disk shows in the contact force, not in the motion) must not be stepped over.
+    fn max_step(&self, _t: f64, _y: &[f64]) -> f64 {
+        f64::INFINITY
+    }
     /// Blocks of unknowns of one kind, each measured in the error norm against its own largest
     /// value; `None` measures every unknown against itself.
     fn norm_groups(&self) -> Option<Vec<std::ops::Range<usize>>> {
@@ -428,6 +434,9 @@ pub fn solve(
                 t,
                 steps: ctx.stats.steps,
             });
+        }
+        if opts.fixed_step.is_none() {
+            h = h.min(p.max_step(t, &y));
         }
         // Steps end exactly on the next breakpoint (or the end), and restart there.
         let target = breaks

@@ -32,6 +32,10 @@ pub trait SecondOrderProblem {
     fn force(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]);
     /// K(q) = −∂f/∂q, the tangent stiffness (the part that matters for Newton's convergence).
     fn stiffness(&self, t: f64, q: &[f64]) -> Sparse;
+    /// The longest step allowed from (t, q, v); see [`Problem::max_step`].
+    fn max_step(&self, _t: f64, _q: &[f64], _v: &[f64]) -> f64 {
+        f64::INFINITY
+    }
     /// Blocks of unknowns of one kind (beam displacements, the contact coordinate): each is
     /// measured against its own largest value in the error norm.
     fn norm_groups(&self) -> Vec<Range<usize>> {
@@ -99,6 +103,10 @@ impl Problem for FirstOrder<'_> {
     fn event(&self, index: usize, t: f64, y: &[f64]) -> f64 {
         let n = self.inner.dim();
         self.inner.event(index, t, &y[..n], &y[n..])
+    }
+    fn max_step(&self, t: f64, y: &[f64]) -> f64 {
+        let n = self.inner.dim();
+        self.inner.max_step(t, &y[..n], &y[n..])
     }
     /// The structure's groups, once for the displacements and once for the velocities.
     fn norm_groups(&self) -> Option<Vec<Range<usize>>> {
@@ -423,6 +431,9 @@ pub fn solve_genalpha(
                 t: s.t,
                 steps: ga.stats.steps,
             });
+        }
+        if opts.fixed_step.is_none() {
+            h = h.min(p.max_step(s.t, &s.q, &s.v));
         }
         let target = segment_end(s.t + h_min);
         let last = s.t + h >= target - h_min;
