@@ -13,6 +13,9 @@
 //! at the probes change by less than ε/4 when the element count doubles, and doubled
 //! otherwise. The time integrator is asked for rtol = ε/10 (see [`rtol_for`]).
 
+use std::collections::BTreeMap;
+use std::sync::Mutex;
+
 use serde::Serialize;
 
 use crate::analysis::modes::modes;
@@ -129,6 +132,10 @@ fn estimate(
     })
 }
 
+/// Choices already made in this process, by everything they depend on: a sweep rereads its
+/// scene once per value, and the eigenproblems behind a choice cost seconds on a fine mesh.
+static CHOSEN: Mutex<BTreeMap<String, Discretisation>> = Mutex::new(BTreeMap::new());
+
 /// Choose what the scene left out (`elements` and/or `order` are `None`). Every element
 /// count tried is a multiple of `multiple`, which puts a node at each intermediate bearing.
 #[allow(clippy::too_many_arguments)]
@@ -139,6 +146,35 @@ pub fn choose(
     loads: &[PointLoad],
     disk: Option<&DiskOnBeamSpec>,
     probes: &[Probe],
+    accuracy: f64,
+    multiple: usize,
+    start: BeamStart,
+) -> Discretisation {
+    let weight = disk.map(|d| d.disk.mass * d.gravity);
+    let xs: Vec<f64> = probes.iter().map(|p| p.x).collect();
+    let key = format!(
+        "{spec:?} {elements:?} {order:?} {loads:?} {weight:?} {xs:?} {accuracy:?} {multiple} {start:?}"
+    );
+    if let Some(d) = CHOSEN.lock().ok().and_then(|c| c.get(&key).cloned()) {
+        return d;
+    }
+    let d = choose_afresh(
+        spec, elements, order, loads, weight, &xs, accuracy, multiple, start,
+    );
+    if let Ok(mut c) = CHOSEN.lock() {
+        c.insert(key, d.clone());
+    }
+    d
+}
+
+#[allow(clippy::too_many_arguments)]
+fn choose_afresh(
+    spec: &BeamSpec,
+    elements: Option<usize>,
+    order: Option<usize>,
+    loads: &[PointLoad],
+    weight: Option<f64>,
+    xs: &[f64],
     accuracy: f64,
     multiple: usize,
     start: BeamStart,
@@ -160,15 +196,13 @@ pub fn choose(
         order,
         ..spec.clone()
     };
-    let xs: Vec<f64> = probes.iter().map(|p| p.x).collect();
     let carried =
         |l: &PointLoad| start == BeamStart::Static && l.active(0.0) && l.until == f64::INFINITY;
     let mut pattern: Vec<([f64; 4], bool)> = loads
         .iter()
         .map(|l| ([l.x, l.force[0], l.force[1], l.mz], !carried(l)))
         .collect();
-    if let Some(d) = disk {
-        let weight = d.disk.mass * d.gravity;
+    if let Some(weight) = weight {
         pattern.extend(xs.iter().map(|&x| ([x, 0.0, -weight, 0.0], true)));
     }
     let no_static = "the supports leave a rigid-body motion, so no static deflection to estimate from (default mesh)";
