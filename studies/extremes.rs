@@ -386,6 +386,9 @@ solver: {{rho_inf: 1.0}}
             loose.stats.steps
         );
         assert_eq!(loose.stop.name(), "contact-lost", "v = {v}, rtol 1e-3");
-        assert!((s_loose - x_lost).abs() < 5e-3, "v = {v}: {s_loose} m at rtol 1e-3");
+        assert!(
+            (s_loose - x_lost).abs() < 5e-3,
+            "v = {v}: {s_loose} m at rtol 1e-3"
+        );
     }
 }
