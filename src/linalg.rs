@@ -42,6 +42,52 @@ impl Assembly {
         SparseColMat::try_new_from_triplets(self.n, self.n, &self.entries)
             .expect("assembled indices lie inside the matrix")
     }
+
+    /// Where each entry lands in the built matrix, for later assemblies of the same entries.
+    pub fn pattern(&self) -> AssemblyPattern {
+        let template = self.build();
+        let at = self
+            .entries
+            .iter()
+            .map(|e| position(&template, e.row, e.col).expect("every entry is in the pattern"))
+            .collect();
+        AssemblyPattern {
+            template,
+            at,
+            cells: self.entries.iter().map(|e| (e.row, e.col)).collect(),
+        }
+    }
+}
+
+/// The pattern of an assembly whose entries come in the same order every time (a tangent
+/// stiffness re-evaluated at a new state): the values are summed straight into place, with
+/// none of the sorting that building from entries needs.
+#[derive(Clone, Debug)]
+pub struct AssemblyPattern {
+    template: Sparse,
+    at: Vec<usize>,
+    cells: Vec<(usize, usize)>,
+}
+
+impl AssemblyPattern {
+    /// The matrix of `a`; built afresh if its entries are not the ones this pattern was made of.
+    pub fn build(&self, a: &Assembly) -> Sparse {
+        let same = a.n == self.template.nrows()
+            && a.entries.len() == self.cells.len()
+            && a.entries
+                .iter()
+                .zip(&self.cells)
+                .all(|(e, &(i, j))| e.row == i && e.col == j);
+        if !same {
+            return a.build();
+        }
+        let mut m = self.template.clone();
+        m.val_mut().fill(0.0);
+        for (e, &k) in a.entries.iter().zip(&self.at) {
+            m.val_mut()[k] += e.val;
+        }
+        m
+    }
 }
 
 /// (column, (row, value)) of every stored entry.
@@ -87,9 +133,11 @@ pub struct Combination {
     a: Vec<f64>,
     b: Vec<f64>,
     joint: Sparse,
-    /// Where each stored entry of A sits in the joint pattern, and A's pattern.
+    /// Where each stored entry of A (of B) sits in the joint pattern, and A's (B's) pattern.
     a_at: Vec<usize>,
+    b_at: Vec<usize>,
     a_pattern: (Vec<usize>, Vec<usize>),
+    b_pattern: (Vec<usize>, Vec<usize>),
 }
 
 impl Combination {
@@ -101,15 +149,19 @@ impl Combination {
         pb.add_sparse(a, 0.0, 0, 0);
         pb.add_sparse(b, 1.0, 0, 0);
         let (ja, jb) = (pa.build(), pb.build());
-        let a_at = entries(a)
-            .map(|(j, (i, _))| position(&ja, i, j).expect("A lies in the joint pattern"))
-            .collect();
+        let at = |m: &Sparse| {
+            entries(m)
+                .map(|(j, (i, _))| position(&ja, i, j).expect("A and B lie in the joint pattern"))
+                .collect()
+        };
         Combination {
             a: ja.val().to_vec(),
             b: jb.val().to_vec(),
-            joint: ja,
-            a_at,
+            a_at: at(a),
+            b_at: at(b),
             a_pattern: pattern(a),
+            b_pattern: pattern(b),
+            joint: ja,
         }
     }
 
@@ -121,6 +173,18 @@ impl Combination {
         self.a.fill(0.0);
         for (k, v) in a.val().iter().enumerate() {
             self.a[self.a_at[k]] += v;
+        }
+        true
+    }
+
+    /// New values of B on the pattern it had: no sorting. `false` if the pattern changed.
+    pub fn update_b(&mut self, b: &Sparse) -> bool {
+        if pattern(b) != self.b_pattern {
+            return false;
+        }
+        self.b.fill(0.0);
+        for (k, v) in b.val().iter().enumerate() {
+            self.b[self.b_at[k]] += v;
         }
         true
     }

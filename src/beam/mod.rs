@@ -17,7 +17,8 @@ use basis::Lagrange;
 use element::{ElementKernels, Section, Tabulated};
 use supports::Support;
 
-use crate::linalg::{Assembly, Sparse};
+use crate::linalg::{Assembly, AssemblyPattern, Sparse};
+use std::sync::OnceLock;
 
 /// Which rule integrates the stiffness. Reduced Gauss (p points for degree p) is free of
 /// shear locking and of spurious zero-energy modes for this element (3p constraints on
@@ -104,6 +105,8 @@ pub struct Beam {
     mass: Sparse,
     /// Mass on every unknown, supports included: the inertia the supports carry.
     full_mass: Sparse,
+    /// The tangent's pattern, found at its first assembly.
+    tangent_pattern: OnceLock<AssemblyPattern>,
 }
 
 impl Beam {
@@ -148,6 +151,7 @@ impl Beam {
             n_free: next,
             mass: Sparse::try_new_from_triplets(0, 0, &[]).expect("empty"),
             full_mass: Sparse::try_new_from_triplets(0, 0, &[]).expect("empty"),
+            tangent_pattern: OnceLock::new(),
         };
         (beam.mass, beam.full_mass) = beam.assemble_mass();
         beam
@@ -254,7 +258,7 @@ impl Beam {
             kernels.tangent(&qe, &mut ke);
             self.scatter_matrix(e, &ke, &mut a);
         }
-        a.build()
+        self.tangent_pattern.get_or_init(|| a.pattern()).build(&a)
     }
 
     /// Element and shape-function values at material point x ∈ [0, L].

@@ -41,7 +41,11 @@ impl AxisPoint {
     /// The axis at material point s moving at ṡ, for the beam state (q, v), averaged over a
     /// patch of half-width `half`.
     pub fn at(beam: &Beam, q: &[f64], v: &[f64], s: f64, sdot: f64, half: f64) -> AxisPoint {
-        let nodes = beam.patch_basis_at(s, half);
+        Self::on(beam.patch_basis_at(s, half), q, v, s, sdot)
+    }
+
+    /// The same, from the patch-averaged shape functions at s, `nodes`.
+    pub fn on(nodes: Vec<NodeBasis>, q: &[f64], v: &[f64], s: f64, sdot: f64) -> AxisPoint {
         let value = |i: Option<usize>, y: &[f64]| i.map_or(0.0, |i| y[i]);
         // Σ_a N_a^(k)(s(t)) U_a(t) as a jet in t.
         let field = |k: usize, pick: fn(&NodeBasis) -> Option<usize>| {

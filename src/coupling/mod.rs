@@ -25,15 +25,15 @@ pub mod contact;
 pub mod thesis_system;
 
 use std::borrow::Cow;
-use std::cell::RefCell;
+use std::cell::{OnceCell, RefCell};
 use std::ops::Range;
 
 use contact::{dot, AxisPoint, Row};
 
 use crate::beam::dynamics::LoadedBeam;
-use crate::beam::Beam;
+use crate::beam::{Beam, NodeBasis};
 use crate::disk::Disk;
-use crate::linalg::{self, Assembly, Sparse, SparseLu};
+use crate::linalg::{self, Assembly, AssemblyPattern, Sparse, SparseLu};
 use crate::ode::second_order::SecondOrderProblem;
 use crate::ode::EventSpec;
 use crate::rolling::{DiskObservation, FIT_MARGIN};
@@ -134,6 +134,11 @@ pub struct DiskOnBeam<'a> {
     template: Sparse,
     /// The beam's own mass matrix, factorised once.
     lu: RefCell<Option<SparseLu>>,
+    /// The patch-averaged shape functions at the last contact point: a step evaluates the
+    /// force and the mass at one s several times.
+    basis: RefCell<Option<(f64, Vec<NodeBasis>)>>,
+    /// The beam's tangent bordered by the contact coordinate, found at its first assembly.
+    stiffness_pattern: OnceCell<AssemblyPattern>,
 }
 
 /// The terms of one coupling at the contact.
@@ -178,6 +183,8 @@ impl<'a> DiskOnBeam<'a> {
             cache: RefCell::new(None),
             template: a.build(),
             lu: RefCell::new(None),
+            stiffness_pattern: OnceCell::new(),
+            basis: RefCell::new(None),
         }
     }
 
@@ -237,14 +244,12 @@ impl<'a> DiskOnBeam<'a> {
         } else {
             self.travel(t)
         };
-        AxisPoint::at(
-            self.beam(),
-            &z[..self.n],
-            &zd[..self.n],
-            s,
-            sdot,
-            self.spec.patch,
-        )
+        let mut basis = self.basis.borrow_mut();
+        if basis.as_ref().is_none_or(|(at, _)| *at != s) {
+            *basis = Some((s, self.beam().patch_basis_at(s, self.spec.patch)));
+        }
+        let nodes = basis.as_ref().expect("filled above").1.clone();
+        AxisPoint::on(nodes, &z[..self.n], &zd[..self.n], s, sdot)
     }
 
     fn terms(&self, t: f64, z: &[f64], zd: &[f64]) -> Terms {
@@ -634,7 +639,7 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
         }
         let mut a = Assembly::new(self.dim());
         a.add_sparse(&k, 1.0, 0, 0);
-        a.build()
+        self.stiffness_pattern.get_or_init(|| a.pattern()).build(&a)
     }
 
     /// The averaged track changes over the patch half-width b and no faster, and a crest

@@ -208,7 +208,10 @@ impl Ga<'_> {
             self.k = Some(self.p.stiffness(t, q));
             self.stats.jacobians += 1;
             self.k_fresh = true;
-            self.combination = None;
+            let k = self.k.as_ref().expect("built above");
+            if !self.combination.as_mut().is_some_and(|c| c.update_b(k)) {
+                self.combination = None;
+            }
         }
         if self.combination.is_none() || !constant {
             let mut m = self.p.mass(t, q).into_owned();
