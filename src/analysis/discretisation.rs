@@ -11,7 +11,7 @@
 //! degree-4 elements is started with one element per two of those modes' half-waves, and
 //! confirmed by one refinement: it is kept once mode K's frequency and the static deflection
 //! at the probes change by less than ε/4 when the element count doubles, and doubled
-//! otherwise. The time integrator is asked for rtol = ε/10 (see [`rtol_for`]).
+//! otherwise. The time integrator is asked for rtol = ε/30 or ε/100 (see [`rtol_for`]).
 
 use std::collections::BTreeMap;
 use std::sync::Mutex;
@@ -36,10 +36,13 @@ const ESTIMATION_ELEMENTS: usize = 16;
 /// The confirming refinement stops doubling past this many nodes (the modal check is dense).
 const MAX_NODES: usize = 400;
 
-/// The rtol a beam scene gets for `accuracy` when it leaves rtol out, and why. Generalized-α
-/// at rtol = ε/10 without numerical damping (ρ∞ = 1) landed within 0.3 ε of the converged peak
-/// on B2, a sudden load; with ρ∞ < 1 the damped high modes that ride on such a peak cost up to
-/// 2.4 ε at ε/10 (B2 at ρ∞ = 0.8) and 0.06 ε at ε/100 (REPORT.md), hence a tenfold margin.
+/// The rtol a beam scene gets for `accuracy` when it leaves rtol out, and why. Without
+/// numerical damping (ρ∞ = 1) generalized-α at ε/10 landed within 0.3 ε of the converged peak
+/// on B2, a sudden load, but within 0.79 ε on D44, a moving one, and erratically so (1.7 ε at
+/// rtol ε, 0.18 ε at 0.3 ε): the undamped mesh-scale ripple on the peak is left to chance
+/// there. At ε/30 D44 and D50 land within 0.15 ε. With ρ∞ < 1 the damped high modes that ride
+/// on a sudden load's peak cost up to 2.4 ε at ε/10 (B2 at ρ∞ = 0.8) and 0.06 ε at ε/100
+/// (REPORT.md), hence the larger margin.
 pub fn rtol_for(accuracy: f64, rho_inf: f64) -> (f64, &'static str) {
     if rho_inf < 1.0 {
         (
@@ -48,8 +51,8 @@ pub fn rtol_for(accuracy: f64, rho_inf: f64) -> (f64, &'static str) {
         )
     } else {
         (
-            accuracy / 10.0,
-            "a tenth of the accuracy: generalized-alpha lands within a third of it there",
+            accuracy / 30.0,
+            "a thirtieth of the accuracy: the undamped ripple on a moving load's peak needs the margin",
         )
     }
 }
