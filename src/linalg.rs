@@ -4,7 +4,7 @@
 
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMat, Triplet};
-use faer::{Mat, Par};
+use faer::Par;
 
 pub type Sparse = SparseColMat<usize, f64>;
 
@@ -243,13 +243,15 @@ impl SparseLu {
         probe.iter().all(|v| v.is_finite()).then_some(out)
     }
 
+    pub fn dim(&self) -> usize {
+        self.pattern.0.len() - 1
+    }
+
     pub fn solve_in_place(&self, b: &mut [f64]) {
         use faer::linalg::solvers::Solve;
-        let mut rhs = Mat::from_fn(b.len(), 1, |i, _| b[i]);
-        self.lu.solve_in_place(rhs.as_mut());
-        for (i, v) in b.iter_mut().enumerate() {
-            *v = rhs[(i, 0)];
-        }
+        let n = b.len();
+        self.lu
+            .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1));
     }
 }
 

@@ -34,7 +34,7 @@ use crate::beam::dynamics::LoadedBeam;
 use crate::beam::{Beam, NodeBasis};
 use crate::disk::Disk;
 use crate::linalg::{self, Assembly, AssemblyPattern, Sparse, SparseLu};
-use crate::ode::second_order::SecondOrderProblem;
+use crate::ode::second_order::{LowRank, SecondOrderProblem};
 use crate::ode::EventSpec;
 use crate::rolling::{DiskObservation, FIT_MARGIN};
 
@@ -134,6 +134,8 @@ pub struct DiskOnBeam<'a> {
     template: Sparse,
     /// The beam's own mass matrix, factorised once.
     lu: RefCell<Option<SparseLu>>,
+    /// The beam's mass and a unit mass on the contact coordinate.
+    base_mass: Sparse,
     /// The patch-averaged shape functions at the last contact point: a step evaluates the
     /// force and the mass at one s several times.
     basis: RefCell<Option<(f64, Vec<NodeBasis>)>>,
@@ -175,7 +177,13 @@ impl<'a> DiskOnBeam<'a> {
                 a.add(n, i, 0.0);
             }
         }
+        let mut base = Assembly::new(nz);
+        base.add_sparse(loaded.beam.mass(), 1.0, 0, 0);
+        if nz > n {
+            base.add(n, n, 1.0);
+        }
         DiskOnBeam {
+            base_mass: base.build(),
             n,
             loaded,
             spec,
@@ -602,15 +610,15 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
         false
     }
 
-    /// Within one element the disk's added mass drifts slowly, and modified Newton absorbs
-    /// it; on a new element it sits on other unknowns, and the iteration matrix must follow.
-    fn iteration_key(&self, t: f64, q: &[f64]) -> usize {
-        let s = if self.spec.coupling.rolls() {
-            q[self.n]
-        } else {
-            self.travel(t).0
-        };
-        self.beam().element_of(s)
+    /// The beam's mass, with a unit mass standing in on the contact coordinate that the
+    /// low-rank part takes back out, plus the disk's inertia as seen by z.
+    fn mass_split(&self, t: f64, q: &[f64]) -> Option<(&Sparse, LowRank)> {
+        let zero = vec![0.0; q.len()];
+        let mut added = self.added_mass(&self.contact(t, q, &zero));
+        if self.dim() > self.n {
+            added.push((-1.0, vec![(self.n, 1.0)]));
+        }
+        Some((&self.base_mass, added))
     }
 
     fn mass_mul(&self, t: f64, q: &[f64], a: &[f64], out: &mut [f64]) {

@@ -19,10 +19,12 @@ pub trait SecondOrderProblem {
     fn mass_is_constant(&self) -> bool {
         true
     }
-    /// A label of the region of states within which one iteration matrix serves (for a
-    /// body riding on the beam: the element it is on); a new label refactorises.
-    fn iteration_key(&self, _t: f64, _q: &[f64]) -> usize {
-        0
+    /// M(t, q) = B + Σ_k w_k g_k g_kᵀ with B constant and a few sparse rows g_k, where the
+    /// mass has that form (a body riding on a structure): B, and the (w_k, g_k) at (t, q).
+    /// Generalized-α then factorises its iteration matrix from B alone, once per step size,
+    /// and adds the rest exactly at every step by the Woodbury identity.
+    fn mass_split(&self, _t: f64, _q: &[f64]) -> Option<(&Sparse, LowRank)> {
+        None
     }
     /// out = M(t, q) a, without assembling M where the problem can avoid it.
     fn mass_mul(&self, t: f64, q: &[f64], a: &[f64], out: &mut [f64]) {
@@ -53,6 +55,9 @@ pub trait SecondOrderProblem {
         1.0
     }
 }
+
+/// Terms w g gᵀ of a matrix, each g a sparse row: (unknown, coefficient).
+pub type LowRank = Vec<(f64, Vec<(usize, f64)>)>;
 
 /// y = (q, v): q' = v, M(q) v' = f(t, q, v). Mass diag(I, M), Jacobian [[0, I], [−K, 0]].
 pub struct FirstOrder<'a> {
@@ -159,10 +164,11 @@ struct Ga<'a> {
     atol: f64,
     groups: Vec<Range<usize>>,
     stats: Stats,
-    /// Factorised (1 − α_m) M + (1 − α_f) β h² K and the h it was built for.
+    /// Factorised (1 − α_m) M + (1 − α_f) β h² K and the h it was built for; with a split
+    /// mass, M is its constant part B.
     iteration: Option<(f64, SparseLu)>,
-    /// The problem's iteration key when it was built.
-    key: usize,
+    /// With a split mass: its low-rank part at the step's start, added by Woodbury.
+    woodbury: Option<Woodbury>,
     /// The tangent stiffness the iteration matrix is built from, kept until Newton stalls.
     k: Option<Sparse>,
     /// (1 − α_m) M + c K on their joint pattern, for the current K (and M, if it is constant).
@@ -197,13 +203,44 @@ impl Ga<'_> {
     }
 
     fn factor(&mut self, t: f64, q: &[f64], h: f64) -> Result<(), SolveError> {
-        let constant = self.p.mass_is_constant();
-        let key = self.p.iteration_key(t, q);
+        let split = self.p.mass_split(t, q);
+        self.factor_base(t, q, h, split.as_ref().map(|(b, _)| *b))?;
+        self.woodbury = match split {
+            Some((_, terms)) => {
+                let (_, lu) = self.iteration.as_ref().expect("factorised above");
+                let scaled = terms
+                    .into_iter()
+                    .map(|(w, g)| ((1.0 - self.c.alpha_m) * w, g))
+                    .collect();
+                Some(Woodbury::new(lu, scaled).ok_or(SolveError::SingularMatrix { t })?)
+            }
+            None => None,
+        };
+        Ok(())
+    }
+
+    /// x ← S⁻¹ x for the iteration matrix S.
+    fn solve(&self, x: &mut [f64]) {
+        let (_, lu) = self.iteration.as_ref().expect("factorised");
+        match &self.woodbury {
+            Some(w) => w.solve_in_place(lu, x),
+            None => lu.solve_in_place(x),
+        }
+    }
+
+    /// The factorised iteration matrix, or with a split mass its part from the constant B.
+    fn factor_base(
+        &mut self,
+        t: f64,
+        q: &[f64],
+        h: f64,
+        split: Option<&Sparse>,
+    ) -> Result<(), SolveError> {
+        let constant = self.p.mass_is_constant() || split.is_some();
         let fresh_k_due = self.k.is_none();
-        if !fresh_k_due && key == self.key && matches!(self.iteration, Some((hh, _)) if hh == h) {
+        if !fresh_k_due && matches!(self.iteration, Some((hh, _)) if hh == h) {
             return Ok(());
         }
-        self.key = key;
         if fresh_k_due {
             self.k = Some(self.p.stiffness(t, q));
             self.stats.jacobians += 1;
@@ -214,7 +251,10 @@ impl Ga<'_> {
             }
         }
         if self.combination.is_none() || !constant {
-            let mut m = self.p.mass(t, q).into_owned();
+            let mut m = match split {
+                Some(b) => b.clone(),
+                None => self.p.mass(t, q).into_owned(),
+            };
             m.val_mut()
                 .iter_mut()
                 .for_each(|v| *v *= 1.0 - self.c.alpha_m);
@@ -268,8 +308,7 @@ impl Ga<'_> {
                     - (1.0 - c.alpha_f) * f1[i]
                     - c.alpha_f * s.f[i]);
             }
-            let (_, lu) = self.iteration.as_ref().expect("factorised");
-            lu.solve_in_place(&mut r);
+            self.solve(&mut r);
             for i in 0..n {
                 a1[i] += r[i];
             }
@@ -304,11 +343,7 @@ impl Ga<'_> {
             .collect();
         let mut e = vec![0.0; n];
         self.p.mass_mul(t1, &q1, &raw, &mut e);
-        self.iteration
-            .as_ref()
-            .expect("factorised")
-            .1
-            .solve_in_place(&mut e);
+        self.solve(&mut e);
         let err = self.norm(&e, &q1);
         Ok(Some((
             State {
@@ -320,6 +355,65 @@ impl Ga<'_> {
             },
             err,
         )))
+    }
+}
+
+/// (A + G W Gᵀ)⁻¹ x from A's factorisation (Woodbury): with Z = A⁻¹ G,
+/// x ← A⁻¹x − Z (W⁻¹ + Gᵀ Z)⁻¹ Gᵀ A⁻¹x. W is diagonal, the columns of G sparse and few.
+struct Woodbury {
+    rows: Vec<Vec<(usize, f64)>>,
+    /// A⁻¹ g_k.
+    z: Vec<Vec<f64>>,
+    capacitance: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
+}
+
+impl Woodbury {
+    /// `None` when the capacitance matrix is singular, i.e. so is the whole.
+    fn new(lu: &SparseLu, terms: LowRank) -> Option<Woodbury> {
+        let n = lu.dim();
+        let z: Vec<Vec<f64>> = terms
+            .iter()
+            .map(|(_, g)| {
+                let mut c = vec![0.0; n];
+                g.iter().for_each(|&(i, v)| c[i] += v);
+                lu.solve_in_place(&mut c);
+                c
+            })
+            .collect();
+        let r = terms.len();
+        let capacitance = nalgebra::DMatrix::from_fn(r, r, |i, j| {
+            let gz: f64 = terms[i].1.iter().map(|&(k, v)| v * z[j][k]).sum();
+            gz + if i == j { 1.0 / terms[i].0 } else { 0.0 }
+        })
+        .lu();
+        if r > 0 && !capacitance.is_invertible() {
+            return None;
+        }
+        Some(Woodbury {
+            rows: terms.into_iter().map(|(_, g)| g).collect(),
+            z,
+            capacitance,
+        })
+    }
+
+    fn solve_in_place(&self, lu: &SparseLu, x: &mut [f64]) {
+        lu.solve_in_place(x);
+        if self.rows.is_empty() {
+            return;
+        }
+        let gx = nalgebra::DVector::from_iterator(
+            self.rows.len(),
+            self.rows
+                .iter()
+                .map(|g| g.iter().map(|&(k, v)| v * x[k]).sum::<f64>()),
+        );
+        let coef = self
+            .capacitance
+            .solve(&gx)
+            .expect("checked invertible when built");
+        for (c, z) in coef.iter().zip(&self.z) {
+            x.iter_mut().zip(z).for_each(|(xi, zi)| *xi -= c * zi);
+        }
     }
 }
 
@@ -362,10 +456,10 @@ pub fn solve_genalpha(
         groups: p.norm_groups(),
         stats: Stats::default(),
         iteration: None,
-        key: 0,
         k: None,
         combination: None,
         k_fresh: false,
+        woodbury: None,
     };
     let specs = p.events();
     let breaks = super::breakpoints_within(p.breakpoints(), t0, t_end);
