@@ -217,8 +217,8 @@ fn dispatch(command: Command) -> Result<(), Error> {
                 Run::Beam(b) => (b.method, b.rtol, b.atol),
             };
             say!(
-                "  {} rtol {rt:e} atol {at:e}: {} steps, {} rejected, {} rhs evaluations, {} Jacobians, {} factorisations, {:.3} s",
-                m.name(), s.steps, s.rejected, s.rhs_evals, s.jacobians, s.factorizations, s.wall_s
+                "  {} rtol {} atol {}: {} steps, {} rejected, {} rhs evaluations, {} Jacobians, {} factorisations, {:.3} s",
+                m.name(), output::tolerance(rt), output::tolerance(at), s.steps, s.rejected, s.rhs_evals, s.jacobians, s.factorizations, s.wall_s
             );
             say!("  wrote {}", dir.display());
             Ok(())
@@ -315,16 +315,17 @@ fn dispatch(command: Command) -> Result<(), Error> {
                     let (rtol, why) =
                         rollbeam::analysis::discretisation::rtol_for(b.accuracy, b.rho_inf);
                     say!(
-                        "  rtol chosen for accuracy {:e}: {rtol:e}, {why}",
-                        b.accuracy
+                        "  rtol chosen for accuracy {:e}: {}, {why}",
+                        b.accuracy,
+                        output::tolerance(rtol)
                     );
                 }
             }
             say!(
-                "  solver: {} rtol {:e} atol {:e}; duration {} s, output every {} s",
+                "  solver: {} rtol {} atol {}; duration {} s, output every {} s",
                 scene.solver.method.name(),
-                scene.solver.rtol,
-                scene.solver.atol,
+                output::tolerance(scene.solver.rtol),
+                output::tolerance(scene.solver.atol),
                 scene.duration,
                 scene.interval
             );

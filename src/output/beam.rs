@@ -619,7 +619,7 @@ fn chosen(r: &BeamRun) -> Option<Chosen> {
     let mesh = r.setup.discretisation.as_ref().map(|d| d.why.clone());
     let rtol = (r.scene.solver.rtol_from_accuracy && r.rtol == r.scene.solver.rtol).then(|| {
         let (rtol, why) = rtol_for(r.setup.accuracy, r.setup.rho_inf);
-        format!("{rtol:e}, {why}")
+        format!("{}, {why}", super::tolerance(rtol))
     });
     (mesh.is_some() || rtol.is_some()).then(|| Chosen {
         accuracy: r.setup.accuracy,

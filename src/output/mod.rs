@@ -38,3 +38,9 @@ pub(crate) fn write(path: &Path, text: &str) -> Result<(), Error> {
 pub(crate) fn io_error(path: &Path, e: impl std::fmt::Display) -> Error {
     Error::Output(format!("cannot write {}: {e}", path.display()))
 }
+
+/// A tolerance to three significant digits: 1e-5 stays 1e-5, accuracy/30 reads 3.33e-5.
+pub fn tolerance(x: f64) -> String {
+    let rounded: f64 = format!("{x:.2e}").parse().unwrap_or(x);
+    format!("{rounded:e}")
+}
