@@ -38,9 +38,9 @@ const MAX_NODES: usize = 400;
 
 /// The rtol a beam scene gets for `accuracy` when it leaves rtol out, and why. Without
 /// numerical damping (ρ∞ = 1) generalized-α at ε/10 landed within 0.3 ε of the converged peak
-/// on B2, a sudden load, but within 0.79 ε on D44, a moving one, and erratically so (1.7 ε at
-/// rtol ε, 0.18 ε at 0.3 ε): the undamped mesh-scale ripple on the peak is left to chance
-/// there. At ε/30 D44 and D50 land within 0.15 ε. With ρ∞ < 1 the damped high modes that ride
+/// on B2, a sudden load, but within 0.43 ε on D44, a moving one, and erratically so (1.2 ε at
+/// ε/3, 0.76 ε at ε): the undamped mesh-scale ripple on the peak is left to chance there. At
+/// ε/30 D44 and D50 land within 0.15 ε. With ρ∞ < 1 the damped high modes that ride
 /// on a sudden load's peak cost up to 2.4 ε at ε/10 (B2 at ρ∞ = 0.8) and 0.06 ε at ε/100
 /// (REPORT.md), hence the larger margin.
 pub fn rtol_for(accuracy: f64, rho_inf: f64) -> (f64, &'static str) {
