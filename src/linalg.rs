@@ -167,26 +167,12 @@ impl Combination {
 
     /// New values of A on the pattern it had: no sorting. `false` if the pattern changed.
     pub fn update_a(&mut self, a: &Sparse) -> bool {
-        if pattern(a) != self.a_pattern {
-            return false;
-        }
-        self.a.fill(0.0);
-        for (k, v) in a.val().iter().enumerate() {
-            self.a[self.a_at[k]] += v;
-        }
-        true
+        refill(&mut self.a, &self.a_at, &self.a_pattern, a)
     }
 
     /// New values of B on the pattern it had: no sorting. `false` if the pattern changed.
     pub fn update_b(&mut self, b: &Sparse) -> bool {
-        if pattern(b) != self.b_pattern {
-            return false;
-        }
-        self.b.fill(0.0);
-        for (k, v) in b.val().iter().enumerate() {
-            self.b[self.b_at[k]] += v;
-        }
-        true
+        refill(&mut self.b, &self.b_at, &self.b_pattern, b)
     }
 
     pub fn at(&mut self, c: f64) -> &Sparse {
@@ -200,6 +186,24 @@ impl Combination {
         }
         &self.joint
     }
+}
+
+/// One operand's values put in place on the joint pattern, if `m` still has the operand's
+/// `pattern`; `at` says where each of its stored entries goes.
+fn refill(
+    joint: &mut [f64],
+    at: &[usize],
+    pattern_was: &(Vec<usize>, Vec<usize>),
+    m: &Sparse,
+) -> bool {
+    if &pattern(m) != pattern_was {
+        return false;
+    }
+    joint.fill(0.0);
+    for (v, &k) in m.val().iter().zip(at) {
+        joint[k] += v;
+    }
+    true
 }
 
 fn pattern(m: &Sparse) -> (Vec<usize>, Vec<usize>) {
