@@ -33,8 +33,8 @@ use contact::{dot, AxisPoint, Row};
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::{Beam, NodeBasis};
 use crate::disk::Disk;
-use crate::linalg::{self, Assembly, AssemblyPattern, Sparse, SparseLu};
-use crate::ode::second_order::{LowRank, SecondOrderProblem};
+use crate::linalg::{self, Assembly, AssemblyPattern, LowRank, Sparse, SparseLu, Woodbury};
+use crate::ode::second_order::SecondOrderProblem;
 use crate::ode::EventSpec;
 use crate::rolling::{DiskObservation, FIT_MARGIN};
 
@@ -132,7 +132,7 @@ pub struct DiskOnBeam<'a> {
     /// displacements of any two nodes one patch apart, the contact coordinate's row and
     /// column): one symbolic factorisation serves the whole run.
     template: Sparse,
-    /// The beam's own mass matrix, factorised once.
+    /// `base_mass`, factorised once.
     lu: RefCell<Option<SparseLu>>,
     /// The beam's mass and a unit mass on the contact coordinate.
     base_mass: Sparse,
@@ -393,50 +393,29 @@ impl<'a> DiskOnBeam<'a> {
         m
     }
 
-    /// The true acceleration at a state: M(z) z̈ = f(z, ż). M(z) is the constant beam mass
-    /// plus a few rank-one terms, so it is solved by the Woodbury identity with the beam mass
-    /// factorised once (a unit mass stands in on the contact coordinate and is taken back out
-    /// as one more rank-one term).
+    /// The true acceleration at a state: M(z) z̈ = f(z, ż), by the Woodbury identity on the
+    /// split of M (see [`SecondOrderProblem::mass_split`]) with its constant part factorised
+    /// once.
     pub fn acceleration(&self, t: f64, z: &[f64], zd: &[f64]) -> Option<Vec<f64>> {
         let terms = self.terms(t, z, zd);
-        let mut f = vec![0.0; self.dim()];
-        self.force_from(t, z, zd, &terms, &mut f);
-        let mut added = terms.added;
-        if self.dim() > self.n {
-            added.push((-1.0, vec![(self.n, 1.0)]));
-        }
+        let mut y = vec![0.0; self.dim()];
+        self.force_from(t, z, zd, &terms, &mut y);
         if self.lu.borrow().is_none() {
-            *self.lu.borrow_mut() = Some(SparseLu::factor(self.beam().mass(), None)?);
+            *self.lu.borrow_mut() = Some(SparseLu::factor(&self.base_mass, None)?);
         }
         let lu = self.lu.borrow();
         let lu = lu.as_ref().expect("factorised above");
-        let base_solve = |x: &mut [f64]| lu.solve_in_place(&mut x[..self.n]);
-        let mut y = f;
-        base_solve(&mut y);
-        let cols: Vec<Vec<f64>> = added
-            .iter()
-            .map(|(_, row)| {
-                let mut c = vec![0.0; self.dim()];
-                for &(i, v) in row {
-                    c[i] += v;
-                }
-                base_solve(&mut c);
-                c
-            })
-            .collect();
-        let r = added.len();
-        if r == 0 {
-            return y.iter().all(|v| v.is_finite()).then_some(y);
-        }
-        let cap = nalgebra::DMatrix::from_fn(r, r, |i, j| {
-            dot(&added[i].1, &cols[j]) + if i == j { 1.0 / added[i].0 } else { 0.0 }
-        });
-        let rhs = nalgebra::DVector::from_fn(r, |i, _| dot(&added[i].1, &y));
-        let coef = cap.lu().solve(&rhs)?;
-        for (k, c) in cols.iter().enumerate() {
-            y.iter_mut().zip(c).for_each(|(yi, ci)| *yi -= coef[k] * ci);
-        }
+        Woodbury::new(lu, self.low_rank_mass(terms.added))?.solve_in_place(lu, &mut y);
         y.iter().all(|v| v.is_finite()).then_some(y)
+    }
+
+    /// M(z) − B for the constant part B: the disk's inertia as seen by z, and the unit mass
+    /// B puts on the contact coordinate taken back out.
+    fn low_rank_mass(&self, mut added: AddedMass) -> LowRank {
+        if self.dim() > self.n {
+            added.push((-1.0, vec![(self.n, 1.0)]));
+        }
+        added
     }
 
     /// Add to f the force of the disk resting at s0 on the beam displaced by q: its weight,
@@ -614,11 +593,8 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
     /// low-rank part takes back out, plus the disk's inertia as seen by z.
     fn mass_split(&self, t: f64, q: &[f64]) -> Option<(&Sparse, LowRank)> {
         let zero = vec![0.0; q.len()];
-        let mut added = self.added_mass(&self.contact(t, q, &zero));
-        if self.dim() > self.n {
-            added.push((-1.0, vec![(self.n, 1.0)]));
-        }
-        Some((&self.base_mass, added))
+        let added = self.added_mass(&self.contact(t, q, &zero));
+        Some((&self.base_mass, self.low_rank_mass(added)))
     }
 
     fn mass_mul(&self, t: f64, q: &[f64], a: &[f64], out: &mut [f64]) {

@@ -9,7 +9,7 @@ use std::ops::Range;
 use std::time::Instant;
 
 use super::{EventHit, EventSpec, Observer, Options, Outcome, Problem, SolveError, Stats};
-use crate::linalg::{self, Assembly, Combination, Sparse, SparseLu};
+use crate::linalg::{self, Assembly, Combination, LowRank, Sparse, SparseLu, Woodbury};
 
 pub trait SecondOrderProblem {
     fn dim(&self) -> usize;
@@ -55,9 +55,6 @@ pub trait SecondOrderProblem {
         1.0
     }
 }
-
-/// Terms w g gᵀ of a matrix, each g a sparse row: (unknown, coefficient).
-pub type LowRank = Vec<(f64, Vec<(usize, f64)>)>;
 
 /// y = (q, v): q' = v, M(q) v' = f(t, q, v). Mass diag(I, M), Jacobian [[0, I], [−K, 0]].
 pub struct FirstOrder<'a> {
@@ -358,65 +355,6 @@ impl Ga<'_> {
     }
 }
 
-/// (A + G W Gᵀ)⁻¹ x from A's factorisation (Woodbury): with Z = A⁻¹ G,
-/// x ← A⁻¹x − Z (W⁻¹ + Gᵀ Z)⁻¹ Gᵀ A⁻¹x. W is diagonal, the columns of G sparse and few.
-struct Woodbury {
-    rows: Vec<Vec<(usize, f64)>>,
-    /// A⁻¹ g_k.
-    z: Vec<Vec<f64>>,
-    capacitance: nalgebra::LU<f64, nalgebra::Dyn, nalgebra::Dyn>,
-}
-
-impl Woodbury {
-    /// `None` when the capacitance matrix is singular, i.e. so is the whole.
-    fn new(lu: &SparseLu, terms: LowRank) -> Option<Woodbury> {
-        let n = lu.dim();
-        let z: Vec<Vec<f64>> = terms
-            .iter()
-            .map(|(_, g)| {
-                let mut c = vec![0.0; n];
-                g.iter().for_each(|&(i, v)| c[i] += v);
-                lu.solve_in_place(&mut c);
-                c
-            })
-            .collect();
-        let r = terms.len();
-        let capacitance = nalgebra::DMatrix::from_fn(r, r, |i, j| {
-            let gz: f64 = terms[i].1.iter().map(|&(k, v)| v * z[j][k]).sum();
-            gz + if i == j { 1.0 / terms[i].0 } else { 0.0 }
-        })
-        .lu();
-        if r > 0 && !capacitance.is_invertible() {
-            return None;
-        }
-        Some(Woodbury {
-            rows: terms.into_iter().map(|(_, g)| g).collect(),
-            z,
-            capacitance,
-        })
-    }
-
-    fn solve_in_place(&self, lu: &SparseLu, x: &mut [f64]) {
-        lu.solve_in_place(x);
-        if self.rows.is_empty() {
-            return;
-        }
-        let gx = nalgebra::DVector::from_iterator(
-            self.rows.len(),
-            self.rows
-                .iter()
-                .map(|g| g.iter().map(|&(k, v)| v * x[k]).sum::<f64>()),
-        );
-        let coef = self
-            .capacitance
-            .solve(&gx)
-            .expect("checked invertible when built");
-        for (c, z) in coef.iter().zip(&self.z) {
-            x.iter_mut().zip(z).for_each(|(xi, zi)| *xi -= c * zi);
-        }
-    }
-}
-
 /// Cubic Hermite on (q, v) and on (v, a) between two states.
 fn interpolate(s0: &State, s1: &State, t: f64, out: &mut [f64]) {
     let n = s0.q.len();
@@ -621,47 +559,4 @@ pub fn solve_genalpha(
     }
     emit(&s, &mut y);
     finish(s.t, y, ga.stats, None, events)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The Woodbury solve against the assembled matrix: a tridiagonal A, unsymmetric, plus
-    /// three rank-one terms whose rows overlap, one with a negative weight (as the unit mass
-    /// standing in on a contact coordinate is taken back out). Round-off only, so 1e-12.
-    #[test]
-    fn woodbury_solves_the_assembled_system() {
-        let n = 12;
-        let mut a = Assembly::new(n);
-        for i in 0..n {
-            a.add(i, i, 4.0 + i as f64 * 0.1);
-            if i > 0 {
-                a.add(i, i - 1, -1.0);
-                a.add(i - 1, i, -1.5);
-            }
-        }
-        let terms: LowRank = vec![
-            (2.0, vec![(3, 1.0), (4, 0.5), (11, -0.3)]),
-            (0.7, vec![(4, 1.0), (5, 2.0)]),
-            (-0.5, vec![(11, 1.0)]),
-        ];
-        let mut whole = a.clone();
-        for (w, g) in &terms {
-            for &(i, gi) in g {
-                for &(j, gj) in g {
-                    whole.add(i, j, w * gi * gj);
-                }
-            }
-        }
-        let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).cos()).collect();
-        let mut b = vec![0.0; n];
-        linalg::mul(&whole.build(), &x, &mut b);
-        let lu = SparseLu::factor(&a.build(), None).expect("A is regular");
-        let w = Woodbury::new(&lu, terms).expect("the whole is regular");
-        w.solve_in_place(&lu, &mut b);
-        for (bi, xi) in b.iter().zip(&x) {
-            assert!((bi - xi).abs() < 1e-12, "{bi} against {xi}");
-        }
-    }
 }
