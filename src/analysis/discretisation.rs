@@ -70,6 +70,7 @@ pub struct Discretisation {
 /// Linear static deflection and the modes of `spec` meshed into `elements`: the probes'
 /// displacement magnitudes |(u, w)| statically, and after the first k modes for every k; the
 /// circular frequencies.
+#[derive(Clone)]
 struct Estimate {
     static_at_probes: Vec<f64>,
     omega: Vec<f64>,
@@ -209,7 +210,7 @@ fn choose_afresh(
         pattern.extend(xs.iter().map(|&x| ([x, 0.0, -weight, 0.0], true)));
     }
     let no_static = "the supports leave a rigid-body motion, so no static deflection to estimate from (default mesh)";
-    let Some(est) = estimate(&spec, admissible(ESTIMATION_ELEMENTS), &pattern, &xs) else {
+    let Some(est) = estimate(&spec, admissible(ESTIMATION_ELEMENTS), &pattern, xs) else {
         return fallback(no_static);
     };
     let scale = est.static_at_probes.iter().fold(0.0_f64, |m, v| m.max(*v));
@@ -235,12 +236,21 @@ fn choose_afresh(
             why: format!("elements {n} as the scene gives, of degree {order}"),
         };
     }
+    let estimation_elements = admissible(ESTIMATION_ELEMENTS);
+    // The estimation mesh is often one of those the refinement visits.
+    let on = |elements: usize| {
+        if elements == estimation_elements {
+            Some(est.clone())
+        } else {
+            estimate(&spec, elements, &pattern, xs)
+        }
+    };
     let mut n = admissible(excited.div_ceil(2).max(2));
-    let Some(mut coarse) = estimate(&spec, n, &pattern, &xs) else {
+    let Some(mut coarse) = on(n) else {
         return fallback(no_static);
     };
     loop {
-        let Some(fine) = estimate(&spec, 2 * n, &pattern, &xs) else {
+        let Some(fine) = on(2 * n) else {
             return fallback(no_static);
         };
         let k = excited.min(coarse.omega.len()) - 1;

@@ -69,6 +69,10 @@ pub struct BeamSpec {
     pub quadrature: Quadrature,
 }
 
+/// Material points prepared for repeated reading (see [`Beam::stations`]).
+#[derive(Clone, Debug)]
+pub struct Stations(Vec<(usize, Vec<f64>)>);
+
 /// A displacement state at one material point, in global axes.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PointDisplacement {
@@ -94,6 +98,8 @@ pub struct Beam {
     pub length: f64,
     /// Angle of the undeformed axis to the global X axis.
     pub angle: f64,
+    /// (sin, cos) of the angle: every result is turned by it.
+    turn: (f64, f64),
     basis: Lagrange,
     stiff: Tabulated,
     /// Integrates a contact-patch kernel (degree 8) times a shape function (degree p) exactly.
@@ -143,6 +149,7 @@ impl Beam {
             spec,
             length,
             angle,
+            turn: angle.sin_cos(),
             basis,
             stiff,
             patch_rule,
@@ -188,14 +195,22 @@ impl Beam {
         let k = 3 * (self.spec.order + 1);
         let mut me = vec![0.0; k * k];
         element::mass(&self.spec.section, &tab, &mut me);
+        // The element mass couples no two components (u, w, φ): leaving its zeros out of
+        // the pattern takes two thirds off every product with it.
         let mut free = Assembly::new(self.n_free);
         let mut full = Assembly::new(3 * self.nodes());
         for e in 0..self.spec.elements {
-            self.scatter_matrix(e, &me, &mut free);
             let dofs: Vec<usize> = self.element_dofs(e).collect();
             for (i, &r) in dofs.iter().enumerate() {
                 for (j, &c) in dofs.iter().enumerate() {
-                    full.add(r, c, me[i * k + j]);
+                    let m = me[i * k + j];
+                    if m == 0.0 {
+                        continue;
+                    }
+                    full.add(r, c, m);
+                    if let (Some(ri), Some(cj)) = (self.eq[r], self.eq[c]) {
+                        free.add(ri, cj, m);
+                    }
                 }
             }
         }
@@ -352,12 +367,12 @@ impl Beam {
 
     /// Global load components turned into the beam frame.
     pub fn to_local(&self, v: [f64; 2]) -> [f64; 2] {
-        let (s, c) = self.angle.sin_cos();
+        let (s, c) = self.turn;
         [c * v[0] + s * v[1], -s * v[0] + c * v[1]]
     }
 
     pub fn to_global(&self, v: [f64; 2]) -> [f64; 2] {
-        let (s, c) = self.angle.sin_cos();
+        let (s, c) = self.turn;
         [c * v[0] - s * v[1], s * v[0] + c * v[1]]
     }
 
@@ -380,6 +395,32 @@ impl Beam {
     /// Displacement (global u, w) and rotation at material point x.
     pub fn displacement_at(&self, q: &[f64], x: f64) -> PointDisplacement {
         let (e, n, _) = self.locate(x);
+        self.displacement_in(e, &n, q)
+    }
+
+    /// Material points whose displacements are read at every output row (the sampled axis):
+    /// their elements and shape-function values, evaluated once for the run.
+    pub fn stations(&self, xs: &[f64]) -> Stations {
+        Stations(
+            xs.iter()
+                .map(|&x| {
+                    let (e, n, _) = self.locate(x);
+                    (e, n)
+                })
+                .collect(),
+        )
+    }
+
+    /// Displacements at the stations, in their order.
+    pub fn displacements(&self, stations: &Stations, q: &[f64]) -> Vec<PointDisplacement> {
+        stations
+            .0
+            .iter()
+            .map(|(e, n)| self.displacement_in(*e, n, q))
+            .collect()
+    }
+
+    fn displacement_in(&self, e: usize, n: &[f64], q: &[f64]) -> PointDisplacement {
         let first = e * self.spec.order;
         let mut v = [0.0; 3];
         for (a, na) in n.iter().enumerate() {
@@ -477,7 +518,7 @@ impl Beam {
 
     /// Position of the undeformed axis at material point x.
     pub fn reference_point(&self, x: f64) -> [f64; 2] {
-        let (s, c) = self.angle.sin_cos();
+        let (s, c) = self.turn;
         [self.spec.from[0] + x * c, self.spec.from[1] + x * s]
     }
 }

@@ -126,8 +126,9 @@ pub struct DiskOnBeam<'a> {
     /// Gravity's acceleration in the beam frame.
     gravity: [f64; 2],
     n: usize,
-    /// The last observation, keyed by (t, s, ṡ): every event function of one state needs it.
-    cache: RefCell<Option<([f64; 3], DiskObservation)>>,
+    /// The last observation and its acceleration, keyed by (t, s, ṡ): every event function
+    /// of one state needs it, and so does the output row.
+    cache: RefCell<Option<([f64; 3], DiskObservation, Option<Vec<f64>>)>>,
     /// Beam mass on a pattern that holds whatever the disk adds wherever it is (the
     /// displacements of any two nodes one patch apart, the contact coordinate's row and
     /// column): one symbolic factorisation serves the whole run.
@@ -396,7 +397,7 @@ impl<'a> DiskOnBeam<'a> {
     /// The true acceleration at a state: M(z) z̈ = f(z, ż), by the Woodbury identity on the
     /// split of M (see [`SecondOrderProblem::mass_split`]) with its constant part factorised
     /// once.
-    pub fn acceleration(&self, t: f64, z: &[f64], zd: &[f64]) -> Option<Vec<f64>> {
+    fn acceleration(&self, t: f64, z: &[f64], zd: &[f64]) -> Option<Vec<f64>> {
         let terms = self.terms(t, z, zd);
         let mut y = vec![0.0; self.dim()];
         self.force_from(t, z, zd, &terms, &mut y);
@@ -452,18 +453,32 @@ impl<'a> DiskOnBeam<'a> {
 
     /// What the run reports of the disk at a state (global axes).
     pub fn observe(&self, t: f64, z: &[f64], zd: &[f64]) -> DiskObservation {
+        self.observe_with_acceleration(t, z, zd).0
+    }
+
+    /// The observation with the true acceleration it was made from, which the support
+    /// reactions need too: one Woodbury solve for both.
+    pub fn observe_with_acceleration(
+        &self,
+        t: f64,
+        z: &[f64],
+        zd: &[f64],
+    ) -> (DiskObservation, Option<Vec<f64>>) {
         let key = [t, z[self.n.min(z.len() - 1)], zd[self.n.min(zd.len() - 1)]];
-        if let Some((k, o)) = self.cache.borrow().as_ref() {
+        if let Some((k, o, a)) = self.cache.borrow().as_ref() {
             if *k == key {
-                return *o;
+                return (*o, a.clone());
             }
         }
-        let zdd = self
-            .acceleration(t, z, zd)
-            .unwrap_or_else(|| vec![f64::NAN; self.dim()]);
-        let obs = self.observe_with(t, z, zd, &zdd);
-        *self.cache.borrow_mut() = Some((key, obs));
-        obs
+        let zdd = self.acceleration(t, z, zd);
+        let obs = self.observe_with(
+            t,
+            z,
+            zd,
+            zdd.as_deref().unwrap_or(&vec![f64::NAN; self.dim()]),
+        );
+        *self.cache.borrow_mut() = Some((key, obs, zdd.clone()));
+        (obs, zdd)
     }
 
     fn observe_with(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> DiskObservation {

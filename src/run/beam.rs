@@ -8,7 +8,7 @@
 use super::{EnergyCheck, Overrides, Progress, Stop};
 use crate::analysis::statics;
 use crate::beam::dynamics::LoadedBeam;
-use crate::beam::{Beam, PointDisplacement};
+use crate::beam::{Beam, PointDisplacement, Stations};
 use crate::coupling::thesis_system::ThesisSystem;
 use crate::coupling::{Coupling, DiskOnBeam};
 use crate::error::Error;
@@ -149,6 +149,8 @@ struct Recorder<'a> {
     mass_lu: SparseLu,
     setup: &'a BeamScene,
     xs: Vec<f64>,
+    /// The beam's axis sampled at xs.
+    stations: Stations,
     rows: Vec<BeamRow>,
     envelope: Envelope,
     shapes: Vec<(f64, Vec<PointDisplacement>)>,
@@ -243,7 +245,8 @@ impl Observer for Recorder<'_> {
                     d.rt * at_s[0][1] + d.rn * at_s[1][1],
                 ];
                 acting.push((d.s, [-on_disk[0], -on_disk[1]], 0.0));
-                c.acceleration(t, z, &y[self.nz..])
+                c.observe_with_acceleration(t, z, &y[self.nz..])
+                    .1
                     .map(|a| a[..n].to_vec())
                     .unwrap_or_else(|| vec![f64::NAN; n])
             }
@@ -267,11 +270,7 @@ impl Observer for Recorder<'_> {
             work,
             reactions,
         });
-        let along: Vec<PointDisplacement> = self
-            .xs
-            .iter()
-            .map(|&x| self.beam.displacement_at(q, x))
-            .collect();
+        let along = self.beam.displacements(&self.stations, q);
         let length: f64 = self
             .xs
             .windows(2)
@@ -500,6 +499,7 @@ pub fn run(
             max: vec![small; SAMPLES],
             stretch_max: f64::NEG_INFINITY,
         },
+        stations: beam.stations(&xs),
         xs,
         rows: Vec::with_capacity(outputs.len()),
         shapes: Vec::new(),
