@@ -312,13 +312,19 @@ fn dispatch(command: Command) -> Result<(), Error> {
             }
             if scene.solver.rtol_from_accuracy {
                 if let Some(b) = scene.beam() {
-                    let (rtol, why) =
-                        rollbeam::analysis::discretisation::rtol_for(b.accuracy, b.rho_inf);
+                    let (rtol, why) = rollbeam::analysis::discretisation::rtol_for(b);
                     say!(
                         "  rtol chosen for accuracy {:e}: {}, {why}",
                         b.accuracy,
                         output::tolerance(rtol)
                     );
+                    if scene.solver.atol_scale.is_some() {
+                        if let Some((atol, why)) =
+                            rollbeam::analysis::discretisation::atol_for(b, rtol)
+                        {
+                            say!("  atol chosen with it: {}, {why}", output::tolerance(atol));
+                        }
+                    }
                 }
             }
             say!(

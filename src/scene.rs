@@ -169,6 +169,8 @@ pub struct SolverSettings {
     pub atol: f64,
     /// rtol was left out and taken from the beam scene's accuracy.
     pub rtol_from_accuracy: bool,
+    /// atol was left out with rtol: it is rtol times this size of the response (m).
+    pub atol_scale: Option<f64>,
 }
 
 /// A disk on a rigid curve.
@@ -228,6 +230,9 @@ pub struct BeamScene {
     pub accuracy: f64,
     /// The mesh chosen for the scene, when it left elements or order out.
     pub discretisation: Option<Discretisation>,
+    /// The size of the displacements its loads cause (m), when the supports allow a static
+    /// estimate: see [`discretisation::response_size`].
+    pub response: Option<f64>,
 }
 
 /// What the scene models, and only that.
@@ -370,11 +375,12 @@ impl Scene {
                 Method::Dopri5
             },
             rtol: match &model {
-                Model::Beam(b) => discretisation::rtol_for(b.accuracy, b.rho_inf).0,
+                Model::Beam(b) => discretisation::rtol_for(b).0,
                 Model::Rolling(_) => 1e-6,
             },
             atol: 1e-9,
             rtol_from_accuracy: matches!(model, Model::Beam(_)),
+            atol_scale: None,
         };
         if let Some(s) = &raw.solver {
             if let Some(m) = &s.method {
@@ -398,6 +404,13 @@ impl Scene {
             }
             if let Some(a) = &s.atol {
                 solver.atol = c.positive(a, "solver.atol")?;
+            }
+        }
+        let atol_left_out = raw.solver.as_ref().is_none_or(|s| s.atol.is_none());
+        if let (true, true, Model::Beam(b)) = (solver.rtol_from_accuracy, atol_left_out, &model) {
+            if let Some((atol, _)) = discretisation::atol_for(b, solver.rtol) {
+                solver.atol = atol;
+                solver.atol_scale = b.response;
             }
         }
         let mut interval = duration / 500.0;
@@ -850,6 +863,13 @@ fn beam_scene(
         beam.elements = d.elements;
         beam.order = d.order;
     }
+    let probe_xs: Vec<f64> = probes.iter().map(|p| p.x).collect();
+    let response = discretisation::response_size(
+        &beam,
+        &loads,
+        disk.as_ref().map(|d| d.disk.mass * d.gravity),
+        &probe_xs,
+    );
     Ok(BeamScene {
         beam,
         start,
@@ -861,6 +881,7 @@ fn beam_scene(
         rho_inf,
         accuracy,
         discretisation,
+        response,
     })
 }
 

@@ -66,10 +66,11 @@ fn refined(scene: &Scene, factor: usize) -> Scene {
 }
 
 /// Both ways a user meets the defaults: the study's own generalized-α with ρ∞ = 0.8 (rtol a
-/// hundredth of the accuracy), and an empty solver block (ρ∞ = 1, rtol a thirtieth). The
-/// converged peak is one number per study whatever the integrator, so both are held to the
-/// same reference, made from the damped case: without damping the reference would carry the
-/// mesh-scale ripple that settles only slowly (2·10⁻⁴ apart at rtol 10⁻⁵ and 10⁻⁶ on D44).
+/// hundredth of the accuracy), and an empty solver block (ρ∞ = 1, rtol a thirtieth, atol rtol
+/// times the response's size). The converged peak is one number per study whatever the
+/// integrator, so both are held to the same reference, made from the damped case: without
+/// damping the reference would carry the mesh-scale ripple that settles only slowly (2·10⁻⁴
+/// apart at rtol 10⁻⁵ and 10⁻⁶ on D44).
 #[test]
 fn defaults_land_within_the_accuracy_asked() {
     for study in ["bridge-d44.yaml", "bridge-d50.yaml"] {
@@ -112,6 +113,41 @@ fn defaults_land_within_the_accuracy_asked() {
             );
         }
     }
+}
+
+/// Without numerical damping the automatic atol is rtol times the response's size, so that a
+/// step's error is measured against the peak the accuracy refers to. For D44 that size is the
+/// static midspan deflection under the disk's weight, which for a simply supported
+/// Timoshenko beam is P L³/(48 EI) + P L/(4 G A_v) exactly (the elements reproduce the
+/// linear static solution at their nodes, and midspan is a node): held to 1e-9, round-off of
+/// the solve. With ρ∞ < 1, or when the scene gives either tolerance, atol stays at its default.
+#[test]
+fn an_undamped_default_measures_error_against_the_response() {
+    let empty = left_out("bridge-d44.yaml", &EVERY_SETTING);
+    let beam = empty.beam().expect("a beam study");
+    let s = &beam.beam.section;
+    let p = 1500.0 * rollbeam::scene::DEFAULT_GRAVITY;
+    let l: f64 = 20.0;
+    let closed = p * l.powi(3) / (48.0 * s.ei) + p * l / (4.0 * s.gav);
+    let size = beam
+        .response
+        .expect("a simply supported beam has a static response");
+    assert!(
+        (size - closed).abs() <= 1e-9 * closed,
+        "response {size:e} against {closed:e}"
+    );
+    assert_eq!(empty.solver.atol_scale, Some(size));
+    assert!((empty.solver.atol - empty.solver.rtol * size).abs() <= 1e-15 * size);
+
+    let damped = left_out("bridge-d44.yaml", &MESH_AND_TOLERANCES);
+    assert_eq!(damped.beam().expect("beam").rho_inf, 0.8);
+    assert_eq!(damped.solver.atol_scale, None);
+    assert_eq!(damped.solver.atol, 1e-9);
+    let given_rtol = left_out(
+        "bridge-d44.yaml",
+        &["elements:", "order:", "atol:", "method:", "rho_inf:"],
+    );
+    assert_eq!(given_rtol.solver.atol_scale, None);
 }
 
 /// What a scene names is kept: a given mesh is not replaced, and a given rtol is not either.

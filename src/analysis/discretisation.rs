@@ -11,7 +11,9 @@
 //! degree-4 elements is started with one element per two of those modes' half-waves, and
 //! confirmed by one refinement: it is kept once mode K's frequency and the static deflection
 //! at the probes change by less than ε/4 when the element count doubles, and doubled
-//! otherwise. The time integrator is asked for rtol = ε/30 or ε/100 (see [`rtol_for`]).
+//! otherwise. The time integrator is asked for rtol = ε/30, ε/100 or ε/1000 (see [`rtol_for`]),
+//! and, without numerical damping, for an atol of rtol times the response's size (see
+//! [`atol_for`]).
 
 use std::collections::BTreeMap;
 use std::sync::Mutex;
@@ -22,7 +24,7 @@ use crate::analysis::modes::modes;
 use crate::beam::{Beam, BeamSpec};
 use crate::coupling::DiskOnBeamSpec;
 use crate::linalg::SparseLu;
-use crate::scene::{BeamStart, PointLoad, Probe};
+use crate::scene::{BeamScene, BeamStart, PointLoad, Probe};
 
 /// The accuracy a beam scene asks for when it does not say.
 pub const DEFAULT_ACCURACY: f64 = 1e-3;
@@ -36,18 +38,26 @@ const ESTIMATION_ELEMENTS: usize = 16;
 /// The confirming refinement stops doubling past this many nodes (the modal check is dense).
 const MAX_NODES: usize = 400;
 
-/// The rtol a beam scene gets for `accuracy` when it leaves rtol out, and why. Without
-/// numerical damping (ρ∞ = 1) generalized-α at ε/10 landed within 0.3 ε of the converged peak
-/// on B2, a sudden load, but within 0.43 ε on D44, a moving one, and erratically so (1.2 ε at
-/// ε/3, 0.76 ε at ε): the undamped mesh-scale ripple on the peak is left to chance there. At
-/// ε/30 D44 and D50 land within 0.15 ε. With ρ∞ < 1 the damped high modes that ride
-/// on a sudden load's peak cost up to 2.4 ε at ε/10 (B2 at ρ∞ = 0.8) and 0.06 ε at ε/100
-/// (REPORT.md), hence the larger margin.
-pub fn rtol_for(accuracy: f64, rho_inf: f64) -> (f64, &'static str) {
-    if rho_inf < 1.0 {
+/// The rtol a beam scene gets for its accuracy ε when it leaves rtol out, and why.
+/// - With ρ∞ < 1 the damped high modes that ride on a sudden load's peak cost up to 2.4 ε at
+///   ε/10 (B2 at ρ∞ = 0.8) and 0.06 ε at ε/100 (REPORT.md), hence ε/100.
+/// - Without numerical damping (ρ∞ = 1) a moving load's peak carries an undamped mesh-scale
+///   ripple that is left to chance at ε/10 (D44 landed within 0.43 ε there, 1.2 ε at ε/3);
+///   at ε/30 D44 and D50 land within 0.2 ε.
+/// - A load switched on or off during the run excites every mode the mesh holds, and
+///   undamped they all stay in the peak: B1 missed by 2.2 ε at ε/30 and by 0.96 ε at ε/300,
+///   and landed within 0.2 ε at ε/1000.
+pub fn rtol_for(scene: &BeamScene) -> (f64, &'static str) {
+    let accuracy = scene.accuracy;
+    if scene.rho_inf < 1.0 {
         (
             accuracy / 100.0,
             "a hundredth of the accuracy: with rho_inf < 1 the damped high modes that ride on a peak need the margin",
+        )
+    } else if jumps(&scene.loads, scene.start) {
+        (
+            accuracy / 1000.0,
+            "a thousandth of the accuracy: a load switched during the run excites every mode of the mesh, and undamped (rho_inf = 1) they all stay in the peak",
         )
     } else {
         (
@@ -55,6 +65,82 @@ pub fn rtol_for(accuracy: f64, rho_inf: f64) -> (f64, &'static str) {
             "a thirtieth of the accuracy: the undamped ripple on a moving load's peak needs the margin",
         )
     }
+}
+
+/// Whether a load is switched on or off during the run (rather than carried throughout from a
+/// static start): it then excites the modes.
+fn excites(l: &PointLoad, start: BeamStart) -> bool {
+    !(start == BeamStart::Static && l.active(0.0) && l.until == f64::INFINITY)
+}
+
+fn jumps(loads: &[PointLoad], start: BeamStart) -> bool {
+    loads.iter().any(|l| excites(l, start))
+}
+
+/// The atol a beam scene gets when it leaves both tolerances out, and why: rtol times the size
+/// of its response ([`response_size`]) when nothing is damped. With ρ∞ < 1 the step also sets
+/// how much of the high modes numerical damping takes, and a sudden load's peak is carried by
+/// them: at the looser steps such an atol allows, B1, B3, C1, C2 and the zip-line missed by
+/// 1.1–1.6 ε, so there atol stays at round-off size and the tolerance relative to the state.
+pub fn atol_for(scene: &BeamScene, rtol: f64) -> Option<(f64, String)> {
+    if scene.rho_inf < 1.0 {
+        return None;
+    }
+    let size = scene.response?;
+    Some((
+        rtol * size,
+        format!(
+            "rtol times {:.3e} m, the largest static displacement the loads cause at a probe: each step's error is measured against the response, not against the displacement of the moment, which a vibration takes through zero twice a period",
+            size
+        ),
+    ))
+}
+
+/// The size of the displacements a beam scene's loads cause: the largest static |(u, w)| at a
+/// probe, under the scene's loads together or one at a time, or under the disk's weight
+/// standing on that probe; `None` when the supports leave a rigid-body motion. An automatic
+/// atol is rtol times this, so that a step's error is measured against the response and not
+/// against the current displacement, which a vibration takes through zero twice a period
+/// (where rtol |q| alone asks for steps of round-off size and spends most of a run there).
+pub fn response_size(
+    spec: &BeamSpec,
+    loads: &[PointLoad],
+    weight: Option<f64>,
+    probes: &[f64],
+) -> Option<f64> {
+    let beam = Beam::new(spec.clone());
+    let n = beam.dim();
+    let lu = SparseLu::factor(&beam.tangent(&vec![0.0; n]), None)?;
+    let mut cases: Vec<Vec<[f64; 4]>> = loads
+        .iter()
+        .map(|l| vec![[l.x, l.force[0], l.force[1], l.mz]])
+        .collect();
+    if loads.len() > 1 {
+        cases.push(cases.concat());
+    }
+    if let Some(weight) = weight {
+        cases.extend(probes.iter().map(|&x| vec![[x, 0.0, -weight, 0.0]]));
+    }
+    let mut size = 0.0_f64;
+    for case in cases {
+        let mut q = vec![0.0; n];
+        for l in &case {
+            beam.add_point_load(l[0], [l[1], l[2]], l[3], &mut q);
+        }
+        lu.solve_in_place(&mut q);
+        for &x in probes {
+            let d = beam.displacement_at(&q, x);
+            let r = d.u.hypot(d.w);
+            if !r.is_finite() {
+                return None;
+            }
+            size = size.max(r);
+        }
+    }
+    // A near-singular stiffness (a mechanism) passes the factorisation with a displacement
+    // no beam under its loads has: larger than the beam itself.
+    let length = (spec.to[0] - spec.from[0]).hypot(spec.to[1] - spec.from[1]);
+    (size > 0.0 && size < length).then_some(size)
 }
 
 /// What was chosen, and why, for the summary.
@@ -200,11 +286,9 @@ fn choose_afresh(
         order,
         ..spec.clone()
     };
-    let carried =
-        |l: &PointLoad| start == BeamStart::Static && l.active(0.0) && l.until == f64::INFINITY;
     let mut pattern: Vec<([f64; 4], bool)> = loads
         .iter()
-        .map(|l| ([l.x, l.force[0], l.force[1], l.mz], !carried(l)))
+        .map(|l| ([l.x, l.force[0], l.force[1], l.mz], excites(l, start)))
         .collect();
     if let Some(weight) = weight {
         pattern.extend(xs.iter().map(|&x| ([x, 0.0, -weight, 0.0], true)));

@@ -10,7 +10,7 @@ use serde::Serialize;
 
 use super::plots::{line_chart, PALETTE};
 use super::{write, yaml};
-use crate::analysis::discretisation::rtol_for;
+use crate::analysis::discretisation::{atol_for, rtol_for};
 use crate::error::Error;
 use crate::run::beam::BeamRun;
 
@@ -165,6 +165,8 @@ struct Chosen {
     mesh: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     rtol: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    atol: Option<String>,
 }
 
 #[derive(Serialize)]
@@ -618,12 +620,20 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
 fn chosen(r: &BeamRun) -> Option<Chosen> {
     let mesh = r.setup.discretisation.as_ref().map(|d| d.why.clone());
     let rtol = (r.scene.solver.rtol_from_accuracy && r.rtol == r.scene.solver.rtol).then(|| {
-        let (rtol, why) = rtol_for(r.setup.accuracy, r.setup.rho_inf);
+        let (rtol, why) = rtol_for(&r.setup);
         format!("{}, {why}", super::tolerance(rtol))
     });
-    (mesh.is_some() || rtol.is_some()).then(|| Chosen {
+    let atol = r
+        .scene
+        .solver
+        .atol_scale
+        .and_then(|_| atol_for(&r.setup, r.rtol))
+        .filter(|(atol, _)| *atol == r.atol)
+        .map(|(atol, why)| format!("{}, {why}", super::tolerance(atol)));
+    (mesh.is_some() || rtol.is_some() || atol.is_some()).then(|| Chosen {
         accuracy: r.setup.accuracy,
         mesh,
         rtol,
+        atol,
     })
 }

@@ -93,10 +93,16 @@ pub struct Overrides {
 impl Overrides {
     /// The integrator settings of a run: the scene's, overridden from the command line.
     pub(crate) fn options(&self, scene: &Scene) -> crate::ode::Options {
+        let rtol = self.rtol.unwrap_or(scene.solver.rtol);
+        // An atol chosen with the scene's rtol follows an rtol given here.
+        let atol = scene
+            .solver
+            .atol_scale
+            .map_or(scene.solver.atol, |size| rtol * size);
         crate::ode::Options {
             method: self.method.unwrap_or(scene.solver.method),
-            rtol: self.rtol.unwrap_or(scene.solver.rtol),
-            atol: self.atol.unwrap_or(scene.solver.atol),
+            rtol,
+            atol: self.atol.unwrap_or(atol),
             fixed_step: self.fixed_step,
             max_steps: self
                 .max_steps
