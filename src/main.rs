@@ -102,7 +102,7 @@ enum Command {
         /// Folder for the runs (default out).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Leave out the work–precision diagrams: about 74 of the job's 75 minutes on two cores.
+        /// Leave out the work–precision diagrams: about 51 of the job's 52 minutes on two cores.
         #[arg(long)]
         no_work_precision: bool,
     },
