@@ -46,15 +46,23 @@ const MAX_NODES: usize = 400;
 ///   at ε/30 D44 and D50 land within 0.2 ε.
 /// - A load switched on or off during the run excites every mode the mesh holds, and
 ///   undamped they all stay in the peak: B1 missed by 2.2 ε at ε/30 and by 0.96 ε at ε/300,
-///   and landed within 0.2 ε at ε/1000.
+///   and landed within 0.2 ε at ε/1000. Damped, such a peak is not monotone in rtol (B1 at
+///   ρ∞ = 0.8: 0.54 ε, 2.3 ε, 1.3 ε at ε/100, ε/300, ε/1000), since what moves it is how much
+///   of the mesh's highest modes the damping removes; the scene is told so.
 pub fn rtol_for(scene: &BeamScene) -> (f64, &'static str) {
     let accuracy = scene.accuracy;
-    if scene.rho_inf < 1.0 {
+    let switched = jumps(&scene.loads, scene.start);
+    if scene.rho_inf < 1.0 && switched {
+        (
+            accuracy / 100.0,
+            "a hundredth of the accuracy; with rho_inf < 1 a switched load's peak depends on how much of the mesh's highest modes the damping removes, which tightening rtol does not settle: rho_inf = 1 holds the accuracy",
+        )
+    } else if scene.rho_inf < 1.0 {
         (
             accuracy / 100.0,
             "a hundredth of the accuracy: with rho_inf < 1 the damped high modes that ride on a peak need the margin",
         )
-    } else if jumps(&scene.loads, scene.start) {
+    } else if switched {
         (
             accuracy / 1000.0,
             "a thousandth of the accuracy: a load switched during the run excites every mode of the mesh, and undamped (rho_inf = 1) they all stay in the peak",
