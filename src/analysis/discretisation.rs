@@ -52,16 +52,13 @@ const MAX_NODES: usize = 400;
 pub fn rtol_for(scene: &BeamScene) -> (f64, &'static str) {
     let accuracy = scene.accuracy;
     let switched = jumps(&scene.loads, scene.start);
-    if scene.rho_inf < 1.0 && switched {
-        (
-            accuracy / 100.0,
-            "a hundredth of the accuracy; with rho_inf < 1 a switched load's peak depends on how much of the mesh's highest modes the damping removes, which tightening rtol does not settle: rho_inf = 1 holds the accuracy",
-        )
-    } else if scene.rho_inf < 1.0 {
-        (
-            accuracy / 100.0,
-            "a hundredth of the accuracy: with rho_inf < 1 the damped high modes that ride on a peak need the margin",
-        )
+    if scene.rho_inf < 1.0 {
+        let why = if switched {
+            "a hundredth of the accuracy; with rho_inf < 1 a switched load's peak depends on how much of the mesh's highest modes the damping removes, which tightening rtol does not settle: rho_inf = 1 holds the accuracy"
+        } else {
+            "a hundredth of the accuracy: with rho_inf < 1 the damped high modes that ride on a peak need the margin"
+        };
+        (accuracy / 100.0, why)
     } else if switched {
         (
             accuracy / 1000.0,
