@@ -14,7 +14,7 @@ use crate::coupling::{Coupling, DiskOnBeam};
 use crate::error::Error;
 use crate::linalg::{self, SparseLu};
 use crate::ode::second_order::SecondOrderProblem;
-use crate::ode::second_order::{solve_genalpha, FirstOrder};
+use crate::ode::second_order::FirstOrder;
 use crate::ode::{self, Method, Observer, Stats};
 use crate::rolling::{DiskObservation, StopReason};
 use crate::scene::{BeamScene, BeamStart, PointLoad, Scene};
@@ -411,7 +411,6 @@ fn solver_error(scene: &Scene, e: ode::SolveError) -> Error {
 #[allow(clippy::too_many_arguments)]
 fn integrate(
     p: &dyn SecondOrderProblem,
-    rho_inf: f64,
     t0: f64,
     q0: &[f64],
     v0: &[f64],
@@ -420,14 +419,8 @@ fn integrate(
     opts: &ode::Options,
     rec: &mut Recorder,
 ) -> Result<ode::Outcome, ode::SolveError> {
-    match opts.method {
-        Method::GenAlpha => solve_genalpha(p, rho_inf, t0, q0, v0, t_end, outputs, opts, rec),
-        Method::Dopri5 | Method::TrBdf2 | Method::Esdirk4 => {
-            let first = FirstOrder::new(p);
-            let y0: Vec<f64> = q0.iter().chain(v0).copied().collect();
-            ode::solve(&first, t0, &y0, t_end, outputs, opts, rec)
-        }
-    }
+    let y0: Vec<f64> = q0.iter().chain(v0).copied().collect();
+    ode::solve(&FirstOrder::new(p), t0, &y0, t_end, outputs, opts, rec)
 }
 
 fn add_stats(total: &mut Stats, more: &Stats) {
@@ -453,7 +446,10 @@ pub fn run(
         .clone()
         .map(|spec| DiskOnBeam::new(&loaded, spec));
     let n = beam.dim();
-    let opts = over.options(scene);
+    let opts = ode::Options {
+        rho_inf: setup.rho_inf,
+        ..over.options(scene)
+    };
     let (method, rtol, atol) = (opts.method, opts.rtol, opts.atol);
     let mut outputs = super::output_times(scene);
     outputs.extend(setup.shapes.iter().copied());
@@ -566,7 +562,6 @@ pub fn run(
             } else {
                 let out = integrate(
                     c,
-                    setup.rho_inf,
                     0.0,
                     &z0,
                     &zd0,
@@ -615,7 +610,6 @@ pub fn run(
         let rest: Vec<f64> = outputs.iter().copied().filter(|&o| o > t0).collect();
         let out = integrate(
             &loaded,
-            setup.rho_inf,
             t0,
             &q0,
             &v0,

@@ -107,6 +107,7 @@ impl Overrides {
             max_steps: self
                 .max_steps
                 .unwrap_or(crate::ode::Options::default().max_steps),
+            ..Default::default()
         }
     }
 }
