@@ -3,6 +3,7 @@
 
 pub mod analysis;
 pub mod beam;
+pub mod commands;
 pub mod coupling;
 pub mod curve;
 pub mod disk;
@@ -10,13 +11,9 @@ pub mod error;
 pub mod linalg;
 pub mod ode;
 pub mod output;
-pub mod parallel;
 pub mod rolling;
 pub mod run;
 pub mod scene;
-pub mod studies;
-pub mod sweep;
-pub mod tradeoff;
 
 /// println! that does not panic when stdout is closed (`rollbeam run … | head -1`): what a
 /// reader stopped reading is not an error of the run.

@@ -9,6 +9,7 @@ use serde_saphyr::Spanned;
 
 use crate::analysis::discretisation::{self, Discretisation};
 use crate::beam::element::Section;
+use crate::beam::load::{BeamStart, PointLoad, Probe};
 use crate::beam::supports::{mesh_multiple, statically_supported, Support};
 use crate::beam::{BeamSpec, Quadrature};
 use crate::coupling::{Coupling, DiskOnBeamSpec};
@@ -178,38 +179,6 @@ pub struct SolverSettings {
 pub struct RollingScene {
     pub rolling: Rolling,
     pub formulation: Formulation,
-}
-
-/// A point force (global components) and moment at material point x, on for from ≤ t < until.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PointLoad {
-    pub x: f64,
-    pub force: [f64; 2],
-    pub mz: f64,
-    pub from: f64,
-    pub until: f64,
-}
-
-impl PointLoad {
-    pub fn active(&self, t: f64) -> bool {
-        self.from <= t && t < self.until
-    }
-}
-
-#[derive(Clone, Debug)]
-pub struct Probe {
-    pub name: String,
-    pub x: f64,
-}
-
-/// The beam's state at t = 0.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BeamStart {
-    /// Undeformed, at rest.
-    Rest,
-    /// At rest in static equilibrium under the loads active at t = 0 and the disk's weight at
-    /// s0: a dead load already carried, as on a real bridge.
-    Static,
 }
 
 /// A flexible beam under point loads.

@@ -498,7 +498,7 @@ fn leaving_at_either_end_and_slipping() {
 /// shows as the residual growing six-fold from −44 to −50 1/s.
 #[test]
 fn sweep_matches_single_runs() {
-    use rollbeam::sweep::{run_sweep, Setting};
+    use rollbeam::commands::sweep::{run_sweep, Setting};
     let text = std::fs::read_to_string(studies_dir().join("bridge-d44.yaml"))
         .expect("study")
         .replace("coupling: consistent", "coupling: moving-force")
@@ -542,7 +542,7 @@ fn static_deflection_under_the_disk_weight() {
     let scene = variant("bridge-d44.yaml", &[("s0: 0.0", "s0: 10.0")]);
     let setup = scene.beam().expect("a beam scene");
     let dir = std::env::temp_dir().join(format!("rollbeam-static-{}", std::process::id()));
-    rollbeam::analysis::report::statics(&scene, setup, &dir).expect("static solution");
+    rollbeam::commands::report::statics(&scene, setup, &dir).expect("static solution");
     let text = std::fs::read_to_string(dir.join("static.yaml")).expect("static.yaml");
     let mid = &text[text.find("mid:").expect("mid probe")..];
     let w: f64 = mid

@@ -394,16 +394,23 @@ fn snapshots_of_converged_values() {
 /// Stops the disk where the contact point reaches the vertex s = 0 (g = −s turns negative).
 struct UntilVertex(rollbeam::rolling::minimal::Minimal);
 
-impl rollbeam::ode::Problem for UntilVertex {
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Vertex;
+
+impl rollbeam::ode::Dynamics for UntilVertex {
     fn dim(&self) -> usize {
         self.0.dim()
     }
     fn rhs(&self, t: f64, y: &[f64], f: &mut [f64]) {
         self.0.rhs(t, y, f)
     }
-    fn events(&self) -> &[rollbeam::ode::EventSpec] {
-        const VERTEX: [rollbeam::ode::EventSpec; 1] = [rollbeam::ode::EventSpec {
-            name: "vertex",
+}
+
+impl rollbeam::ode::Problem for UntilVertex {
+    type Event = Vertex;
+    fn events(&self) -> &[rollbeam::ode::EventSpec<Vertex>] {
+        const VERTEX: [rollbeam::ode::EventSpec<Vertex>; 1] = [rollbeam::ode::EventSpec {
+            reason: Vertex,
             terminal: true,
         }];
         &VERTEX
@@ -446,7 +453,7 @@ fn vertex_crossing_matches_energy_closed_form() {
             &mut Nothing,
         )
         .expect("runs");
-        assert_eq!(out.stopped_by.map(|e| e.name), Some("vertex"));
+        assert_eq!(out.stopped_by.map(|e| e.reason), Some(Vertex));
         let d = model.0.observe(out.t, &out.y);
         let v2 = 4.0 * G / 3.0 * (2.25 + a / 10f64.sqrt() - a);
         let rn = m * v2 * 2.0 / (1.0 - 2.0 * a) + m * G;

@@ -8,8 +8,8 @@
 mod common;
 
 use common::load;
+use rollbeam::commands::tradeoff::{self, Plan, Trial, REFERENCE_SETTLED};
 use rollbeam::ode::Method;
-use rollbeam::tradeoff::{self, Plan, Trial, REFERENCE_SETTLED};
 
 fn errors(trials: &[Trial], method: Method) -> Vec<(f64, f64, usize)> {
     trials

@@ -21,10 +21,11 @@ use std::sync::Mutex;
 use serde::Serialize;
 
 use crate::analysis::modes::modes;
+use crate::beam::load::{BeamStart, PointLoad, Probe};
 use crate::beam::{Beam, BeamSpec};
 use crate::coupling::DiskOnBeamSpec;
 use crate::linalg::SparseLu;
-use crate::scene::{BeamScene, BeamStart, PointLoad, Probe};
+use crate::scene::BeamScene;
 
 /// The accuracy a beam scene asks for when it does not say.
 pub const DEFAULT_ACCURACY: f64 = 1e-3;

@@ -3,5 +3,4 @@
 pub mod discretisation;
 pub mod modes;
 pub mod moving_load;
-pub mod report;
 pub mod statics;

@@ -6,10 +6,11 @@
 use std::borrow::Cow;
 use std::cell::{Cell, RefCell};
 
+use super::load::PointLoad;
 use super::Beam;
 use crate::linalg::Sparse;
-use crate::ode::second_order::SecondOrderProblem;
-use crate::scene::PointLoad;
+use crate::ode::second_order::{SecondOrderProblem, Structure};
+use crate::ode::NoEvent;
 
 pub struct LoadedBeam<'a> {
     pub beam: &'a Beam,
@@ -49,7 +50,7 @@ impl<'a> LoadedBeam<'a> {
     }
 }
 
-impl SecondOrderProblem for LoadedBeam<'_> {
+impl Structure for LoadedBeam<'_> {
     fn dim(&self) -> usize {
         self.beam.dim()
     }
@@ -65,6 +66,10 @@ impl SecondOrderProblem for LoadedBeam<'_> {
     fn stiffness(&self, _t: f64, q: &[f64]) -> Sparse {
         self.beam.tangent(q)
     }
+}
+
+impl SecondOrderProblem for LoadedBeam<'_> {
+    type Event = NoEvent;
     fn breakpoints(&self) -> Vec<f64> {
         self.loads
             .iter()

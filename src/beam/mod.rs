@@ -10,6 +10,7 @@
 pub mod basis;
 pub mod dynamics;
 pub mod element;
+pub mod load;
 pub mod quadrature;
 pub mod supports;
 

@@ -34,9 +34,9 @@ use crate::beam::dynamics::LoadedBeam;
 use crate::beam::{Beam, NodeBasis};
 use crate::disk::Disk;
 use crate::linalg::{self, Assembly, AssemblyPattern, LowRank, Sparse, SparseLu, Woodbury};
-use crate::ode::second_order::SecondOrderProblem;
+use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::EventSpec;
-use crate::rolling::{DiskObservation, FIT_MARGIN};
+use crate::rolling::{DiskObservation, StopReason, FIT_MARGIN};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Coupling {
@@ -94,25 +94,25 @@ impl DiskOnBeamSpec {
     }
 }
 
-const EVENTS: [EventSpec; 5] = [
+const EVENTS: [EventSpec<StopReason>; 5] = [
     EventSpec {
-        name: "left-track",
+        reason: StopReason::LeftTrack,
         terminal: true,
     },
     EventSpec {
-        name: "left-track",
+        reason: StopReason::LeftTrack,
         terminal: true,
     },
     EventSpec {
-        name: "contact-lost",
+        reason: StopReason::ContactLost,
         terminal: true,
     },
     EventSpec {
-        name: "no-fit",
+        reason: StopReason::NoFit,
         terminal: true,
     },
     EventSpec {
-        name: "slip",
+        reason: StopReason::Slip,
         terminal: true,
     },
 ];
@@ -590,7 +590,7 @@ impl<'a> DiskOnBeam<'a> {
     }
 }
 
-impl SecondOrderProblem for DiskOnBeam<'_> {
+impl Structure for DiskOnBeam<'_> {
     fn dim(&self) -> usize {
         self.n + usize::from(self.spec.coupling.rolls())
     }
@@ -641,6 +641,18 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
         self.stiffness_pattern.get_or_init(|| a.pattern()).build(&a)
     }
 
+    fn norm_groups(&self) -> Vec<Range<usize>> {
+        let mut g = vec![0..self.n];
+        if self.dim() > self.n {
+            g.push(self.n..self.dim());
+        }
+        g
+    }
+}
+
+impl SecondOrderProblem for DiskOnBeam<'_> {
+    type Event = StopReason;
+
     /// The averaged track changes over the patch half-width b and no faster, and a crest
     /// there shows in the contact force, not in the motion the error estimate measures: a
     /// step moves a rolling disk by at most b/2, so the contact-loss event sees every crest.
@@ -652,14 +664,6 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
         }
     }
 
-    fn norm_groups(&self) -> Vec<Range<usize>> {
-        let mut g = vec![0..self.n];
-        if self.dim() > self.n {
-            g.push(self.n..self.dim());
-        }
-        g
-    }
-
     fn breakpoints(&self) -> Vec<f64> {
         self.loaded.breakpoints()
     }
@@ -668,7 +672,7 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
         self.loaded.enter_segment(start, end)
     }
 
-    fn events(&self) -> &[EventSpec] {
+    fn events(&self) -> &[EventSpec<StopReason>] {
         if !self.spec.coupling.rolls() {
             return &[];
         }

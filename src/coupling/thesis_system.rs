@@ -12,8 +12,9 @@
 //! generalized-α; a test checks that the two agree.
 
 use crate::linalg::{Assembly, Sparse};
-use crate::ode::second_order::SecondOrderProblem;
-use crate::ode::{EventSpec, Problem};
+use crate::ode::second_order::{SecondOrderProblem, Structure};
+use crate::ode::{Dynamics, EventSpec, Problem};
+use crate::rolling::StopReason;
 
 use super::DiskOnBeam;
 
@@ -63,7 +64,7 @@ impl ThesisSystem<'_> {
     }
 }
 
-impl Problem for ThesisSystem<'_> {
+impl Dynamics for ThesisSystem<'_> {
     fn dim(&self) -> usize {
         2 * self.n() + 6
     }
@@ -127,6 +128,10 @@ impl Problem for ThesisSystem<'_> {
         a.add(2 * n + 5, 2 * n + 5, 0.0);
         Some(a.build())
     }
+}
+
+impl Problem for ThesisSystem<'_> {
+    type Event = StopReason;
 
     fn breakpoints(&self) -> Vec<f64> {
         self.coupled.loaded.breakpoints()
@@ -136,7 +141,7 @@ impl Problem for ThesisSystem<'_> {
         self.coupled.loaded.enter_segment(start, end)
     }
 
-    fn events(&self) -> &[EventSpec] {
+    fn events(&self) -> &[EventSpec<StopReason>] {
         // Off either end, and contact lost: the rolling couplings' first three.
         &super::EVENTS[..3]
     }

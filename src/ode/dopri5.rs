@@ -1,7 +1,7 @@
 //! Dormand–Prince 5(4): explicit, FSAL, fifth-order solution with a fourth-order error estimate
 //! and Hairer's fourth-order continuous extension for dense output.
 
-use super::{Attempt, Ctx, Problem, SolveError, Stepper};
+use super::{Attempt, Ctx, Dynamics, SolveError, Stepper};
 
 const C: [f64; 7] = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
 const A: [[f64; 6]; 7] = [
@@ -93,7 +93,7 @@ impl Stepper for Dopri5 {
 
     fn start(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t0: f64,
         y0: &[f64],
         ctx: &mut Ctx,
@@ -104,7 +104,7 @@ impl Stepper for Dopri5 {
 
     fn attempt(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t: f64,
         y: &[f64],
         h: f64,

@@ -8,8 +8,8 @@ use super::esdirk::Esdirk4;
 use super::genalpha::GenAlphaStepper;
 use super::trbdf2::TrBdf2;
 use super::{
-    Attempt, Ctx, EventHit, EventSpec, Method, Observer, Options, Outcome, Problem, SolveError,
-    Stats, Stepper, EVENT_TIME_TOL,
+    Attempt, Ctx, Dynamics, EventHit, EventSpec, Method, Observer, Options, Outcome, Problem,
+    SolveError, Stats, Stepper, EVENT_TIME_TOL,
 };
 
 fn make_stepper(opts: &Options, n: usize) -> Box<dyn Stepper> {
@@ -23,15 +23,16 @@ fn make_stepper(opts: &Options, n: usize) -> Box<dyn Stepper> {
 
 /// Integrate from (t0, y0) to t_end, reporting at every time of `outputs` that the run reaches
 /// (sorted, within [t0, t_end]) and after every step.
-pub fn solve(
-    p: &dyn Problem,
+pub fn solve<E: Copy + std::fmt::Debug>(
+    p: &dyn Problem<Event = E>,
     t0: f64,
     y0: &[f64],
     t_end: f64,
     outputs: &[f64],
     opts: &Options,
     observer: &mut dyn Observer,
-) -> Result<Outcome, SolveError> {
+) -> Result<Outcome<E>, SolveError> {
+    let dynamics: &dyn Dynamics = p;
     let clock = Instant::now();
     let n = p.dim();
     let mut ctx = Ctx {
@@ -65,8 +66,7 @@ pub fn solve(
     }
     if let Some(i) = (0..specs.len()).find(|&i| specs[i].terminal && g[i] < 0.0) {
         let hit = EventHit {
-            index: i,
-            name: specs[i].name,
+            reason: specs[i].reason,
             t,
         };
         return finish(t, y, ctx, Some(hit), events);
@@ -75,10 +75,10 @@ pub fn solve(
     let breaks = breakpoints_within(p.breakpoints(), t0, t_end);
     let segment_end = |t: f64| breaks.iter().copied().find(|&b| b > t).unwrap_or(t_end);
     p.enter_segment(t0, segment_end(t0));
-    stepper.start(p, t0, y0, &mut ctx)?;
+    stepper.start(dynamics, t0, y0, &mut ctx)?;
     let mut h = match opts.fixed_step {
         Some(h) => h,
-        None => stepper.initial_step(p, t0, y0, t_end, &mut ctx)?,
+        None => stepper.initial_step(dynamics, t0, y0, t_end, &mut ctx)?,
     };
     let h_min = 1e-14 * t0.abs().max(t_end.abs()).max(1.0);
     let mut y_tmp = vec![0.0; n];
@@ -102,7 +102,7 @@ pub fn solve(
             .unwrap_or(t_end);
         let last = t + h >= target - h_min;
         let h_try = if last { target - t } else { h };
-        let attempt = stepper.attempt(p, t, &y, h_try, &mut ctx)?;
+        let attempt = stepper.attempt(dynamics, t, &y, h_try, &mut ctx)?;
         let err = match attempt {
             Attempt::Done { err } => err,
             Attempt::NewtonFailed => {
@@ -160,8 +160,7 @@ pub fn solve(
             stepper.interpolate(te, &mut y_tmp);
             observer.step(te, &y_tmp);
             let hit = EventHit {
-                index: i,
-                name: specs[i].name,
+                reason: specs[i].reason,
                 t: te,
             };
             return finish(te, y_tmp, ctx, Some(hit), events);
@@ -170,7 +169,7 @@ pub fn solve(
         y.copy_from_slice(stepper.y_new());
         if last && target < t_end {
             p.enter_segment(t, segment_end(t));
-            stepper.start(p, t, &y, &mut ctx)?;
+            stepper.start(dynamics, t, &y, &mut ctx)?;
         }
         g = g_new;
         observer.step(t, &y);
@@ -189,7 +188,6 @@ pub fn solve(
     finish(t, y, ctx, None, events)
 }
 
-
 /// The breakpoints strictly inside (t0, t_end), ascending.
 fn breakpoints_within(mut breaks: Vec<f64>, t0: f64, t_end: f64) -> Vec<f64> {
     breaks.retain(|&b| b > t0 && b < t_end);
@@ -200,13 +198,13 @@ fn breakpoints_within(mut breaks: Vec<f64>, t0: f64, t_end: f64) -> Vec<f64> {
 /// The events of one step [t0, t1] whose g passes from ≥ 0 (g0) to < 0 (g1), each located on
 /// `g_at(index, t)`: non-terminal ones are recorded in `events`, and the earliest terminal one
 /// is returned.
-fn crossings(
-    specs: &[EventSpec],
+fn crossings<E: Copy>(
+    specs: &[EventSpec<E>],
     g0: &[f64],
     g1: &[f64],
     t0: f64,
     t1: f64,
-    events: &mut Vec<EventHit>,
+    events: &mut Vec<EventHit<E>>,
     mut g_at: impl FnMut(usize, f64) -> f64,
 ) -> Option<(usize, f64)> {
     let mut first: Option<(usize, f64)> = None;
@@ -221,8 +219,7 @@ fn crossings(
             }
         } else {
             events.push(EventHit {
-                index: i,
-                name: specs[i].name,
+                reason: specs[i].reason,
                 t: te,
             });
         }
@@ -267,7 +264,7 @@ fn locate(mut g: impl FnMut(f64) -> f64, mut a: f64, mut ga: f64, mut b: f64, mu
 
 /// Hairer–Wanner's starting step from the size of y, y' and an estimate of y''.
 pub(super) fn initial_step(
-    p: &dyn Problem,
+    p: &dyn Dynamics,
     t0: f64,
     y0: &[f64],
     t_end: f64,

@@ -11,7 +11,7 @@
 //! do not carry.
 
 use super::stage_solver::{solve_stages, ImplicitStages, StageSolver};
-use super::{Attempt, Ctx, Problem, SolveError, StepEnds, Stepper};
+use super::{Attempt, Ctx, Dynamics, SolveError, StepEnds, Stepper};
 use crate::linalg;
 
 const STAGES: usize = 6;
@@ -92,7 +92,7 @@ impl ImplicitStages for Esdirk4 {
     /// The five implicit stages after the explicit first.
     fn stages(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t: f64,
         y: &[f64],
         h: f64,
@@ -131,7 +131,7 @@ impl Stepper for Esdirk4 {
 
     fn start(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t0: f64,
         y0: &[f64],
         ctx: &mut Ctx,
@@ -143,7 +143,7 @@ impl Stepper for Esdirk4 {
 
     fn attempt(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t: f64,
         y: &[f64],
         h: f64,

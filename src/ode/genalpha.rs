@@ -1,11 +1,11 @@
 //! Generalized-α (Chung & Hulbert 1993) as a stepper of the one driver, for problems that are
-//! structural ([`Problem::second_order`]): it steps M q'' = f(t, q, v) directly, with the
+//! structural ([`Dynamics::second_order`]): it steps M q'' = f(t, q, v) directly, with the
 //! spectral radius at infinity ρ∞ as its setting (ρ∞ = 1: the trapezoidal rule,
 //! energy-neutral for linear systems; smaller values damp the unresolved high modes). The
 //! driver sees y = (q, v) like every other method's.
 
-use super::second_order::SecondOrderProblem;
-use super::{Attempt, Ctx, Problem, SolveError, StepEnds, Stepper};
+use super::second_order::Structure;
+use super::{Attempt, Ctx, Dynamics, SolveError, StepEnds, Stepper};
 use crate::linalg::{Combination, Sparse, SparseLu, Woodbury};
 
 /// Chung–Hulbert parameters for a given ρ∞ ∈ [0, 1].
@@ -79,7 +79,7 @@ pub(crate) struct GenAlphaStepper {
     h_try: f64,
 }
 
-fn structural(p: &dyn Problem) -> Result<&dyn SecondOrderProblem, SolveError> {
+fn structural(p: &dyn Dynamics) -> Result<&dyn Structure, SolveError> {
     p.second_order().ok_or(SolveError::NeedsSecondOrder)
 }
 
@@ -105,7 +105,7 @@ impl GenAlphaStepper {
     }
 
     fn acceleration(
-        p: &dyn SecondOrderProblem,
+        p: &dyn Structure,
         t: f64,
         s: &mut State,
         ctx: &mut Ctx,
@@ -126,7 +126,7 @@ impl GenAlphaStepper {
 
     fn factor(
         &mut self,
-        p: &dyn SecondOrderProblem,
+        p: &dyn Structure,
         t: f64,
         q: &[f64],
         h: f64,
@@ -160,7 +160,7 @@ impl GenAlphaStepper {
     /// The factorised iteration matrix, or with a split mass its part from the constant B.
     fn factor_base(
         &mut self,
-        p: &dyn SecondOrderProblem,
+        p: &dyn Structure,
         t: f64,
         q: &[f64],
         h: f64,
@@ -210,7 +210,7 @@ impl GenAlphaStepper {
     /// does not converge.
     fn step(
         &mut self,
-        p: &dyn SecondOrderProblem,
+        p: &dyn Structure,
         t: f64,
         h: f64,
         ctx: &mut Ctx,
@@ -306,7 +306,7 @@ impl Stepper for GenAlphaStepper {
     /// and the factorisation are kept: a load that jumps does not change them.
     fn start(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t0: f64,
         y0: &[f64],
         ctx: &mut Ctx,
@@ -324,7 +324,7 @@ impl Stepper for GenAlphaStepper {
     /// The step that keeps the first displacement increment h²|a|/2 on tolerance.
     fn initial_step(
         &mut self,
-        _p: &dyn Problem,
+        _p: &dyn Dynamics,
         t0: f64,
         _y0: &[f64],
         t_end: f64,
@@ -345,7 +345,7 @@ impl Stepper for GenAlphaStepper {
 
     fn attempt(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t: f64,
         _y: &[f64],
         h: f64,

@@ -32,14 +32,16 @@ use crate::linalg::{self, Sparse, SparseLu};
 /// Events are located to this width of their bracket in time (s).
 pub const EVENT_TIME_TOL: f64 = 1e-10;
 
-/// An event g(t, y): the run is watched for g passing from ≥ 0 to < 0.
+/// An event g(t, y) of a problem: the run is watched for g passing from ≥ 0 to < 0, and a hit
+/// carries the reason the problem gave it, of the problem's own type.
 #[derive(Clone, Copy, Debug)]
-pub struct EventSpec {
-    pub name: &'static str,
+pub struct EventSpec<E> {
+    pub reason: E,
     pub terminal: bool,
 }
 
-pub trait Problem {
+/// M(t, y) y' = f(t, y): what a stepper needs to take a step.
+pub trait Dynamics {
     fn dim(&self) -> usize;
     fn rhs(&self, t: f64, y: &[f64], f: &mut [f64]);
     /// M(t, y) of M y' = f; `None` is the identity.
@@ -55,6 +57,22 @@ pub trait Problem {
     fn jacobian(&self, _t: f64, _y: &[f64]) -> Option<Sparse> {
         None
     }
+    /// Blocks of unknowns of one kind, each measured in the error norm against its own largest
+    /// value; `None` measures every unknown against itself.
+    fn norm_groups(&self) -> Option<Vec<std::ops::Range<usize>>> {
+        None
+    }
+    /// The structure M q'' = f(t, q, v) this is the first-order view y = (q, v) of, where
+    /// there is one: generalized-α steps that directly.
+    fn second_order(&self) -> Option<&dyn second_order::Structure> {
+        None
+    }
+}
+
+/// Dynamics over time: what the driver watches besides the steps.
+pub trait Problem: Dynamics {
+    /// Why an event fires, as the problem names it (a stop reason, say).
+    type Event: Copy + fmt::Debug;
     /// Times where f jumps (loads switched on or off): steps end there and restart.
     fn breakpoints(&self) -> Vec<f64> {
         Vec::new()
@@ -62,7 +80,7 @@ pub trait Problem {
     /// Told before the steps of each stretch between breakpoints, so that a jump is seen on
     /// the right side of it by every stage.
     fn enter_segment(&self, _start: f64, _end: f64) {}
-    fn events(&self) -> &[EventSpec] {
+    fn events(&self) -> &[EventSpec<Self::Event>] {
         &[]
     }
     fn event(&self, _index: usize, _t: f64, _y: &[f64]) -> f64 {
@@ -74,17 +92,11 @@ pub trait Problem {
     fn max_step(&self, _t: f64, _y: &[f64]) -> f64 {
         f64::INFINITY
     }
-    /// Blocks of unknowns of one kind, each measured in the error norm against its own largest
-    /// value; `None` measures every unknown against itself.
-    fn norm_groups(&self) -> Option<Vec<std::ops::Range<usize>>> {
-        None
-    }
-    /// The structural problem M q'' = f(t, q, v) this is the first-order view y = (q, v) of,
-    /// where there is one: generalized-α steps that directly.
-    fn second_order(&self) -> Option<&dyn second_order::SecondOrderProblem> {
-        None
-    }
 }
+
+/// The reason of a problem that has no events.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NoEvent {}
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub enum Method {
@@ -171,21 +183,20 @@ pub struct Stats {
 }
 
 #[derive(Clone, Debug)]
-pub struct EventHit {
-    pub index: usize,
-    pub name: &'static str,
+pub struct EventHit<E> {
+    pub reason: E,
     pub t: f64,
 }
 
 #[derive(Clone, Debug)]
-pub struct Outcome {
+pub struct Outcome<E> {
     pub t: f64,
     pub y: Vec<f64>,
     pub stats: Stats,
     /// The terminal event that ended the run early, if any.
-    pub stopped_by: Option<EventHit>,
+    pub stopped_by: Option<EventHit<E>>,
     /// Non-terminal events met on the way.
-    pub events: Vec<EventHit>,
+    pub events: Vec<EventHit<E>>,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -251,7 +262,7 @@ pub(crate) trait Stepper {
     fn error_order(&self) -> u32;
     fn start(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t0: f64,
         y0: &[f64],
         ctx: &mut Ctx,
@@ -259,7 +270,7 @@ pub(crate) trait Stepper {
     /// Attempt a step of size h from (t, y); leaves the candidate in `y_new`.
     fn attempt(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t: f64,
         y: &[f64],
         h: f64,
@@ -281,7 +292,7 @@ pub(crate) trait Stepper {
     /// The first step from (t0, y0), after [`Stepper::start`].
     fn initial_step(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t0: f64,
         y0: &[f64],
         t_end: f64,
@@ -347,7 +358,7 @@ impl Ctx {
         }
     }
 
-    pub fn rhs(&mut self, p: &dyn Problem, t: f64, y: &[f64], f: &mut [f64]) {
+    pub fn rhs(&mut self, p: &dyn Dynamics, t: f64, y: &[f64], f: &mut [f64]) {
         self.stats.rhs_evals += 1;
         p.rhs(t, y, f);
     }
@@ -355,7 +366,7 @@ impl Ctx {
     /// y' = M⁻¹ f.
     pub fn derivative(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t: f64,
         y: &[f64],
         yp: &mut [f64],
@@ -382,7 +393,7 @@ impl Ctx {
     }
 
     /// ∂f/∂y: the problem's own, or forward differences scaled to each component.
-    pub fn jacobian(&mut self, p: &dyn Problem, t: f64, y: &[f64], f0: &[f64]) -> Sparse {
+    pub fn jacobian(&mut self, p: &dyn Dynamics, t: f64, y: &[f64], f0: &[f64]) -> Sparse {
         self.stats.jacobians += 1;
         if let Some(j) = p.jacobian(t, y) {
             return j;
@@ -436,7 +447,7 @@ impl StepEnds {
     /// Start from (t0, y0), with its derivative from the problem.
     pub fn start(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t0: f64,
         y0: &[f64],
         ctx: &mut Ctx,
@@ -481,4 +492,3 @@ pub(crate) fn keep_factorisation(h_old: f64, h_new: f64) -> f64 {
         h_new
     }
 }
-

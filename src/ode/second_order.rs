@@ -5,10 +5,11 @@
 use std::borrow::Cow;
 use std::ops::Range;
 
-use super::{EventSpec, Problem};
+use super::{Dynamics, EventSpec, Problem};
 use crate::linalg::{self, Assembly, LowRank, Sparse};
 
-pub trait SecondOrderProblem {
+/// M(t, q) q'' = f(t, q, v): what generalized-α needs to take a step.
+pub trait Structure {
     fn dim(&self) -> usize;
     /// M(t, q): constant for a bare beam, state-dependent once a body rides on it.
     fn mass(&self, t: f64, q: &[f64]) -> Cow<'_, Sparse>;
@@ -31,20 +32,25 @@ pub trait SecondOrderProblem {
     fn force(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]);
     /// K(q) = −∂f/∂q, the tangent stiffness (the part that matters for Newton's convergence).
     fn stiffness(&self, t: f64, q: &[f64]) -> Sparse;
-    /// The longest step allowed from (t, q, v); see [`Problem::max_step`].
-    fn max_step(&self, _t: f64, _q: &[f64], _v: &[f64]) -> f64 {
-        f64::INFINITY
-    }
     /// Blocks of unknowns of one kind (beam displacements, the contact coordinate): each is
     /// measured against its own largest value in the error norm.
     fn norm_groups(&self) -> Vec<Range<usize>> {
         vec![0..self.dim()]
     }
+}
+
+/// A structure over time: what the driver watches besides the steps (see [`Problem`]).
+pub trait SecondOrderProblem: Structure {
+    type Event: Copy + std::fmt::Debug;
+    /// The longest step allowed from (t, q, v); see [`Problem::max_step`].
+    fn max_step(&self, _t: f64, _q: &[f64], _v: &[f64]) -> f64 {
+        f64::INFINITY
+    }
     fn breakpoints(&self) -> Vec<f64> {
         Vec::new()
     }
     fn enter_segment(&self, _start: f64, _end: f64) {}
-    fn events(&self) -> &[EventSpec] {
+    fn events(&self) -> &[EventSpec<Self::Event>] {
         &[]
     }
     /// g(t, q, v); the run is watched for g passing from ≥ 0 to < 0.
@@ -54,17 +60,17 @@ pub trait SecondOrderProblem {
 }
 
 /// y = (q, v): q' = v, M(q) v' = f(t, q, v). Mass diag(I, M), Jacobian [[0, I], [−K, 0]].
-pub struct FirstOrder<'a> {
-    pub inner: &'a dyn SecondOrderProblem,
+pub struct FirstOrder<'a, E> {
+    pub inner: &'a dyn SecondOrderProblem<Event = E>,
 }
 
-impl<'a> FirstOrder<'a> {
-    pub fn new(inner: &'a dyn SecondOrderProblem) -> Self {
+impl<'a, E> FirstOrder<'a, E> {
+    pub fn new(inner: &'a dyn SecondOrderProblem<Event = E>) -> Self {
         FirstOrder { inner }
     }
 }
 
-impl Problem for FirstOrder<'_> {
+impl<E: Copy + std::fmt::Debug> Dynamics for FirstOrder<'_, E> {
     fn dim(&self) -> usize {
         2 * self.inner.dim()
     }
@@ -90,13 +96,27 @@ impl Problem for FirstOrder<'_> {
         a.add_sparse(&self.inner.stiffness(t, &y[..n]), -1.0, n, 0);
         Some(a.build())
     }
+    /// The structure's groups, once for the displacements and once for the velocities.
+    fn norm_groups(&self) -> Option<Vec<Range<usize>>> {
+        let n = self.inner.dim();
+        let q = self.inner.norm_groups();
+        let v = q.iter().map(|g| g.start + n..g.end + n);
+        Some(q.iter().cloned().chain(v).collect())
+    }
+    fn second_order(&self) -> Option<&dyn Structure> {
+        Some(self.inner)
+    }
+}
+
+impl<E: Copy + std::fmt::Debug> Problem for FirstOrder<'_, E> {
+    type Event = E;
     fn breakpoints(&self) -> Vec<f64> {
         self.inner.breakpoints()
     }
     fn enter_segment(&self, start: f64, end: f64) {
         self.inner.enter_segment(start, end)
     }
-    fn events(&self) -> &[EventSpec] {
+    fn events(&self) -> &[EventSpec<E>] {
         self.inner.events()
     }
     fn event(&self, index: usize, t: f64, y: &[f64]) -> f64 {
@@ -106,15 +126,5 @@ impl Problem for FirstOrder<'_> {
     fn max_step(&self, t: f64, y: &[f64]) -> f64 {
         let n = self.inner.dim();
         self.inner.max_step(t, &y[..n], &y[n..])
-    }
-    /// The structure's groups, once for the displacements and once for the velocities.
-    fn norm_groups(&self) -> Option<Vec<Range<usize>>> {
-        let n = self.inner.dim();
-        let q = self.inner.norm_groups();
-        let v = q.iter().map(|g| g.start + n..g.end + n);
-        Some(q.iter().cloned().chain(v).collect())
-    }
-    fn second_order(&self) -> Option<&dyn SecondOrderProblem> {
-        Some(self.inner)
     }
 }

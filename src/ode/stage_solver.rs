@@ -6,7 +6,7 @@
 //! Newton converges with it. A failure first refreshes the Jacobian; the stepper then halves
 //! the step.
 
-use super::{Ctx, Problem, SolveError};
+use super::{Ctx, Dynamics, SolveError};
 use crate::linalg::{self, Assembly, Sparse, SparseLu};
 
 const MAX_NEWTON: usize = 8;
@@ -19,7 +19,7 @@ pub(crate) trait ImplicitStages {
     /// All stages of a step of size h from (t, y); false if Newton failed on one of them.
     fn stages(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t: f64,
         y: &[f64],
         h: f64,
@@ -31,7 +31,7 @@ pub(crate) trait ImplicitStages {
 /// Jacobian evaluated at (t, y). False if that fails too: the driver then shrinks the step.
 pub(crate) fn solve_stages(
     s: &mut impl ImplicitStages,
-    p: &dyn Problem,
+    p: &dyn Dynamics,
     t: f64,
     y: &[f64],
     h: f64,
@@ -71,7 +71,7 @@ impl StageSolver {
         }
     }
 
-    pub fn refresh_jacobian(&mut self, p: &dyn Problem, t: f64, y: &[f64], ctx: &mut Ctx) {
+    pub fn refresh_jacobian(&mut self, p: &dyn Dynamics, t: f64, y: &[f64], ctx: &mut Ctx) {
         ctx.rhs(p, t, y, &mut self.f);
         let f0 = self.f.clone();
         self.jac = Some(ctx.jacobian(p, t, y, &f0));
@@ -82,7 +82,7 @@ impl StageSolver {
     /// Factorise M(t, y) − d h J unless the factorisation for this d h is at hand.
     pub fn factor(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t: f64,
         y: &[f64],
         dh: f64,
@@ -113,7 +113,7 @@ impl StageSolver {
     /// not converge.
     pub fn solve(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t: f64,
         base: &[f64],
         z: &mut [f64],

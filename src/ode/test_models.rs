@@ -10,19 +10,29 @@
 use std::borrow::Cow;
 use std::cell::Cell;
 
-use super::second_order::{FirstOrder, SecondOrderProblem};
-use super::{solve, EventSpec, Method, Observer, Options, Outcome, Problem, SolveError};
+use super::second_order::{FirstOrder, SecondOrderProblem, Structure};
+use super::{
+    solve, Dynamics, EventSpec, Method, NoEvent, Observer, Options, Outcome, Problem, SolveError,
+};
 use crate::linalg::{Assembly, Sparse};
 
 struct Decay;
 
-impl Problem for Decay {
+/// The oscillator's one event: q passing through zero downwards.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Zero;
+
+impl Dynamics for Decay {
     fn dim(&self) -> usize {
         1
     }
     fn rhs(&self, _t: f64, y: &[f64], f: &mut [f64]) {
         f[0] = -y[0];
     }
+}
+
+impl Problem for Decay {
+    type Event = NoEvent;
 }
 
 fn scalar(v: f64) -> Sparse {
@@ -37,7 +47,7 @@ fn scalar(v: f64) -> Sparse {
 struct Oscillator {
     varying_mass: bool,
     /// Watch the first downward zero of q.
-    events: Vec<EventSpec>,
+    events: Vec<EventSpec<Zero>>,
 }
 
 impl Oscillator {
@@ -56,7 +66,7 @@ impl Oscillator {
     }
 }
 
-impl SecondOrderProblem for Oscillator {
+impl Structure for Oscillator {
     fn dim(&self) -> usize {
         1
     }
@@ -77,7 +87,11 @@ impl SecondOrderProblem for Oscillator {
             1.0
         })
     }
-    fn events(&self) -> &[EventSpec] {
+}
+
+impl SecondOrderProblem for Oscillator {
+    type Event = Zero;
+    fn events(&self) -> &[EventSpec<Zero>] {
         &self.events
     }
     /// Held positive until t = 1, so that the start at q = 0 does not count; then q itself.
@@ -95,7 +109,7 @@ struct Switched {
     on: Cell<bool>,
 }
 
-impl SecondOrderProblem for Switched {
+impl Structure for Switched {
     fn dim(&self) -> usize {
         1
     }
@@ -108,6 +122,10 @@ impl SecondOrderProblem for Switched {
     fn stiffness(&self, _t: f64, _q: &[f64]) -> Sparse {
         scalar(0.0)
     }
+}
+
+impl SecondOrderProblem for Switched {
+    type Event = NoEvent;
     fn breakpoints(&self) -> Vec<f64> {
         vec![0.5]
     }
@@ -140,7 +158,12 @@ fn fixed(method: Method, h: f64) -> Options {
     }
 }
 
-fn run(p: &dyn Problem, y0: &[f64], t_end: f64, opts: &Options) -> Result<Outcome, SolveError> {
+fn run<E: Copy + std::fmt::Debug>(
+    p: &dyn Problem<Event = E>,
+    y0: &[f64],
+    t_end: f64,
+    opts: &Options,
+) -> Result<Outcome<E>, SolveError> {
     solve(p, 0.0, y0, t_end, &[], opts, &mut StepTimes::default())
 }
 
@@ -196,8 +219,9 @@ fn every_method_reaches_its_order_on_the_oscillator() {
         };
         for &method in methods {
             let error_at = |h: f64| {
-                let out = run(&p, &[0.0, 1.0], 2.0, &fixed(method, h))
-                    .unwrap_or_else(|e| panic!("{} (varying mass {varying_mass}): {e}", method.name()));
+                let out = run(&p, &[0.0, 1.0], 2.0, &fixed(method, h)).unwrap_or_else(|e| {
+                    panic!("{} (varying mass {varying_mass}): {e}", method.name())
+                });
                 (out.y[0] - 2.0f64.sin()).abs() + (out.y[1] - 2.0f64.cos()).abs()
             };
             // Steps where the truncation error stands well above Newton's 1e-10.
@@ -235,7 +259,7 @@ fn every_method_locates_an_event_at_its_known_time() {
     for varying_mass in [false, true] {
         let mut osc = Oscillator::new(varying_mass);
         osc.events.push(EventSpec {
-            name: "zero",
+            reason: Zero,
             terminal: true,
         });
         let p = FirstOrder::new(&osc);

@@ -6,7 +6,7 @@
 //! The implicit stages are solved by [`StageSolver`].
 
 use super::stage_solver::{solve_stages, ImplicitStages, StageSolver};
-use super::{Attempt, Ctx, Problem, SolveError, StepEnds, Stepper};
+use super::{Attempt, Ctx, Dynamics, SolveError, StepEnds, Stepper};
 
 const GAMMA: f64 = 2.0 - std::f64::consts::SQRT_2;
 const D: f64 = GAMMA / 2.0;
@@ -47,7 +47,7 @@ impl ImplicitStages for TrBdf2 {
 
     fn stages(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t: f64,
         y: &[f64],
         h: f64,
@@ -91,7 +91,7 @@ impl Stepper for TrBdf2 {
 
     fn start(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t0: f64,
         y0: &[f64],
         ctx: &mut Ctx,
@@ -103,7 +103,7 @@ impl Stepper for TrBdf2 {
 
     fn attempt(
         &mut self,
-        p: &dyn Problem,
+        p: &dyn Dynamics,
         t: f64,
         y: &[f64],
         h: f64,

@@ -6,8 +6,9 @@
 //!   ṡ = v / h,   v̇ = −g e_tY m / (m + C/a²),   φ̇ = Ω − ψ' ṡ,
 //! where φ, the rotation relative to the tangent frame, is carried only to report it.
 
+use super::StopReason;
 use super::{DiskObservation, Rolling, RollingModel};
-use crate::ode::{EventSpec, Problem};
+use crate::ode::{Dynamics, EventSpec, Problem};
 
 pub struct Minimal {
     pub rolling: Rolling,
@@ -27,7 +28,7 @@ impl Minimal {
     }
 }
 
-impl Problem for Minimal {
+impl Dynamics for Minimal {
     fn dim(&self) -> usize {
         3
     }
@@ -38,8 +39,12 @@ impl Problem for Minimal {
         f[1] = vdot;
         f[2] = phidot;
     }
+}
 
-    fn events(&self) -> &[EventSpec] {
+impl Problem for Minimal {
+    type Event = StopReason;
+
+    fn events(&self) -> &[EventSpec<StopReason>] {
         self.rolling.event_specs()
     }
 

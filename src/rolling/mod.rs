@@ -33,7 +33,7 @@ pub struct DiskObservation {
 
 /// A rolling model the run can drive: an ODE problem that also knows its initial state and
 /// what its state means.
-pub trait RollingModel: Problem {
+pub trait RollingModel: Problem<Event = StopReason> {
     fn initial_state(&self) -> Vec<f64>;
     fn observe(&self, t: f64, y: &[f64]) -> DiskObservation;
     fn formulation(&self) -> &'static str;
@@ -57,17 +57,6 @@ impl StopReason {
             StopReason::LeftTrack => "left-track",
         }
     }
-
-    pub fn from_name(name: &str) -> Option<StopReason> {
-        [
-            StopReason::ContactLost,
-            StopReason::Slip,
-            StopReason::NoFit,
-            StopReason::LeftTrack,
-        ]
-        .into_iter()
-        .find(|r| r.name() == name)
-    }
 }
 
 /// The disk is taken not to fit once 1 − aκ falls below this: the offset curve is about to
@@ -83,7 +72,7 @@ pub struct Rolling {
     pub s0: f64,
     pub omega0: f64,
     pub mu: Option<f64>,
-    specs: Vec<EventSpec>,
+    specs: Vec<EventSpec<StopReason>>,
     reasons: Vec<StopReason>,
 }
 
@@ -105,8 +94,8 @@ impl Rolling {
         }
         let specs = reasons
             .iter()
-            .map(|r| EventSpec {
-                name: r.name(),
+            .map(|&reason| EventSpec {
+                reason,
                 terminal: true,
             })
             .collect();
@@ -122,7 +111,7 @@ impl Rolling {
         }
     }
 
-    pub fn event_specs(&self) -> &[EventSpec] {
+    pub fn event_specs(&self) -> &[EventSpec<StopReason>] {
         &self.specs
     }
 

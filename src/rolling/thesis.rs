@@ -9,8 +9,9 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::StopReason;
 use super::{DiskObservation, Rolling, RollingModel};
-use crate::ode::{EventSpec, Problem};
+use crate::ode::{Dynamics, EventSpec, Problem};
 
 pub struct Thesis {
     pub rolling: Rolling,
@@ -49,7 +50,7 @@ impl Thesis {
     }
 }
 
-impl Problem for Thesis {
+impl Dynamics for Thesis {
     fn dim(&self) -> usize {
         6
     }
@@ -66,8 +67,12 @@ impl Problem for Thesis {
     fn mass(&self, _t: f64, y: &[f64]) -> Option<crate::linalg::Sparse> {
         Some(crate::linalg::from_dense(&self.mass_matrix(y)))
     }
+}
 
-    fn events(&self) -> &[EventSpec] {
+impl Problem for Thesis {
+    type Event = StopReason;
+
+    fn events(&self) -> &[EventSpec<StopReason>] {
         self.rolling.event_specs()
     }
 

@@ -8,16 +8,17 @@
 use super::{EnergyCheck, Overrides, Progress, Stop};
 use crate::analysis::statics;
 use crate::beam::dynamics::LoadedBeam;
+use crate::beam::load::{BeamStart, PointLoad};
 use crate::beam::{Beam, PointDisplacement, Stations};
 use crate::coupling::thesis_system::ThesisSystem;
 use crate::coupling::{Coupling, DiskOnBeam};
 use crate::error::Error;
 use crate::linalg::{self, SparseLu};
-use crate::ode::second_order::SecondOrderProblem;
 use crate::ode::second_order::FirstOrder;
+use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::{self, Method, Observer, Stats};
 use crate::rolling::{DiskObservation, StopReason};
-use crate::scene::{BeamScene, BeamStart, PointLoad, Scene};
+use crate::scene::{BeamScene, Scene};
 
 /// Points along the beam where envelopes and shapes are sampled.
 pub const SAMPLES: usize = 201;
@@ -409,8 +410,8 @@ fn solver_error(scene: &Scene, e: ode::SolveError) -> Error {
 
 /// Integrate one structural problem from (q0, v0) at t0 with the run's method.
 #[allow(clippy::too_many_arguments)]
-fn integrate(
-    p: &dyn SecondOrderProblem,
+fn integrate<E: Copy + std::fmt::Debug>(
+    p: &dyn SecondOrderProblem<Event = E>,
     t0: f64,
     q0: &[f64],
     v0: &[f64],
@@ -418,7 +419,7 @@ fn integrate(
     outputs: &[f64],
     opts: &ode::Options,
     rec: &mut Recorder,
-) -> Result<ode::Outcome, ode::SolveError> {
+) -> Result<ode::Outcome<E>, ode::SolveError> {
     let y0: Vec<f64> = q0.iter().chain(v0).copied().collect();
     ode::solve(&FirstOrder::new(p), t0, &y0, t_end, outputs, opts, rec)
 }
@@ -560,17 +561,8 @@ pub fn run(
                 let y = sys.reduced(out.t, &out.y);
                 (out, y)
             } else {
-                let out = integrate(
-                    c,
-                    0.0,
-                    &z0,
-                    &zd0,
-                    until,
-                    &outputs,
-                    &opts,
-                    &mut rec,
-                )
-                .map_err(|e| solver_error(scene, e))?;
+                let out = integrate(c, 0.0, &z0, &zd0, until, &outputs, &opts, &mut rec)
+                    .map_err(|e| solver_error(scene, e))?;
                 let y = out.y.clone();
                 (out, y)
             };
@@ -579,9 +571,9 @@ pub fn run(
             let (z, zd) = y_end.split_at(nz);
             let left = match &out.stopped_by {
                 None => out.t < scene.duration,
-                Some(hit) if hit.name == "left-track" => true,
+                Some(hit) if hit.reason == StopReason::LeftTrack => true,
                 Some(hit) => {
-                    stop = Stop::Event(StopReason::from_name(hit.name).expect("a named stop"));
+                    stop = Stop::Event(hit.reason);
                     false
                 }
             };

@@ -5,7 +5,7 @@ use crate::error::Error;
 use crate::ode::{self, Method, Observer, Stats};
 use crate::rolling::minimal::Minimal;
 use crate::rolling::thesis::Thesis;
-use crate::rolling::{DiskObservation, RollingModel, StopReason};
+use crate::rolling::{DiskObservation, RollingModel};
 use crate::scene::{Formulation, RollingScene, Scene};
 
 #[derive(Clone, Copy, Debug)]
@@ -120,9 +120,7 @@ pub fn run(
         rec.rows.push(last);
     }
     let stop = match &out.stopped_by {
-        Some(hit) => {
-            Stop::Event(StopReason::from_name(hit.name).expect("rolling events are stop reasons"))
-        }
+        Some(hit) => Stop::Event(hit.reason),
         None => Stop::End,
     };
     Ok(RunResult {

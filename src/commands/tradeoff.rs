@@ -17,15 +17,17 @@
 //!    and mesh), and the cheapest settings that reach 1e-2, 1e-4 and 1e-6.
 
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use plotters::prelude::*;
 
+use super::{parse_method, positive};
 use crate::error::Error;
 use crate::ode::Method;
 use crate::output::plots::PALETTE;
 use crate::output::{io_error, write};
 use crate::run::{self, Overrides, Run};
+use crate::say;
 use crate::scene::{Model, Scene};
 
 /// The reference is taken as settled when a tenfold cut of rtol moves no headline by more than
@@ -278,7 +280,7 @@ pub fn trials(
             }
         }
     }
-    crate::parallel::map(&grid, show_progress, |&(method, elements, rtol)| {
+    super::parallel::map(&grid, show_progress, |&(method, elements, rtol)| {
         let scene = with_mesh(scene, elements);
         let over = overrides(method, rtol, plan.max_steps);
         let outcome = run::run(&scene, &over, false)
@@ -486,4 +488,79 @@ fn diagram(scene: &Scene, trials: &[Trial], path: &Path) -> Result<(), Error> {
         .draw()
         .map_err(|e| err(&e))?;
     root.present().map_err(|e| err(&e))
+}
+
+#[derive(clap::Args)]
+pub struct TradeoffArgs {
+    scene: PathBuf,
+    /// Output folder (default out/<scene name>-tradeoff).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Methods to try, comma-separated (default: every one that fits the scene; on a beam all but
+    /// dopri5, which the stiffest mode holds to tiny steps).
+    #[arg(long, value_delimiter = ',')]
+    methods: Vec<String>,
+    /// Relative tolerances to try, comma-separated (default 1e-2 to 1e-8, or 1e-6 on a beam).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    rtols: Vec<f64>,
+    /// Element counts to try on a beam, comma-separated (default: the scene's and half of it).
+    #[arg(long, value_delimiter = ',')]
+    elements: Vec<usize>,
+    /// Steps a run may take before it gives up (default 20000 on a beam, 200000 on a curve).
+    #[arg(long)]
+    max_steps: Option<usize>,
+}
+
+/// `rollbeam tradeoff`.
+pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
+    let TradeoffArgs {
+        scene: path,
+        out,
+        methods,
+        rtols,
+        elements,
+        max_steps,
+    } = args;
+    let scene = Scene::load(&path)?;
+    let mut plan = Plan::default_for(&scene);
+    if !methods.is_empty() {
+        plan.methods = methods
+            .iter()
+            .map(|m| parse_method(m, &scene))
+            .collect::<Result<_, _>>()?;
+    }
+    if !rtols.is_empty() {
+        for &r in &rtols {
+            positive(Some(r), "--rtols")?;
+        }
+        plan.rtols = rtols;
+    }
+    if !elements.is_empty() {
+        if scene.beam().is_none() {
+            return Err(Error::Input(
+                "--elements meshes a beam; this scene has a rigid curve".into(),
+            ));
+        }
+        if let Some(&bad) = elements.iter().find(|&&n| n == 0 || n > 1000) {
+            return Err(Error::Input(format!(
+                "--elements {bad}: an element count is from 1 to 1000"
+            )));
+        }
+        plan.meshes = elements;
+    }
+    if let Some(m) = max_steps {
+        if m == 0 {
+            return Err(Error::Input("--max-steps must be at least 1".into()));
+        }
+        plan.max_steps = m;
+    }
+    say!("{}: computing the reference…", scene.name);
+    let reference = reference(&scene, &plan)?;
+    let trials = trials(&scene, &plan, &reference, true);
+    let dir = out.unwrap_or_else(|| Path::new("out").join(format!("{}-tradeoff", scene.name)));
+    for line in write_tradeoff(&scene, &reference, &trials, &dir)? {
+        say!("  {line}");
+    }
+    say!("  wrote {}", dir.display());
+    Ok(())
 }

@@ -3,11 +3,12 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use super::{modes, statics};
+use super::beam_only;
+use crate::analysis::{modes, statics};
 use crate::beam::supports::statically_supported;
 use crate::beam::Beam;
 use crate::error::Error;
@@ -201,4 +202,46 @@ pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Resu
     }
     let _ = writeln!(text, "  wrote {}", dir.join("modes.yaml").display());
     Ok(text)
+}
+
+#[derive(clap::Args)]
+pub struct StaticArgs {
+    scene: PathBuf,
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// `rollbeam static`.
+pub fn static_command(args: StaticArgs) -> Result<(), Error> {
+    let StaticArgs { scene: path, out } = args;
+    let scene = Scene::load(&path)?;
+    let setup = beam_only(&scene, &path, "static")?;
+    let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
+    let result = statics(&scene, setup, &dir)?;
+    print!("{result}");
+    Ok(())
+}
+
+#[derive(clap::Args)]
+pub struct ModesArgs {
+    scene: PathBuf,
+    #[arg(long)]
+    count: Option<usize>,
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// `rollbeam modes`.
+pub fn modes_command(args: ModesArgs) -> Result<(), Error> {
+    let ModesArgs {
+        scene: path,
+        count,
+        out,
+    } = args;
+    let scene = Scene::load(&path)?;
+    let setup = beam_only(&scene, &path, "modes")?;
+    let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
+    let result = modes(&scene, setup, count.unwrap_or(6), &dir)?;
+    print!("{result}");
+    Ok(())
 }

@@ -3,6 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
+use super::sweep::{run_sweep, Setting};
+use super::tradeoff;
 use crate::analysis::moving_load::MovingForce;
 use crate::coupling::Coupling;
 use crate::error::Error;
@@ -10,8 +12,6 @@ use crate::output::{self, io_error, plots};
 use crate::run::{self, Overrides, Run, RunResult};
 use crate::say;
 use crate::scene::Scene;
-use crate::sweep::{run_sweep, Setting};
-use crate::tradeoff;
 
 /// The scenes under `dir`, sorted by file name.
 pub fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, Error> {
@@ -242,4 +242,36 @@ fn bridge_speed_sweep(studies: &Path, figures: &Path) -> Result<(), Error> {
         "max |w_mid| / static",
         &borrowed,
     )
+}
+
+#[derive(clap::Args)]
+pub struct StudiesArgs {
+    /// Folder for the runs (default out).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Leave out the work–precision diagrams: about 51 of the job's 52 minutes on two cores.
+    #[arg(long)]
+    no_work_precision: bool,
+}
+
+/// `rollbeam studies`.
+pub fn studies(args: StudiesArgs) -> Result<(), Error> {
+    let StudiesArgs {
+        out,
+        no_work_precision,
+    } = args;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let here = if Path::new("studies").is_dir() {
+        Path::new(".")
+    } else {
+        root
+    };
+    let out = out.unwrap_or_else(|| here.join("out"));
+    run_all(
+        &here.join("studies"),
+        &out,
+        &here.join("report").join("figures"),
+        !no_work_precision,
+    )?;
+    Ok(())
 }

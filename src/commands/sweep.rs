@@ -4,13 +4,15 @@
 //! the same sentence a scene file would get. One summary row per run; a run that fails is a
 //! row with its reason.
 
+use super::{parse_method, positive};
 use crate::error::Error;
 use crate::output::plots::line_chart;
 use crate::output::write;
 use crate::run::{self, Overrides, Run};
+use crate::say;
 use crate::scene::Scene;
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// KEY=FROM:TO:COUNT.
 #[derive(Clone, Debug, PartialEq)]
@@ -209,7 +211,7 @@ pub fn run_sweep(
         return Err(Error::Input(format!("--set {}: {e}", setting.key)));
     }
     let values = setting.values();
-    let outcomes = crate::parallel::map(&values, show_progress, |&value| {
+    let outcomes = super::parallel::map(&values, show_progress, |&value| {
         set_key(text, &setting.key, value)
             .and_then(|t| Scene::parse(&t, file, stem))
             .and_then(|scene| run::run(&scene, over, false))
@@ -361,4 +363,70 @@ mod tests {
         );
         assert!(Setting::parse("disk.omega0=-10:-120").is_err());
     }
+}
+
+#[derive(clap::Args)]
+pub struct SweepArgs {
+    scene: PathBuf,
+    /// KEY=FROM:TO:COUNT, e.g. disk.omega0=-10:-120:111 (any number the scene holds).
+    #[arg(long = "set")]
+    set: String,
+    /// Output folder (default out/<scene name>-sweep).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    #[arg(long)]
+    method: Option<String>,
+    #[arg(long, allow_negative_numbers = true)]
+    rtol: Option<f64>,
+    #[arg(long, allow_negative_numbers = true)]
+    atol: Option<f64>,
+}
+
+/// `rollbeam sweep`.
+pub fn sweep(args: SweepArgs) -> Result<(), Error> {
+    let SweepArgs {
+        scene: path,
+        set,
+        out,
+        method,
+        rtol,
+        atol,
+    } = args;
+    let scene = Scene::load(&path)?;
+    let setting = Setting::parse(&set)?;
+    let method = method.map(|m| parse_method(&m, &scene)).transpose()?;
+    let over = Overrides {
+        method,
+        rtol: positive(rtol, "--rtol")?,
+        atol: positive(atol, "--atol")?,
+        fixed_step: None,
+        ..Default::default()
+    };
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| Error::Input(format!("cannot read scene file {}: {e}", path.display())))?;
+    let stem = path
+        .file_stem()
+        .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+    let rows = run_sweep(
+        &text,
+        &path.display().to_string(),
+        &stem,
+        &setting,
+        &over,
+        true,
+    )?;
+    let dir = out.unwrap_or_else(|| Path::new("out").join(format!("{}-sweep", scene.name)));
+    write_sweep(&rows, &setting, &dir)?;
+    let failed = rows.iter().filter(|r| r.outcome.is_err()).count();
+    say!(
+        "{}: {} runs over {} from {} to {}, {} failed; wrote {}",
+        scene.name,
+        rows.len(),
+        setting.key,
+        setting.from,
+        setting.to,
+        failed,
+        dir.display()
+    );
+    Ok(())
 }

@@ -1,0 +1,58 @@
+//! The subcommands, apart from the physics: each reads a scene, calls the layers below and
+//! writes or prints what was asked. One function per subcommand, with its arguments:
+//! `run.rs` (`rollbeam run`), `check.rs` (`check`: the model a scene builds, as `Display`),
+//! `report.rs` (`static` and `modes`), `sweep.rs`, `tradeoff.rs` (work–precision),
+//! `studies.rs` (every study and the report's figures), and `parallel.rs`, the worker pool
+//! that sweeps and work–precision grids share.
+
+pub mod check;
+pub mod parallel;
+pub mod report;
+pub mod run;
+pub mod studies;
+pub mod sweep;
+pub mod tradeoff;
+
+use std::path::Path;
+
+use crate::error::Error;
+use crate::ode::Method;
+use crate::scene::{method_names, BeamScene, Scene};
+
+/// A tolerance given on the command line: positive and finite.
+pub(crate) fn positive(value: Option<f64>, flag: &str) -> Result<Option<f64>, Error> {
+    match value {
+        Some(v) if !(v > 0.0 && v.is_finite()) => Err(Error::Input(format!(
+            "{flag} must be a positive number (got {v})"
+        ))),
+        v => Ok(v),
+    }
+}
+
+/// A method named on the command line that can integrate this scene.
+pub(crate) fn parse_method(name: &str, scene: &Scene) -> Result<Method, Error> {
+    let m = Method::from_name(name).ok_or_else(|| {
+        Error::Input(format!(
+            "--method '{name}' is unknown; use one of {}",
+            method_names()
+        ))
+    })?;
+    if m == Method::GenAlpha && scene.beam().is_none() {
+        return Err(Error::Input("--method genalpha integrates beam scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve".into()));
+    }
+    Ok(m)
+}
+
+/// The beam of a scene, for a command that analyses beams only.
+pub(crate) fn beam_only<'a>(
+    scene: &'a Scene,
+    path: &Path,
+    command: &str,
+) -> Result<&'a BeamScene, Error> {
+    scene.beam().ok_or_else(|| {
+        Error::Input(format!(
+            "{}: `{command}` needs a beam track; this scene has a rigid curve",
+            path.display()
+        ))
+    })
+}

@@ -1,0 +1,97 @@
+//! `rollbeam run`: one scene, its outputs written and a few lines printed.
+
+use std::path::{Path, PathBuf};
+
+use super::{parse_method, positive};
+use crate::error::Error;
+use crate::output;
+use crate::run::{self, Overrides, Run};
+use crate::say;
+use crate::scene::Scene;
+
+#[derive(clap::Args)]
+pub struct RunArgs {
+    scene: PathBuf,
+    /// Output folder (default out/<scene name>).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Integrator: dopri5, trbdf2, esdirk4 or genalpha (beam scenes).
+    #[arg(long)]
+    method: Option<String>,
+    #[arg(long, allow_negative_numbers = true)]
+    rtol: Option<f64>,
+    #[arg(long, allow_negative_numbers = true)]
+    atol: Option<f64>,
+    /// Also write animation.svg: the disk rolling on the magnified beam (beam scenes).
+    #[arg(long)]
+    animate: bool,
+}
+
+pub fn run(args: RunArgs) -> Result<(), Error> {
+    let RunArgs {
+        scene,
+        out,
+        method,
+        rtol,
+        atol,
+        animate,
+    } = args;
+    let scene = Scene::load(&scene)?;
+    if animate && scene.beam().is_none() {
+        return Err(Error::Input(
+            "--animate draws a beam scene; a rigid curve's positions are drawn in track.svg".into(),
+        ));
+    }
+    let method = method.map(|m| parse_method(&m, &scene)).transpose()?;
+    let over = Overrides {
+        method,
+        rtol: positive(rtol, "--rtol")?,
+        atol: positive(atol, "--atol")?,
+        fixed_step: None,
+        ..Default::default()
+    };
+    let result = run::run(&scene, &over, true)?;
+    let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
+    output::write_all(&result, &dir)?;
+    if let (true, Run::Beam(b)) = (animate, &result) {
+        output::animation::write_animation(b, &dir.join("animation.svg"))?;
+    }
+    say!("{}: {}", scene.name, result.stop().sentence(result.t_end()));
+    match &result {
+        Run::Rolling(r) => {
+            let d = &r.last.disk;
+            say!("  disk at s = {:.6}, centre ({:.6}, {:.6}) m, velocity ({:.6}, {:.6}) m/s, Ω = {:.6} 1/s", d.s, d.x, d.y, d.vx, d.vy, d.omega);
+        }
+        Run::Beam(b) => {
+            for (k, p) in b.setup.probes.iter().enumerate() {
+                let (lo, hi) = b
+                    .rows
+                    .iter()
+                    .map(|r| r.probes[k].w)
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, c), w| {
+                        (a.min(w), c.max(w))
+                    });
+                say!(
+                    "  probe {} (x = {} m): w from {lo:.6e} to {hi:.6e} m",
+                    p.name,
+                    p.x
+                );
+            }
+        }
+    }
+    say!(
+        "  energy drift {:.2e} (relative)",
+        result.energy().max_rel_drift()
+    );
+    let s = result.stats();
+    let (m, rt, at) = match &result {
+        Run::Rolling(r) => (r.method, r.rtol, r.atol),
+        Run::Beam(b) => (b.method, b.rtol, b.atol),
+    };
+    say!(
+        "  {} rtol {} atol {}: {} steps, {} rejected, {} rhs evaluations, {} Jacobians, {} factorisations, {:.3} s",
+        m.name(), output::tolerance(rt), output::tolerance(at), s.steps, s.rejected, s.rhs_evals, s.jacobians, s.factorizations, s.wall_s
+    );
+    say!("  wrote {}", dir.display());
+    Ok(())
+}
