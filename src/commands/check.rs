@@ -60,7 +60,8 @@ impl fmt::Display for Described<'_> {
             Model::Beam(setup) => {
                 let b = Beam::new(setup.beam.clone());
                 let spec = &b.spec;
-                writeln!(f, 
+                writeln!(
+                    f,
                     "  track: Reissner beam, L = {:.6} m at {:.4}° , supports {} / {}{}, starting {}",
                     b.length,
                     b.angle.to_degrees(),
@@ -89,7 +90,8 @@ impl fmt::Display for Described<'_> {
                 }
                 match &setup.disk {
                     None => writeln!(f, "  disk: none (no disk unknowns)")?,
-                    Some(d) => writeln!(f, 
+                    Some(d) => writeln!(
+                    f,
                         "  disk: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}), contact patch ±{} m{}",
                         d.disk.mass,
                         d.disk.radius,
