@@ -6,6 +6,7 @@ use std::time::Instant;
 use super::dopri5::Dopri5;
 use super::esdirk::Esdirk4;
 use super::genalpha::GenAlphaStepper;
+use super::stage_solver::Dirk;
 use super::trbdf2::TrBdf2;
 use super::{
     Attempt, Ctx, Dynamics, EventHit, EventSpec, Method, Observer, Options, Outcome, Problem,
@@ -15,8 +16,8 @@ use super::{
 fn make_stepper(opts: &Options, n: usize) -> Box<dyn Stepper> {
     match opts.method {
         Method::Dopri5 => Box::new(Dopri5::new(n)),
-        Method::TrBdf2 => Box::new(TrBdf2::new(n)),
-        Method::Esdirk4 => Box::new(Esdirk4::new(n)),
+        Method::TrBdf2 => Box::new(Dirk::new(TrBdf2::new(n), n)),
+        Method::Esdirk4 => Box::new(Dirk::new(Esdirk4::new(n), n)),
         Method::GenAlpha => Box::new(GenAlphaStepper::new(opts.rho_inf, n)),
     }
 }

@@ -6,12 +6,12 @@
 //!
 //! The higher order is what a tight tolerance asks for: against TR-BDF2 the steps grow as
 //! tol^(−1/4) instead of tol^(−1/3) per unit of accuracy. The implicit stages are solved by
-//! [`StageSolver`] on the one iteration matrix M − γ h J; the error estimate is filtered through
+//! the shared stage solver (`stage_solver.rs`) on the one iteration matrix M − γ h J; the error estimate is filtered through
 //! it (Hairer & Wanner IV.8), so that stiff components do not reject steps whose error they
 //! do not carry.
 
-use super::stage_solver::{solve_stages, ImplicitStages, StageSolver};
-use super::{Attempt, Ctx, Dynamics, SolveError, StepEnds, Stepper};
+use super::stage_solver::{DirkMethod, DirkState};
+use super::{Ctx, Dynamics, SolveError};
 use crate::linalg;
 
 const STAGES: usize = 6;
@@ -59,39 +59,27 @@ pub(crate) const B_HAT: [f64; STAGES] = [
 pub struct Esdirk4 {
     /// Stage derivatives k_i = y'(t + c_i h) of the last attempt.
     k: [Vec<f64>; STAGES],
-    ends: StepEnds,
-    y_new: Vec<f64>,
     base: Vec<f64>,
-    err: Vec<f64>,
-    t_try: f64,
-    h_try: f64,
-    newton: StageSolver,
 }
 
 impl Esdirk4 {
     pub fn new(n: usize) -> Self {
-        let z = || vec![0.0; n];
         Esdirk4 {
-            k: std::array::from_fn(|_| z()),
-            ends: StepEnds::new(n),
-            y_new: z(),
-            base: z(),
-            err: z(),
-            t_try: 0.0,
-            h_try: 0.0,
-            newton: StageSolver::new(n),
+            k: std::array::from_fn(|_| vec![0.0; n]),
+            base: vec![0.0; n],
         }
     }
 }
 
-impl ImplicitStages for Esdirk4 {
-    fn newton(&mut self) -> &mut StageSolver {
-        &mut self.newton
+impl DirkMethod for Esdirk4 {
+    fn error_order(&self) -> u32 {
+        3
     }
 
     /// The five implicit stages after the explicit first.
     fn stages(
         &mut self,
+        s: &mut DirkState,
         p: &dyn Dynamics,
         t: f64,
         y: &[f64],
@@ -100,8 +88,8 @@ impl ImplicitStages for Esdirk4 {
     ) -> Result<bool, SolveError> {
         let n = y.len();
         let dh = GAMMA * h;
-        self.newton.factor(p, t, y, dh, ctx)?;
-        self.k[0].copy_from_slice(&self.ends.yp);
+        s.newton.factor(p, t, y, dh, ctx)?;
+        self.k[0].copy_from_slice(&s.ends.yp);
         let mut z = vec![0.0; n];
         for i in 1..STAGES {
             for r in 0..n {
@@ -109,85 +97,34 @@ impl ImplicitStages for Esdirk4 {
                 // Predictor: the previous stage's slope carried to this stage's time.
                 z[r] = self.base[r] + dh * self.k[i - 1][r];
             }
-            if !self
-                .newton
-                .solve(p, t + C[i] * h, &self.base, &mut z, dh, ctx)
-            {
+            if !s.newton.solve(p, t + C[i] * h, &self.base, &mut z, dh, ctx) {
                 return Ok(false);
             }
             for r in 0..n {
                 self.k[i][r] = (z[r] - self.base[r]) / dh;
             }
         }
-        self.y_new.copy_from_slice(&z);
+        s.y_new.copy_from_slice(&z);
+        s.yp_new.copy_from_slice(&self.k[STAGES - 1]);
         Ok(true)
     }
-}
 
-impl Stepper for Esdirk4 {
-    fn error_order(&self) -> u32 {
-        3
-    }
-
-    fn start(
-        &mut self,
-        p: &dyn Dynamics,
-        t0: f64,
-        y0: &[f64],
-        ctx: &mut Ctx,
-    ) -> Result<(), SolveError> {
-        self.ends.start(p, t0, y0, ctx)?;
-        self.newton.refresh_jacobian(p, t0, y0, ctx);
-        Ok(())
-    }
-
-    fn attempt(
-        &mut self,
-        p: &dyn Dynamics,
-        t: f64,
-        y: &[f64],
-        h: f64,
-        ctx: &mut Ctx,
-    ) -> Result<Attempt, SolveError> {
-        if !solve_stages(self, p, t, y, h, ctx)? {
-            return Ok(Attempt::NewtonFailed);
-        }
-        let n = y.len();
+    /// ŷ − y from the embedded weights, filtered as (M − γ h J) e = M (y − ŷ).
+    fn estimate(&mut self, s: &DirkState, p: &dyn Dynamics, t: f64, h: f64) -> Vec<f64> {
+        let n = s.y_new.len();
         for r in 0..n {
             self.base[r] = h
                 * (0..STAGES)
                     .map(|j| (A[STAGES - 1][j] - B_HAT[j]) * self.k[j][r])
                     .sum::<f64>();
         }
-        // Filter: (M − γ h J) e = M (y − ŷ).
-        match p.mass(t + h, &self.y_new) {
-            Some(m) => linalg::mul(&m, &self.base, &mut self.err),
-            None => self.err.copy_from_slice(&self.base),
+        let mut err = vec![0.0; n];
+        match p.mass(t + h, &s.y_new) {
+            Some(m) => linalg::mul(&m, &self.base, &mut err),
+            None => err.copy_from_slice(&self.base),
         }
-        self.newton.back_substitute(&mut self.err);
-        self.t_try = t;
-        self.h_try = h;
-        Ok(Attempt::Done {
-            err: ctx.norm(&self.err, y, &self.y_new),
-        })
-    }
-
-    fn y_new(&self) -> &[f64] {
-        &self.y_new
-    }
-
-    fn accept(&mut self) {
-        self.ends
-            .accept(self.t_try, self.h_try, &self.y_new, &self.k[STAGES - 1]);
-        self.newton.jac_fresh = false;
-    }
-
-    fn interpolate(&self, t: f64, out: &mut [f64]) {
-        self.ends.interpolate(t, out);
-    }
-
-    fn keep_step(&self, h_old: f64, h_new: f64) -> f64 {
-        super::keep_factorisation(h_old, h_new)
+        s.newton.back_substitute(&mut err);
+        err
     }
 }
 

@@ -482,13 +482,3 @@ impl StepEnds {
         }
     }
 }
-
-/// An implicit method keeps its factorised iteration matrix while the step would grow by less
-/// than 20 %: a refactorisation costs more than the few steps a slightly larger h saves.
-pub(crate) fn keep_factorisation(h_old: f64, h_new: f64) -> f64 {
-    if (1.0..=1.2).contains(&(h_new / h_old)) {
-        h_old
-    } else {
-        h_new
-    }
-}

@@ -3,48 +3,152 @@
 //!
 //! Both TR-BDF2 and the ESDIRK have one diagonal coefficient d for every implicit stage, so one
 //! factorised M − d h J serves every stage of a step, and is kept across steps for as long as
-//! Newton converges with it. A failure first refreshes the Jacobian; the stepper then halves
-//! the step.
+//! Newton converges with it. A failure first refreshes the Jacobian; the driver then shrinks
+//! the step. [`Dirk`] is the stepper both methods share; each supplies only its stages and its
+//! error estimate ([`DirkMethod`]).
 
-use super::{Ctx, Dynamics, SolveError};
+use super::{Attempt, Ctx, Dynamics, SolveError, StepEnds, Stepper};
 use crate::linalg::{self, Assembly, Sparse, SparseLu};
 
 const MAX_NEWTON: usize = 8;
 /// Newton stops when its predicted remaining error is this fraction of the local tolerance.
 const NEWTON_KAPPA: f64 = 0.01;
 
-/// A stepper whose implicit stages a [`StageSolver`] solves.
-pub(crate) trait ImplicitStages {
-    fn newton(&mut self) -> &mut StageSolver;
-    /// All stages of a step of size h from (t, y); false if Newton failed on one of them.
+/// The state every diagonally implicit method here shares: the two ends of the last accepted
+/// step (its dense output is their cubic Hermite), the stage solver, and the candidate of the
+/// last attempt.
+pub(crate) struct DirkState {
+    pub ends: StepEnds,
+    pub newton: StageSolver,
+    /// y and y' at the end of the last attempt.
+    pub y_new: Vec<f64>,
+    pub yp_new: Vec<f64>,
+}
+
+/// What distinguishes one diagonally implicit method from another: its stages and its error
+/// estimate.
+pub(crate) trait DirkMethod {
+    /// The order of the embedded error estimate.
+    fn error_order(&self) -> u32;
+    /// All stages of a step of size h from (t, y), leaving y_new and yp_new in `s`; false if
+    /// Newton failed on one of them.
     fn stages(
         &mut self,
+        s: &mut DirkState,
         p: &dyn Dynamics,
         t: f64,
         y: &[f64],
         h: f64,
         ctx: &mut Ctx,
     ) -> Result<bool, SolveError>;
+    /// The local error estimate of the stages just solved.
+    fn estimate(&mut self, s: &DirkState, p: &dyn Dynamics, t: f64, h: f64) -> Vec<f64>;
 }
 
-/// The stages of a step; if Newton fails on a Jacobian from an earlier step, once more with a
-/// Jacobian evaluated at (t, y). False if that fails too: the driver then shrinks the step.
-pub(crate) fn solve_stages(
-    s: &mut impl ImplicitStages,
-    p: &dyn Dynamics,
-    t: f64,
-    y: &[f64],
-    h: f64,
-    ctx: &mut Ctx,
-) -> Result<bool, SolveError> {
-    if s.stages(p, t, y, h, ctx)? {
-        return Ok(true);
+/// A diagonally implicit method as a stepper.
+pub(crate) struct Dirk<M> {
+    method: M,
+    s: DirkState,
+    t_try: f64,
+    h_try: f64,
+}
+
+impl<M: DirkMethod> Dirk<M> {
+    pub fn new(method: M, n: usize) -> Self {
+        Dirk {
+            method,
+            s: DirkState {
+                ends: StepEnds::new(n),
+                newton: StageSolver::new(n),
+                y_new: vec![0.0; n],
+                yp_new: vec![0.0; n],
+            },
+            t_try: 0.0,
+            h_try: 0.0,
+        }
     }
-    if s.newton().jac_fresh {
-        return Ok(false);
+
+    /// The stages of a step; if Newton fails on a Jacobian from an earlier step, once more
+    /// with a Jacobian evaluated at (t, y). False if that fails too: the driver then shrinks
+    /// the step.
+    fn solve_stages(
+        &mut self,
+        p: &dyn Dynamics,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        ctx: &mut Ctx,
+    ) -> Result<bool, SolveError> {
+        if self.method.stages(&mut self.s, p, t, y, h, ctx)? {
+            return Ok(true);
+        }
+        if self.s.newton.jac_fresh {
+            return Ok(false);
+        }
+        self.s.newton.refresh_jacobian(p, t, y, ctx);
+        self.method.stages(&mut self.s, p, t, y, h, ctx)
     }
-    s.newton().refresh_jacobian(p, t, y, ctx);
-    s.stages(p, t, y, h, ctx)
+}
+
+impl<M: DirkMethod> Stepper for Dirk<M> {
+    fn error_order(&self) -> u32 {
+        self.method.error_order()
+    }
+
+    fn start(
+        &mut self,
+        p: &dyn Dynamics,
+        t0: f64,
+        y0: &[f64],
+        ctx: &mut Ctx,
+    ) -> Result<(), SolveError> {
+        self.s.ends.start(p, t0, y0, ctx)?;
+        self.s.newton.refresh_jacobian(p, t0, y0, ctx);
+        Ok(())
+    }
+
+    fn attempt(
+        &mut self,
+        p: &dyn Dynamics,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        ctx: &mut Ctx,
+    ) -> Result<Attempt, SolveError> {
+        if !self.solve_stages(p, t, y, h, ctx)? {
+            return Ok(Attempt::NewtonFailed);
+        }
+        let err = self.method.estimate(&self.s, p, t, h);
+        self.t_try = t;
+        self.h_try = h;
+        Ok(Attempt::Done {
+            err: ctx.norm(&err, y, &self.s.y_new),
+        })
+    }
+
+    fn y_new(&self) -> &[f64] {
+        &self.s.y_new
+    }
+
+    fn accept(&mut self) {
+        let s = &mut self.s;
+        s.ends.accept(self.t_try, self.h_try, &s.y_new, &s.yp_new);
+        s.newton.jac_fresh = false;
+    }
+
+    fn interpolate(&self, t: f64, out: &mut [f64]) {
+        self.s.ends.interpolate(t, out);
+    }
+
+    /// Keep the factorised iteration matrix while the step would grow by less than 20 %: a
+    /// refactorisation costs more than the few steps a slightly larger h saves.
+    fn keep_step(&self, h_old: f64, h_new: f64) -> f64 {
+        if (1.0..=1.2).contains(&(h_new / h_old)) {
+            h_old
+        } else {
+            h_new
+        }
+    }
 }
 
 pub(crate) struct StageSolver {
