@@ -137,7 +137,7 @@ impl Stepper for Dopri5 {
         &self.y_new
     }
 
-    fn accept(&mut self) {
+    fn accept(&mut self, _t_new: f64) {
         let h = self.h_try;
         for i in 0..self.y_new.len() {
             let ydiff = self.y_new[i] - self.y_old[i];

@@ -139,9 +139,9 @@ pub fn solve<E: Copy + std::fmt::Debug>(
         if stepper.y_new().iter().any(|v| !v.is_finite()) {
             return Err(SolveError::NonFinite { t: t + h_try });
         }
-        stepper.accept();
-        ctx.stats.steps += 1;
         let t_new = if last { target } else { t + h_try };
+        stepper.accept(t_new);
+        ctx.stats.steps += 1;
 
         // Earliest sign change from ≥ 0 to < 0 in this step, located on the dense output.
         let g_new: Vec<f64> = (0..specs.len())

@@ -6,9 +6,9 @@
 //!
 //! The higher order is what a tight tolerance asks for: against TR-BDF2 the steps grow as
 //! tol^(−1/4) instead of tol^(−1/3) per unit of accuracy. The implicit stages are solved by
-//! the shared stage solver (`stage_solver.rs`) on the one iteration matrix M − γ h J; the error estimate is filtered through
-//! it (Hairer & Wanner IV.8), so that stiff components do not reject steps whose error they
-//! do not carry.
+//! the shared stage solver (`stage_solver.rs`) on the one iteration matrix M − γ h J; the
+//! error estimate is filtered through it (Hairer & Wanner IV.8), so that stiff components do
+//! not reject steps whose error they do not carry.
 
 use super::stage_solver::{DirkMethod, DirkState};
 use super::{Ctx, Dynamics, SolveError};

@@ -76,7 +76,6 @@ pub(crate) struct GenAlphaStepper {
     y_new: Vec<f64>,
     ends: StepEnds,
     t_try: f64,
-    h_try: f64,
 }
 
 fn structural(p: &dyn Dynamics) -> Result<&dyn Structure, SolveError> {
@@ -100,7 +99,6 @@ impl GenAlphaStepper {
             y_new: vec![0.0; n],
             ends: StepEnds::new(n),
             t_try: 0.0,
-            h_try: 0.0,
         }
     }
 
@@ -364,7 +362,6 @@ impl Stepper for GenAlphaStepper {
         self.y_new[..n].copy_from_slice(&self.next.q);
         self.y_new[n..].copy_from_slice(&self.next.v);
         self.t_try = t;
-        self.h_try = h;
         Ok(Attempt::Done { err })
     }
 
@@ -372,7 +369,7 @@ impl Stepper for GenAlphaStepper {
         &self.y_new
     }
 
-    fn accept(&mut self) {
+    fn accept(&mut self, t_new: f64) {
         // The dense output runs from the step start as it stands now (after a restart at a
         // breakpoint, with the new segment's acceleration) to the accepted candidate.
         let n = self.now.q.len();
@@ -383,8 +380,9 @@ impl Stepper for GenAlphaStepper {
         yp[n..].copy_from_slice(&self.now.a);
         std::mem::swap(&mut self.now, &mut self.next);
         let yp_new: Vec<f64> = self.now.v.iter().chain(&self.now.a).copied().collect();
+        // The step's length as the two times give it, which the dense output spans.
         self.ends
-            .accept(self.t_try, self.h_try, &self.y_new, &yp_new);
+            .accept(self.t_try, t_new - self.t_try, &self.y_new, &yp_new);
         self.k_fresh = false;
     }
 

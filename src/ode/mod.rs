@@ -277,8 +277,9 @@ pub(crate) trait Stepper {
         ctx: &mut Ctx,
     ) -> Result<Attempt, SolveError>;
     fn y_new(&self) -> &[f64];
-    /// Commit the last attempt as the new step start.
-    fn accept(&mut self);
+    /// Commit the last attempt as the new step start; the step ends at `t_new` (the attempt's
+    /// t + h, or the breakpoint it was cut to end on exactly).
+    fn accept(&mut self, t_new: f64);
     /// Dense output inside the last accepted step [t_old, t_old + h].
     fn interpolate(&self, t: f64, out: &mut [f64]);
     /// Implicit methods keep a factorised iteration matrix valid while h stays put.

@@ -130,7 +130,7 @@ impl<M: DirkMethod> Stepper for Dirk<M> {
         &self.s.y_new
     }
 
-    fn accept(&mut self) {
+    fn accept(&mut self, _t_new: f64) {
         let s = &mut self.s;
         s.ends.accept(self.t_try, self.h_try, &s.y_new, &s.yp_new);
         s.newton.jac_fresh = false;
