@@ -17,7 +17,36 @@ use std::path::Path;
 
 use crate::error::Error;
 use crate::ode::Method;
+use crate::run::Overrides;
 use crate::scene::{method_names, BeamScene, Scene};
+
+/// The integrator settings a run or sweep may take from the command line.
+#[derive(clap::Args)]
+pub struct SolverFlags {
+    /// Integrator: dopri5, trbdf2, esdirk4 or genalpha (beam scenes).
+    #[arg(long)]
+    method: Option<String>,
+    #[arg(long, allow_negative_numbers = true)]
+    rtol: Option<f64>,
+    #[arg(long, allow_negative_numbers = true)]
+    atol: Option<f64>,
+}
+
+impl SolverFlags {
+    /// The flags checked against the scene, as overrides of its own settings.
+    fn overrides(&self, scene: &Scene) -> Result<Overrides, Error> {
+        Ok(Overrides {
+            method: self
+                .method
+                .as_deref()
+                .map(|m| parse_method(m, scene))
+                .transpose()?,
+            rtol: positive(self.rtol, "--rtol")?,
+            atol: positive(self.atol, "--atol")?,
+            ..Default::default()
+        })
+    }
+}
 
 /// A tolerance given on the command line: positive and finite.
 pub(crate) fn positive(value: Option<f64>, flag: &str) -> Result<Option<f64>, Error> {

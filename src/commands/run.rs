@@ -2,10 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
-use super::{parse_method, positive};
+use super::SolverFlags;
 use crate::error::Error;
 use crate::output;
-use crate::run::{self, Overrides, Run};
+use crate::run::{self, Run};
 use crate::say;
 use crate::scene::Scene;
 
@@ -15,13 +15,8 @@ pub struct RunArgs {
     /// Output folder (default out/<scene name>).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Integrator: dopri5, trbdf2, esdirk4 or genalpha (beam scenes).
-    #[arg(long)]
-    method: Option<String>,
-    #[arg(long, allow_negative_numbers = true)]
-    rtol: Option<f64>,
-    #[arg(long, allow_negative_numbers = true)]
-    atol: Option<f64>,
+    #[command(flatten)]
+    solver: SolverFlags,
     /// Also write animation.svg: the disk rolling on the magnified beam (beam scenes).
     #[arg(long)]
     animate: bool,
@@ -31,9 +26,7 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
     let RunArgs {
         scene,
         out,
-        method,
-        rtol,
-        atol,
+        solver,
         animate,
     } = args;
     let scene = Scene::load(&scene)?;
@@ -42,14 +35,7 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
             "--animate draws a beam scene; a rigid curve's positions are drawn in track.svg".into(),
         ));
     }
-    let method = method.map(|m| parse_method(&m, &scene)).transpose()?;
-    let over = Overrides {
-        method,
-        rtol: positive(rtol, "--rtol")?,
-        atol: positive(atol, "--atol")?,
-        fixed_step: None,
-        ..Default::default()
-    };
+    let over = solver.overrides(&scene)?;
     let result = run::run(&scene, &over, true)?;
     let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
     output::write_all(&result, &dir)?;

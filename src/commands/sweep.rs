@@ -4,7 +4,7 @@
 //! the same sentence a scene file would get. One summary row per run; a run that fails is a
 //! row with its reason.
 
-use super::{parse_method, positive};
+use super::SolverFlags;
 use crate::error::Error;
 use crate::output::plots::line_chart;
 use crate::output::write;
@@ -374,12 +374,8 @@ pub struct SweepArgs {
     /// Output folder (default out/<scene name>-sweep).
     #[arg(long)]
     out: Option<PathBuf>,
-    #[arg(long)]
-    method: Option<String>,
-    #[arg(long, allow_negative_numbers = true)]
-    rtol: Option<f64>,
-    #[arg(long, allow_negative_numbers = true)]
-    atol: Option<f64>,
+    #[command(flatten)]
+    solver: SolverFlags,
 }
 
 /// `rollbeam sweep`.
@@ -388,20 +384,11 @@ pub fn sweep(args: SweepArgs) -> Result<(), Error> {
         scene: path,
         set,
         out,
-        method,
-        rtol,
-        atol,
+        solver,
     } = args;
     let scene = Scene::load(&path)?;
     let setting = Setting::parse(&set)?;
-    let method = method.map(|m| parse_method(&m, &scene)).transpose()?;
-    let over = Overrides {
-        method,
-        rtol: positive(rtol, "--rtol")?,
-        atol: positive(atol, "--atol")?,
-        fixed_step: None,
-        ..Default::default()
-    };
+    let over = solver.overrides(&scene)?;
     let text = std::fs::read_to_string(&path)
         .map_err(|e| Error::Input(format!("cannot read scene file {}: {e}", path.display())))?;
     let stem = path
