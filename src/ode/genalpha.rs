@@ -74,6 +74,8 @@ pub(crate) struct GenAlphaStepper {
     /// (q, v) of the candidate, and the dense output of the last accepted step: y = (q, v)
     /// with y' = (v, a), so its cubic Hermite is the one every one-step method here uses.
     y_new: Vec<f64>,
+    /// y' = (v, a) of the accepted candidate.
+    yp_new: Vec<f64>,
     ends: StepEnds,
     t_try: f64,
 }
@@ -97,6 +99,7 @@ impl GenAlphaStepper {
             now: State::zeros(nq),
             next: State::zeros(nq),
             y_new: vec![0.0; n],
+            yp_new: vec![0.0; n],
             ends: StepEnds::new(n),
             t_try: 0.0,
         }
@@ -379,10 +382,11 @@ impl Stepper for GenAlphaStepper {
         yp[..n].copy_from_slice(&self.now.v);
         yp[n..].copy_from_slice(&self.now.a);
         std::mem::swap(&mut self.now, &mut self.next);
-        let yp_new: Vec<f64> = self.now.v.iter().chain(&self.now.a).copied().collect();
+        self.yp_new[..n].copy_from_slice(&self.now.v);
+        self.yp_new[n..].copy_from_slice(&self.now.a);
         // The step's length as the two times give it, which the dense output spans.
         self.ends
-            .accept(self.t_try, t_new - self.t_try, &self.y_new, &yp_new);
+            .accept(self.t_try, t_new - self.t_try, &self.y_new, &self.yp_new);
         self.k_fresh = false;
     }
 

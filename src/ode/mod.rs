@@ -2,7 +2,7 @@
 //!
 //! A [`Problem`] supplies its size, right-hand side, mass matrix (identity unless it says
 //! otherwise), Jacobian (finite differences unless it has one) and event functions; a
-//! structural one also says so ([`Problem::second_order`]). A [`Stepper`] knows how to attempt
+//! structural one also says so ([`Dynamics::second_order`]). A [`Stepper`] knows how to attempt
 //! one step, accept it and interpolate inside it: `dopri5.rs`, `trbdf2.rs`, `esdirk.rs` (their
 //! implicit stages in `stage_solver.rs`) and `genalpha.rs`. One driver, [`solve`] in
 //! `driver.rs`, steps them all over [t0, t_end]: step-size control on rtol/atol (or a fixed
@@ -21,7 +21,6 @@ mod test_models;
 mod trbdf2;
 
 pub use driver::solve;
-pub use genalpha::GenAlpha;
 
 use std::fmt;
 
