@@ -11,6 +11,7 @@ pub mod error;
 pub mod linalg;
 pub mod ode;
 pub mod output;
+pub mod plan;
 pub mod rolling;
 pub mod run;
 pub mod scene;

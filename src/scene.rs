@@ -1,13 +1,15 @@
-//! The scene file (see SCENE-FORMAT in the README): read with locations, checked, and turned
-//! into the model it names, and only that. Every problem is reported as one sentence with the
-//! file, the line and the key.
+//! The scene file (see SCENE-FORMAT in the README): read with locations into a [`SceneSpec`]
+//! (what the user wrote, which a typed [`SceneSpec::set`] may change key by key), and checked
+//! into the model it names, and only that; nothing is chosen or computed here beyond what the
+//! check needs. What the scene leaves out is chosen by the planning step (`plan.rs`). Every
+//! problem is reported as one sentence with the file, the line and the key.
 
 use std::path::Path;
 
 use serde::Deserialize;
-use serde_saphyr::Spanned;
+use serde_saphyr::{Location, Spanned};
 
-use crate::analysis::discretisation::{self, Discretisation};
+use crate::analysis::discretisation::{Discretisation, DEFAULT_ACCURACY, DEFAULT_ORDER};
 use crate::beam::element::Section;
 use crate::beam::load::{BeamStart, PointLoad, Probe};
 use crate::beam::supports::{mesh_multiple, statically_supported, Support};
@@ -21,7 +23,7 @@ use crate::error::Error;
 use crate::ode::Method;
 use crate::rolling::Rolling;
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SceneFile {
     name: Option<String>,
@@ -34,14 +36,14 @@ struct SceneFile {
     output: Option<OutputFile>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct TrackFile {
     curve: Option<Spanned<CurveFile>>,
     beam: Option<Spanned<BeamFile>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 #[allow(non_snake_case)]
 struct BeamFile {
@@ -60,7 +62,7 @@ struct BeamFile {
     initial: Option<Spanned<String>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SupportsFile {
     from: Spanned<String>,
@@ -68,7 +70,7 @@ struct SupportsFile {
     intermediate: Option<Spanned<Vec<Spanned<f64>>>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LoadFile {
     x: Spanned<f64>,
@@ -79,14 +81,14 @@ struct LoadFile {
     until: Option<Spanned<f64>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ProbeFile {
     name: Spanned<String>,
     x: Spanned<f64>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct CurveFile {
     parabola: Option<ParabolaFile>,
@@ -95,27 +97,27 @@ struct CurveFile {
     points: Option<Spanned<Vec<Spanned<[f64; 2]>>>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ParabolaFile {
     k: Spanned<f64>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LineFile {
     from: Spanned<[f64; 2]>,
     to: Spanned<[f64; 2]>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ExprFile {
     x: Spanned<String>,
     y: Spanned<String>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct DiskFile {
     mass: Spanned<f64>,
@@ -128,7 +130,7 @@ struct DiskFile {
     patch: Option<Spanned<f64>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SolverFile {
     method: Option<Spanned<String>>,
@@ -138,7 +140,7 @@ struct SolverFile {
     accuracy: Option<Spanned<f64>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct OutputFile {
     interval: Option<Spanned<f64>>,
@@ -197,10 +199,10 @@ pub struct BeamScene {
     /// Relative accuracy asked of the peak deflection: what the mesh and tolerances are
     /// chosen from when the scene leaves them out.
     pub accuracy: f64,
-    /// The mesh chosen for the scene, when it left elements or order out.
+    /// The mesh the plan chose for the scene, when it left elements or order out.
     pub discretisation: Option<Discretisation>,
     /// The size of the displacements its loads cause (m), when the supports allow a static
-    /// estimate: see [`discretisation::response_size`].
+    /// estimate: see `analysis::discretisation::response_size`. Set by the plan.
     pub response: Option<f64>,
 }
 
@@ -252,11 +254,13 @@ struct Checker<'a> {
 }
 
 impl Checker<'_> {
+    /// Line 0 is a value that was set rather than read from the file.
     fn err<T>(&self, line: u64, key: &str, msg: impl std::fmt::Display) -> Result<T, Error> {
-        Err(Error::Input(format!(
-            "{} line {line}: `{key}` {msg}",
-            self.file
-        )))
+        Err(Error::Input(if line == 0 {
+            format!("{}: `{key}` {msg}", self.file)
+        } else {
+            format!("{} line {line}: `{key}` {msg}", self.file)
+        }))
     }
 
     fn finite(&self, v: &Spanned<f64>, key: &str) -> Result<f64, Error> {
@@ -294,20 +298,46 @@ impl Checker<'_> {
     }
 }
 
-impl Scene {
-    pub fn load(path: &Path) -> Result<Scene, Error> {
+/// A scene as written: the file's values with their lines, nothing chosen. [`SceneSpec::set`]
+/// changes one of them by its dotted key, as `sweep --set` and the tests do; checking and
+/// planning it again gives the changed scene.
+#[derive(Clone)]
+pub struct SceneSpec {
+    file: SceneFile,
+    /// Names the source in messages.
+    source: String,
+    /// The default scene name.
+    stem: String,
+}
+
+/// A checked scene, not yet planned: what only the planning step (`plan.rs`) turns into a
+/// [`Scene`], choosing what the scene left out.
+pub struct Checked {
+    /// The scene with the mesh and tolerances as given, or provisional where left out.
+    pub scene: Scene,
+    /// Element count and degree as the scene gives them.
+    pub elements: Option<usize>,
+    pub order: Option<usize>,
+    /// Element counts are kept to multiples of this, which puts a node at each bearing.
+    pub multiple: usize,
+    pub rtol_given: bool,
+    pub atol_given: bool,
+}
+
+impl SceneSpec {
+    pub fn load(path: &Path) -> Result<SceneSpec, Error> {
         let text = std::fs::read_to_string(path)
             .map_err(|e| Error::Input(format!("cannot read scene file {}: {e}", path.display())))?;
         let stem = path
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_else(|| "scene".into());
-        Scene::parse(&text, &path.display().to_string(), &stem)
+        SceneSpec::parse(&text, &path.display().to_string(), &stem)
     }
 
-    /// `file` names the source in messages; `stem` is the default scene name.
-    pub fn parse(text: &str, file: &str, stem: &str) -> Result<Scene, Error> {
-        let raw: SceneFile = serde_saphyr::from_str(text).map_err(|e| {
+    /// Read and check; `source` names the source in messages, `stem` is the default scene name.
+    pub fn parse(text: &str, source: &str, stem: &str) -> Result<SceneSpec, Error> {
+        let file: SceneFile = serde_saphyr::from_str(text).map_err(|e| {
             let msg = e.to_string();
             let first = msg
                 .lines()
@@ -316,87 +346,340 @@ impl Scene {
                 .trim()
                 .trim_start_matches("error: ")
                 .to_string();
-            Error::Input(format!("{file} is not a valid scene: {first}"))
+            Error::Input(format!("{source} is not a valid scene: {first}"))
         })?;
-        let c = Checker { file };
-        let gravity = match &raw.gravity {
-            Some(g) => c.finite(g, "gravity")?,
-            None => DEFAULT_GRAVITY,
+        let spec = SceneSpec {
+            file,
+            source: source.into(),
+            stem: stem.into(),
         };
-        let duration = c.positive(&raw.duration, "duration")?;
-        let track = &raw.track;
-        let model = match (&track.value.curve, &track.value.beam) {
-            (Some(_), Some(_)) | (None, None) => {
-                return c.err(
-                    track.referenced.line(),
-                    "track",
-                    "must name exactly one of `curve` or `beam`",
-                )
+        spec.check()?;
+        Ok(spec)
+    }
+
+    /// The model the scene names, checked; mesh and tolerances as given.
+    pub fn check(&self) -> Result<Checked, Error> {
+        check(&self.file, &self.source, &self.stem)
+    }
+
+    /// Set the number at a dotted key of the scene format (`disk.omega0`, `track.beam.E`,
+    /// `track.beam.elements`, …), whether or not the file gives it. The changed scene is not
+    /// checked here: [`SceneSpec::check`] does that.
+    pub fn set(&mut self, key: &str, value: f64) -> Result<(), Error> {
+        let f = &mut self.file;
+        let unset = |what: &str| {
+            Err(Error::Input(format!(
+                "`{key}` cannot be set: the scene has no {what}"
+            )))
+        };
+        let number = |slot: &mut Spanned<f64>| slot.value = value;
+        let option = |slot: &mut Option<Spanned<f64>>| match slot {
+            Some(s) => s.value = value,
+            None => *slot = Some(given(value)),
+        };
+        let whole = |slot: &mut Option<Spanned<i64>>| -> Result<(), Error> {
+            if value.fract() != 0.0 || value.abs() > 1e15 {
+                return Err(Error::Input(format!(
+                    "`{key}` takes a whole number (got {value})"
+                )));
             }
-            (Some(curve), None) => Model::Rolling(rolling_scene(&c, &raw, curve, gravity)?),
-            (None, Some(beam)) => Model::Beam(beam_scene(&c, &raw, beam, duration, gravity)?),
+            let v = value as i64;
+            match slot {
+                Some(s) => s.value = v,
+                None => *slot = Some(given(v)),
+            }
+            Ok(())
         };
-        let beam_default = matches!(model, Model::Beam(_));
-        let mut solver = SolverSettings {
-            method: if beam_default {
-                Method::GenAlpha
-            } else {
-                Method::Dopri5
+        match key.split_once('.') {
+            None => match key {
+                "gravity" => option(&mut f.gravity),
+                "duration" => number(&mut f.duration),
+                _ => return Err(not_a_number(key)),
             },
-            rtol: match &model {
-                Model::Beam(b) => discretisation::rtol_for(b).0,
-                Model::Rolling(_) => 1e-6,
+            Some(("track", rest)) => match rest.split_once('.') {
+                Some(("beam", field)) => {
+                    let Some(b) = f.track.value.beam.as_mut() else {
+                        return unset("beam track");
+                    };
+                    let b = &mut b.value;
+                    match field {
+                        "E" => number(&mut b.E),
+                        "G" => number(&mut b.G),
+                        "rho" => number(&mut b.rho),
+                        "A" => number(&mut b.A),
+                        "Av" => number(&mut b.Av),
+                        "I" => number(&mut b.I),
+                        "elements" => whole(&mut b.elements)?,
+                        "order" => whole(&mut b.order)?,
+                        _ => return Err(not_a_number(key)),
+                    }
+                }
+                Some(("curve", "parabola.k")) => {
+                    match f
+                        .track
+                        .value
+                        .curve
+                        .as_mut()
+                        .and_then(|c| c.value.parabola.as_mut())
+                    {
+                        Some(p) => number(&mut p.k),
+                        None => return unset("parabola"),
+                    }
+                }
+                _ => return Err(not_a_number(key)),
             },
-            atol: 1e-9,
-            rtol_from_accuracy: matches!(model, Model::Beam(_)),
-            atol_scale: None,
-        };
-        if let Some(s) = &raw.solver {
-            if let Some(m) = &s.method {
-                solver.method = Method::from_name(&m.value).map_or_else(
-                    || {
-                        c.err(
-                            m.referenced.line(),
-                            "solver.method",
-                            format!("is '{}'; use one of {}", m.value, method_names()),
-                        )
-                    },
-                    Ok,
-                )?;
-                if solver.method == Method::GenAlpha && !beam_default {
-                    return c.err(m.referenced.line(), "solver.method", "genalpha integrates structural (beam) scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve");
+            Some(("disk", field)) => {
+                let Some(d) = f.disk.as_mut() else {
+                    return unset("disk");
+                };
+                let d = &mut d.value;
+                match field {
+                    "mass" => number(&mut d.mass),
+                    "radius" => number(&mut d.radius),
+                    "s0" => option(&mut d.s0),
+                    "omega0" => option(&mut d.omega0),
+                    "mu" => option(&mut d.mu),
+                    "patch" => option(&mut d.patch),
+                    _ => return Err(not_a_number(key)),
                 }
             }
-            if let Some(r) = &s.rtol {
-                solver.rtol = c.positive(r, "solver.rtol")?;
-                solver.rtol_from_accuracy = false;
+            Some(("solver", field)) => {
+                let s = f.solver.get_or_insert_with(SolverFile::default);
+                match field {
+                    "rtol" => option(&mut s.rtol),
+                    "atol" => option(&mut s.atol),
+                    "rho_inf" => option(&mut s.rho_inf),
+                    "accuracy" => option(&mut s.accuracy),
+                    _ => return Err(not_a_number(key)),
+                }
             }
-            if let Some(a) = &s.atol {
-                solver.atol = c.positive(a, "solver.atol")?;
+            Some(("output", field)) => {
+                let o = f.output.get_or_insert_with(OutputFile::default);
+                match field {
+                    "interval" => option(&mut o.interval),
+                    "magnify" => option(&mut o.magnify),
+                    _ => return Err(not_a_number(key)),
+                }
+            }
+            _ => return Err(not_a_number(key)),
+        }
+        Ok(())
+    }
+
+    /// Leave out an optional key, so that its default applies (`output.shapes`, `solver.rtol`,
+    /// `track.beam.elements`, …).
+    pub fn unset(&mut self, key: &str) -> Result<(), Error> {
+        let f = &mut self.file;
+        let no = |what: &str| {
+            Err(Error::Input(format!(
+                "`{key}` cannot be left out: the scene has no {what}"
+            )))
+        };
+        match key {
+            "gravity" => f.gravity = None,
+            "loads" => f.loads = None,
+            "track.beam.elements"
+            | "track.beam.order"
+            | "track.beam.quadrature"
+            | "track.beam.initial" => {
+                let Some(b) = f.track.value.beam.as_mut() else {
+                    return no("beam track");
+                };
+                let b = &mut b.value;
+                match key {
+                    "track.beam.elements" => b.elements = None,
+                    "track.beam.order" => b.order = None,
+                    "track.beam.quadrature" => b.quadrature = None,
+                    _ => b.initial = None,
+                }
+            }
+            "disk.s0" | "disk.omega0" | "disk.mu" | "disk.patch" | "disk.coupling"
+            | "disk.formulation" => {
+                let Some(d) = f.disk.as_mut() else {
+                    return no("disk");
+                };
+                let d = &mut d.value;
+                match key {
+                    "disk.s0" => d.s0 = None,
+                    "disk.omega0" => d.omega0 = None,
+                    "disk.mu" => d.mu = None,
+                    "disk.patch" => d.patch = None,
+                    "disk.coupling" => d.coupling = None,
+                    _ => d.formulation = None,
+                }
+            }
+            "solver.method" | "solver.rtol" | "solver.atol" | "solver.rho_inf"
+            | "solver.accuracy" => {
+                if let Some(s) = f.solver.as_mut() {
+                    match key {
+                        "solver.method" => s.method = None,
+                        "solver.rtol" => s.rtol = None,
+                        "solver.atol" => s.atol = None,
+                        "solver.rho_inf" => s.rho_inf = None,
+                        _ => s.accuracy = None,
+                    }
+                }
+            }
+            "output.interval" | "output.probes" | "output.shapes" | "output.magnify" => {
+                if let Some(o) = f.output.as_mut() {
+                    match key {
+                        "output.interval" => o.interval = None,
+                        "output.probes" => o.probes = None,
+                        "output.shapes" => o.shapes = None,
+                        _ => o.magnify = None,
+                    }
+                }
+            }
+            _ => {
+                return Err(Error::Input(format!(
+                    "`{key}` is not an optional key of the scene format"
+                )))
             }
         }
-        let atol_left_out = raw.solver.as_ref().is_none_or(|s| s.atol.is_none());
-        if let (true, true, Model::Beam(b)) = (solver.rtol_from_accuracy, atol_left_out, &model) {
-            if let Some((atol, _)) = discretisation::atol_for(b, solver.rtol) {
-                solver.atol = atol;
-                solver.atol_scale = b.response;
+        Ok(())
+    }
+
+    /// Set the name at a dotted key of the scene format (`disk.coupling`, `solver.method`,
+    /// `track.beam.quadrature`, …), whether or not the file gives it.
+    pub fn set_name(&mut self, key: &str, value: &str) -> Result<(), Error> {
+        let f = &mut self.file;
+        let text = |slot: &mut Option<Spanned<String>>| match slot {
+            Some(s) => s.value = value.into(),
+            None => *slot = Some(given(value.to_string())),
+        };
+        match key {
+            "name" => f.name = Some(value.into()),
+            "disk.coupling" | "disk.formulation" => {
+                let Some(d) = f.disk.as_mut() else {
+                    return Err(Error::Input(format!(
+                        "`{key}` cannot be set: the scene has no disk"
+                    )));
+                };
+                if key == "disk.coupling" {
+                    text(&mut d.value.coupling)
+                } else {
+                    text(&mut d.value.formulation)
+                }
+            }
+            "solver.method" => text(&mut f.solver.get_or_insert_with(SolverFile::default).method),
+            "track.beam.quadrature" | "track.beam.initial" => {
+                let Some(b) = f.track.value.beam.as_mut() else {
+                    return Err(Error::Input(format!(
+                        "`{key}` cannot be set: the scene has no beam track"
+                    )));
+                };
+                if key == "track.beam.quadrature" {
+                    text(&mut b.value.quadrature)
+                } else {
+                    text(&mut b.value.initial)
+                }
+            }
+            _ => {
+                return Err(Error::Input(format!(
+                    "`{key}` is not a name the scene format holds; names are name, disk.coupling, disk.formulation, solver.method, track.beam.quadrature and track.beam.initial"
+                )))
             }
         }
-        let mut interval = duration / 500.0;
-        if let Some(i) = raw.output.as_ref().and_then(|o| o.interval.as_ref()) {
-            interval = c.positive(i, "output.interval")?;
-            if duration / interval > MAX_ROWS {
-                return c.err(i.referenced.line(), "output.interval", format!("= {interval} would write {:.0} rows of history; at most {MAX_ROWS:.0} are allowed", duration / interval));
+        Ok(())
+    }
+}
+
+/// A value set rather than read: it has no line in the file.
+fn given<T>(value: T) -> Spanned<T> {
+    Spanned::new(value, Location::UNKNOWN, Location::UNKNOWN)
+}
+
+fn not_a_number(key: &str) -> Error {
+    Error::Input(format!(
+        "`{key}` is not a number the scene format holds (keys are dotted paths such as disk.omega0, track.beam.E or solver.rtol)"
+    ))
+}
+
+fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
+    let c = Checker { file };
+    let gravity = match &raw.gravity {
+        Some(g) => c.finite(g, "gravity")?,
+        None => DEFAULT_GRAVITY,
+    };
+    let duration = c.positive(&raw.duration, "duration")?;
+    let track = &raw.track;
+    let (model, mesh) = match (&track.value.curve, &track.value.beam) {
+        (Some(_), Some(_)) | (None, None) => {
+            return c.err(
+                track.referenced.line(),
+                "track",
+                "must name exactly one of `curve` or `beam`",
+            )
+        }
+        (Some(curve), None) => (
+            Model::Rolling(rolling_scene(&c, raw, curve, gravity)?),
+            (None, None, 1),
+        ),
+        (None, Some(beam)) => {
+            let (scene, mesh) = beam_scene(&c, raw, beam, duration, gravity)?;
+            (Model::Beam(scene), mesh)
+        }
+    };
+    let beam_default = matches!(model, Model::Beam(_));
+    let mut solver = SolverSettings {
+        method: if beam_default {
+            Method::GenAlpha
+        } else {
+            Method::Dopri5
+        },
+        rtol: 1e-6,
+        atol: 1e-9,
+        rtol_from_accuracy: false,
+        atol_scale: None,
+    };
+    let (mut rtol_given, mut atol_given) = (false, false);
+    if let Some(s) = &raw.solver {
+        if let Some(m) = &s.method {
+            solver.method = Method::from_name(&m.value).map_or_else(
+                || {
+                    c.err(
+                        m.referenced.line(),
+                        "solver.method",
+                        format!("is '{}'; use one of {}", m.value, method_names()),
+                    )
+                },
+                Ok,
+            )?;
+            if solver.method == Method::GenAlpha && !beam_default {
+                return c.err(m.referenced.line(), "solver.method", "genalpha integrates structural (beam) scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve");
             }
         }
-        Ok(Scene {
+        if let Some(r) = &s.rtol {
+            solver.rtol = c.positive(r, "solver.rtol")?;
+            rtol_given = true;
+        }
+        if let Some(a) = &s.atol {
+            solver.atol = c.positive(a, "solver.atol")?;
+            atol_given = true;
+        }
+    }
+    let mut interval = duration / 500.0;
+    if let Some(i) = raw.output.as_ref().and_then(|o| o.interval.as_ref()) {
+        interval = c.positive(i, "output.interval")?;
+        if duration / interval > MAX_ROWS {
+            return c.err(i.referenced.line(), "output.interval", format!("= {interval} would write {:.0} rows of history; at most {MAX_ROWS:.0} are allowed", duration / interval));
+        }
+    }
+    let (elements, order, multiple) = mesh;
+    Ok(Checked {
+        scene: Scene {
             name: raw.name.clone().unwrap_or_else(|| stem.to_string()),
             duration,
             model,
             solver,
             interval,
-        })
-    }
+        },
+        elements,
+        order,
+        multiple,
+        rtol_given,
+        atol_given,
+    })
 }
 
 fn rolling_scene(
@@ -543,7 +826,7 @@ fn beam_scene(
     file: &Spanned<BeamFile>,
     duration: f64,
     gravity: f64,
-) -> Result<BeamScene, Error> {
+) -> Result<(BeamScene, (Option<usize>, Option<usize>, usize)), Error> {
     let b = &file.value;
     let from = c.pair(&b.from, "track.beam.from")?;
     let to = c.pair(&b.to, "track.beam.to")?;
@@ -647,7 +930,7 @@ fn beam_scene(
         }
     }
     let order = match &b.order {
-        None => discretisation::DEFAULT_ORDER,
+        None => DEFAULT_ORDER,
         Some(n) if (1..=10).contains(&n.value) => n.value as usize,
         Some(n) => {
             return c.err(
@@ -801,7 +1084,7 @@ fn beam_scene(
         Some(d) => Some(disk_on_beam(c, d, length, gravity)?),
     };
     let accuracy = match raw.solver.as_ref().and_then(|s| s.accuracy.as_ref()) {
-        None => discretisation::DEFAULT_ACCURACY,
+        None => DEFAULT_ACCURACY,
         Some(a) => {
             let v = c.positive(a, "solver.accuracy")?;
             if v >= 0.5 {
@@ -814,32 +1097,12 @@ fn beam_scene(
             v
         }
     };
-    let mut beam = beam;
-    let discretisation = (b.elements.is_none() || b.order.is_none()).then(|| {
-        discretisation::choose(
-            &beam,
-            b.elements.as_ref().map(|_| beam.elements),
-            b.order.as_ref().map(|_| beam.order),
-            &loads,
-            disk.as_ref(),
-            &probes,
-            accuracy,
-            multiple,
-            start,
-        )
-    });
-    if let Some(d) = &discretisation {
-        beam.elements = d.elements;
-        beam.order = d.order;
-    }
-    let probe_xs: Vec<f64> = probes.iter().map(|p| p.x).collect();
-    let response = discretisation::response_size(
-        &beam,
-        &loads,
-        disk.as_ref().map(|d| d.disk.mass * d.gravity),
-        &probe_xs,
+    let given = (
+        b.elements.as_ref().map(|_| beam.elements),
+        b.order.as_ref().map(|_| beam.order),
+        multiple,
     );
-    Ok(BeamScene {
+    let scene = BeamScene {
         beam,
         start,
         disk,
@@ -849,9 +1112,10 @@ fn beam_scene(
         magnify,
         rho_inf,
         accuracy,
-        discretisation,
-        response,
-    })
+        discretisation: None,
+        response: None,
+    };
+    Ok((scene, given))
 }
 
 /// The disk of a beam scene: checked against the beam it rolls on.

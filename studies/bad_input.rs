@@ -520,11 +520,29 @@ fn sweep_ranges_and_keys() {
         ("disk.mass=1:2:0", vec!["--set", "count of at least 1"]),
         (
             "disk.nothing=1:2:2",
-            vec!["--set disk.nothing", "unknown field `nothing`"],
+            vec![
+                "--set disk.nothing",
+                "is not a number the scene format holds",
+            ],
         ),
         (
             "track.curve.k=1:2:2",
-            vec!["--set track.curve.k", "no `track.curve`"],
+            vec![
+                "--set track.curve.k",
+                "is not a number the scene format holds",
+            ],
+        ),
+        (
+            "track.curve.parabola.k=1:2:2",
+            vec!["--set track.curve.parabola.k", "the scene has no parabola"],
+        ),
+        (
+            "mass=1:2:2",
+            vec!["--set mass", "is not a number the scene format holds"],
+        ),
+        (
+            "track.beam.elements=4.5:8:2",
+            vec!["--set track.beam.elements", "takes a whole number"],
         ),
     ] {
         let (code, err) = rollbeam(&["sweep", p, "--set", set, "--out", &out]);

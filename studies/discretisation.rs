@@ -10,44 +10,32 @@
 
 mod common;
 
-use common::{parse, run_beam, studies_dir};
+use common::{changed, parse, run_beam, Set};
 use rollbeam::ode::Method;
 use rollbeam::scene::{Model, Scene};
 
 /// What the mesh and the tolerances are chosen from.
-const MESH_AND_TOLERANCES: [&str; 4] = ["elements:", "order:", "rtol:", "atol:"];
+const MESH_AND_TOLERANCES: [&str; 4] = [
+    "track.beam.elements",
+    "track.beam.order",
+    "solver.rtol",
+    "solver.atol",
+];
 /// The same and the integrator too: the solver block left empty.
 const EVERY_SETTING: [&str; 6] = [
-    "elements:",
-    "order:",
-    "rtol:",
-    "atol:",
-    "method:",
-    "rho_inf:",
+    "track.beam.elements",
+    "track.beam.order",
+    "solver.rtol",
+    "solver.atol",
+    "solver.method",
+    "solver.rho_inf",
 ];
 
-/// The study's text without the lines that start with `keys`, and without shapes.
+/// The study with `keys` left out, and without shapes.
 fn left_out(study: &str, keys: &[&str]) -> Scene {
-    let text = std::fs::read_to_string(studies_dir().join(study)).expect("study");
-    let kept: Vec<&str> = text
-        .lines()
-        .filter(|l| {
-            let t = l.trim_start();
-            !keys.iter().chain(&["shapes:"]).any(|k| t.starts_with(k))
-        })
-        .collect();
-    // A block whose every key went is written as an empty mapping, as a user would.
-    let text: String = kept
-        .iter()
-        .enumerate()
-        .map(|(i, l)| {
-            let emptied = l.ends_with(':')
-                && !l.starts_with(' ')
-                && kept.get(i + 1).is_none_or(|next| !next.starts_with(' '));
-            format!("{l}{}\n", if emptied { " {}" } else { "" })
-        })
-        .collect();
-    parse(&text)
+    let mut changes = vec![Set::LeftOut("output.shapes")];
+    changes.extend(keys.iter().map(|&k| Set::LeftOut(k)));
+    changed(study, &changes)
 }
 
 fn peak(r: &rollbeam::run::beam::BeamRun) -> f64 {
@@ -145,9 +133,39 @@ fn an_undamped_default_measures_error_against_the_response() {
     assert_eq!(damped.solver.atol, 1e-9);
     let given_rtol = left_out(
         "bridge-d44.yaml",
-        &["elements:", "order:", "atol:", "method:", "rho_inf:"],
+        &[
+            "track.beam.elements",
+            "track.beam.order",
+            "solver.atol",
+            "solver.method",
+            "solver.rho_inf",
+        ],
     );
     assert_eq!(given_rtol.solver.atol_scale, None);
+}
+
+/// A typed change of a scene is planned again, not left stale: D44 with every setting left
+/// out and its accuracy set to 1e-4 gets rtol = accuracy/30 (the rule for an undamped moving
+/// load) of the new accuracy and atol = rtol × the same response size, on a mesh no coarser
+/// than the one 1e-3 gets; an element count set back by number is kept as set.
+#[test]
+fn a_changed_scene_is_planned_again() {
+    let coarse = left_out("bridge-d44.yaml", &EVERY_SETTING);
+    let mut changes: Vec<Set> = EVERY_SETTING.iter().map(|&k| Set::LeftOut(k)).collect();
+    changes.push(Set::Number("solver.accuracy", 1e-4));
+    let fine = changed("bridge-d44.yaml", &changes);
+    assert_eq!(fine.solver.rtol, 1e-4 / 30.0);
+    let size = fine.beam().and_then(|b| b.response).expect("a response");
+    assert_eq!(fine.solver.atol, fine.solver.rtol * size);
+    let elements = |s: &Scene| s.beam().expect("beam").beam.elements;
+    assert!(
+        elements(&fine) >= elements(&coarse),
+        "{} elements at 1e-4, {} at 1e-3",
+        elements(&fine),
+        elements(&coarse)
+    );
+    changes.push(Set::Number("track.beam.elements", 12.0));
+    assert_eq!(elements(&changed("bridge-d44.yaml", &changes)), 12);
 }
 
 /// What a scene names is kept: a given mesh is not replaced, and a given rtol is not either.

@@ -5,32 +5,24 @@ mod common;
 
 use std::f64::consts::PI;
 
-use common::{load, log_slope, parse, run_beam, studies_dir};
+use common::{changed, load, log_slope, run_beam, studies_dir, Set};
 use rollbeam::analysis::moving_load::MovingForce;
 use rollbeam::coupling::Coupling;
 use rollbeam::ode::Method;
+use rollbeam::plan::Planner;
 use rollbeam::run::beam::BeamRun;
-use rollbeam::scene::Scene;
+use rollbeam::scene::{Scene, SceneSpec};
 
-/// A study scene with some of its lines replaced (each `from` must occur), without its
-/// shape snapshots (a shortened run would not reach them).
-fn variant(file: &str, changes: &[(&str, &str)]) -> Scene {
-    let mut text = std::fs::read_to_string(studies_dir().join(file)).expect("study file");
-    for (from, to) in changes {
-        assert!(text.contains(from), "{file} has no '{from}'");
-        text = text.replace(from, to);
-    }
-    let text: Vec<&str> = text
-        .lines()
-        .filter(|l| !l.trim_start().starts_with("shapes:"))
-        .collect();
-    parse(&text.join("\n"))
+/// A study scene with some keys changed, without its shape snapshots (a shortened run would
+/// not reach them).
+fn variant(file: &str, changes: &[Set]) -> Scene {
+    let mut all = vec![Set::LeftOut("output.shapes")];
+    all.extend_from_slice(changes);
+    changed(file, &all)
 }
 
 fn with_coupling(file: &str, c: Coupling) -> Scene {
-    let mut text = std::fs::read_to_string(studies_dir().join(file)).expect("study file");
-    text = text.replace("coupling: consistent", &format!("coupling: {}", c.name()));
-    parse(&text)
+    changed(file, &[Set::Name("disk.coupling", c.name())])
 }
 
 fn probe(r: &BeamRun, name: &str) -> usize {
@@ -66,12 +58,10 @@ fn moving_force_matches_frybas_series() {
     let scene = variant(
         "bridge-d44.yaml",
         &[
-            ("G: 81.0e9", "G: 81.0e13"),
-            (
-                "coupling: consistent",
-                "coupling: moving-force\n  patch: 0.05",
-            ),
-            ("duration: 3.0", "duration: 2.0"),
+            Set::Number("track.beam.G", 81.0e13),
+            Set::Name("disk.coupling", "moving-force"),
+            Set::Number("disk.patch", 0.05),
+            Set::Number("duration", 2.0),
         ],
     );
     let r = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-10);
@@ -174,15 +164,14 @@ fn energy_consistent_conserves_thesis_does_not() {
         "rubber.yaml",
     ] {
         let window = |c: Coupling| {
-            let mut s = variant(
+            variant(
                 file,
-                &[("coupling: consistent", &format!("coupling: {}", c.name()))],
-            );
-            s.duration = 0.1;
-            if let rollbeam::scene::Model::Beam(b) = &mut s.model {
-                b.rho_inf = 1.0;
-            }
-            s
+                &[
+                    Set::Name("disk.coupling", c.name()),
+                    Set::Number("duration", 0.1),
+                    Set::Number("solver.rho_inf", 1.0),
+                ],
+            )
         };
         let loose = drift(&run_beam(
             &window(Coupling::Consistent),
@@ -236,9 +225,9 @@ fn light_disk_every_coupling_is_a_moving_force() {
         let s = variant(
             "bridge-d44.yaml",
             &[
-                ("mass: 1500", "mass: 0.001"),
-                ("coupling: consistent", &format!("coupling: {}", c.name())),
-                ("duration: 3.0", "duration: 1.0"),
+                Set::Number("disk.mass", 0.001),
+                Set::Name("disk.coupling", c.name()),
+                Set::Number("duration", 1.0),
             ],
         );
         run_beam(&s, Method::GenAlpha, 1e-7, 1e-15)
@@ -274,9 +263,9 @@ fn stiff_beam_is_the_rigid_track() {
     let s = variant(
         "zipline.yaml",
         &[
-            ("E: 195.0e9", "E: 195.0e15"),
-            ("G: 75.0e9", "G: 75.0e15"),
-            ("duration: 7.0", "duration: 1.0"),
+            Set::Number("track.beam.E", 195.0e15),
+            Set::Number("track.beam.G", 75.0e15),
+            Set::Number("duration", 1.0),
         ],
     );
     let r = run_beam(&s, Method::GenAlpha, 1e-8, 1e-12);
@@ -308,9 +297,9 @@ fn peak_under_disk_converges_with_the_mesh() {
         let s = variant(
             "bridge-d44.yaml",
             &[
-                ("elements: 10", &format!("elements: {elements}")),
-                ("order: 4", "order: 2"),
-                ("duration: 3.0", "duration: 1.2"),
+                Set::Number("track.beam.elements", elements as f64),
+                Set::Number("track.beam.order", 2.0),
+                Set::Number("duration", 1.2),
             ],
         );
         let r = run_beam(&s, Method::GenAlpha, 1e-7, 1e-12);
@@ -369,10 +358,10 @@ fn thesis_system_as_published_equals_its_reduced_form() {
     let scene = variant(
         "bridge-d44.yaml",
         &[
-            ("coupling: consistent", "coupling: thesis"),
-            ("elements: 10", "elements: 2"),
-            ("order: 4", "order: 2"),
-            ("duration: 3.0", "duration: 0.2"),
+            Set::Name("disk.coupling", "thesis"),
+            Set::Number("track.beam.elements", 2.0),
+            Set::Number("track.beam.order", 2.0),
+            Set::Number("duration", 0.2),
         ],
     );
     let literal = run_beam(&scene, Method::TrBdf2, 1e-7, 1e-12);
@@ -460,13 +449,13 @@ fn headline_numbers_rubber_and_zipline() {
 /// run stops with `slip`.
 #[test]
 fn leaving_at_either_end_and_slipping() {
-    for (s0, omega0, distance) in [("19.0", "-44", 1.0), ("1.0", "44", 1.0)] {
+    for (s0, omega0, distance) in [(19.0, -44.0, 1.0), (1.0, 44.0, 1.0)] {
         let scene = variant(
             "bridge-d44.yaml",
             &[
-                ("s0: 0.0", &format!("s0: {s0}")),
-                ("omega0: -44", &format!("omega0: {omega0}")),
-                ("duration: 3.0", "duration: 0.3"),
+                Set::Number("disk.s0", s0),
+                Set::Number("disk.omega0", omega0),
+                Set::Number("duration", 0.3),
             ],
         );
         let r = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-9);
@@ -482,10 +471,7 @@ fn leaving_at_either_end_and_slipping() {
     }
     let scene = variant(
         "bridge-d44.yaml",
-        &[
-            ("coupling: consistent", "coupling: consistent\n  mu: 0.0005"),
-            ("duration: 3.0", "duration: 1.2"),
-        ],
+        &[Set::Number("disk.mu", 0.0005), Set::Number("duration", 1.2)],
     );
     let r = run_beam(&scene, Method::GenAlpha, 1e-5, 1e-9);
     assert_eq!(r.stop.name(), "slip");
@@ -499,30 +485,20 @@ fn leaving_at_either_end_and_slipping() {
 #[test]
 fn sweep_matches_single_runs() {
     use rollbeam::commands::sweep::{run_sweep, Setting};
-    let text = std::fs::read_to_string(studies_dir().join("bridge-d44.yaml"))
-        .expect("study")
-        .replace("coupling: consistent", "coupling: moving-force")
-        .replace("duration: 3.0", "duration: 2.0");
-    let text: String = text
-        .lines()
-        .filter(|l| !l.trim_start().starts_with("shapes:"))
-        .map(|l| format!("{l}\n"))
-        .collect();
+    let mut spec = SceneSpec::load(&studies_dir().join("bridge-d44.yaml")).expect("a valid study");
+    spec.set_name("disk.coupling", "moving-force")
+        .expect("a key");
+    spec.set("duration", 2.0).expect("a key");
+    spec.unset("output.shapes").expect("a key");
     let setting = Setting::parse("disk.omega0=-44:-50:2").expect("setting");
-    let rows = run_sweep(
-        &text,
-        "sweep",
-        "sweep",
-        &setting,
-        &rollbeam::run::Overrides::default(),
-        false,
-    )
-    .expect("sweep runs");
+    let rows = run_sweep(&spec, &setting, &rollbeam::run::Overrides::default(), false)
+        .expect("sweep runs");
     let amplitude = |k: usize| {
         let s = rows[k].outcome.as_ref().expect("run ok");
         s.probes.iter().find(|p| p.0 == "mid").expect("mid").3
     };
-    let single = run_beam(&parse(&text), Method::GenAlpha, 1e-5, 1e-9);
+    let scene = Planner::default().plan(&spec).expect("a valid scene");
+    let single = run_beam(&scene, Method::GenAlpha, 1e-5, 1e-9);
     assert_eq!(rows[1].value, -44.0);
     assert_eq!(amplitude(1), residual(&single, "mid"));
     assert!(
@@ -539,7 +515,7 @@ fn sweep_matches_single_runs() {
 /// about (w/L)² and the axial shortening; 8·10⁻⁶ is measured).
 #[test]
 fn static_deflection_under_the_disk_weight() {
-    let scene = variant("bridge-d44.yaml", &[("s0: 0.0", "s0: 10.0")]);
+    let scene = variant("bridge-d44.yaml", &[Set::Number("disk.s0", 10.0)]);
     let setup = scene.beam().expect("a beam scene");
     let dir = std::env::temp_dir().join(format!("rollbeam-static-{}", std::process::id()));
     rollbeam::commands::report::statics(&scene, setup, &dir).expect("static solution");

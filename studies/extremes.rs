@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{parse, run_beam, run_with, studies_dir};
+use common::{changed, parse, run_beam, run_with, Set};
 use rollbeam::analysis::moving_load::MovingForce;
 use rollbeam::ode::Method;
 
@@ -16,14 +16,14 @@ use rollbeam::ode::Method;
 fn disk_that_almost_does_not_fit() {
     for ratio in [0.9, 0.99, 0.999] {
         for formulation in ["minimal", "thesis"] {
-            let text = std::fs::read_to_string(studies_dir().join("parabola-p1.yaml"))
-                .expect("study")
-                .replace("radius: 0.10", &format!("radius: {}", ratio / 2.0))
-                .replace(
-                    "formulation: minimal",
-                    &format!("formulation: {formulation}"),
-                );
-            let r = run_with(&parse(&text), Method::Dopri5, 1e-9, 1e-12);
+            let scene = changed(
+                "parabola-p1.yaml",
+                &[
+                    Set::Number("disk.radius", ratio / 2.0),
+                    Set::Name("disk.formulation", formulation),
+                ],
+            );
+            let r = run_with(&scene, Method::Dopri5, 1e-9, 1e-12);
             let last = r.last.disk;
             assert!(
                 [last.s, last.x, last.y, last.vx, last.vy, last.omega]
@@ -49,22 +49,19 @@ fn disk_that_almost_does_not_fit() {
 /// α ≠ 1) within 0.5 % of its peak, as at the bridge's study speeds.
 #[test]
 fn moving_force_near_resonance() {
-    let text = std::fs::read_to_string(studies_dir().join("bridge-d44.yaml"))
-        .expect("study")
-        .replace("G: 81.0e9", "G: 81.0e13")
-        .replace(
-            "coupling: consistent",
-            "coupling: moving-force\n  patch: 0.05",
-        )
-        .replace("omega0: -44", "omega0: -310")
-        .replace("duration: 3.0", "duration: 0.5")
-        .replace("interval: 0.005", "interval: 0.001");
-    let text: String = text
-        .lines()
-        .filter(|l| !l.trim_start().starts_with("shapes:"))
-        .map(|l| format!("{l}\n"))
-        .collect();
-    let r = run_beam(&parse(&text), Method::GenAlpha, 1e-7, 1e-10);
+    let scene = changed(
+        "bridge-d44.yaml",
+        &[
+            Set::Number("track.beam.G", 81.0e13),
+            Set::Name("disk.coupling", "moving-force"),
+            Set::Number("disk.patch", 0.05),
+            Set::Number("disk.omega0", -310.0),
+            Set::Number("duration", 0.5),
+            Set::Number("output.interval", 0.001),
+            Set::LeftOut("output.shapes"),
+        ],
+    );
+    let r = run_beam(&scene, Method::GenAlpha, 1e-7, 1e-10);
     let fryba = MovingForce {
         p: 1500.0 * 9.81,
         span: 20.0,
@@ -158,11 +155,13 @@ fn thin_and_thick_beams_at_every_degree() {
 /// loses energy steadily, a few per cent over the run, and never gains any.
 #[test]
 fn a_thousand_oscillations() {
-    let text = std::fs::read_to_string(studies_dir().join("parabola-p1.yaml"))
-        .expect("study")
-        .replace("duration: 5.0", "duration: 3770.0")
-        .replace("interval: 0.01", "interval: 0.5");
-    let scene = parse(&text);
+    let scene = changed(
+        "parabola-p1.yaml",
+        &[
+            Set::Number("duration", 3770.0),
+            Set::Number("output.interval", 0.5),
+        ],
+    );
     let drift_until = |r: &rollbeam::run::RunResult, t_end: f64| {
         let e0 = r.rows[0].disk.kinetic + r.rows[0].disk.potential;
         let scale = r
@@ -199,22 +198,15 @@ fn a_thousand_oscillations() {
 }
 
 /// The D44 bridge for `duration`, with ρ∞ = 1 (no numerical damping, so the energy balance is
-/// a real check), no shape snapshots, and each (from, to) edit of the scene text.
-fn bridge(duration: f64, edits: &[(&str, String)]) -> rollbeam::scene::Scene {
-    let mut text = std::fs::read_to_string(studies_dir().join("bridge-d44.yaml"))
-        .expect("study")
-        .replace("rho_inf: 0.8", "rho_inf: 1.0")
-        .replace("duration: 3.0", &format!("duration: {duration}"));
-    for (from, to) in edits {
-        assert!(text.contains(from), "the study has no '{from}'");
-        text = text.replace(from, to);
-    }
-    let text: String = text
-        .lines()
-        .filter(|l| !l.trim_start().starts_with("shapes:"))
-        .map(|l| format!("{l}\n"))
-        .collect();
-    parse(&text)
+/// a real check), no shape snapshots, and the given changes.
+fn bridge(duration: f64, changes: &[Set]) -> rollbeam::scene::Scene {
+    let mut all = vec![
+        Set::Number("solver.rho_inf", 1.0),
+        Set::Number("duration", duration),
+        Set::LeftOut("output.shapes"),
+    ];
+    all.extend_from_slice(changes);
+    changed("bridge-d44.yaml", &all)
 }
 
 /// The bridge with the modulus scaled from 10⁵ Pa (softer than rubber) to 10¹³ Pa (fifty times
@@ -223,9 +215,9 @@ fn bridge_with_modulus(e: f64, duration: f64, coupling: &str) -> rollbeam::scene
     bridge(
         duration,
         &[
-            ("E: 210.0e9", format!("E: {e:e}")),
-            ("G: 81.0e9", format!("G: {:e}", e * 81.0 / 210.0)),
-            ("coupling: consistent", format!("coupling: {coupling}")),
+            Set::Number("track.beam.E", e),
+            Set::Number("track.beam.G", e * 81.0 / 210.0),
+            Set::Name("disk.coupling", coupling),
         ],
     )
 }
@@ -297,10 +289,7 @@ fn stiffness_from_rubber_to_fifty_times_steel() {
 fn mass_ratios_from_a_feather_to_a_hundred_bridges() {
     let beam_mass = 7850.0 * 181.0e-4 * 20.0;
     for ratio in [1e-6, 1e-4, 1e-2, 1.0, 1e2] {
-        let scene = bridge(
-            0.5,
-            &[("mass: 1500", format!("mass: {:e}", ratio * beam_mass))],
-        );
+        let scene = bridge(0.5, &[Set::Number("disk.mass", ratio * beam_mass)]);
         completes_with_energy_balance(&format!("m/M = {ratio:e}"), &scene);
     }
 }

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::load;
+use common::{changed, load, Set};
 use rollbeam::commands::tradeoff::{self, Plan, Trial, REFERENCE_SETTLED};
 use rollbeam::ode::Method;
 
@@ -89,16 +89,14 @@ fn work_precision_on_the_parabola() {
 /// budget is a row with the reason, not a crash.
 #[test]
 fn work_precision_on_a_beam_separates_mesh_and_time_error() {
-    let text = std::fs::read_to_string(common::studies_dir().join("cantilever-c1.yaml"))
-        .expect("study")
-        .replace("duration: 3.0", "duration: 0.1")
-        .replace("order: 4", "order: 2");
-    let text: String = text
-        .lines()
-        .filter(|l| !l.trim_start().starts_with("shapes:"))
-        .map(|l| format!("{l}\n"))
-        .collect();
-    let scene = common::parse(&text);
+    let scene = changed(
+        "cantilever-c1.yaml",
+        &[
+            Set::Number("duration", 0.1),
+            Set::Number("track.beam.order", 2.0),
+            Set::LeftOut("output.shapes"),
+        ],
+    );
     let plan = Plan {
         methods: vec![Method::GenAlpha, Method::Dopri5],
         rtols: vec![1e-3, 1e-5],

@@ -11,21 +11,15 @@
 //! degree-4 elements is started with one element per two of those modes' half-waves, and
 //! confirmed by one refinement: it is kept once mode K's frequency and the static deflection
 //! at the probes change by less than ε/4 when the element count doubles, and doubled
-//! otherwise. The time integrator is asked for rtol = ε/30, ε/100 or ε/1000 (see [`rtol_for`]),
-//! and, without numerical damping, for an atol of rtol times the response's size (see
-//! [`atol_for`]).
-
-use std::collections::BTreeMap;
-use std::sync::Mutex;
+//! otherwise. The tolerances the integrator is asked for are the plan's (`plan.rs`), from the
+//! same accuracy and from the response's size ([`response_size`]).
 
 use serde::Serialize;
 
 use crate::analysis::modes::modes;
-use crate::beam::load::{BeamStart, PointLoad, Probe};
+use crate::beam::load::{BeamStart, PointLoad};
 use crate::beam::{Beam, BeamSpec};
-use crate::coupling::DiskOnBeamSpec;
 use crate::linalg::SparseLu;
-use crate::scene::BeamScene;
 
 /// The accuracy a beam scene asks for when it does not say.
 pub const DEFAULT_ACCURACY: f64 = 1e-3;
@@ -39,67 +33,15 @@ const ESTIMATION_ELEMENTS: usize = 16;
 /// The confirming refinement stops doubling past this many nodes (the modal check is dense).
 const MAX_NODES: usize = 400;
 
-/// The rtol a beam scene gets for its accuracy ε when it leaves rtol out, and why.
-/// - With ρ∞ < 1 the damped high modes that ride on a sudden load's peak cost up to 2.4 ε at
-///   ε/10 (B2 at ρ∞ = 0.8) and 0.06 ε at ε/100 (REPORT.md), hence ε/100.
-/// - Without numerical damping (ρ∞ = 1) a moving load's peak carries an undamped mesh-scale
-///   ripple that is left to chance at ε/10 (D44 landed within 0.43 ε there, 1.2 ε at ε/3);
-///   at ε/30 D44 and D50 land within 0.2 ε.
-/// - A load switched on or off during the run excites every mode the mesh holds, and
-///   undamped they all stay in the peak: B1 missed by 2.2 ε at ε/30 and by 0.96 ε at ε/300,
-///   and landed within 0.2 ε at ε/1000. Damped, such a peak is not monotone in rtol (B1 at
-///   ρ∞ = 0.8: 0.54 ε, 2.3 ε, 1.3 ε at ε/100, ε/300, ε/1000), since what moves it is how much
-///   of the mesh's highest modes the damping removes; the scene is told so.
-pub fn rtol_for(scene: &BeamScene) -> (f64, &'static str) {
-    let accuracy = scene.accuracy;
-    let switched = jumps(&scene.loads, scene.start);
-    if scene.rho_inf < 1.0 {
-        let why = if switched {
-            "a hundredth of the accuracy; with rho_inf < 1 a switched load's peak depends on how much of the mesh's highest modes the damping removes, which tightening rtol does not settle: rho_inf = 1 holds the accuracy"
-        } else {
-            "a hundredth of the accuracy: with rho_inf < 1 the damped high modes that ride on a peak need the margin"
-        };
-        (accuracy / 100.0, why)
-    } else if switched {
-        (
-            accuracy / 1000.0,
-            "a thousandth of the accuracy: a load switched during the run excites every mode of the mesh, and undamped (rho_inf = 1) they all stay in the peak",
-        )
-    } else {
-        (
-            accuracy / 30.0,
-            "a thirtieth of the accuracy: the undamped ripple on a moving load's peak needs the margin",
-        )
-    }
-}
-
 /// Whether a load is switched on or off during the run (rather than carried throughout from a
 /// static start): it then excites the modes.
 fn excites(l: &PointLoad, start: BeamStart) -> bool {
     !(start == BeamStart::Static && l.active(0.0) && l.until == f64::INFINITY)
 }
 
-fn jumps(loads: &[PointLoad], start: BeamStart) -> bool {
+/// Whether any load is switched on or off during the run.
+pub fn jumps(loads: &[PointLoad], start: BeamStart) -> bool {
     loads.iter().any(|l| excites(l, start))
-}
-
-/// The atol a beam scene gets when it leaves both tolerances out, and why: rtol times the size
-/// of its response ([`response_size`]) when nothing is damped. With ρ∞ < 1 the step also sets
-/// how much of the high modes numerical damping takes, and a sudden load's peak is carried by
-/// them: at the looser steps such an atol allows, B1, B3, C1, C2 and the zip-line missed by
-/// 1.1–1.6 ε, so there atol stays at round-off size and the tolerance relative to the state.
-pub fn atol_for(scene: &BeamScene, rtol: f64) -> Option<(f64, String)> {
-    if scene.rho_inf < 1.0 {
-        return None;
-    }
-    let size = scene.response?;
-    Some((
-        rtol * size,
-        format!(
-            "rtol times {:.3e} m, the largest static displacement the loads cause at a probe: each step's error is measured against the response, not against the displacement of the moment, which a vibration takes through zero twice a period",
-            size
-        ),
-    ))
 }
 
 /// The size of the displacements a beam scene's loads cause: the largest static |(u, w)| at a
@@ -228,43 +170,11 @@ fn estimate(
     })
 }
 
-/// Choices already made in this process, by everything they depend on: a sweep rereads its
-/// scene once per value, and the eigenproblems behind a choice cost seconds on a fine mesh.
-static CHOSEN: Mutex<BTreeMap<String, Discretisation>> = Mutex::new(BTreeMap::new());
-
-/// Choose what the scene left out (`elements` and/or `order` are `None`). Every element
-/// count tried is a multiple of `multiple`, which puts a node at each intermediate bearing.
+/// Choose what the scene left out (`elements` and/or `order` are `None`), for the loads, the
+/// disk's weight standing at each of the probes `xs`, and the accuracy. Every element count
+/// tried is a multiple of `multiple`, which puts a node at each intermediate bearing.
 #[allow(clippy::too_many_arguments)]
 pub fn choose(
-    spec: &BeamSpec,
-    elements: Option<usize>,
-    order: Option<usize>,
-    loads: &[PointLoad],
-    disk: Option<&DiskOnBeamSpec>,
-    probes: &[Probe],
-    accuracy: f64,
-    multiple: usize,
-    start: BeamStart,
-) -> Discretisation {
-    let weight = disk.map(|d| d.disk.mass * d.gravity);
-    let xs: Vec<f64> = probes.iter().map(|p| p.x).collect();
-    let key = format!(
-        "{spec:?} {elements:?} {order:?} {loads:?} {weight:?} {xs:?} {accuracy:?} {multiple} {start:?}"
-    );
-    if let Some(d) = CHOSEN.lock().ok().and_then(|c| c.get(&key).cloned()) {
-        return d;
-    }
-    let d = choose_afresh(
-        spec, elements, order, loads, weight, &xs, accuracy, multiple, start,
-    );
-    if let Ok(mut c) = CHOSEN.lock() {
-        c.insert(key, d.clone());
-    }
-    d
-}
-
-#[allow(clippy::too_many_arguments)]
-fn choose_afresh(
     spec: &BeamSpec,
     elements: Option<usize>,
     order: Option<usize>,

@@ -122,7 +122,7 @@ impl fmt::Display for Described<'_> {
         }
         if scene.solver.rtol_from_accuracy {
             if let Some(b) = scene.beam() {
-                let (rtol, why) = crate::analysis::discretisation::rtol_for(b);
+                let (rtol, why) = crate::plan::rtol_for(b);
                 writeln!(
                     f,
                     "  rtol chosen for accuracy {:e}: {}, {why}",
@@ -130,7 +130,7 @@ impl fmt::Display for Described<'_> {
                     output::tolerance(rtol)
                 )?;
                 if scene.solver.atol_scale.is_some() {
-                    if let Some((atol, why)) = crate::analysis::discretisation::atol_for(b, rtol) {
+                    if let Some((atol, why)) = crate::plan::atol_for(b, rtol) {
                         writeln!(
                             f,
                             "  atol chosen with it: {}, {why}",

@@ -9,9 +9,10 @@ use crate::analysis::moving_load::MovingForce;
 use crate::coupling::Coupling;
 use crate::error::Error;
 use crate::output::{self, io_error, plots};
+use crate::plan::Planner;
 use crate::run::{self, Overrides, Run, RunResult};
 use crate::say;
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneSpec};
 
 /// The scenes under `dir`, sorted by file name.
 pub fn scene_files(dir: &Path) -> Result<Vec<PathBuf>, Error> {
@@ -179,10 +180,11 @@ fn compare_parabola(results: &[&RunResult], figures: &Path) -> Result<(), Error>
 /// closed form for the moving force.
 fn bridge_speed_sweep(studies: &Path, figures: &Path) -> Result<(), Error> {
     let file = studies.join("bridge-d44.yaml");
-    let Ok(text) = std::fs::read_to_string(&file) else {
+    if !file.is_file() {
         return Ok(());
-    };
-    let scene = Scene::load(&file)?;
+    }
+    let spec = SceneSpec::load(&file)?;
+    let scene = Planner::default().plan(&spec)?;
     let Some(beam) = scene.beam() else {
         return Ok(());
     };
@@ -202,18 +204,9 @@ fn bridge_speed_sweep(studies: &Path, figures: &Path) -> Result<(), Error> {
     let setting = Setting::parse("disk.omega0=-10:-120:23")?;
     let mut series = Vec::new();
     for coupling in [Coupling::MovingForce, Coupling::Consistent] {
-        let swept = text.replace(
-            &format!("coupling: {}", disk.coupling.name()),
-            &format!("coupling: {}", coupling.name()),
-        );
-        let rows = run_sweep(
-            &swept,
-            &file.display().to_string(),
-            "bridge-d44",
-            &setting,
-            &Overrides::default(),
-            true,
-        )?;
+        let mut swept = spec.clone();
+        swept.set_name("disk.coupling", coupling.name())?;
+        let rows = run_sweep(&swept, &setting, &Overrides::default(), true)?;
         let points: Vec<(f64, f64)> = rows
             .iter()
             .filter_map(|r| {

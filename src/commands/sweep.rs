@@ -1,16 +1,17 @@
 //! `rollbeam sweep SCENE.yaml --set KEY=FROM:TO:COUNT`: one scene over an evenly spaced range
-//! of one of its numbers, the runs spread over every core. Each value is written into the
-//! scene's text and the scene read again, so a value the scene cannot take is refused with
-//! the same sentence a scene file would get. One summary row per run; a run that fails is a
-//! row with its reason.
+//! of one of its numbers, the runs spread over every core. Each value is set at its key of the
+//! scene ([`SceneSpec::set`]) and the scene checked and planned again, so a value the scene
+//! cannot take is refused with the same sentence a scene file would get. One summary row per
+//! run; a run that fails is a row with its reason.
 
 use super::SolverFlags;
 use crate::error::Error;
 use crate::output::plots::line_chart;
 use crate::output::write;
+use crate::plan::Planner;
 use crate::run::{self, Overrides, Run};
 use crate::say;
-use crate::scene::Scene;
+use crate::scene::SceneSpec;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -71,64 +72,6 @@ impl Setting {
             .map(|i| self.from + (self.to - self.from) * i as f64 / (self.count - 1) as f64)
             .collect()
     }
-}
-
-/// Write `value` at the dotted `key` of a scene written in block style (as the scene files
-/// are): each segment is looked for among the lines indented under its parent; a missing last
-/// segment is added under its parent.
-pub fn set_key(text: &str, key: &str, value: f64) -> Result<String, Error> {
-    let mut lines: Vec<String> = text.lines().map(String::from).collect();
-    let indent = |l: &str| l.len() - l.trim_start().len();
-    let (mut lo, mut hi, mut parent_indent) = (0, lines.len(), None::<usize>);
-    let segments: Vec<&str> = key.split('.').collect();
-    for (k, seg) in segments.iter().enumerate() {
-        let last = k + 1 == segments.len();
-        let found = (lo..hi).find(|&i| {
-            let l = &lines[i];
-            let t = l.trim_start();
-            !t.starts_with('#')
-                && parent_indent.is_none_or(|p| indent(l) > p)
-                && (t.strip_prefix(seg).is_some_and(|r| r.starts_with(':')))
-        });
-        match found {
-            Some(i) => {
-                if last {
-                    let ind = indent(&lines[i]);
-                    lines[i] = format!("{}{seg}: {value:e}", " ".repeat(ind));
-                    return Ok(lines.join("\n") + "\n");
-                }
-                let ind = indent(&lines[i]);
-                if lines[i].trim_start()[seg.len() + 1..]
-                    .trim()
-                    .starts_with('{')
-                {
-                    return Err(Error::Input(format!(
-                        "--set {key}: `{seg}` is written inline in the scene; write it as a block to sweep inside it"
-                    )));
-                }
-                lo = i + 1;
-                hi = (lo..lines.len())
-                    .find(|&j| {
-                        let t = lines[j].trim_start();
-                        !t.is_empty() && !t.starts_with('#') && indent(&lines[j]) <= ind
-                    })
-                    .unwrap_or(lines.len());
-                parent_indent = Some(ind);
-            }
-            None if last && k > 0 => {
-                let ind = parent_indent.map_or(0, |p| p + 2);
-                lines.insert(lo, format!("{}{seg}: {value:e}", " ".repeat(ind)));
-                return Ok(lines.join("\n") + "\n");
-            }
-            None => {
-                return Err(Error::Input(format!(
-                    "--set {key}: the scene has no `{}`",
-                    segments[..=k].join(".")
-                )))
-            }
-        }
-    }
-    unreachable!("the loop returns at the last segment")
 }
 
 /// What one run of the sweep reports.
@@ -195,25 +138,31 @@ fn summarise(r: &Run) -> Summary {
     }
 }
 
-/// Run the scene text at every value of the setting, on every core.
+/// Run the scene at every value of the setting, on every core.
 pub fn run_sweep(
-    text: &str,
-    file: &str,
-    stem: &str,
+    spec: &SceneSpec,
     setting: &Setting,
     over: &Overrides,
     show_progress: bool,
 ) -> Result<Vec<SweepRow>, Error> {
-    // A key the scene cannot hold at either end of the range is the command's error, not
-    // every run's.
-    let check = |v: f64| set_key(text, &setting.key, v).and_then(|t| Scene::parse(&t, file, stem));
-    if let (Err(e), Err(_)) = (check(setting.from), check(setting.to)) {
-        return Err(Error::Input(format!("--set {}: {e}", setting.key)));
+    let planner = Planner::default();
+    let at = |value: f64| {
+        let mut changed = spec.clone();
+        changed.set(&setting.key, value)?;
+        planner.plan(&changed)
+    };
+    // A key the scene cannot hold, or cannot take at either end of the range, is the
+    // command's error, not every run's.
+    let command_error = |e: Error| Error::Input(format!("--set {}: {e}", setting.key));
+    spec.clone()
+        .set(&setting.key, setting.from)
+        .map_err(command_error)?;
+    if let (Err(e), Err(_)) = (at(setting.from), at(setting.to)) {
+        return Err(command_error(e));
     }
     let values = setting.values();
     let outcomes = super::parallel::map(&values, show_progress, |&value| {
-        set_key(text, &setting.key, value)
-            .and_then(|t| Scene::parse(&t, file, stem))
+        at(value)
             .and_then(|scene| run::run(&scene, over, false))
             .map(|r| summarise(&r))
             .map_err(|e| e.to_string())
@@ -348,15 +297,9 @@ pub fn write_sweep(rows: &[SweepRow], setting: &Setting, dir: &Path) -> Result<(
 mod tests {
     use super::*;
 
-    /// Keys are found under their parents, added when missing, and refused when absent.
+    /// A range's values run from FROM to TO inclusive, and a range without a count is refused.
     #[test]
-    fn set_key_walks_the_blocks() {
-        let text = "duration: 1.0\ntrack:\n  beam:\n    E: 1.0\n    G: 2.0\ndisk:\n  mass: 3.0\n";
-        let out = set_key(text, "track.beam.G", 5.0).unwrap();
-        assert!(out.contains("    G: 5e0\n") && out.contains("    E: 1.0\n"));
-        let out = set_key(text, "disk.omega0", -44.0).unwrap();
-        assert!(out.contains("disk:\n  omega0: -4.4e1\n  mass: 3.0"));
-        assert!(set_key(text, "solver.rtol", 1e-6).is_err());
+    fn setting_values_span_the_range() {
         assert_eq!(
             Setting::parse("disk.omega0=-10:-120:111").unwrap().values()[110],
             -120.0
@@ -386,22 +329,11 @@ pub fn sweep(args: SweepArgs) -> Result<(), Error> {
         out,
         solver,
     } = args;
-    let scene = Scene::load(&path)?;
+    let spec = SceneSpec::load(&path)?;
+    let scene = Planner::default().plan(&spec)?;
     let setting = Setting::parse(&set)?;
     let over = solver.overrides(&scene)?;
-    let text = std::fs::read_to_string(&path)
-        .map_err(|e| Error::Input(format!("cannot read scene file {}: {e}", path.display())))?;
-    let stem = path
-        .file_stem()
-        .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
-    let rows = run_sweep(
-        &text,
-        &path.display().to_string(),
-        &stem,
-        &setting,
-        &over,
-        true,
-    )?;
+    let rows = run_sweep(&spec, &setting, &over, true)?;
     let dir = out.unwrap_or_else(|| Path::new("out").join(format!("{}-sweep", scene.name)));
     write_sweep(&rows, &setting, &dir)?;
     let failed = rows.iter().filter(|r| r.outcome.is_err()).count();

@@ -10,8 +10,8 @@ use serde::Serialize;
 
 use super::plots::{line_chart, PALETTE};
 use super::{write, yaml};
-use crate::analysis::discretisation::{atol_for, rtol_for};
 use crate::error::Error;
+use crate::plan::{atol_for, rtol_for};
 use crate::run::beam::BeamRun;
 
 #[derive(Serialize)]

@@ -5,9 +5,10 @@
 use std::path::{Path, PathBuf};
 
 use rollbeam::ode::Method;
+use rollbeam::plan::Planner;
 use rollbeam::run::beam::BeamRun;
 use rollbeam::run::{self, Overrides, Row, RunResult};
-use rollbeam::scene::Scene;
+use rollbeam::scene::{Scene, SceneSpec};
 
 pub fn studies_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("studies")
@@ -15,6 +16,30 @@ pub fn studies_dir() -> PathBuf {
 
 pub fn load(file: &str) -> Scene {
     Scene::load(&studies_dir().join(file)).expect("study scenes are valid")
+}
+
+/// One key of a scene changed as the scene format holds it: a number, a name, or left out.
+#[derive(Clone, Copy)]
+pub enum Set<'a> {
+    Number(&'a str, f64),
+    Name(&'a str, &'a str),
+    LeftOut(&'a str),
+}
+
+/// A study scene with some keys changed, checked and planned again.
+pub fn changed(file: &str, changes: &[Set]) -> Scene {
+    let mut spec = SceneSpec::load(&studies_dir().join(file)).expect("study scenes are valid");
+    for change in changes {
+        match *change {
+            Set::Number(key, value) => spec.set(key, value),
+            Set::Name(key, value) => spec.set_name(key, value),
+            Set::LeftOut(key) => spec.unset(key),
+        }
+        .expect("a key of the scene format");
+    }
+    Planner::default()
+        .plan(&spec)
+        .expect("the changed scene is valid")
 }
 
 pub fn parse(text: &str) -> Scene {
