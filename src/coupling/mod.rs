@@ -1,34 +1,41 @@
-//! The disk on the beam: the two bodies moving together, coupled in one of four ways.
+//! The disk on the beam: the two bodies moving together, coupled by one of four laws, each in
+//! a file of its own behind the [`law`] trait (the rider's inertia and force as the beam's
+//! unknowns z feel them, and its motion for the observation); `contact.rs` is the geometry of
+//! the contact on the deformed axis. [`DiskOnBeam`] is the coupled structure for any law: it
+//! assembles the rider's terms into the beam's equations, watches the events, and observes.
 //!
-//! - [`Coupling::Consistent`] (the default): the disk stays on the moving beam. Unknowns
-//!   z = (q, s), s the material point of contact; the disk's rotation θ is not an unknown.
-//!   Centre c(q, s) = r(s) + a n(s). Rolling without slip, measured against the beam's own
-//!   material velocity at s, is θ̇ = dψ/dt − |r'| ṡ / a: a velocity constraint B(z) ż − θ̇ = 0,
-//!   not integrable once the axis stretches. Lagrange–d'Alembert with the multiplier λ gives
+//! - `consistent.rs` (the default): the disk stays on the moving beam. Unknowns z = (q, s),
+//!   s the material point of contact; the disk's rotation θ is not an unknown. Centre
+//!   c(q, s) = r(s) + a n(s). Rolling without slip, measured against the beam's own material
+//!   velocity at s, is θ̇ = dψ/dt − |r'| ṡ / a: a velocity constraint B(z) ż − θ̇ = 0, not
+//!   integrable once the axis stretches. Lagrange–d'Alembert with the multiplier λ gives
 //!   C θ̈ = λ for θ, and for z, with T_z = ½ q̇ᵀ M q̇ + ½ m |ċ|², V = U(q) + m g c_Y:
 //!   (M ⊕ 0 + m J_cᵀ J_c + C Bᵀ B) z̈ = F(q) − m J_cᵀ (J̇_c ż − g) − C Bᵀ (Ḃ ż),
 //!   J_c = ∂c/∂z. The power of the constraint force is λ (B ż − θ̇) = 0, so the total energy
 //!   T_z + ½ C θ̇² + V is conserved. Eliminating λ shows the beam feels exactly −F_contact at s
 //!   through the shape functions: the terms of the normal's rotation cancel with the torque.
-//! - [`Coupling::Thesis`]: thesis Table 9 as published (errata 2–3 corrected): the disk rolls on
-//!   the axis as if it were frozen, v_x = ṡ (|r'| − a ψ_s), v̇_x = m g·t / (m + C/a²), and the
-//!   contact force R_x = m v̇_x − m g·t, R_y = m v_x ψ_s ṡ − m g·n is turned to global axes with the
-//!   section rotation φ (5.13). With generalized-α its (s, v_x) system is integrated as
-//!   (s, ṡ), the same solution: s̈ = (v̇_x − ṡ d(|r'| − a ψ_s)/dt) / (|r'| − a ψ_s); with a
-//!   first-order integrator the run takes the published 3n + 6 system of [`thesis_system`].
-//! - [`Coupling::MovingMass`]: a point mass at s = s0 + v0 t on the axis, following its
-//!   displacement with its inertia; [`Coupling::MovingForce`]: the constant weight m g at
-//!   s = s0 + v0 t. Both are prescribed motions: the system is the beam alone, and the work the
-//!   moving load does on it is the `work` of the energy budget.
+//! - `thesis.rs`: thesis Table 9 as published (errata 2–3 corrected), the disk rolling on the
+//!   axis as if it were frozen; with a first-order integrator the run takes the published
+//!   3n + 6 system of [`thesis_system`] instead.
+//! - `moving_mass.rs`: a point mass at s = s0 + v0 t on the axis, following its displacement
+//!   with its inertia; `moving_force.rs`: the constant weight m g at s = s0 + v0 t. Both are
+//!   prescribed motions: the system is the beam alone, and the work the moving load does on
+//!   it is the `work` of the energy budget.
 
+mod consistent;
 pub mod contact;
+pub(crate) mod law;
+mod moving_force;
+mod moving_mass;
+mod thesis;
 pub mod thesis_system;
 
 use std::borrow::Cow;
 use std::cell::{OnceCell, RefCell};
 use std::ops::Range;
 
-use contact::{dot, AxisPoint, Row};
+use contact::{dot, AxisPoint};
+use law::{AddedMass, Law, Rider};
 
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::{Beam, NodeBasis};
@@ -117,14 +124,14 @@ const EVENTS: [EventSpec<StopReason>; 5] = [
     },
 ];
 
-/// Mass added by the disk: Σ_k w_k g_k g_kᵀ, with sparse rows g_k.
-type AddedMass = Vec<(f64, Row)>;
-
 pub struct DiskOnBeam<'a> {
     pub loaded: &'a LoadedBeam<'a>,
     pub spec: DiskOnBeamSpec,
-    /// Gravity's acceleration in the beam frame.
-    gravity: [f64; 2],
+    /// The coupling law, and the disk as it sees it.
+    law: Box<dyn Law>,
+    rider: Rider,
+    /// The disk's path is an unknown: z = (q, s).
+    rolls: bool,
     n: usize,
     /// The last observation and its acceleration, keyed by (t, s, ṡ): every event function
     /// of one state needs it, and so does the output row.
@@ -155,7 +162,8 @@ impl<'a> DiskOnBeam<'a> {
     pub fn new(loaded: &'a LoadedBeam<'a>, spec: DiskOnBeamSpec) -> Self {
         let gravity = loaded.beam.to_local([0.0, -spec.gravity]);
         let n = loaded.beam.dim();
-        let nz = n + usize::from(spec.coupling.rolls());
+        let rolls = spec.coupling.rolls();
+        let nz = n + usize::from(rolls);
         let mut a = Assembly::new(nz);
         a.add_sparse(loaded.beam.mass(), 1.0, 0, 0);
         a.add_sparse(&loaded.beam.tangent(&vec![0.0; n]), 0.0, 0, 0);
@@ -183,12 +191,25 @@ impl<'a> DiskOnBeam<'a> {
         if nz > n {
             base.add(n, n, 1.0);
         }
+        let law: Box<dyn Law> = match spec.coupling {
+            Coupling::Consistent => Box::new(consistent::Consistent),
+            Coupling::Thesis => Box::new(thesis::Thesis),
+            Coupling::MovingMass => Box::new(moving_mass::MovingMass),
+            Coupling::MovingForce => Box::new(moving_force::MovingForce),
+        };
         DiskOnBeam {
             base_mass: base.build(),
             n,
             loaded,
+            law,
+            rider: Rider {
+                disk: spec.disk,
+                gravity,
+                n,
+                omega0: spec.omega0,
+            },
+            rolls,
             spec,
-            gravity,
             cache: RefCell::new(None),
             template: a.build(),
             lu: RefCell::new(None),
@@ -207,7 +228,7 @@ impl<'a> DiskOnBeam<'a> {
         let mut z = vec![0.0; nz];
         let mut zd = vec![0.0; nz];
         z[..self.n].copy_from_slice(q0);
-        if self.spec.coupling.rolls() {
+        if self.rolls {
             z[self.n] = self.spec.s0;
             let at = AxisPoint::at(
                 self.beam(),
@@ -232,7 +253,7 @@ impl<'a> DiskOnBeam<'a> {
 
     /// The time a prescribed load leaves the beam, if it does.
     pub fn exit_time(&self) -> Option<f64> {
-        if self.spec.coupling.rolls() {
+        if self.rolls {
             return None;
         }
         let v0 = self.spec.v0();
@@ -248,7 +269,7 @@ impl<'a> DiskOnBeam<'a> {
 
     /// The axis at the contact for the state (z, ż).
     pub fn contact(&self, t: f64, z: &[f64], zd: &[f64]) -> AxisPoint {
-        let (s, sdot) = if self.spec.coupling.rolls() {
+        let (s, sdot) = if self.rolls {
             (z[self.n], zd[self.n])
         } else {
             self.travel(t)
@@ -263,121 +284,12 @@ impl<'a> DiskOnBeam<'a> {
 
     fn terms(&self, t: f64, z: &[f64], zd: &[f64]) -> Terms {
         let at = self.contact(t, z, zd);
-        let m = self.spec.disk.mass;
-        let a = self.spec.disk.radius;
-        let g = self.gravity;
-        let tg = at.tangent();
-        let added = self.added_mass(&at);
-        let mut force: Vec<(usize, f64)> = Vec::new();
-        match self.spec.coupling {
-            Coupling::Consistent => {
-                let [gx, gy, gb] = self.consistent_rows(&at);
-                let c = at.centre(a);
-                let theta_quad = at.psi.d2 - at.rp.d1 * at.sdot / a;
-                let inertia = self.spec.disk.inertia();
-                for (row, w) in [
-                    (&gx, -m * (c[0].d2 - g[0])),
-                    (&gy, -m * (c[1].d2 - g[1])),
-                    (&gb, -inertia * theta_quad),
-                ] {
-                    force.extend(row.iter().map(|&(i, v)| (i, v * w)));
-                }
-            }
-            Coupling::Thesis => {
-                let (rx, ry, _) = self.thesis_reactions(&at);
-                // (5.13): the reaction turned with the section rotation φ, not with ψ.
-                let (sp, cp) = at.phi.v.sin_cos();
-                let p = [-(rx * cp - ry * sp), -(rx * sp + ry * cp)];
-                let mut f = vec![0.0; self.n];
-                at.spread(p, &mut f);
-                force.extend(
-                    f.iter()
-                        .enumerate()
-                        .filter(|(_, v)| **v != 0.0)
-                        .map(|(i, v)| (i, *v)),
-                );
-                let mr = self.spec.disk.rolling_mass();
-                let gs_rate = at.rp.d1 - a * at.psi_s.d1;
-                force.push((
-                    self.n,
-                    m * (g[0] * tg[0] + g[1] * tg[1]) - mr * at.sdot * gs_rate,
-                ));
-            }
-            Coupling::MovingMass => {
-                let [gx, gy] = at.position_gradient();
-                for (row, w) in [(&gx, -m * (at.x.d2 - g[0])), (&gy, -m * (at.y.d2 - g[1]))] {
-                    force.extend(row.iter().map(|&(i, v)| (i, v * w)));
-                }
-            }
-            Coupling::MovingForce => {
-                let mut f = vec![0.0; self.n];
-                at.spread([m * g[0], m * g[1]], &mut f);
-                force.extend(
-                    f.iter()
-                        .enumerate()
-                        .filter(|(_, v)| **v != 0.0)
-                        .map(|(i, v)| (i, *v)),
-                );
-            }
+        let mut force = Vec::new();
+        self.law.force(&self.rider, &at, &mut force);
+        Terms {
+            added: self.law.added_mass(&self.rider, &at),
+            force,
         }
-        Terms { added, force }
-    }
-
-    /// The disk's inertia as seen by z.
-    fn added_mass(&self, at: &AxisPoint) -> AddedMass {
-        let m = self.spec.disk.mass;
-        match self.spec.coupling {
-            Coupling::Consistent => {
-                let [gx, gy, gb] = self.consistent_rows(at);
-                vec![(m, gx), (m, gy), (self.spec.disk.inertia(), gb)]
-            }
-            Coupling::Thesis => {
-                let a = self.spec.disk.radius;
-                let gs = at.rp.v - a * at.psi_s.v;
-                vec![(self.spec.disk.rolling_mass() * gs, vec![(self.n, 1.0)])]
-            }
-            Coupling::MovingMass => {
-                let [gx, gy] = at.position_gradient();
-                vec![(m, gx), (m, gy)]
-            }
-            Coupling::MovingForce => Vec::new(),
-        }
-    }
-
-    /// ∂c_X/∂z, ∂c_Y/∂z and B = ∂θ̇/∂ż for the consistent coupling.
-    fn consistent_rows(&self, at: &AxisPoint) -> [Row; 3] {
-        let a = self.spec.disk.radius;
-        let tg = at.tangent();
-        let dpsi = at.psi_gradient();
-        let [mut gx, mut gy] = at.position_gradient();
-        for &(i, d) in &dpsi {
-            gx.push((i, -a * d * tg[0]));
-            gy.push((i, -a * d * tg[1]));
-        }
-        let along = at.rp.v - a * at.psi_s.v;
-        gx.push((self.n, along * tg[0]));
-        gy.push((self.n, along * tg[1]));
-        let mut gb = dpsi;
-        gb.push((self.n, at.psi_s.v - at.rp.v / a));
-        [gx, gy, gb]
-    }
-
-    /// Thesis Table 9: R_xK, R_yK (tangent and normal contact force on the disk) and v_x.
-    fn thesis_reactions(&self, at: &AxisPoint) -> (f64, f64, f64) {
-        let m = self.spec.disk.mass;
-        let a = self.spec.disk.radius;
-        let g = self.gravity;
-        let tg = at.tangent();
-        let nm = at.normal();
-        let vx = at.sdot * (at.rp.v - a * at.psi_s.v);
-        let g_t = g[0] * tg[0] + g[1] * tg[1];
-        let g_n = g[0] * nm[0] + g[1] * nm[1];
-        let vx_rate = m * g_t / self.spec.disk.rolling_mass();
-        (
-            m * vx_rate - m * g_t,
-            m * vx * at.psi_s.v * at.sdot - m * g_n,
-            vx,
-        )
     }
 
     fn mass_matrix(&self, added: &AddedMass) -> Sparse {
@@ -425,7 +337,7 @@ impl<'a> DiskOnBeam<'a> {
         let nz = self.dim();
         let mut z = vec![0.0; nz];
         z[..self.n].copy_from_slice(q);
-        if self.spec.coupling.rolls() {
+        if self.rolls {
             z[self.n] = self.spec.s0;
         }
         self.add_disk_force_on_beam(0.0, &z, &vec![0.0; nz], f);
@@ -483,63 +395,16 @@ impl<'a> DiskOnBeam<'a> {
 
     fn observe_with(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> DiskObservation {
         let at = self.contact(t, z, zd);
-        let m = self.spec.disk.mass;
-        let a = self.spec.disk.radius;
-        let g = self.gravity;
+        let motion = self.law.motion(&self.rider, &at, zd, zdd);
         let tg = at.tangent();
         let nm = at.normal();
-        let c = at.centre(a);
         let beam = self.beam();
-        let (centre, velocity, omega, contact, kinetic, potential);
-        match self.spec.coupling {
-            Coupling::Consistent => {
-                let [gx, gy, gb] = self.consistent_rows(&at);
-                let acc = [dot(&gx, zdd) + c[0].d2, dot(&gy, zdd) + c[1].d2];
-                contact = [m * (acc[0] - g[0]), m * (acc[1] - g[1])];
-                velocity = [c[0].d1, c[1].d1];
-                omega = dot(&gb, zd);
-                kinetic = 0.5 * m * (velocity[0].powi(2) + velocity[1].powi(2))
-                    + 0.5 * self.spec.disk.inertia() * omega * omega;
-                centre = [c[0].v, c[1].v];
-                potential = f64::NAN;
-            }
-            Coupling::Thesis => {
-                let (rx, ry, vx) = self.thesis_reactions(&at);
-                contact = [rx * tg[0] + ry * nm[0], rx * tg[1] + ry * nm[1]];
-                velocity = [vx * tg[0], vx * tg[1]];
-                omega = -vx / a;
-                kinetic = 0.5 * self.spec.disk.rolling_mass() * vx * vx;
-                centre = [c[0].v, c[1].v];
-                potential = f64::NAN;
-            }
-            Coupling::MovingMass | Coupling::MovingForce => {
-                contact = if self.spec.coupling == Coupling::MovingMass {
-                    let [gx, gy] = at.position_gradient();
-                    let acc = [dot(&gx, zdd) + at.x.d2, dot(&gy, zdd) + at.y.d2];
-                    [m * (acc[0] - g[0]), m * (acc[1] - g[1])]
-                } else {
-                    [-m * g[0], -m * g[1]]
-                };
-                velocity = [
-                    at.x.d1 - a * at.psi.d1 * tg[0],
-                    at.y.d1 - a * at.psi.d1 * tg[1],
-                ];
-                omega = self.spec.omega0;
-                centre = [c[0].v, c[1].v];
-                kinetic = 0.0;
-                potential = 0.0;
-            }
-        }
         let origin = beam.spec.from;
-        let cg = beam.to_global(centre);
-        let vg = beam.to_global(velocity);
-        let potential = if potential.is_nan() {
-            m * self.spec.gravity * (origin[1] + cg[1])
-        } else {
-            potential
-        };
+        let cg = beam.to_global(motion.centre);
+        let vg = beam.to_global(motion.velocity);
+        let contact = motion.contact;
         DiskObservation {
-            s: if self.spec.coupling.rolls() {
+            s: if self.rolls {
                 z[self.n]
             } else {
                 self.travel(t).0
@@ -548,12 +413,14 @@ impl<'a> DiskOnBeam<'a> {
             y: origin[1] + cg[1],
             vx: vg[0],
             vy: vg[1],
-            omega,
+            omega: motion.omega,
             phi: 0.0,
             rt: contact[0] * tg[0] + contact[1] * tg[1],
             rn: contact[0] * nm[0] + contact[1] * nm[1],
-            kinetic,
-            potential,
+            kinetic: motion.kinetic,
+            potential: motion
+                .potential
+                .unwrap_or(self.spec.disk.mass * self.spec.gravity * (origin[1] + cg[1])),
         }
     }
 
@@ -569,7 +436,7 @@ impl<'a> DiskOnBeam<'a> {
     /// Power of the prescribed moving load on the beam (zero for the rolling couplings, whose
     /// disk belongs to the system): F_beam · ∂r/∂t at s.
     pub fn power_on_beam(&self, t: f64, z: &[f64], zd: &[f64]) -> f64 {
-        if self.spec.coupling.rolls() {
+        if self.rolls {
             return 0.0;
         }
         let obs = self.observe(t, z, zd);
@@ -586,18 +453,18 @@ impl<'a> DiskOnBeam<'a> {
 
     /// The disk's energy belongs to the system's budget.
     pub fn disk_in_system(&self) -> bool {
-        self.spec.coupling.rolls()
+        self.rolls
     }
 }
 
 impl Structure for DiskOnBeam<'_> {
     fn dim(&self) -> usize {
-        self.n + usize::from(self.spec.coupling.rolls())
+        self.n + usize::from(self.rolls)
     }
 
     fn mass(&self, t: f64, q: &[f64]) -> Cow<'_, Sparse> {
         let zero = vec![0.0; q.len()];
-        Cow::Owned(self.mass_matrix(&self.added_mass(&self.contact(t, q, &zero))))
+        Cow::Owned(self.mass_matrix(&self.law.added_mass(&self.rider, &self.contact(t, q, &zero))))
     }
 
     fn mass_is_constant(&self) -> bool {
@@ -608,7 +475,7 @@ impl Structure for DiskOnBeam<'_> {
     /// low-rank part takes back out, plus the disk's inertia as seen by z.
     fn mass_split(&self, t: f64, q: &[f64]) -> Option<(&Sparse, LowRank)> {
         let zero = vec![0.0; q.len()];
-        let added = self.added_mass(&self.contact(t, q, &zero));
+        let added = self.law.added_mass(&self.rider, &self.contact(t, q, &zero));
         Some((&self.base_mass, self.low_rank_mass(added)))
     }
 
@@ -618,7 +485,7 @@ impl Structure for DiskOnBeam<'_> {
             out[self.n] = 0.0;
         }
         let zero = vec![0.0; q.len()];
-        for (w, row) in self.added_mass(&self.contact(t, q, &zero)) {
+        for (w, row) in self.law.added_mass(&self.rider, &self.contact(t, q, &zero)) {
             let ga = w * dot(&row, a);
             for (i, gi) in row {
                 out[i] += gi * ga;
@@ -657,7 +524,7 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
     /// there shows in the contact force, not in the motion the error estimate measures: a
     /// step moves a rolling disk by at most b/2, so the contact-loss event sees every crest.
     fn max_step(&self, _t: f64, _q: &[f64], v: &[f64]) -> f64 {
-        if self.spec.coupling.rolls() {
+        if self.rolls {
             0.5 * self.spec.patch / v[self.n].abs()
         } else {
             f64::INFINITY
@@ -673,7 +540,7 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
     }
 
     fn events(&self) -> &[EventSpec<StopReason>] {
-        if !self.spec.coupling.rolls() {
+        if !self.rolls {
             return &[];
         }
         if self.spec.mu.is_some() {
