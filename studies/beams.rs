@@ -64,9 +64,11 @@ fn energy_balance_every_study() {
         let duration = if name.starts_with("beam") { 0.2 } else { 1.1 };
         let scene = modified(name, duration, 1.0, None, None);
         let tight = run_beam(&scene, Method::GenAlpha, 1e-8, 1e-12)
+            .header
             .energy
             .max_rel_drift();
         let loose = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-10)
+            .header
             .energy
             .max_rel_drift();
         let slope = (loose / tight).log10() / 2.0;

@@ -148,7 +148,7 @@ fn residual_vibration_after_exit_by_coupling() {
 
 /// Largest |total(t) − total(0)| relative to the largest energy, over a window of the run.
 fn drift(r: &BeamRun) -> f64 {
-    r.energy.max_rel_drift()
+    r.header.energy.max_rel_drift()
 }
 
 /// The consistent coupling conserves beam + disk energy: its drift is an integration error
@@ -367,8 +367,8 @@ fn thesis_system_as_published_equals_its_reduced_form() {
     let literal = run_beam(&scene, Method::TrBdf2, 1e-7, 1e-12);
     let reduced = run_beam(&scene, Method::GenAlpha, 1e-9, 1e-12);
     assert_eq!(
-        literal.unknowns,
-        reduced.unknowns + 5,
+        literal.header.unknowns,
+        reduced.header.unknowns + 5,
         "3n + 6 against n + 1"
     );
     let k = probe(&reduced, "mid");
@@ -430,8 +430,8 @@ fn headline_numbers_rubber_and_zipline() {
                 "{} {}: stopped {} at {:.1e} s, disk {left}, w under disk {:.*e} m",
                 load(file).name,
                 c.name(),
-                r.stop.name(),
-                r.t_end,
+                r.header.stop.name(),
+                r.header.t_end,
                 digits,
                 peak
             ));
@@ -459,8 +459,8 @@ fn leaving_at_either_end_and_slipping() {
             ],
         );
         let r = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-9);
-        assert_eq!(r.stop.name(), "end");
-        assert!((r.t_end - 0.3).abs() < 1e-12);
+        assert_eq!(r.header.stop.name(), "end");
+        assert!((r.header.t_end - 0.3).abs() < 1e-12);
         let left = r.left_track_t.expect("the disk left the beam");
         let expect = distance / 17.6;
         assert!(
@@ -474,8 +474,8 @@ fn leaving_at_either_end_and_slipping() {
         &[Set::Number("disk.mu", 0.0005), Set::Number("duration", 1.2)],
     );
     let r = run_beam(&scene, Method::GenAlpha, 1e-5, 1e-9);
-    assert_eq!(r.stop.name(), "slip");
-    assert!(r.t_end < 1.1, "slipped at {}", r.t_end);
+    assert_eq!(r.header.stop.name(), "slip");
+    assert!(r.header.t_end < 1.1, "slipped at {}", r.header.t_end);
 }
 
 /// `rollbeam sweep` runs the same scene as a single run would, in parallel: over the bridge's

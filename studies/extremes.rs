@@ -31,11 +31,11 @@ fn disk_that_almost_does_not_fit() {
                     .all(|v| v.is_finite()),
                 "{ratio} {formulation}: non-finite state"
             );
-            match r.stop.name() {
+            match r.header.stop.name() {
                 "end" => assert!(
-                    r.energy.max_rel_drift() <= 1e-6,
+                    r.header.energy.max_rel_drift() <= 1e-6,
                     "{ratio} {formulation}: drift {:.2e}",
-                    r.energy.max_rel_drift()
+                    r.header.energy.max_rel_drift()
                 ),
                 "no-fit" => {}
                 other => panic!("{ratio} {formulation}: stopped with {other}"),
@@ -228,21 +228,21 @@ fn completes_with_energy_balance(label: &str, scene: &rollbeam::scene::Scene) {
     let r = run_beam(scene, Method::GenAlpha, 1e-6, 1e-9);
     eprintln!(
         "{label}: {} at {:.3} s, drift {:.2e}, {} steps",
-        r.stop.name(),
-        r.t_end,
-        r.energy.max_rel_drift(),
-        r.stats.steps
+        r.header.stop.name(),
+        r.header.t_end,
+        r.header.energy.max_rel_drift(),
+        r.header.stats.steps
     );
     assert!(
-        ["end", "contact-lost"].contains(&r.stop.name()),
+        ["end", "contact-lost"].contains(&r.header.stop.name()),
         "{label}: {}",
-        r.stop.name()
+        r.header.stop.name()
     );
     assert!(r.y_end.iter().all(|v| v.is_finite()), "{label}");
     assert!(
-        r.energy.max_rel_drift() <= 1e-3,
+        r.header.energy.max_rel_drift() <= 1e-3,
         "{label}: drift {:.2e}",
-        r.energy.max_rel_drift()
+        r.header.energy.max_rel_drift()
     );
 }
 
@@ -267,6 +267,7 @@ fn stiffness_from_rubber_to_fifty_times_steel() {
             1e-5,
             1e-9,
         )
+        .header
         .stats
         .steps as f64
     };
@@ -349,21 +350,21 @@ solver: {{rho_inf: 1.0}}
             -p
         ));
         let r = run_beam(&scene, Method::GenAlpha, 1e-8, 1e-12);
-        assert_eq!(r.stop.name(), "contact-lost", "v = {v}");
+        assert_eq!(r.header.stop.name(), "contact-lost", "v = {v}");
         let s_lost = r.y_end[r.beam.dim()];
         let kc = g / (v * v);
         let m_lost = -ei * kc / (1.0 - a * kc);
         let x_lost = (p * span / 2.0 - m_lost) / (p / 2.0 - m_b / span);
         eprintln!(
             "v = {v} m/s: lost at s = {s_lost:.6} m, statics says {x_lost:.6} m, drift {:.1e}",
-            r.energy.max_rel_drift()
+            r.header.energy.max_rel_drift()
         );
         assert!(x_lost > span / 2.0 + a && x_lost < span - a);
         assert!(
             (s_lost - x_lost).abs() < 5e-4,
             "v = {v}: lost at {s_lost} m, statics says {x_lost} m"
         );
-        assert!(r.energy.max_rel_drift() < 1e-6);
+        assert!(r.header.energy.max_rel_drift() < 1e-6);
         // At a loose tolerance the steps are as long as the disk may move (half the patch,
         // 0.15 m): the loss is still seen, and located to 5 mm (0.6 mm measured) despite the
         // beam's looser accelerations. Without the limit this run stepped over the crest.
@@ -371,10 +372,14 @@ solver: {{rho_inf: 1.0}}
         let s_loose = loose.y_end[loose.beam.dim()];
         eprintln!(
             "  at rtol 1e-3: {} at s = {s_loose:.4} m in {} steps",
-            loose.stop.name(),
-            loose.stats.steps
+            loose.header.stop.name(),
+            loose.header.stats.steps
         );
-        assert_eq!(loose.stop.name(), "contact-lost", "v = {v}, rtol 1e-3");
+        assert_eq!(
+            loose.header.stop.name(),
+            "contact-lost",
+            "v = {v}, rtol 1e-3"
+        );
         assert!(
             (s_loose - x_lost).abs() < 5e-3,
             "v = {v}: {s_loose} m at rtol 1e-3"

@@ -46,6 +46,7 @@ fn energy_drift_shrinks_with_tolerance_at_the_predicted_rate() {
             .iter()
             .map(|&tol| {
                 run_with(&scene, method, tol, tol * 1e-2)
+                    .header
                     .energy
                     .max_rel_drift()
             })
@@ -73,10 +74,12 @@ fn energy_drift_at_rtol_1e10() {
     for f in [Formulation::Minimal, Formulation::Thesis] {
         let s = with_formulation(scene.clone(), f);
         let dp = run_with(&s, Method::Dopri5, 1e-10, 1e-12)
+            .header
             .energy
             .max_rel_drift();
         assert!(dp <= 1e-9, "dopri5/{}: drift {dp:.2e}", f.name());
         let tr = run_with(&s, Method::TrBdf2, 1e-10, 1e-12)
+            .header
             .energy
             .max_rel_drift();
         eprintln!("{}: dopri5 {dp:.2e}, trbdf2 {tr:.2e}", f.name());
@@ -185,7 +188,7 @@ fn incline_closed_form() {
             assert!((row.disk.rt + m * G * alpha.sin() / 3.0).abs() < 1e-9 * m * G);
             assert!((row.disk.rn - m * G * alpha.cos()).abs() < 1e-9 * m * G);
         }
-        assert_eq!(r.stop, Stop::Event(StopReason::LeftTrack));
+        assert_eq!(r.header.stop, Stop::Event(StopReason::LeftTrack));
         let t_end = (3.0 * length / (G * alpha.sin())).sqrt();
         assert!(
             (r.last.t - t_end).abs() < 1e-8,
@@ -207,14 +210,17 @@ fn slip_event_at_the_friction_limit() {
         1e-8,
         1e-10,
     );
-    assert_eq!((r.stop, r.last.t), (Stop::Event(StopReason::Slip), 0.0));
+    assert_eq!(
+        (r.header.stop, r.last.t),
+        (Stop::Event(StopReason::Slip), 0.0)
+    );
     let r = run_with(
         &incline(alpha, 10.0, Some(needed * 1.01), 1.0),
         Method::Dopri5,
         1e-8,
         1e-10,
     );
-    assert_eq!(r.stop, Stop::End);
+    assert_eq!(r.header.stop, Stop::End);
 }
 
 /// Over a circular hump of radius R the centre moves on a circle of radius R + a; energy with
@@ -233,7 +239,7 @@ fn contact_lost_over_a_hump_where_the_closed_form_says() {
                 f,
             );
             let r = run_with(&scene, Method::Dopri5, 1e-12, 1e-14);
-            assert_eq!(r.stop, Stop::Event(StopReason::ContactLost));
+            assert_eq!(r.header.stop, Stop::Event(StopReason::ContactLost));
             let cos_theta = r.last.disk.y / r.last.disk.x.hypot(r.last.disk.y);
             let expect = 4.0 / 7.0 * (1.0 + 3.0 * v0 * v0 / (4.0 * G * (radius + a)));
             assert!(

@@ -42,7 +42,8 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
     if let (true, Run::Beam(b)) = (animate, &result) {
         output::animation::write_animation(b, &dir.join("animation.svg"))?;
     }
-    say!("{}: {}", scene.name, result.stop().sentence(result.t_end()));
+    let h = result.header();
+    say!("{}: {}", scene.name, h.stop.sentence(h.t_end));
     match &result {
         Run::Rolling(r) => {
             let d = &r.last.disk;
@@ -65,18 +66,11 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
             }
         }
     }
-    say!(
-        "  energy drift {:.2e} (relative)",
-        result.energy().max_rel_drift()
-    );
-    let s = result.stats();
-    let (m, rt, at) = match &result {
-        Run::Rolling(r) => (r.method, r.rtol, r.atol),
-        Run::Beam(b) => (b.method, b.rtol, b.atol),
-    };
+    say!("  energy drift {:.2e} (relative)", h.energy.max_rel_drift());
+    let s = &h.stats;
     say!(
         "  {} rtol {} atol {}: {} steps, {} rejected, {} rhs evaluations, {} Jacobians, {} factorisations, {:.3} s",
-        m.name(), output::tolerance(rt), output::tolerance(at), s.steps, s.rejected, s.rhs_evals, s.jacobians, s.factorizations, s.wall_s
+        h.method.name(), output::tolerance(h.rtol), output::tolerance(h.atol), s.steps, s.rejected, s.rhs_evals, s.jacobians, s.factorizations, s.wall_s
     );
     say!("  wrote {}", dir.display());
     Ok(())

@@ -58,12 +58,12 @@ pub fn run_all(
         say!(
             "{:<14} {:<12} t = {:>7.3} s  steps {:>6}  rejected {:>4}  energy drift {:.1e}  {:.3} s",
             scene.name,
-            result.stop().name(),
-            result.t_end(),
-            result.stats().steps,
-            result.stats().rejected,
-            result.energy().max_rel_drift(),
-            result.stats().wall_s
+            result.header().stop.name(),
+            result.header().t_end,
+            result.header().stats.steps,
+            result.header().stats.rejected,
+            result.header().energy.max_rel_drift(),
+            result.header().stats.wall_s
         );
         results.push(result);
     }
@@ -118,7 +118,7 @@ fn compare_parabola(results: &[&RunResult], figures: &Path) -> Result<(), Error>
     let cases: Vec<&RunResult> = results
         .iter()
         .copied()
-        .filter(|r| r.scene.name.starts_with("parabola-p"))
+        .filter(|r| r.header.scene.name.starts_with("parabola-p"))
         .collect();
     if cases.is_empty() {
         return Ok(());
@@ -126,7 +126,7 @@ fn compare_parabola(results: &[&RunResult], figures: &Path) -> Result<(), Error>
     let label = |r: &RunResult| {
         format!(
             "{} (m = {}, a = {})",
-            &r.scene.name["parabola-".len()..].to_uppercase(),
+            &r.header.scene.name["parabola-".len()..].to_uppercase(),
             r.setup.rolling.disk.mass,
             r.setup.rolling.disk.radius
         )

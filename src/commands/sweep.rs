@@ -128,11 +128,11 @@ fn summarise(r: &Run) -> Summary {
         }
     }
     Summary {
-        stop: r.stop().name(),
-        t_end: r.t_end(),
-        energy_drift: r.energy().max_rel_drift(),
-        steps: r.stats().steps,
-        wall_s: r.stats().wall_s,
+        stop: r.header().stop.name(),
+        t_end: r.header().t_end,
+        energy_drift: r.header().energy.max_rel_drift(),
+        steps: r.header().stats.steps,
+        wall_s: r.header().stats.wall_s,
         probes,
         disk,
     }

@@ -119,7 +119,7 @@ pub fn headlines(r: &Run) -> Vec<Headline> {
             out.push(h("disk.rn_max".into(), hi, "rn"));
         }
     }
-    out.push(h("t_end".into(), r.t_end(), "t"));
+    out.push(h("t_end".into(), r.header().t_end, "t"));
     out
 }
 
@@ -219,11 +219,11 @@ pub fn reference(scene: &Scene, plan: &Plan) -> Result<Reference, Error> {
     let mut rtol = tightest / 10.0;
     let run_at = |rtol: f64| run::run(&fine, &overrides(method, rtol, usize::MAX), false);
     let mut last = run_at(rtol)?;
-    let mut wall = last.stats().wall_s;
+    let mut wall = last.header().stats.wall_s;
     let mut settled_to = f64::INFINITY;
     for _ in 0..REFERENCE_CUTS {
         let next = run_at(rtol / 10.0)?;
-        wall += next.stats().wall_s;
+        wall += next.header().stats.wall_s;
         settled_to = headline_error(&headlines(&last), &headlines(&next));
         rtol /= 10.0;
         last = next;
@@ -285,14 +285,14 @@ pub fn trials(
         let over = overrides(method, rtol, plan.max_steps);
         let outcome = run::run(&scene, &over, false)
             .and_then(|r| {
-                let wall_s = mean_wall(&scene, &over, r.stats().wall_s)?;
+                let wall_s = mean_wall(&scene, &over, r.header().stats.wall_s)?;
                 Ok(Measured {
                     headline_error: headline_error(&headlines(&r), &reference.headlines),
                     history_error: history_error(&history(&r), &reference.history),
                     wall_s,
-                    steps: r.stats().steps,
-                    rejected: r.stats().rejected,
-                    rhs_evals: r.stats().rhs_evals,
+                    steps: r.header().stats.steps,
+                    rejected: r.header().stats.rejected,
+                    rhs_evals: r.header().stats.rhs_evals,
                 })
             })
             .map_err(|e| e.to_string());
@@ -310,7 +310,7 @@ pub fn trials(
 fn mean_wall(scene: &Scene, over: &Overrides, first: f64) -> Result<f64, Error> {
     let (mut total, mut count) = (first, 1);
     while total < TIMING_FLOOR && count < 1000 {
-        total += run::run(scene, over, false)?.stats().wall_s;
+        total += run::run(scene, over, false)?.header().stats.wall_s;
         count += 1;
     }
     Ok(total / count as f64)

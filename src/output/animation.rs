@@ -18,7 +18,7 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
     if frames.len() < 2 {
         return Err(Error::Output(format!(
             "cannot animate {}: the run has fewer than two frames",
-            r.scene.name
+            r.header.scene.name
         )));
     }
     let mag = r.setup.magnify;
@@ -131,7 +131,7 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
     let _ = writeln!(
         svg,
         r#"<text x="{MARGIN}" y="20" font-family="sans-serif" font-size="15">{}: displacements × {mag}, disk to scale, {duration:.3} s of motion per loop</text>"#,
-        r.scene.name
+        r.header.scene.name
     );
     let reference: Vec<String> = [0.0, r.beam.length]
         .iter()

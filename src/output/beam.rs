@@ -226,16 +226,12 @@ fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
 }
 
 pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
-    let s = &r.stats;
     let summary = Summary {
-        scene: r.scene.name.clone(),
-        stopped: super::summary::Stopped {
-            reason: r.stop.name().into(),
-            t: r.t_end,
-        },
+        scene: r.header.scene.name.clone(),
+        stopped: super::summary::Stopped::of(&r.header),
         model: Model {
             track: "beam",
-            unknowns: r.unknowns,
+            unknowns: r.header.unknowns,
             coupling: r.setup.disk.as_ref().map(|d| d.coupling.name()),
             elements: r.beam.spec.elements,
             order: r.beam.spec.order,
@@ -243,23 +239,8 @@ pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             length: r.beam.length,
             chosen: chosen(r),
         },
-        solver: super::summary::Solver {
-            method: r.method.name().into(),
-            rtol: r.rtol,
-            atol: r.atol,
-            steps: s.steps,
-            rejected: s.rejected,
-            rhs_evals: s.rhs_evals,
-            jacobians: s.jacobians,
-            factorizations: s.factorizations,
-            newton_iterations: s.newton_iterations,
-            wall_s: s.wall_s,
-        },
-        energy: super::summary::Energy {
-            initial: r.energy.initial,
-            last: r.energy.last,
-            max_rel_drift: r.energy.max_rel_drift(),
-        },
+        solver: super::summary::Solver::of(&r.header),
+        energy: super::summary::Energy::of(&r.header),
         disk: disk_summary(r),
         probes: (0..r.setup.probes.len())
             .map(|k| (r.setup.probes[k].name.clone(), probe_summary(r, k)))
@@ -344,7 +325,7 @@ fn csv(r: &BeamRun) -> String {
 }
 
 fn figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
-    let name = &r.scene.name;
+    let name = &r.header.scene.name;
     let probes: Vec<(String, Vec<(f64, f64)>)> = r
         .setup
         .probes
@@ -454,7 +435,7 @@ fn figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
 
 /// The disk's quantities while it is on the beam (thesis figures 31, 34, 38, 42).
 fn disk_figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
-    let name = &r.scene.name;
+    let name = &r.header.scene.name;
     let on: Vec<(f64, crate::rolling::DiskObservation)> = r
         .rows
         .iter()
@@ -568,7 +549,10 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let mut chart = ChartBuilder::on(&root)
         .caption(
-            format!("{}: deformed shapes, displacements × {mag}", r.scene.name),
+            format!(
+                "{}: deformed shapes, displacements × {mag}",
+                r.header.scene.name
+            ),
             ("sans-serif", 22),
         )
         .margin(10)
@@ -619,16 +603,19 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
 
 fn chosen(r: &BeamRun) -> Option<Chosen> {
     let mesh = r.setup.discretisation.as_ref().map(|d| d.why.clone());
-    let rtol = (r.scene.solver.rtol_from_accuracy && r.rtol == r.scene.solver.rtol).then(|| {
-        let (rtol, why) = rtol_for(&r.setup);
-        format!("{}, {why}", super::tolerance(rtol))
-    });
+    let rtol = (r.header.scene.solver.rtol_from_accuracy
+        && r.header.rtol == r.header.scene.solver.rtol)
+        .then(|| {
+            let (rtol, why) = rtol_for(&r.setup);
+            format!("{}, {why}", super::tolerance(rtol))
+        });
     let atol = r
+        .header
         .scene
         .solver
         .atol_scale
-        .and_then(|_| atol_for(&r.setup, r.rtol))
-        .filter(|(atol, _)| *atol == r.atol)
+        .and_then(|_| atol_for(&r.setup, r.header.rtol))
+        .filter(|(atol, _)| *atol == r.header.atol)
         .map(|(atol, why)| format!("{}, {why}", super::tolerance(atol)));
     (mesh.is_some() || rtol.is_some() || atol.is_some()).then(|| Chosen {
         accuracy: r.setup.accuracy,

@@ -138,7 +138,7 @@ pub fn track_figure(r: &RunResult, path: &Path, count: usize) -> Result<(), Erro
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let mut chart = ChartBuilder::on(&root)
         .caption(
-            format!("{}: the disk at {count} times", r.scene.name),
+            format!("{}: the disk at {count} times", r.header.scene.name),
             ("sans-serif", 22),
         )
         .margin(10)
@@ -188,7 +188,7 @@ pub fn track_figure(r: &RunResult, path: &Path, count: usize) -> Result<(), Erro
 /// Every figure of a rigid-track run.
 pub fn all(r: &RunResult, dir: &Path) -> Result<(), Error> {
     let rows = &r.rows;
-    let name = &r.scene.name;
+    let name = &r.header.scene.name;
     track_figure(r, &dir.join("track.svg"), 8)?;
     line_chart(
         &dir.join("velocities.svg"),
@@ -217,8 +217,8 @@ pub fn all(r: &RunResult, dir: &Path) -> Result<(), Error> {
             series(rows, "R_n (normal)", |r| r.disk.rn),
         ],
     )?;
-    let e0 = r.energy.initial;
-    let scale = r.energy.scale.max(f64::MIN_POSITIVE);
+    let e0 = r.header.energy.initial;
+    let scale = r.header.energy.scale.max(f64::MIN_POSITIVE);
     line_chart(
         &dir.join("energy.svg"),
         &format!("{name}: energy error (E(t) − E(0)) / max(|K| + |V|)"),

@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use crate::run::RunResult;
+use crate::run::{RunHeader, RunResult};
 
 #[derive(Serialize)]
 pub struct Summary {
@@ -67,6 +67,43 @@ pub struct DiskSummary {
     pub left_track_t: Option<f64>,
 }
 
+impl Stopped {
+    pub fn of(h: &RunHeader) -> Stopped {
+        Stopped {
+            reason: h.stop.name().into(),
+            t: h.t_end,
+        }
+    }
+}
+
+impl Solver {
+    pub fn of(h: &RunHeader) -> Solver {
+        let s = &h.stats;
+        Solver {
+            method: h.method.name().into(),
+            rtol: h.rtol,
+            atol: h.atol,
+            steps: s.steps,
+            rejected: s.rejected,
+            rhs_evals: s.rhs_evals,
+            jacobians: s.jacobians,
+            factorizations: s.factorizations,
+            newton_iterations: s.newton_iterations,
+            wall_s: s.wall_s,
+        }
+    }
+}
+
+impl Energy {
+    pub fn of(h: &RunHeader) -> Energy {
+        Energy {
+            initial: h.energy.initial,
+            last: h.energy.last,
+            max_rel_drift: h.energy.max_rel_drift(),
+        }
+    }
+}
+
 impl Summary {
     pub fn from_run(r: &RunResult) -> Summary {
         let d = &r.last.disk;
@@ -86,37 +123,19 @@ impl Summary {
             .map(|row| row.disk.rt.abs() / row.disk.rn)
             .fold(0.0, f64::max);
         let left = matches!(
-            r.stop,
+            r.header.stop,
             crate::run::Stop::Event(crate::rolling::StopReason::LeftTrack)
         );
         Summary {
-            scene: r.scene.name.clone(),
-            stopped: Stopped {
-                reason: r.stop.name().into(),
-                t: r.last.t,
-            },
+            scene: r.header.scene.name.clone(),
+            stopped: Stopped::of(&r.header),
             model: Model {
                 track: r.setup.rolling.curve.kind().into(),
-                unknowns: r.unknowns,
+                unknowns: r.header.unknowns,
                 formulation: r.setup.formulation.name().into(),
             },
-            solver: Solver {
-                method: r.method.name().into(),
-                rtol: r.rtol,
-                atol: r.atol,
-                steps: r.stats.steps,
-                rejected: r.stats.rejected,
-                rhs_evals: r.stats.rhs_evals,
-                jacobians: r.stats.jacobians,
-                factorizations: r.stats.factorizations,
-                newton_iterations: r.stats.newton_iterations,
-                wall_s: r.stats.wall_s,
-            },
-            energy: Energy {
-                initial: r.energy.initial,
-                last: r.energy.last,
-                max_rel_drift: r.energy.max_rel_drift(),
-            },
+            solver: Solver::of(&r.header),
+            energy: Energy::of(&r.header),
             disk: DiskSummary {
                 s: d.s,
                 x: d.x,

@@ -43,6 +43,23 @@ impl Stop {
     }
 }
 
+/// What every run reports, on a rigid curve or on a beam: the scene, the integrator with its
+/// settings and what it did, the model's size, how and when the run ended, and the energy
+/// balance.
+#[derive(Clone, Debug)]
+pub struct RunHeader {
+    pub scene: Scene,
+    pub method: Method,
+    pub rtol: f64,
+    pub atol: f64,
+    /// Unknowns of the model integrated.
+    pub unknowns: usize,
+    pub stop: Stop,
+    pub t_end: f64,
+    pub stats: crate::ode::Stats,
+    pub energy: EnergyCheck,
+}
+
 /// Energy bookkeeping: the drift of total = kinetic + strain + potential − work, relative to the
 /// largest |kinetic| + |strain| + |potential| met in the run.
 #[derive(Clone, Copy, Debug, Default)]
@@ -165,31 +182,10 @@ pub enum Run {
 }
 
 impl Run {
-    pub fn stop(&self) -> Stop {
+    pub fn header(&self) -> &RunHeader {
         match self {
-            Run::Rolling(r) => r.stop,
-            Run::Beam(b) => b.stop,
-        }
-    }
-
-    pub fn t_end(&self) -> f64 {
-        match self {
-            Run::Rolling(r) => r.last.t,
-            Run::Beam(b) => b.t_end,
-        }
-    }
-
-    pub fn stats(&self) -> &crate::ode::Stats {
-        match self {
-            Run::Rolling(r) => &r.stats,
-            Run::Beam(b) => &b.stats,
-        }
-    }
-
-    pub fn energy(&self) -> &EnergyCheck {
-        match self {
-            Run::Rolling(r) => &r.energy,
-            Run::Beam(b) => &b.energy,
+            Run::Rolling(r) => &r.header,
+            Run::Beam(b) => &b.header,
         }
     }
 

@@ -1,8 +1,8 @@
 //! A run of a disk on a rigid curve.
 
-use super::{EnergyCheck, Overrides, Progress, Stop};
+use super::{EnergyCheck, Overrides, Progress, RunHeader, Stop};
 use crate::error::Error;
-use crate::ode::{self, Method, Observer, Stats};
+use crate::ode::{self, Observer};
 use crate::rolling::minimal::Minimal;
 use crate::rolling::thesis::Thesis;
 use crate::rolling::{DiskObservation, RollingModel};
@@ -21,17 +21,10 @@ impl Row {
 }
 
 pub struct RunResult {
-    pub scene: Scene,
+    pub header: RunHeader,
     pub setup: RollingScene,
-    pub method: Method,
-    pub rtol: f64,
-    pub atol: f64,
-    pub unknowns: usize,
     pub rows: Vec<Row>,
     pub last: Row,
-    pub stop: Stop,
-    pub stats: Stats,
-    pub energy: EnergyCheck,
 }
 
 pub fn model(setup: &RollingScene) -> Box<dyn RollingModel> {
@@ -83,7 +76,6 @@ pub fn run(
     let model = model(setup);
     let y0 = model.initial_state();
     let opts = over.options(scene);
-    let (method, rtol, atol) = (opts.method, opts.rtol, opts.atol);
     let outputs = super::output_times(scene);
     let first = model.observe(0.0, &y0);
     let mut rec = Recorder {
@@ -124,16 +116,19 @@ pub fn run(
         None => Stop::End,
     };
     Ok(RunResult {
-        scene: scene.clone(),
+        header: RunHeader {
+            scene: scene.clone(),
+            method: opts.method,
+            rtol: opts.rtol,
+            atol: opts.atol,
+            unknowns: y0.len(),
+            stop,
+            t_end: out.t,
+            stats: out.stats,
+            energy: rec.energy,
+        },
         setup: setup.clone(),
-        method,
-        rtol,
-        atol,
-        unknowns: y0.len(),
         rows: rec.rows,
         last,
-        stop,
-        stats: out.stats,
-        energy: rec.energy,
     })
 }

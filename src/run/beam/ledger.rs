@@ -1,0 +1,196 @@
+//! The energy budget of a beam run: kinetic + strain + potential − work, recorded at every
+//! step and every output time. The work of the scene's point loads is exact (within a step
+//! the active set is fixed, so each load adds P·Δd and M_z Δφ at its point); the work of a
+//! prescribed moving load is its power on the beam by the trapezoidal rule over the steps.
+//! A disk that leaves the beam takes its energy with it, which the budget keeps from then on.
+
+use super::phase::Phase;
+use crate::beam::load::PointLoad;
+use crate::beam::{Beam, PointDisplacement};
+use crate::linalg;
+use crate::rolling::DiskObservation;
+use crate::run::EnergyCheck;
+
+/// The energy terms at one time.
+pub(super) struct Energy {
+    pub kinetic: f64,
+    pub strain: f64,
+    pub potential: f64,
+    pub work: f64,
+}
+
+pub(super) struct Ledger<'a> {
+    loads: &'a [PointLoad],
+    /// Work of the point loads up to the last step, that step's time, and the loads'
+    /// displacements then.
+    done: f64,
+    t: f64,
+    at_loads: Vec<PointDisplacement>,
+    /// Work of a moving load, by the trapezoidal rule over the steps: (t, power, work).
+    moving: (f64, f64, f64),
+    /// The disk's energy when it left (it leaves the model with it): (kinetic, potential).
+    left_with: (f64, f64),
+    pub check: EnergyCheck,
+    mv: Vec<f64>,
+}
+
+fn load_displacements(beam: &Beam, loads: &[PointLoad], q: &[f64]) -> Vec<PointDisplacement> {
+    loads.iter().map(|l| beam.displacement_at(q, l.x)).collect()
+}
+
+fn work_since(
+    loads: &[PointLoad],
+    t0: f64,
+    t1: f64,
+    from: &[PointDisplacement],
+    to: &[PointDisplacement],
+) -> f64 {
+    let mid = 0.5 * (t0 + t1);
+    loads
+        .iter()
+        .zip(from.iter().zip(to))
+        .filter(|(l, _)| l.active(mid))
+        .map(|(l, (a, b))| {
+            l.force[0] * (b.u - a.u) + l.force[1] * (b.w - a.w) + l.mz * (b.phi - a.phi)
+        })
+        .sum()
+}
+
+impl<'a> Ledger<'a> {
+    /// The budget from the start state (q0, at rest): its strain energy, and the disk's energy
+    /// where it belongs to the system.
+    pub fn new(phase: &Phase, loads: &'a [PointLoad], q0: &[f64], y0: &[f64]) -> Self {
+        let beam = phase.beam;
+        let strain0 = beam.strain_energy(q0);
+        let mut check = EnergyCheck::new(strain0, strain0);
+        let mut moving = (0.0, 0.0, 0.0);
+        if let Some(c) = phase.coupled {
+            let (z0, zd0) = phase.split(y0);
+            let first = c.observe(0.0, z0, zd0);
+            let (dk, dp) = if c.disk_in_system() {
+                (first.kinetic, first.potential)
+            } else {
+                (0.0, 0.0)
+            };
+            check = EnergyCheck::new(dk + dp + strain0, dk + dp.abs() + strain0);
+            if !c.disk_in_system() {
+                moving = (0.0, c.power_on_beam(0.0, z0, zd0), 0.0);
+            }
+        }
+        Ledger {
+            loads,
+            done: 0.0,
+            t: 0.0,
+            at_loads: load_displacements(beam, loads, q0),
+            moving,
+            left_with: (0.0, 0.0),
+            check,
+            mv: vec![0.0; beam.dim()],
+        }
+    }
+
+    /// The beam's kinetic and strain energy.
+    fn beam_energies(&mut self, beam: &Beam, q: &[f64], v: &[f64]) -> (f64, f64) {
+        linalg::mul(beam.mass(), v, &mut self.mv);
+        let kinetic = 0.5 * v.iter().zip(&self.mv).map(|(a, b)| a * b).sum::<f64>();
+        (kinetic, beam.strain_energy(q))
+    }
+
+    /// The disk's kinetic and potential energy, as far as it belongs to the system.
+    fn disk_energies(&self, phase: &Phase, disk: Option<&DiskObservation>) -> (f64, f64) {
+        match (disk, phase.coupled) {
+            (Some(d), Some(c)) if c.disk_in_system() => (d.kinetic, d.potential),
+            (Some(_), Some(_)) => (0.0, 0.0),
+            _ => self.left_with,
+        }
+    }
+
+    fn moving_work(&self, phase: &Phase, t: f64, y: &[f64]) -> f64 {
+        let (t0, p0, done) = self.moving;
+        match phase.coupled {
+            Some(c) if !c.disk_in_system() => {
+                let (z, zd) = phase.split(y);
+                let p = c.power_on_beam(t, z, zd);
+                done + 0.5 * (p0 + p) * (t - t0)
+            }
+            _ => done,
+        }
+    }
+
+    /// The terms at an output time, with the disk as observed there; recorded in the check.
+    pub fn at_output(
+        &mut self,
+        phase: &Phase,
+        t: f64,
+        y: &[f64],
+        disk: Option<&DiskObservation>,
+    ) -> Energy {
+        let (q, v) = phase.beam_state(y);
+        let (kinetic, strain) = self.beam_energies(phase.beam, q, v);
+        let (disk_kinetic, potential) = self.disk_energies(phase, disk);
+        let kinetic = kinetic + disk_kinetic;
+        let now = load_displacements(phase.beam, self.loads, q);
+        let work = self.done
+            + work_since(self.loads, self.t, t, &self.at_loads, &now)
+            + self.moving_work(phase, t, y);
+        self.check.record(
+            kinetic + strain + potential - work,
+            kinetic + strain + potential.abs(),
+        );
+        Energy {
+            kinetic,
+            strain,
+            potential,
+            work,
+        }
+    }
+
+    /// An accepted step ends at (t, y): the work so far is booked, and the balance checked.
+    pub fn at_step(&mut self, phase: &Phase, t: f64, y: &[f64]) {
+        let (q, v) = phase.beam_state(y);
+        let now = load_displacements(phase.beam, self.loads, q);
+        self.done += work_since(self.loads, self.t, t, &self.at_loads, &now);
+        self.t = t;
+        self.at_loads = now;
+        if let Some(c) = phase.coupled.filter(|c| !c.disk_in_system()) {
+            let (z, zd) = phase.split(y);
+            let p = c.power_on_beam(t, z, zd);
+            let w = self.moving_work(phase, t, y);
+            self.moving = (t, p, w);
+        }
+        let (kinetic, strain) = self.beam_energies(phase.beam, q, v);
+        let disk = match phase.coupled {
+            Some(c) if c.disk_in_system() => {
+                let (z, zd) = phase.split(y);
+                Some(c.observe(t, z, zd))
+            }
+            _ => None,
+        };
+        let (disk_kinetic, potential) = match disk {
+            Some(d) => (d.kinetic, d.potential),
+            None if phase.coupled.is_some() => (0.0, 0.0),
+            None => self.left_with,
+        };
+        let kinetic = kinetic + disk_kinetic;
+        self.check.record(
+            kinetic + strain + potential - self.done - self.moving.2,
+            kinetic + strain + potential.abs(),
+        );
+    }
+
+    /// The disk leaves the beam at t, in the state y of the coupled phase: it takes its energy
+    /// with it, and a moving load's work is closed.
+    pub fn disk_leaves(&mut self, phase: &Phase, t: f64, y: &[f64]) {
+        if let Some(c) = phase.coupled {
+            let (z, zd) = phase.split(y);
+            let d = c.observe(t, z, zd);
+            self.left_with = if c.disk_in_system() {
+                (d.kinetic, d.potential)
+            } else {
+                (0.0, 0.0)
+            };
+        }
+        self.done += self.moving.2;
+        self.moving = (t, 0.0, 0.0);
+    }
+}

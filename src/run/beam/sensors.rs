@@ -1,0 +1,132 @@
+//! The outputs of a beam run, recorded at each output time from what the run computed there
+//! ([`Sample`]): the history rows (probes, the disk, energies, reactions), the envelopes along
+//! the beam, and the deformed shapes and animation frames. They observe; they compute no
+//! physics.
+
+use super::ledger::Energy;
+use super::{BeamRow, Envelope, Frame};
+use crate::beam::load::Probe;
+use crate::beam::{Beam, PointDisplacement};
+use crate::rolling::DiskObservation;
+
+/// The state at one output time, as the sensors see it.
+pub(super) struct Sample<'s> {
+    pub t: f64,
+    pub q: &'s [f64],
+    /// Displacements at the beam's sample points.
+    pub along: &'s [PointDisplacement],
+    pub disk: Option<DiskObservation>,
+    pub energy: Energy,
+    pub reactions: [[f64; 3]; 2],
+}
+
+/// The rows of `history.csv`.
+pub(super) struct History<'a> {
+    pub beam: &'a Beam,
+    pub probes: &'a [Probe],
+    pub rows: Vec<BeamRow>,
+}
+
+impl History<'_> {
+    pub fn record(&mut self, s: &Sample) {
+        let beam = self.beam;
+        self.rows.push(BeamRow {
+            t: s.t,
+            probes: self
+                .probes
+                .iter()
+                .map(|p| beam.displacement_at(s.q, p.x))
+                .collect(),
+            disk: s.disk,
+            w_under: s
+                .disk
+                .map_or(f64::NAN, |d| beam.displacement_at(s.q, d.s).w),
+            kinetic: s.energy.kinetic,
+            strain: s.energy.strain,
+            potential: s.energy.potential,
+            work: s.energy.work,
+            reactions: s.reactions,
+        });
+    }
+}
+
+impl Envelope {
+    /// Extremes of u, w and φ over time at the sample points `x`, and the axis' stretch.
+    pub(super) fn new(x: Vec<f64>) -> Self {
+        let n = x.len();
+        Envelope {
+            x,
+            min: vec![
+                PointDisplacement {
+                    u: f64::INFINITY,
+                    w: f64::INFINITY,
+                    phi: f64::INFINITY,
+                };
+                n
+            ],
+            max: vec![
+                PointDisplacement {
+                    u: f64::NEG_INFINITY,
+                    w: f64::NEG_INFINITY,
+                    phi: f64::NEG_INFINITY,
+                };
+                n
+            ],
+            stretch_max: f64::NEG_INFINITY,
+        }
+    }
+
+    pub(super) fn record(&mut self, s: &Sample, length: f64) {
+        let stretched: f64 = self
+            .x
+            .windows(2)
+            .zip(s.along.windows(2))
+            .map(|(x, d)| (x[1] + d[1].u - x[0] - d[0].u).hypot(d[1].w - d[0].w))
+            .sum();
+        self.stretch_max = self.stretch_max.max(stretched - length);
+        for (k, d) in s.along.iter().enumerate() {
+            let (lo, hi) = (&mut self.min[k], &mut self.max[k]);
+            lo.u = lo.u.min(d.u);
+            lo.w = lo.w.min(d.w);
+            lo.phi = lo.phi.min(d.phi);
+            hi.u = hi.u.max(d.u);
+            hi.w = hi.w.max(d.w);
+            hi.phi = hi.phi.max(d.phi);
+        }
+    }
+}
+
+/// Deformed shapes at the requested times, and the animation's frames on a coarse grid with
+/// the angle the disk has turned through (the trapezoidal rule on Ω over the output rows).
+pub(super) struct Pictures<'a> {
+    pub shape_times: &'a [f64],
+    pub frame_every: f64,
+    pub shapes: Vec<(f64, Vec<PointDisplacement>)>,
+    pub frames: Vec<Frame>,
+    /// (t, Ω, angle) at the last row with the disk on the beam.
+    pub turned: (f64, f64, f64),
+}
+
+impl Pictures<'_> {
+    pub fn record(&mut self, s: &Sample) {
+        let t = s.t;
+        if let Some(d) = s.disk {
+            let (t0, w0, angle) = self.turned;
+            self.turned = (t, d.omega, angle + 0.5 * (w0 + d.omega) * (t - t0));
+        }
+        if self
+            .frames
+            .last()
+            .is_none_or(|f| t >= f.t + self.frame_every - 1e-9)
+        {
+            self.frames.push(Frame {
+                t,
+                along: s.along.to_vec(),
+                disk: s.disk.map(|d| (d.s, self.turned.2)),
+            });
+        }
+        if self.shape_times.iter().any(|&st| (st - t).abs() < 1e-9) {
+            self.shapes.push((t, s.along.to_vec()));
+        }
+    }
+}
