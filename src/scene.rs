@@ -828,6 +828,67 @@ fn beam_scene(
     gravity: f64,
 ) -> Result<(BeamScene, (Option<usize>, Option<usize>, usize)), Error> {
     let b = &file.value;
+    let (beam, length, multiple) = beam_spec(c, b)?;
+    let start = beam_start(c, b, &beam)?;
+    let loads = point_loads(c, raw, length)?;
+    let (probes, shapes, magnify) = outputs(c, raw, length, duration)?;
+    let rho_inf = match raw.solver.as_ref().and_then(|s| s.rho_inf.as_ref()) {
+        None => 1.0,
+        Some(r) => {
+            let v = c.finite(r, "solver.rho_inf")?;
+            if !(0.0..=1.0).contains(&v) {
+                return c.err(
+                    r.referenced.line(),
+                    "solver.rho_inf",
+                    format!("= {v} must lie in [0, 1]"),
+                );
+            }
+            v
+        }
+    };
+    let disk = match &raw.disk {
+        None => None,
+        Some(d) => Some(disk_on_beam(c, d, length, gravity)?),
+    };
+    let accuracy = match raw.solver.as_ref().and_then(|s| s.accuracy.as_ref()) {
+        None => DEFAULT_ACCURACY,
+        Some(a) => {
+            let v = c.positive(a, "solver.accuracy")?;
+            if v >= 0.5 {
+                return c.err(
+                    a.referenced.line(),
+                    "solver.accuracy",
+                    format!("= {v} is a relative error and must be below 0.5"),
+                );
+            }
+            v
+        }
+    };
+    let given = (
+        b.elements.as_ref().map(|_| beam.elements),
+        b.order.as_ref().map(|_| beam.order),
+        multiple,
+    );
+    let scene = BeamScene {
+        beam,
+        start,
+        disk,
+        loads,
+        probes,
+        shapes,
+        magnify,
+        rho_inf,
+        accuracy,
+        discretisation: None,
+        response: None,
+    };
+    Ok((scene, given))
+}
+
+/// The beam as the file gives it: its axis, section, supports and mesh (the element count 0
+/// where the file leaves it to the plan); its length; and the multiple element counts are kept
+/// to, which puts a node at each bearing.
+fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usize), Error> {
     let from = c.pair(&b.from, "track.beam.from")?;
     let to = c.pair(&b.to, "track.beam.to")?;
     let length = (to[0] - from[0]).hypot(to[1] - from[1]);
@@ -844,6 +905,35 @@ fn beam_scene(
     let a = c.positive(&b.A, "track.beam.A")?;
     let av = c.positive(&b.Av, "track.beam.Av")?;
     let i = c.positive(&b.I, "track.beam.I")?;
+    let (supports, bearings, multiple) = supports(c, b, length)?;
+    let (elements, order, quadrature) = mesh(c, b, multiple)?;
+    let section = Section {
+        ea: e * a,
+        gav: g * av,
+        ei: e * i,
+        rho_a: rho * a,
+        rho_i: rho * i,
+    };
+    let beam = BeamSpec {
+        from,
+        to,
+        section,
+        supports,
+        bearings,
+        elements,
+        order,
+        quadrature,
+    };
+    Ok((beam, length, multiple))
+}
+
+/// The end supports, the intermediate bearings (sorted), and the multiple of elements that
+/// puts a node at each.
+fn supports(
+    c: &Checker,
+    b: &BeamFile,
+    length: f64,
+) -> Result<([Support; 2], Vec<f64>, usize), Error> {
     let support = |v: &Spanned<String>, key: &str| {
         Support::from_name(&v.value).map_or_else(
             || {
@@ -894,6 +984,11 @@ fn beam_scene(
             format!("puts bearings at x = {bearings:?}, which do not divide the beam into spans of commensurable length (a uniform mesh of at most {MAX_SPANS} elements needs a node at each)"),
         );
     };
+    Ok((supports, bearings, multiple))
+}
+
+/// Element count (0 when left out: the plan chooses it), degree and quadrature.
+fn mesh(c: &Checker, b: &BeamFile, multiple: usize) -> Result<(usize, usize, Quadrature), Error> {
     // Left out, the element count is chosen from the accuracy once the loads are read (below).
     let elements = match &b.elements {
         None => 0,
@@ -953,23 +1048,10 @@ fn beam_scene(
             Ok,
         )?,
     };
-    let section = Section {
-        ea: e * a,
-        gav: g * av,
-        ei: e * i,
-        rho_a: rho * a,
-        rho_i: rho * i,
-    };
-    let beam = BeamSpec {
-        from,
-        to,
-        section,
-        supports,
-        bearings,
-        elements,
-        order,
-        quadrature,
-    };
+    Ok((elements, order, quadrature))
+}
+
+fn beam_start(c: &Checker, b: &BeamFile, beam: &BeamSpec) -> Result<BeamStart, Error> {
     let start = match &b.initial {
         None => BeamStart::Rest,
         Some(v) if v.value == "rest" => BeamStart::Rest,
@@ -982,7 +1064,7 @@ fn beam_scene(
             )
         }
     };
-    if start == BeamStart::Static && !statically_supported(supports, beam.bearings.len()) {
+    if start == BeamStart::Static && !statically_supported(beam.supports, beam.bearings.len()) {
         return c.err(
             b.initial.as_ref().map_or(0, |v| v.referenced.line()),
             "track.beam.initial",
@@ -990,17 +1072,23 @@ fn beam_scene(
         );
     }
 
-    let within = |x: &Spanned<f64>, key: &str| -> Result<f64, Error> {
-        let v = c.finite(x, key)?;
-        if !(0.0..=length).contains(&v) {
-            return c.err(
-                x.referenced.line(),
-                key,
-                format!("= {v} lies outside the beam, which runs over x in [0, {length}]"),
-            );
-        }
-        Ok(v)
-    };
+    Ok(start)
+}
+
+/// A material point of the beam, x in [0, L].
+fn within(c: &Checker, x: &Spanned<f64>, key: &str, length: f64) -> Result<f64, Error> {
+    let v = c.finite(x, key)?;
+    if !(0.0..=length).contains(&v) {
+        return c.err(
+            x.referenced.line(),
+            key,
+            format!("= {v} lies outside the beam, which runs over x in [0, {length}]"),
+        );
+    }
+    Ok(v)
+}
+
+fn point_loads(c: &Checker, raw: &SceneFile, length: f64) -> Result<Vec<PointLoad>, Error> {
     let mut loads = Vec::new();
     if let Some(list) = &raw.loads {
         for l in &list.value {
@@ -1026,7 +1114,7 @@ fn beam_scene(
                 }
             };
             loads.push(PointLoad {
-                x: within(&lf.x, "loads.x")?,
+                x: within(c, &lf.x, "loads.x", length)?,
                 force: [opt(&lf.fx, "loads.fx")?, opt(&lf.fy, "loads.fy")?],
                 mz: opt(&lf.mz, "loads.mz")?,
                 from: from_t,
@@ -1034,6 +1122,16 @@ fn beam_scene(
             });
         }
     }
+    Ok(loads)
+}
+
+/// Probes (default: `mid` at L/2), shape times and their magnification.
+fn outputs(
+    c: &Checker,
+    raw: &SceneFile,
+    length: f64,
+    duration: f64,
+) -> Result<(Vec<Probe>, Vec<f64>, f64), Error> {
     let mut probes = Vec::new();
     let mut shapes = Vec::new();
     let mut magnify = 1.0;
@@ -1041,7 +1139,7 @@ fn beam_scene(
         for p in o.probes.iter().flat_map(|v| v.value.iter()) {
             probes.push(Probe {
                 name: p.value.name.value.clone(),
-                x: within(&p.value.x, "output.probes.x")?,
+                x: within(c, &p.value.x, "output.probes.x", length)?,
             });
         }
         for t in o.shapes.iter().flat_map(|v| v.value.iter()) {
@@ -1065,57 +1163,7 @@ fn beam_scene(
             x: 0.5 * length,
         });
     }
-    let rho_inf = match raw.solver.as_ref().and_then(|s| s.rho_inf.as_ref()) {
-        None => 1.0,
-        Some(r) => {
-            let v = c.finite(r, "solver.rho_inf")?;
-            if !(0.0..=1.0).contains(&v) {
-                return c.err(
-                    r.referenced.line(),
-                    "solver.rho_inf",
-                    format!("= {v} must lie in [0, 1]"),
-                );
-            }
-            v
-        }
-    };
-    let disk = match &raw.disk {
-        None => None,
-        Some(d) => Some(disk_on_beam(c, d, length, gravity)?),
-    };
-    let accuracy = match raw.solver.as_ref().and_then(|s| s.accuracy.as_ref()) {
-        None => DEFAULT_ACCURACY,
-        Some(a) => {
-            let v = c.positive(a, "solver.accuracy")?;
-            if v >= 0.5 {
-                return c.err(
-                    a.referenced.line(),
-                    "solver.accuracy",
-                    format!("= {v} is a relative error and must be below 0.5"),
-                );
-            }
-            v
-        }
-    };
-    let given = (
-        b.elements.as_ref().map(|_| beam.elements),
-        b.order.as_ref().map(|_| beam.order),
-        multiple,
-    );
-    let scene = BeamScene {
-        beam,
-        start,
-        disk,
-        loads,
-        probes,
-        shapes,
-        magnify,
-        rho_inf,
-        accuracy,
-        discretisation: None,
-        response: None,
-    };
-    Ok((scene, given))
+    Ok((probes, shapes, magnify))
 }
 
 /// The disk of a beam scene: checked against the beam it rolls on.
