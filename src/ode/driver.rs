@@ -33,160 +33,260 @@ pub fn solve<E: Copy + std::fmt::Debug>(
     opts: &Options,
     observer: &mut dyn Observer,
 ) -> Result<Outcome<E>, SolveError> {
-    let dynamics: &dyn Dynamics = p;
     let clock = Instant::now();
-    let n = p.dim();
-    let mut ctx = Ctx {
-        rtol: opts.rtol,
-        atol: opts.atol,
-        stats: Stats::default(),
-        mass_lu: None,
-        groups: p.norm_groups(),
-    };
-    let mut stepper = make_stepper(opts, n);
-    let specs = p.events();
-    let mut t = t0;
-    let mut y = y0.to_vec();
-    let mut next_out = outputs.partition_point(|&o| o < t0);
-    let mut events = Vec::new();
-    let finish = |t: f64, y: Vec<f64>, mut ctx: Ctx, stopped_by, events| {
-        ctx.stats.wall_s = clock.elapsed().as_secs_f64();
-        Ok(Outcome {
-            t,
-            y,
-            stats: ctx.stats,
-            stopped_by,
-            events,
-        })
-    };
+    let mut d = Driver::new(p, t0, y0, t_end, outputs, opts);
+    let stopped_by = d.run(observer)?;
+    d.ctx.stats.wall_s = clock.elapsed().as_secs_f64();
+    Ok(Outcome {
+        t: d.t,
+        y: d.y,
+        stats: d.ctx.stats,
+        stopped_by,
+        events: d.events,
+    })
+}
 
-    let mut g: Vec<f64> = (0..specs.len()).map(|i| p.event(i, t, &y)).collect();
-    while next_out < outputs.len() && outputs[next_out] <= t0 {
-        observer.output(t0, &y);
-        next_out += 1;
-    }
-    if let Some(i) = (0..specs.len()).find(|&i| specs[i].terminal && g[i] < 0.0) {
-        let hit = EventHit {
-            reason: specs[i].reason,
-            t,
-        };
-        return finish(t, y, ctx, Some(hit), events);
-    }
+/// One run of the driver: where it is, what it has reported, and what it watches.
+struct Driver<'a, E> {
+    p: &'a dyn Problem<Event = E>,
+    opts: &'a Options,
+    outputs: &'a [f64],
+    t_end: f64,
+    ctx: Ctx,
+    stepper: Box<dyn Stepper>,
+    t: f64,
+    y: Vec<f64>,
+    /// The first output time not yet reported.
+    next_out: usize,
+    /// Non-terminal events met so far.
+    events: Vec<EventHit<E>>,
+    /// The event functions at (t, y).
+    g: Vec<f64>,
+    breaks: Vec<f64>,
+    /// Steps shorter than this are round-off.
+    h_min: f64,
+    y_tmp: Vec<f64>,
+}
 
-    let breaks = breakpoints_within(p.breakpoints(), t0, t_end);
-    let segment_end = |t: f64| breaks.iter().copied().find(|&b| b > t).unwrap_or(t_end);
-    p.enter_segment(t0, segment_end(t0));
-    stepper.start(dynamics, t0, y0, &mut ctx)?;
-    let mut h = match opts.fixed_step {
-        Some(h) => h,
-        None => stepper.initial_step(dynamics, t0, y0, t_end, &mut ctx)?,
-    };
-    let h_min = 1e-14 * t0.abs().max(t_end.abs()).max(1.0);
-    let mut y_tmp = vec![0.0; n];
-    let mut just_rejected = false;
+/// How an attempted step went.
+enum Trial {
+    Accepted {
+        err: f64,
+    },
+    /// Rejected: try again with this step.
+    Rejected {
+        h: f64,
+        on_error: bool,
+    },
+}
 
-    while t < t_end {
-        if ctx.stats.steps >= opts.max_steps {
-            return Err(SolveError::TooManySteps {
-                t,
-                steps: ctx.stats.steps,
-            });
+impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
+    fn new(
+        p: &'a dyn Problem<Event = E>,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        outputs: &'a [f64],
+        opts: &'a Options,
+    ) -> Self {
+        let n = p.dim();
+        Driver {
+            p,
+            opts,
+            outputs,
+            t_end,
+            ctx: Ctx {
+                rtol: opts.rtol,
+                atol: opts.atol,
+                stats: Stats::default(),
+                mass_lu: None,
+                groups: p.norm_groups(),
+            },
+            stepper: make_stepper(opts, n),
+            t: t0,
+            y: y0.to_vec(),
+            next_out: outputs.partition_point(|&o| o < t0),
+            events: Vec::new(),
+            g: (0..p.events().len()).map(|i| p.event(i, t0, y0)).collect(),
+            breaks: breakpoints_within(p.breakpoints(), t0, t_end),
+            h_min: 1e-14 * t0.abs().max(t_end.abs()).max(1.0),
+            y_tmp: vec![0.0; n],
         }
-        if opts.fixed_step.is_none() {
-            h = h.min(p.max_step(t, &y));
-        }
-        // Steps end exactly on the next breakpoint (or the end), and restart there.
-        let target = breaks
+    }
+
+    /// The end of the stretch between breakpoints that t lies in.
+    fn segment_end(&self, t: f64) -> f64 {
+        self.breaks
             .iter()
             .copied()
-            .find(|&b| b > t + h_min)
-            .unwrap_or(t_end);
-        let last = t + h >= target - h_min;
-        let h_try = if last { target - t } else { h };
-        let attempt = stepper.attempt(dynamics, t, &y, h_try, &mut ctx)?;
+            .find(|&b| b > t)
+            .unwrap_or(self.t_end)
+    }
+
+    fn run(&mut self, observer: &mut dyn Observer) -> Result<Option<EventHit<E>>, SolveError> {
+        let dynamics: &dyn Dynamics = self.p;
+        let specs = self.p.events();
+        let t0 = self.t;
+        while self.next_out < self.outputs.len() && self.outputs[self.next_out] <= t0 {
+            observer.output(t0, &self.y);
+            self.next_out += 1;
+        }
+        if let Some(i) = (0..specs.len()).find(|&i| specs[i].terminal && self.g[i] < 0.0) {
+            return Ok(Some(EventHit {
+                reason: specs[i].reason,
+                t: t0,
+            }));
+        }
+        self.p.enter_segment(t0, self.segment_end(t0));
+        self.stepper.start(dynamics, t0, &self.y, &mut self.ctx)?;
+        let mut h = match self.opts.fixed_step {
+            Some(h) => h,
+            None => self
+                .stepper
+                .initial_step(dynamics, t0, &self.y, self.t_end, &mut self.ctx)?,
+        };
+        let mut just_rejected = false;
+        while self.t < self.t_end {
+            if self.ctx.stats.steps >= self.opts.max_steps {
+                return Err(SolveError::TooManySteps {
+                    t: self.t,
+                    steps: self.ctx.stats.steps,
+                });
+            }
+            if self.opts.fixed_step.is_none() {
+                h = h.min(self.p.max_step(self.t, &self.y));
+            }
+            // Steps end exactly on the next breakpoint (or the end), and restart there.
+            let target = self.segment_end(self.t + self.h_min);
+            let last = self.t + h >= target - self.h_min;
+            let h_try = if last { target - self.t } else { h };
+            let err = match self.attempt(h_try)? {
+                Trial::Accepted { err } => err,
+                Trial::Rejected { h: next, on_error } => {
+                    h = next;
+                    just_rejected |= on_error;
+                    continue;
+                }
+            };
+            let t_new = if last { target } else { self.t + h_try };
+            if let Some(hit) = self.accept(t_new, observer) {
+                return Ok(Some(hit));
+            }
+            if last && target < self.t_end {
+                self.p.enter_segment(self.t, self.segment_end(self.t));
+                self.stepper
+                    .start(dynamics, self.t, &self.y, &mut self.ctx)?;
+            }
+            observer.step(self.t, &self.y);
+            if self.opts.fixed_step.is_none() {
+                h = self.next_step(h_try, err, just_rejected);
+                just_rejected = false;
+            }
+        }
+        Ok(None)
+    }
+
+    /// Attempt a step of h_try from (t, y), and judge it.
+    fn attempt(&mut self, h_try: f64) -> Result<Trial, SolveError> {
+        let (t, fixed) = (self.t, self.opts.fixed_step.is_some());
+        let attempt = self
+            .stepper
+            .attempt(self.p, t, &self.y, h_try, &mut self.ctx)?;
         let err = match attempt {
             Attempt::Done { err } => err,
             Attempt::NewtonFailed => {
-                if opts.fixed_step.is_some() {
+                if fixed {
                     return Err(SolveError::NewtonFailed { t });
                 }
-                ctx.stats.rejected += 1;
-                h = h_try * 0.25;
-                if h < h_min {
+                self.ctx.stats.rejected += 1;
+                let h = h_try * 0.25;
+                if h < self.h_min {
                     return Err(SolveError::NewtonFailed { t });
                 }
-                continue;
+                return Ok(Trial::Rejected { h, on_error: false });
             }
         };
-        if !err.is_finite() && opts.fixed_step.is_some() {
+        if !err.is_finite() && fixed {
             return Err(SolveError::NonFinite { t });
         }
-        let q = stepper.error_order() as f64;
-        if opts.fixed_step.is_none() && !(err <= 1.0) {
-            ctx.stats.rejected += 1;
-            just_rejected = true;
+        if !fixed && !(err <= 1.0) {
+            self.ctx.stats.rejected += 1;
+            let q = self.stepper.error_order() as f64;
             let factor = if err.is_finite() {
                 (0.9 * err.powf(-1.0 / (q + 1.0))).clamp(0.2, 1.0)
             } else {
                 0.2
             };
-            h = h_try * factor;
-            if h < h_min {
+            let h = h_try * factor;
+            if h < self.h_min {
                 return Err(SolveError::StepSizeUnderflow { t, h });
             }
-            continue;
+            return Ok(Trial::Rejected { h, on_error: true });
         }
-        if stepper.y_new().iter().any(|v| !v.is_finite()) {
+        if self.stepper.y_new().iter().any(|v| !v.is_finite()) {
             return Err(SolveError::NonFinite { t: t + h_try });
         }
-        let t_new = if last { target } else { t + h_try };
-        stepper.accept(t_new);
-        ctx.stats.steps += 1;
+        Ok(Trial::Accepted { err })
+    }
 
-        // Earliest sign change from ≥ 0 to < 0 in this step, located on the dense output.
+    /// Accept the step to t_new: report the outputs it passes, and stop at the earliest
+    /// terminal event in it (sign change from ≥ 0 to < 0, located on the dense output).
+    fn accept(&mut self, t_new: f64, observer: &mut dyn Observer) -> Option<EventHit<E>> {
+        let (p, specs) = (self.p, self.p.events());
+        let stepper = &mut self.stepper;
+        stepper.accept(t_new);
+        self.ctx.stats.steps += 1;
         let g_new: Vec<f64> = (0..specs.len())
             .map(|i| p.event(i, t_new, stepper.y_new()))
             .collect();
-        let first = crossings(specs, &g, &g_new, t, t_new, &mut events, |i, tt| {
-            stepper.interpolate(tt, &mut y_tmp);
-            p.event(i, tt, &y_tmp)
-        });
+        let y_tmp = &mut self.y_tmp;
+        let first = crossings(
+            specs,
+            &self.g,
+            &g_new,
+            self.t,
+            t_new,
+            &mut self.events,
+            |i, tt| {
+                stepper.interpolate(tt, y_tmp);
+                p.event(i, tt, y_tmp)
+            },
+        );
         let t_stop = first.map_or(t_new, |(_, te)| te);
-        while next_out < outputs.len() && outputs[next_out] <= t_stop {
-            stepper.interpolate(outputs[next_out], &mut y_tmp);
-            observer.output(outputs[next_out], &y_tmp);
-            next_out += 1;
+        while self.next_out < self.outputs.len() && self.outputs[self.next_out] <= t_stop {
+            let to = self.outputs[self.next_out];
+            stepper.interpolate(to, y_tmp);
+            observer.output(to, y_tmp);
+            self.next_out += 1;
         }
         if let Some((i, te)) = first {
-            stepper.interpolate(te, &mut y_tmp);
-            observer.step(te, &y_tmp);
-            let hit = EventHit {
+            stepper.interpolate(te, y_tmp);
+            observer.step(te, y_tmp);
+            self.t = te;
+            self.y.copy_from_slice(y_tmp);
+            return Some(EventHit {
                 reason: specs[i].reason,
                 t: te,
-            };
-            return finish(te, y_tmp, ctx, Some(hit), events);
+            });
         }
-        t = t_new;
-        y.copy_from_slice(stepper.y_new());
-        if last && target < t_end {
-            p.enter_segment(t, segment_end(t));
-            stepper.start(dynamics, t, &y, &mut ctx)?;
-        }
-        g = g_new;
-        observer.step(t, &y);
-        if opts.fixed_step.is_none() {
-            // No growth straight after a rejection (Hairer & Wanner II.4).
-            let grow = if just_rejected {
-                1.0
-            } else {
-                stepper.max_growth()
-            };
-            let factor = (0.9 * err.max(1e-10).powf(-1.0 / (q + 1.0))).clamp(0.2, grow);
-            h = stepper.keep_step(h_try, h_try * factor);
-            just_rejected = false;
-        }
+        self.t = t_new;
+        self.y.copy_from_slice(stepper.y_new());
+        self.g = g_new;
+        None
     }
-    finish(t, y, ctx, None, events)
+
+    /// The next step after one of h_try accepted with error err; no growth straight after a
+    /// rejection (Hairer & Wanner II.4).
+    fn next_step(&self, h_try: f64, err: f64, just_rejected: bool) -> f64 {
+        let q = self.stepper.error_order() as f64;
+        let grow = if just_rejected {
+            1.0
+        } else {
+            self.stepper.max_growth()
+        };
+        let factor = (0.9 * err.max(1e-10).powf(-1.0 / (q + 1.0))).clamp(0.2, grow);
+        self.stepper.keep_step(h_try, h_try * factor)
+    }
 }
 
 /// The breakpoints strictly inside (t0, t_end), ascending.
