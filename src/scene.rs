@@ -689,43 +689,7 @@ fn rolling_scene(
     gravity: f64,
 ) -> Result<RollingScene, Error> {
     let track = &raw.track;
-    if let Some(loads) = &raw.loads {
-        return c.err(
-            loads.referenced.line(),
-            "loads",
-            "apply to beam tracks only; a rigid curve carries no loads",
-        );
-    }
-    if let Some(rho) = raw.solver.as_ref().and_then(|s| s.rho_inf.as_ref()) {
-        return c.err(
-            rho.referenced.line(),
-            "solver.rho_inf",
-            "applies to genalpha on beam tracks only",
-        );
-    }
-    if let Some(a) = raw.solver.as_ref().and_then(|s| s.accuracy.as_ref()) {
-        return c.err(
-            a.referenced.line(),
-            "solver.accuracy",
-            "chooses a beam's mesh and tolerances; on a rigid curve set solver.rtol",
-        );
-    }
-    if let Some(o) = &raw.output {
-        let beam_only = [
-            o.probes.as_ref().map(|v| v.referenced.line()),
-            o.shapes.as_ref().map(|v| v.referenced.line()),
-            o.magnify.as_ref().map(|v| v.referenced.line()),
-        ];
-        for (line, key) in
-            beam_only
-                .iter()
-                .zip(["output.probes", "output.shapes", "output.magnify"])
-        {
-            if let Some(line) = line {
-                return c.err(*line, key, "applies to beam tracks only");
-            }
-        }
-    }
+    refuse_beam_keys(c, raw)?;
     let curve = build_curve(c, curve_file)?;
     let Some(disk_file) = &raw.disk else {
         return c.err(
@@ -818,6 +782,48 @@ fn rolling_scene(
         rolling,
         formulation,
     })
+}
+
+/// Keys that belong to beam tracks, refused on a rigid curve with the reason.
+fn refuse_beam_keys(c: &Checker, raw: &SceneFile) -> Result<(), Error> {
+    if let Some(loads) = &raw.loads {
+        return c.err(
+            loads.referenced.line(),
+            "loads",
+            "apply to beam tracks only; a rigid curve carries no loads",
+        );
+    }
+    if let Some(rho) = raw.solver.as_ref().and_then(|s| s.rho_inf.as_ref()) {
+        return c.err(
+            rho.referenced.line(),
+            "solver.rho_inf",
+            "applies to genalpha on beam tracks only",
+        );
+    }
+    if let Some(a) = raw.solver.as_ref().and_then(|s| s.accuracy.as_ref()) {
+        return c.err(
+            a.referenced.line(),
+            "solver.accuracy",
+            "chooses a beam's mesh and tolerances; on a rigid curve set solver.rtol",
+        );
+    }
+    if let Some(o) = &raw.output {
+        let beam_only = [
+            o.probes.as_ref().map(|v| v.referenced.line()),
+            o.shapes.as_ref().map(|v| v.referenced.line()),
+            o.magnify.as_ref().map(|v| v.referenced.line()),
+        ];
+        for (line, key) in
+            beam_only
+                .iter()
+                .zip(["output.probes", "output.shapes", "output.magnify"])
+        {
+            if let Some(line) = line {
+                return c.err(*line, key, "applies to beam tracks only");
+            }
+        }
+    }
+    Ok(())
 }
 
 fn beam_scene(

@@ -8,7 +8,7 @@ use crate::beam::Beam;
 use crate::error::Error;
 use crate::output;
 use crate::say;
-use crate::scene::{Model, Scene};
+use crate::scene::{BeamScene, Model, RollingScene, Scene};
 
 #[derive(clap::Args)]
 pub struct CheckArgs {
@@ -30,95 +30,8 @@ impl fmt::Display for Described<'_> {
         let scene = self.0;
         writeln!(f, "scene {}: valid", scene.name)?;
         match &scene.model {
-            Model::Rolling(setup) => {
-                let r = &setup.rolling;
-                writeln!(
-                    f,
-                    "  track: rigid {} curve{}",
-                    r.curve.kind(),
-                    r.curve
-                        .domain()
-                        .map_or(String::new(), |(a, b)| format!(", s in [{a}, {b}]"))
-                )?;
-                writeln!(
-                    f,
-                    "  disk: m = {} kg, a = {} m, C = {} kg m², s0 = {}, Ω0 = {} 1/s{}",
-                    r.disk.mass,
-                    r.disk.radius,
-                    r.disk.inertia(),
-                    r.s0,
-                    r.omega0,
-                    r.mu.map_or(String::new(), |m| format!(", mu = {m}"))
-                )?;
-                writeln!(
-                    f,
-                    "  model: {} formulation, {} unknowns (no beam)",
-                    setup.formulation.name(),
-                    crate::run::model(setup).initial_state().len()
-                )?;
-            }
-            Model::Beam(setup) => {
-                let b = Beam::new(setup.beam.clone());
-                let spec = &b.spec;
-                writeln!(
-                    f,
-                    "  track: Reissner beam, L = {:.6} m at {:.4}° , supports {} / {}{}, starting {}",
-                    b.length,
-                    b.angle.to_degrees(),
-                    spec.supports[0].name(),
-                    spec.supports[1].name(),
-                    if spec.bearings.is_empty() {
-                        String::new()
-                    } else {
-                        format!(", bearings holding w at x = {:?}", spec.bearings)
-                    },
-                    match setup.start {
-                        BeamStart::Rest => "undeformed at rest",
-                        BeamStart::Static => "at rest in static equilibrium",
-                    }
-                )?;
-                writeln!(
-                    f,
-                    "  mesh: {} elements of degree {}, {} quadrature, {} beam unknowns",
-                    spec.elements,
-                    spec.order,
-                    spec.quadrature.name(),
-                    b.dim()
-                )?;
-                if let Some(d) = &setup.discretisation {
-                    writeln!(f, "  chosen for accuracy {:e}: {}", d.accuracy, d.why)?;
-                }
-                match &setup.disk {
-                    None => writeln!(f, "  disk: none (no disk unknowns)")?,
-                    Some(d) => writeln!(
-                    f,
-                        "  disk: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}), contact patch ±{} m{}",
-                        d.disk.mass,
-                        d.disk.radius,
-                        d.s0,
-                        d.omega0,
-                        d.coupling.name(),
-                        if d.coupling.rolls() {
-                            "1 more unknown: the contact point s"
-                        } else {
-                            "prescribed travel, no disk unknowns"
-                        },
-                        d.patch,
-                        d.mu.map_or(String::new(), |m| format!(", mu = {m}"))
-                    )?,
-                }
-                writeln!(
-                    f,
-                    "  loads: {}, probes: {}",
-                    setup.loads.len(),
-                    setup
-                        .probes
-                        .iter()
-                        .map(|p| format!("{} at x = {}", p.name, p.x))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                )?;
-            }
+            Model::Rolling(setup) => rolling(f, setup)?,
+            Model::Beam(setup) => beam(f, setup)?,
         }
         if scene.solver.rtol_from_accuracy {
             if let Some(b) = scene.beam() {
@@ -151,4 +64,99 @@ impl fmt::Display for Described<'_> {
         )?;
         Ok(())
     }
+}
+
+/// The rigid curve, the disk, and the model's size.
+fn rolling(f: &mut fmt::Formatter<'_>, setup: &RollingScene) -> fmt::Result {
+    let r = &setup.rolling;
+    writeln!(
+        f,
+        "  track: rigid {} curve{}",
+        r.curve.kind(),
+        r.curve
+            .domain()
+            .map_or(String::new(), |(a, b)| format!(", s in [{a}, {b}]"))
+    )?;
+    writeln!(
+        f,
+        "  disk: m = {} kg, a = {} m, C = {} kg m², s0 = {}, Ω0 = {} 1/s{}",
+        r.disk.mass,
+        r.disk.radius,
+        r.disk.inertia(),
+        r.s0,
+        r.omega0,
+        r.mu.map_or(String::new(), |m| format!(", mu = {m}"))
+    )?;
+    writeln!(
+        f,
+        "  model: {} formulation, {} unknowns (no beam)",
+        setup.formulation.name(),
+        crate::run::model(setup).initial_state().len()
+    )?;
+    Ok(())
+}
+
+/// The beam and its mesh (and what chose it), the disk on it, the loads and the probes.
+fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
+    let b = Beam::new(setup.beam.clone());
+    let spec = &b.spec;
+    writeln!(
+        f,
+        "  track: Reissner beam, L = {:.6} m at {:.4}° , supports {} / {}{}, starting {}",
+        b.length,
+        b.angle.to_degrees(),
+        spec.supports[0].name(),
+        spec.supports[1].name(),
+        if spec.bearings.is_empty() {
+            String::new()
+        } else {
+            format!(", bearings holding w at x = {:?}", spec.bearings)
+        },
+        match setup.start {
+            BeamStart::Rest => "undeformed at rest",
+            BeamStart::Static => "at rest in static equilibrium",
+        }
+    )?;
+    writeln!(
+        f,
+        "  mesh: {} elements of degree {}, {} quadrature, {} beam unknowns",
+        spec.elements,
+        spec.order,
+        spec.quadrature.name(),
+        b.dim()
+    )?;
+    if let Some(d) = &setup.discretisation {
+        writeln!(f, "  chosen for accuracy {:e}: {}", d.accuracy, d.why)?;
+    }
+    match &setup.disk {
+            None => writeln!(f, "  disk: none (no disk unknowns)")?,
+            Some(d) => writeln!(
+            f,
+                "  disk: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}), contact patch ±{} m{}",
+                d.disk.mass,
+                d.disk.radius,
+                d.s0,
+                d.omega0,
+                d.coupling.name(),
+                if d.coupling.rolls() {
+                    "1 more unknown: the contact point s"
+                } else {
+                    "prescribed travel, no disk unknowns"
+                },
+                d.patch,
+                d.mu.map_or(String::new(), |m| format!(", mu = {m}"))
+            )?,
+        }
+    writeln!(
+        f,
+        "  loads: {}, probes: {}",
+        setup.loads.len(),
+        setup
+            .probes
+            .iter()
+            .map(|p| format!("{} at x = {}", p.name, p.x))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )?;
+    Ok(())
 }
