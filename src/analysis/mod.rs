@@ -1,4 +1,5 @@
-//! Analyses of a beam that are not time integration: static equilibrium and natural modes.
+//! Analyses of a beam that are not time integration: static equilibrium, natural modes,
+//! Frýba's series for a moving force, and the choice of a mesh from the accuracy asked.
 
 pub mod discretisation;
 pub mod modes;
