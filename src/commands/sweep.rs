@@ -186,11 +186,20 @@ pub fn write_sweep(rows: &[SweepRow], setting: &Setting, dir: &Path) -> Result<(
         .map_or(Vec::new(), |s| {
             s.probes.iter().map(|p| p.0.clone()).collect()
         });
+    write(
+        &dir.join("sweep.csv"),
+        &sweep_csv(rows, setting, &probe_names),
+    )?;
+    sweep_chart(rows, setting, &probe_names, dir)
+}
+
+/// One row per run: its value, status, stop, solver effort, and the disk's and probes' extremes.
+fn sweep_csv(rows: &[SweepRow], setting: &Setting, probe_names: &[String]) -> String {
     let mut csv = format!(
         "{},status,stopped,t_end,energy_drift,steps,wall_s,disk.rn_min,disk.rn_max,disk.left_track_t",
         setting.key
     );
-    for p in &probe_names {
+    for p in probe_names {
         let _ = write!(csv, ",{p}.w_min,{p}.w_max,{p}.w_amplitude_after_exit");
     }
     csv.push('\n');
@@ -229,14 +238,24 @@ pub fn write_sweep(rows: &[SweepRow], setting: &Setting, dir: &Path) -> Result<(
                     r.value,
                     e.replace('"', "'")
                 );
-                for _ in &probe_names {
+                for _ in probe_names {
                     csv.push_str(",,,");
                 }
             }
         }
         csv.push('\n');
     }
-    write(&dir.join("sweep.csv"), &csv)?;
+    csv
+}
+
+/// The probes' lowest deflections and residual amplitudes (or, on a rigid curve, the disk's
+/// extreme R_n) against the swept value.
+fn sweep_chart(
+    rows: &[SweepRow],
+    setting: &Setting,
+    probe_names: &[String],
+    dir: &Path,
+) -> Result<(), Error> {
     let ok: Vec<(f64, &Summary)> = rows
         .iter()
         .filter_map(|r| r.outcome.as_ref().ok().map(|s| (r.value, s)))

@@ -30,6 +30,10 @@ impl Consistent {
 }
 
 impl Law for Consistent {
+    fn unknowns(&self) -> usize {
+        1
+    }
+
     fn added_mass(&self, r: &Rider, at: &AxisPoint) -> AddedMass {
         let [gx, gy, gb] = Self::rows(r, at);
         vec![(r.disk.mass, gx), (r.disk.mass, gy), (r.disk.inertia(), gb)]

@@ -34,6 +34,9 @@ pub(crate) struct Motion {
 }
 
 pub(crate) trait Law {
+    /// Unknowns the rider adds to the beam's: its contact coordinate s where its path is an
+    /// unknown, none where it is prescribed.
+    fn unknowns(&self) -> usize;
     /// The rider's inertia as z feels it.
     fn added_mass(&self, r: &Rider, at: &AxisPoint) -> AddedMass;
     /// The rider's generalised force on z, appended to `force` as (index, value).

@@ -162,8 +162,14 @@ impl<'a> DiskOnBeam<'a> {
     pub fn new(loaded: &'a LoadedBeam<'a>, spec: DiskOnBeamSpec) -> Self {
         let gravity = loaded.beam.to_local([0.0, -spec.gravity]);
         let n = loaded.beam.dim();
-        let rolls = spec.coupling.rolls();
-        let nz = n + usize::from(rolls);
+        let law: Box<dyn Law> = match spec.coupling {
+            Coupling::Consistent => Box::new(consistent::Consistent),
+            Coupling::Thesis => Box::new(thesis::Thesis),
+            Coupling::MovingMass => Box::new(moving_mass::MovingMass),
+            Coupling::MovingForce => Box::new(moving_force::MovingForce),
+        };
+        let rolls = law.unknowns() == 1;
+        let nz = n + law.unknowns();
         let mut a = Assembly::new(nz);
         a.add_sparse(loaded.beam.mass(), 1.0, 0, 0);
         a.add_sparse(&loaded.beam.tangent(&vec![0.0; n]), 0.0, 0, 0);
@@ -191,12 +197,6 @@ impl<'a> DiskOnBeam<'a> {
         if nz > n {
             base.add(n, n, 1.0);
         }
-        let law: Box<dyn Law> = match spec.coupling {
-            Coupling::Consistent => Box::new(consistent::Consistent),
-            Coupling::Thesis => Box::new(thesis::Thesis),
-            Coupling::MovingMass => Box::new(moving_mass::MovingMass),
-            Coupling::MovingForce => Box::new(moving_force::MovingForce),
-        };
         DiskOnBeam {
             base_mass: base.build(),
             n,

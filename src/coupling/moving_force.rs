@@ -8,6 +8,10 @@ use super::law::{spread_terms, AddedMass, Law, Motion, Rider};
 pub(crate) struct MovingForce;
 
 impl Law for MovingForce {
+    fn unknowns(&self) -> usize {
+        0
+    }
+
     fn added_mass(&self, _r: &Rider, _at: &AxisPoint) -> AddedMass {
         Vec::new()
     }

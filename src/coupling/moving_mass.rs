@@ -9,6 +9,10 @@ use super::moving_force::prescribed_motion;
 pub(crate) struct MovingMass;
 
 impl Law for MovingMass {
+    fn unknowns(&self) -> usize {
+        0
+    }
+
     fn added_mass(&self, r: &Rider, at: &AxisPoint) -> AddedMass {
         let [gx, gy] = at.position_gradient();
         vec![(r.disk.mass, gx), (r.disk.mass, gy)]

@@ -29,6 +29,10 @@ impl Thesis {
 }
 
 impl Law for Thesis {
+    fn unknowns(&self) -> usize {
+        1
+    }
+
     fn added_mass(&self, r: &Rider, at: &AxisPoint) -> AddedMass {
         let gs = at.rp.v - r.disk.radius * at.psi_s.v;
         vec![(r.disk.rolling_mass() * gs, vec![(r.n, 1.0)])]

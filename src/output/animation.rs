@@ -23,47 +23,8 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
     }
     let mag = r.setup.magnify;
     let radius = r.setup.disk.as_ref().map_or(0.0, |d| d.disk.radius);
-    let xs = &r.envelope.x;
-    let (sn, cs) = r.beam.angle.sin_cos();
-    let shape = |along: &[crate::beam::PointDisplacement]| -> Vec<[f64; 2]> {
-        xs.iter()
-            .zip(along)
-            .map(|(&x, d)| {
-                let p = r.beam.reference_point(x);
-                [p[0] + mag * d.u, p[1] + mag * d.w]
-            })
-            .collect()
-    };
-    let shapes: Vec<Vec<[f64; 2]>> = frames.iter().map(|f| shape(&f.along)).collect();
-    // The disk on the magnified axis; off the beam it is drawn where it left, faded.
-    let disks: Vec<Option<([f64; 2], f64)>> = frames
-        .iter()
-        .zip(&shapes)
-        .map(|(f, pts)| {
-            f.disk.map(|(s, turned)| {
-                let k = xs.partition_point(|&x| x < s).clamp(1, xs.len() - 1);
-                let g = ((s - xs[k - 1]) / (xs[k] - xs[k - 1])).clamp(0.0, 1.0);
-                let p = [
-                    pts[k - 1][0] + g * (pts[k][0] - pts[k - 1][0]),
-                    pts[k - 1][1] + g * (pts[k][1] - pts[k - 1][1]),
-                ];
-                ([p[0] - radius * sn, p[1] + radius * cs], turned)
-            })
-        })
-        .collect();
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for p in shapes.iter().flatten() {
-        (x0, x1, y0, y1) = (x0.min(p[0]), x1.max(p[0]), y0.min(p[1]), y1.max(p[1]));
-    }
-    for (c, _) in disks.iter().flatten() {
-        (x0, x1) = (x0.min(c[0] - radius), x1.max(c[0] + radius));
-        (y0, y1) = (y0.min(c[1] - radius), y1.max(c[1] + radius));
-    }
+    let (shapes, disks) = frame_geometry(r);
+    let [x0, x1, y0, y1] = bounds(&shapes, &disks, radius);
     let k = (WIDTH - 2.0 * MARGIN) / (x1 - x0).max(1e-9);
     let height = (y1 - y0) * k + 2.0 * MARGIN + 30.0;
     let to_svg = |p: [f64; 2]| (MARGIN + (p[0] - x0) * k, MARGIN + 30.0 + (y1 - p[1]) * k);
@@ -91,17 +52,7 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
                 .join(" ")
         })
         .collect();
-    let last_disk = disks.iter().flatten().last().copied();
-    let held: Vec<([f64; 2], f64, bool)> = disks
-        .iter()
-        .scan(None, |prev: &mut Option<([f64; 2], f64)>, d| {
-            if d.is_some() {
-                *prev = *d;
-            }
-            Some(prev.or(last_disk).map(|(c, a)| (c, a, d.is_some())))
-        })
-        .map(|d| d.unwrap_or(([x0, y0], 0.0, false)))
-        .collect();
+    let held = held(&disks, [x0, y0]);
     let coord = |f: fn((f64, f64)) -> f64| -> Vec<String> {
         held.iter()
             .map(|(c, _, _)| format!("{:.1}", f(to_svg(*c))))
@@ -176,4 +127,76 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
     }
     svg.push_str("</svg>\n");
     write(path, &svg)
+}
+
+/// The magnified axis in each frame, and the disk's centre and turned angle on it while it is
+/// on the beam.
+#[allow(clippy::type_complexity)]
+fn frame_geometry(r: &BeamRun) -> (Vec<Vec<[f64; 2]>>, Vec<Option<([f64; 2], f64)>>) {
+    let frames = &r.frames;
+    let mag = r.setup.magnify;
+    let radius = r.setup.disk.as_ref().map_or(0.0, |d| d.disk.radius);
+    let xs = &r.envelope.x;
+    let (sn, cs) = r.beam.angle.sin_cos();
+    let shape = |along: &[crate::beam::PointDisplacement]| -> Vec<[f64; 2]> {
+        xs.iter()
+            .zip(along)
+            .map(|(&x, d)| {
+                let p = r.beam.reference_point(x);
+                [p[0] + mag * d.u, p[1] + mag * d.w]
+            })
+            .collect()
+    };
+    let shapes: Vec<Vec<[f64; 2]>> = frames.iter().map(|f| shape(&f.along)).collect();
+    let disks = frames
+        .iter()
+        .zip(&shapes)
+        .map(|(f, pts)| {
+            f.disk.map(|(s, turned)| {
+                let k = xs.partition_point(|&x| x < s).clamp(1, xs.len() - 1);
+                let g = ((s - xs[k - 1]) / (xs[k] - xs[k - 1])).clamp(0.0, 1.0);
+                let p = [
+                    pts[k - 1][0] + g * (pts[k][0] - pts[k - 1][0]),
+                    pts[k - 1][1] + g * (pts[k][1] - pts[k - 1][1]),
+                ];
+                ([p[0] - radius * sn, p[1] + radius * cs], turned)
+            })
+        })
+        .collect();
+    (shapes, disks)
+}
+
+/// [x0, x1, y0, y1] of the smallest box holding every frame's axis and disk.
+fn bounds(shapes: &[Vec<[f64; 2]>], disks: &[Option<([f64; 2], f64)>], radius: f64) -> [f64; 4] {
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for p in shapes.iter().flatten() {
+        (x0, x1, y0, y1) = (x0.min(p[0]), x1.max(p[0]), y0.min(p[1]), y1.max(p[1]));
+    }
+    for (c, _) in disks.iter().flatten() {
+        (x0, x1) = (x0.min(c[0] - radius), x1.max(c[0] + radius));
+        (y0, y1) = (y0.min(c[1] - radius), y1.max(c[1] + radius));
+    }
+    [x0, x1, y0, y1]
+}
+
+/// The disk in every frame: where it is while on the beam; off it, held where it was last on
+/// it (before its first frame there, where it last is), and marked off so that it is drawn
+/// faded.
+fn held(disks: &[Option<([f64; 2], f64)>], corner: [f64; 2]) -> Vec<([f64; 2], f64, bool)> {
+    let last_disk = disks.iter().flatten().last().copied();
+    disks
+        .iter()
+        .scan(None, |prev: &mut Option<([f64; 2], f64)>, d| {
+            if d.is_some() {
+                *prev = *d;
+            }
+            Some(prev.or(last_disk).map(|(c, a)| (c, a, d.is_some())))
+        })
+        .map(|d| d.unwrap_or((corner, 0.0, false)))
+        .collect()
 }
