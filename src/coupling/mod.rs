@@ -130,8 +130,6 @@ pub struct DiskOnBeam<'a> {
     /// The coupling law, and the disk as it sees it.
     law: Box<dyn Law>,
     rider: Rider,
-    /// The disk's path is an unknown: z = (q, s).
-    rolls: bool,
     n: usize,
     /// The last observation and its acceleration, keyed by (t, s, ṡ): every event function
     /// of one state needs it, and so does the output row.
@@ -168,7 +166,6 @@ impl<'a> DiskOnBeam<'a> {
             Coupling::MovingMass => Box::new(moving_mass::MovingMass),
             Coupling::MovingForce => Box::new(moving_force::MovingForce),
         };
-        let rolls = law.unknowns() == 1;
         let nz = n + law.unknowns();
         let mut a = Assembly::new(nz);
         a.add_sparse(loaded.beam.mass(), 1.0, 0, 0);
@@ -208,7 +205,6 @@ impl<'a> DiskOnBeam<'a> {
                 n,
                 omega0: spec.omega0,
             },
-            rolls,
             spec,
             cache: RefCell::new(None),
             template: a.build(),
@@ -216,6 +212,11 @@ impl<'a> DiskOnBeam<'a> {
             stiffness_pattern: OnceCell::new(),
             basis: RefCell::new(None),
         }
+    }
+
+    /// The disk's path is an unknown: z = (q, s).
+    fn rolls(&self) -> bool {
+        self.law.unknowns() == 1
     }
 
     pub fn beam(&self) -> &Beam {
@@ -228,7 +229,7 @@ impl<'a> DiskOnBeam<'a> {
         let mut z = vec![0.0; nz];
         let mut zd = vec![0.0; nz];
         z[..self.n].copy_from_slice(q0);
-        if self.rolls {
+        if self.rolls() {
             z[self.n] = self.spec.s0;
             let at = AxisPoint::at(
                 self.beam(),
@@ -253,7 +254,7 @@ impl<'a> DiskOnBeam<'a> {
 
     /// The time a prescribed load leaves the beam, if it does.
     pub fn exit_time(&self) -> Option<f64> {
-        if self.rolls {
+        if self.rolls() {
             return None;
         }
         let v0 = self.spec.v0();
@@ -269,7 +270,7 @@ impl<'a> DiskOnBeam<'a> {
 
     /// The axis at the contact for the state (z, ż).
     pub fn contact(&self, t: f64, z: &[f64], zd: &[f64]) -> AxisPoint {
-        let (s, sdot) = if self.rolls {
+        let (s, sdot) = if self.rolls() {
             (z[self.n], zd[self.n])
         } else {
             self.travel(t)
@@ -337,7 +338,7 @@ impl<'a> DiskOnBeam<'a> {
         let nz = self.dim();
         let mut z = vec![0.0; nz];
         z[..self.n].copy_from_slice(q);
-        if self.rolls {
+        if self.rolls() {
             z[self.n] = self.spec.s0;
         }
         self.add_disk_force_on_beam(0.0, &z, &vec![0.0; nz], f);
@@ -404,7 +405,7 @@ impl<'a> DiskOnBeam<'a> {
         let vg = beam.to_global(motion.velocity);
         let contact = motion.contact;
         DiskObservation {
-            s: if self.rolls {
+            s: if self.rolls() {
                 z[self.n]
             } else {
                 self.travel(t).0
@@ -436,7 +437,7 @@ impl<'a> DiskOnBeam<'a> {
     /// Power of the prescribed moving load on the beam (zero for the rolling couplings, whose
     /// disk belongs to the system): F_beam · ∂r/∂t at s.
     pub fn power_on_beam(&self, t: f64, z: &[f64], zd: &[f64]) -> f64 {
-        if self.rolls {
+        if self.rolls() {
             return 0.0;
         }
         let obs = self.observe(t, z, zd);
@@ -453,13 +454,13 @@ impl<'a> DiskOnBeam<'a> {
 
     /// The disk's energy belongs to the system's budget.
     pub fn disk_in_system(&self) -> bool {
-        self.rolls
+        self.rolls()
     }
 }
 
 impl Structure for DiskOnBeam<'_> {
     fn dim(&self) -> usize {
-        self.n + usize::from(self.rolls)
+        self.n + self.law.unknowns()
     }
 
     fn mass(&self, t: f64, q: &[f64]) -> Cow<'_, Sparse> {
@@ -524,7 +525,7 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
     /// there shows in the contact force, not in the motion the error estimate measures: a
     /// step moves a rolling disk by at most b/2, so the contact-loss event sees every crest.
     fn max_step(&self, _t: f64, _q: &[f64], v: &[f64]) -> f64 {
-        if self.rolls {
+        if self.rolls() {
             0.5 * self.spec.patch / v[self.n].abs()
         } else {
             f64::INFINITY
@@ -540,7 +541,7 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
     }
 
     fn events(&self) -> &[EventSpec<StopReason>] {
-        if !self.rolls {
+        if !self.rolls() {
             return &[];
         }
         if self.spec.mu.is_some() {
