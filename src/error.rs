@@ -30,3 +30,34 @@ impl fmt::Display for Error {
 }
 
 impl std::error::Error for Error {}
+
+/// Longest excerpt of a user's text that a message quotes.
+const QUOTE_CHARS: usize = 40;
+
+/// A user's text as a message quotes it: in single quotes, control characters and quotes
+/// escaped, cut to a short excerpt, so that a message stays one short line whatever was written.
+pub fn quote(text: &str) -> String {
+    let mut out = String::from("'");
+    for (i, c) in text.chars().enumerate() {
+        if i == QUOTE_CHARS {
+            out.push_str("…");
+            break;
+        }
+        out.extend(c.escape_debug());
+    }
+    out.push('\'');
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::quote;
+
+    #[test]
+    fn quotes_are_short_and_on_one_line() {
+        assert_eq!(quote("genalpha"), "'genalpha'");
+        assert_eq!(quote("a\nb"), "'a\\nb'");
+        let long = quote(&"x".repeat(100_000));
+        assert!(long.chars().count() < 50 && long.ends_with("…'"));
+    }
+}

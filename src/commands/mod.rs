@@ -15,7 +15,7 @@ pub mod tradeoff;
 
 use std::path::Path;
 
-use crate::error::Error;
+use crate::error::{quote, Error};
 use crate::ode::Method;
 use crate::run::Overrides;
 use crate::scene::{method_names, BeamScene, Scene};
@@ -62,7 +62,8 @@ pub(crate) fn positive(value: Option<f64>, flag: &str) -> Result<Option<f64>, Er
 pub(crate) fn parse_method(name: &str, scene: &Scene) -> Result<Method, Error> {
     let m = Method::from_name(name).ok_or_else(|| {
         Error::Input(format!(
-            "--method '{name}' is unknown; use one of {}",
+            "--method {} is unknown; use one of {}",
+            quote(name),
             method_names()
         ))
     })?;

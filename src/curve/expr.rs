@@ -47,6 +47,13 @@ const FUNCTIONS: [(&str, Func); 14] = [
     ("abs", Func::Abs),
 ];
 
+/// Longest formula accepted. A curve is a few dozen characters; the bound keeps parsing,
+/// evaluation (every derivative is a pass over the tree) and dropping the tree shallow and fast.
+pub const MAX_CHARS: usize = 1000;
+/// Deepest nesting of brackets, signs, powers and calls; each level is a few stack frames of
+/// the recursive descent.
+pub const MAX_DEPTH: usize = 64;
+
 /// A parsed formula in the curve parameter `s`.
 #[derive(Clone, Debug)]
 pub struct Formula {
@@ -55,18 +62,24 @@ pub struct Formula {
 
 impl Formula {
     pub fn parse(text: &str) -> Result<Formula, String> {
+        let length = text.chars().count();
+        if length > MAX_CHARS {
+            return Err(format!(
+                "is {length} characters long; a formula may have at most {MAX_CHARS}"
+            ));
+        }
         let mut p = Parser {
             chars: text.chars().collect(),
             pos: 0,
+            depth: 0,
         };
         let root = p.sum()?;
         p.skip_ws();
         if p.pos < p.chars.len() {
             return Err(format!(
-                "unexpected '{}' at character {} of \"{}\"",
-                p.chars[p.pos],
+                "unexpected {} at character {}",
+                crate::error::quote(&p.chars[p.pos].to_string()),
                 p.pos + 1,
-                text
             ));
         }
         Ok(Formula { root })
@@ -119,6 +132,8 @@ fn eval(node: &Node, s: Jet) -> Jet {
 struct Parser {
     chars: Vec<char>,
     pos: usize,
+    /// Nesting of `unary`, through which every bracket, sign, power and call passes.
+    depth: usize,
 }
 
 impl Parser {
@@ -152,6 +167,19 @@ impl Parser {
     }
 
     fn unary(&mut self) -> Result<Node, String> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(format!(
+                "nests brackets, signs or powers more than {MAX_DEPTH} deep (at character {})",
+                self.pos + 1
+            ));
+        }
+        let node = self.signed();
+        self.depth -= 1;
+        node
+    }
+
+    fn signed(&mut self) -> Result<Node, String> {
         match self.peek() {
             Some('-') => {
                 self.pos += 1;
@@ -185,7 +213,11 @@ impl Parser {
             }
             Some(c) if c.is_ascii_digit() || c == '.' => self.number(),
             Some(c) if c.is_alphabetic() || c == '_' => self.name(),
-            Some(c) => Err(format!("unexpected '{c}' at character {}", self.pos + 1)),
+            Some(c) => Err(format!(
+                "unexpected {} at character {}",
+                crate::error::quote(&c.to_string()),
+                self.pos + 1
+            )),
         }
     }
 
@@ -214,7 +246,7 @@ impl Parser {
         let text: String = self.chars[start..self.pos].iter().collect();
         text.parse::<f64>()
             .map(Node::Num)
-            .map_err(|_| format!("'{text}' is not a number"))
+            .map_err(|_| format!("{} is not a number", crate::error::quote(&text)))
     }
 
     fn name(&mut self) -> Result<Node, String> {
@@ -234,11 +266,15 @@ impl Parser {
         let Some(&(_, func)) = FUNCTIONS.iter().find(|(n, _)| *n == name) else {
             return Err(if self.peek() == Some('(') {
                 format!(
-                    "unknown function '{name}' (known: {})",
+                    "unknown function {} (known: {})",
+                    crate::error::quote(&name),
                     FUNCTIONS.map(|(n, _)| n).join(", ")
                 )
             } else {
-                format!("unknown name '{name}' (the parameter is `s`; constants are `pi` and `e`)")
+                format!(
+                    "unknown name {} (the parameter is `s`; constants are `pi` and `e`)",
+                    crate::error::quote(&name)
+                )
             });
         };
         self.expect('(')?;
@@ -273,5 +309,26 @@ mod tests {
         assert!(Formula::parse("x")
             .unwrap_err()
             .contains("unknown name 'x'"));
+    }
+
+    /// Hostile formulas end in a sentence, not a stack overflow: nesting past the bound, and
+    /// text past the length bound, are refused; the deepest accepted nesting parses.
+    #[test]
+    fn nesting_and_length_are_bounded() {
+        let nested = |n: usize| format!("{}s{}", "(".repeat(n), ")".repeat(n));
+        assert!(Formula::parse(&nested(MAX_DEPTH - 1)).is_ok());
+        assert!(Formula::parse(&nested(MAX_DEPTH + 1))
+            .unwrap_err()
+            .contains("more than 64 deep"));
+        assert!(Formula::parse(&format!("{}s", "-".repeat(500)))
+            .unwrap_err()
+            .contains("deep"));
+        assert!(Formula::parse(&format!("s{}", "^s".repeat(400)))
+            .unwrap_err()
+            .contains("deep"));
+        let long = format!("0{}", "+s".repeat(MAX_CHARS));
+        assert!(Formula::parse(&long).unwrap_err().contains("at most 1000"));
+        let widest = format!("0{}", "+s".repeat((MAX_CHARS - 1) / 2));
+        assert_eq!(Formula::parse(&widest).unwrap().eval(1.0).v, 499.0);
     }
 }
