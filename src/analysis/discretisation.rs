@@ -210,6 +210,21 @@ pub fn choose(
         pattern.extend(xs.iter().map(|&x| ([x, 0.0, -weight, 0.0], true)));
     }
     let no_static = "the supports leave a rigid-body motion, so no static deflection to estimate from (default mesh)";
+    // The modal estimate is dense: no mesh past MAX_NODES is ever analysed, however many
+    // bearings or modes ask for one.
+    let nodes = |elements: usize| elements * order + 1;
+    if nodes(admissible(ESTIMATION_ELEMENTS)) > MAX_NODES {
+        return Discretisation {
+            accuracy,
+            elements: elements.unwrap_or(multiple),
+            order,
+            excited_modes: 0,
+            why: format!(
+                "elements {} of degree {order}: a node at every bearing leaves a mesh too large for the modal estimate (more than {MAX_NODES} nodes), so one element per span",
+                elements.unwrap_or(multiple)
+            ),
+        };
+    }
     let Some(est) = estimate(&spec, admissible(ESTIMATION_ELEMENTS), &pattern, xs) else {
         return fallback(no_static);
     };
@@ -245,7 +260,8 @@ pub fn choose(
             estimate(&spec, elements, &pattern, xs)
         }
     };
-    let mut n = admissible(excited.div_ceil(2).max(2));
+    let largest = (MAX_NODES - 1) / order / 2 / multiple * multiple;
+    let mut n = admissible(excited.div_ceil(2).max(2)).min(largest.max(multiple));
     let Some(mut coarse) = on(n) else {
         return fallback(no_static);
     };
@@ -261,7 +277,7 @@ pub fn choose(
                 &fine.static_at_probes,
                 accuracy / 4.0,
             );
-        if ok || 2 * n * order + 1 > MAX_NODES {
+        if ok || nodes(4 * n) > MAX_NODES {
             let f_hz = fine.omega[k] / std::f64::consts::TAU;
             let reason = if ok {
                 format!(
@@ -271,7 +287,10 @@ pub fn choose(
                     accuracy / 4.0
                 )
             } else {
-                format!("the refinement stopped at {} nodes", 2 * n * order + 1)
+                format!(
+                    "the refinement stopped at {} nodes: a further doubling would pass the {MAX_NODES} the dense modal check takes",
+                    nodes(2 * n)
+                )
             };
             return Discretisation {
                 accuracy,

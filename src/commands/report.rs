@@ -241,7 +241,20 @@ pub fn modes_command(args: ModesArgs) -> Result<(), Error> {
     let scene = Scene::load(&path)?;
     let setup = beam_only(&scene, &path, "modes")?;
     let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
-    let result = modes(&scene, setup, count.unwrap_or(6), &dir)?;
+    let count = count.unwrap_or(6);
+    if count == 0 {
+        return Err(Error::Input(
+            "--count must be at least 1: the number of modes to compute".into(),
+        ));
+    }
+    let unknowns = Beam::new(setup.beam.clone()).dim();
+    if unknowns > modes::DENSE_LIMIT && count > modes::MAX_SPARSE_MODES {
+        return Err(Error::Input(format!(
+            "--count {count} is more than the {} modes computed on a mesh this large ({unknowns} unknowns); ask for fewer",
+            modes::MAX_SPARSE_MODES
+        )));
+    }
+    let result = modes(&scene, setup, count, &dir)?;
     print!("{result}");
     Ok(())
 }
