@@ -19,14 +19,14 @@ use crate::curve::expr::Formula;
 use crate::curve::spline::Spline;
 use crate::curve::Curve;
 use crate::disk::Disk;
-use crate::error::Error;
+use crate::error::{quote, Error};
 use crate::ode::Method;
 use crate::rolling::Rolling;
 
 #[derive(Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SceneFile {
-    name: Option<String>,
+    name: Option<Spanned<String>>,
     gravity: Option<Spanned<f64>>,
     duration: Spanned<f64>,
     track: Spanned<TrackFile>,
@@ -243,8 +243,9 @@ impl Scene {
 pub const DEFAULT_GRAVITY: f64 = 9.81;
 /// Rows of history.csv a run may write.
 const MAX_ROWS: f64 = 1e6;
-/// Mesh nodes a beam may have (three unknowns each).
-const MAX_NODES: f64 = 1e6;
+/// Mesh nodes a beam may have (three unknowns each): its sparse factor then takes some
+/// hundred megabytes, and one solve about a second.
+const MAX_NODES: f64 = 100_001.0;
 /// Intermediate bearings must sit at nodes of a uniform mesh of at most this many elements.
 const MAX_SPANS: usize = 1000;
 
@@ -548,7 +549,7 @@ impl SceneSpec {
             None => *slot = Some(given(value.to_string())),
         };
         match key {
-            "name" => f.name = Some(value.into()),
+            "name" => text(&mut f.name),
             "disk.coupling" | "disk.formulation" => {
                 let Some(d) = f.disk.as_mut() else {
                     return Err(Error::Input(format!(
@@ -597,6 +598,7 @@ fn not_a_number(key: &str) -> Error {
 
 fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
     let c = Checker { file };
+    let name = scene_name(&c, raw.name.as_ref(), stem)?;
     let gravity = match &raw.gravity {
         Some(g) => c.finite(g, "gravity")?,
         None => DEFAULT_GRAVITY,
@@ -640,7 +642,7 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
                     c.err(
                         m.referenced.line(),
                         "solver.method",
-                        format!("is '{}'; use one of {}", m.value, method_names()),
+                        format!("is {}; use one of {}", quote(&m.value), method_names()),
                     )
                 },
                 Ok,
@@ -661,6 +663,13 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
     let mut interval = duration / 500.0;
     if let Some(i) = raw.output.as_ref().and_then(|o| o.interval.as_ref()) {
         interval = c.positive(i, "output.interval")?;
+        if interval > duration {
+            return c.err(
+                i.referenced.line(),
+                "output.interval",
+                format!("= {interval} s is longer than `duration` = {duration} s; history.csv would hold t = 0 alone"),
+            );
+        }
         if duration / interval > MAX_ROWS {
             return c.err(i.referenced.line(), "output.interval", format!("= {interval} would write {:.0} rows of history; at most {MAX_ROWS:.0} are allowed", duration / interval));
         }
@@ -668,7 +677,7 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
     let (elements, order, multiple) = mesh;
     Ok(Checked {
         scene: Scene {
-            name: raw.name.clone().unwrap_or_else(|| stem.to_string()),
+            name,
             duration,
             model,
             solver,
@@ -680,6 +689,36 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
         rtol_given,
         atol_given,
     })
+}
+
+/// Longest scene name: it names the output folder.
+const MAX_NAME_CHARS: usize = 100;
+
+/// The scene's name, which names its default output folder `out/<name>`: so it must be a
+/// plain folder name, never a path that leads elsewhere. Refused rather than rewritten, so
+/// that the folder a run writes is always the name the user gave.
+fn scene_name(c: &Checker, given: Option<&Spanned<String>>, stem: &str) -> Result<String, Error> {
+    let (name, line, key) = match given {
+        Some(n) => (n.value.as_str(), n.referenced.line(), "name"),
+        None => (stem, 0, "name (the file's stem, as the scene gives none)"),
+    };
+    let why = if name.trim().is_empty() {
+        Some("is empty")
+    } else if name == "." || name == ".." {
+        Some("would name a folder outside out/")
+    } else if name.contains(['/', '\\']) {
+        Some("holds a path separator; a name names one folder in out/")
+    } else if name.chars().any(char::is_control) {
+        Some("holds a control character")
+    } else if name.chars().count() > MAX_NAME_CHARS {
+        Some("is longer than 100 characters")
+    } else {
+        None
+    };
+    match why {
+        Some(why) => c.err(line, key, format!("= {} {why}", quote(name))),
+        None => Ok(name.to_string()),
+    }
 }
 
 fn rolling_scene(
@@ -738,7 +777,7 @@ fn rolling_scene(
                 return c.err(
                     f.referenced.line(),
                     "disk.formulation",
-                    format!("is '{other}'; use minimal or thesis"),
+                    format!("is {}; use minimal or thesis", quote(other)),
                 )
             }
         },
@@ -946,7 +985,10 @@ fn supports(
                 c.err(
                     v.referenced.line(),
                     key,
-                    format!("is '{}'; use clamped, pinned, roller or free", v.value),
+                    format!(
+                        "is {}; use clamped, pinned, roller or free",
+                        quote(&v.value)
+                    ),
                 )
             },
             Ok,
@@ -1018,17 +1060,6 @@ fn mesh(c: &Checker, b: &BeamFile, multiple: usize) -> Result<(usize, usize, Qua
                 ),
             );
         }
-        if n.value as f64 * 10.0 > MAX_NODES {
-            return c.err(
-                n.referenced.line(),
-                "track.beam.elements",
-                format!(
-                    "= {} is more than this solver can hold (at most {} elements of degree 10)",
-                    n.value,
-                    MAX_NODES / 10.0
-                ),
-            );
-        }
     }
     let order = match &b.order {
         None => DEFAULT_ORDER,
@@ -1041,6 +1072,19 @@ fn mesh(c: &Checker, b: &BeamFile, multiple: usize) -> Result<(usize, usize, Qua
             )
         }
     };
+    if let Some(n) = &b.elements {
+        let nodes = n.value as f64 * order as f64 + 1.0;
+        if nodes > MAX_NODES {
+            return c.err(
+                n.referenced.line(),
+                "track.beam.elements",
+                format!(
+                    "= {} of degree {order} makes {nodes:.0} nodes; a beam may have at most {MAX_NODES:.0} (three unknowns each)",
+                    n.value
+                ),
+            );
+        }
+    }
     let quadrature = match &b.quadrature {
         None => Quadrature::Reduced,
         Some(q) => Quadrature::from_name(&q.value).map_or_else(
@@ -1048,7 +1092,7 @@ fn mesh(c: &Checker, b: &BeamFile, multiple: usize) -> Result<(usize, usize, Qua
                 c.err(
                     q.referenced.line(),
                     "track.beam.quadrature",
-                    format!("is '{}'; use reduced, full or lobatto", q.value),
+                    format!("is {}; use reduced, full or lobatto", quote(&q.value)),
                 )
             },
             Ok,
@@ -1066,7 +1110,7 @@ fn beam_start(c: &Checker, b: &BeamFile, beam: &BeamSpec) -> Result<BeamStart, E
             return c.err(
                 v.referenced.line(),
                 "track.beam.initial",
-                format!("is '{}'; use rest or static", v.value),
+                format!("is {}; use rest or static", quote(&v.value)),
             )
         }
     };
@@ -1143,8 +1187,31 @@ fn outputs(
     let mut magnify = 1.0;
     if let Some(o) = &raw.output {
         for p in o.probes.iter().flat_map(|v| v.value.iter()) {
+            let name = &p.value.name;
+            let why = if name.value.trim().is_empty() {
+                Some("is empty")
+            } else if name.value.chars().count() > 40 {
+                Some("is longer than 40 characters")
+            } else if name
+                .value
+                .chars()
+                .any(|ch| ch.is_control() || ch == ',' || ch == '"')
+            {
+                Some("holds a control character, a comma or a quote, which cannot head a column of history.csv")
+            } else if probes.iter().any(|q: &Probe| q.name == name.value) {
+                Some("names two probes")
+            } else {
+                None
+            };
+            if let Some(why) = why {
+                return c.err(
+                    name.referenced.line(),
+                    "output.probes.name",
+                    format!("= {} {why}", quote(&name.value)),
+                );
+            }
             probes.push(Probe {
-                name: p.value.name.value.clone(),
+                name: name.value.clone(),
                 x: within(c, &p.value.x, "output.probes.x", length)?,
             });
         }
@@ -1199,8 +1266,8 @@ fn disk_on_beam(
                     cp.referenced.line(),
                     "disk.coupling",
                     format!(
-                        "is '{}'; use one of {}",
-                        cp.value,
+                        "is {}; use one of {}",
+                        quote(&cp.value),
                         Coupling::ALL.map(|k| k.name()).join(", ")
                     ),
                 )
@@ -1262,8 +1329,18 @@ fn disk_on_beam(
         None => None,
     };
     let patch = match &d.patch {
-        Some(p) => c.positive(p, "disk.patch")?,
-        None => disk.radius,
+        Some(p) => {
+            let b = c.positive(p, "disk.patch")?;
+            if b > length {
+                return c.err(
+                    p.referenced.line(),
+                    "disk.patch",
+                    format!("= {b} m is wider than the beam (L = {length} m); the patch is the half-width of the contact, a fraction of the radius"),
+                );
+            }
+            b
+        }
+        None => disk.radius.min(length),
     };
     Ok(DiskOnBeamSpec {
         disk,

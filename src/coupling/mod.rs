@@ -172,8 +172,9 @@ impl<'a> DiskOnBeam<'a> {
         a.add_sparse(&loaded.beam.tangent(&vec![0.0; n]), 0.0, 0, 0);
         let beam = loaded.beam;
         let spacing = beam.length / (beam.spec.elements * beam.spec.order) as f64;
-        let reach =
-            ((2.0 * spec.patch / spacing).ceil() as usize + 2 * beam.spec.order).min(beam.nodes());
+        // In floating point, so that no patch width can overflow the count of nodes it spans.
+        let reach = ((2.0 * spec.patch / spacing).ceil() + (2 * beam.spec.order) as f64)
+            .min(beam.nodes() as f64) as usize;
         for i in 0..beam.nodes() {
             for j in i.saturating_sub(reach)..(i + reach + 1).min(beam.nodes()) {
                 for (ci, cj) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
