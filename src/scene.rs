@@ -339,15 +339,9 @@ impl SceneSpec {
     /// Read and check; `source` names the source in messages, `stem` is the default scene name.
     pub fn parse(text: &str, source: &str, stem: &str) -> Result<SceneSpec, Error> {
         let file: SceneFile = serde_saphyr::from_str(text).map_err(|e| {
-            let msg = e.to_string();
-            let first = msg
-                .lines()
-                .next()
-                .unwrap_or("not a valid scene")
-                .trim()
-                .trim_start_matches("error: ")
-                .to_string();
-            Error::Input(format!("{source} is not a valid scene: {first}"))
+            let at = e.location().map(|l| (l.line(), l.column()));
+            let sentence = crate::scene_error::describe(text, &e.to_string(), at);
+            Error::Input(format!("{source} {sentence}"))
         })?;
         let spec = SceneSpec {
             file,

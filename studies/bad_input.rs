@@ -57,17 +57,17 @@ fn unknown_keys() {
     rejected(
         "unknown-top",
         &format!("duration: 1\ndurration: 2\n{PARABOLA}{GOOD_DISK}"),
-        &["line 2", "unknown field `durration`"],
+        &["line 2", "`durration` is not a key"],
     );
     rejected(
         "unknown-disk",
         &format!("duration: 1\n{PARABOLA}{GOOD_DISK}  mas: 3\n"),
-        &["line 9", "unknown field `mas`"],
+        &["line 9", "`disk.mas` is not a key"],
     );
     rejected(
         "unknown-curve",
         &format!("duration: 1\ntrack:\n  curve:\n    circle: {{r: 1}}\n{GOOD_DISK}"),
-        &["line 4", "unknown field `circle`"],
+        &["line 4", "`track.curve.circle` is not a key"],
     );
 }
 
@@ -76,7 +76,7 @@ fn duration_missing_or_not_positive() {
     rejected(
         "no-duration",
         &format!("{PARABOLA}{GOOD_DISK}"),
-        &["missing field `duration`"],
+        &["`duration` is missing"],
     );
     rejected(
         "zero-duration",
@@ -250,12 +250,12 @@ fn files_that_are_missing_or_not_yaml() {
     rejected(
         "not-yaml",
         "duration: [1, 2\n  : : :\n",
-        &["is not a valid scene", "line 1"],
+        &["`duration` cannot be read", "line 1"],
     );
     rejected(
         "wrong-type",
         &format!("duration: soon\n{PARABOLA}{GOOD_DISK}"),
-        &["is not a valid scene", "line 1"],
+        &["`duration` cannot be read", "line 1"],
     );
 }
 

@@ -1,0 +1,158 @@
+//! The YAML reader's errors in the scene format's words: the line, the dotted key the error
+//! sits at (read back from the text, since the reader reports only a position), and one
+//! sentence of what is wrong, never the reader's advice to its own programmers.
+
+use crate::error::quote;
+
+/// The sentence for a reader error at (`line`, `column`), 1-based, in `text`.
+pub fn describe(text: &str, message: &str, line: Option<(u64, u64)>) -> String {
+    let first = message
+        .lines()
+        .next()
+        .unwrap_or("not a valid scene")
+        .trim()
+        .trim_start_matches("error: ");
+    let what = first
+        .split_once(": ")
+        .filter(|(head, _)| head.starts_with("line "))
+        .map_or(first, |(_, rest)| rest);
+    let path = line.and_then(|(l, c)| path_at(text, l as usize, c as usize));
+    let key = |path: &[String]| format!("`{}`", path.join("."));
+    let sentence = match (what.strip_prefix("missing field `"), path) {
+        (Some(field), Some(mut p)) => {
+            // The reader points into the mapping that lacks the field.
+            p.pop();
+            p.push(field.trim_end_matches('`').to_string());
+            if p.len() == 1 {
+                // The mapping that lacks it is the whole file: no line says more.
+                return format!("`{}` is missing", p[0]);
+            }
+            format!("{} is missing", key(&p))
+        }
+        (Some(field), None) => format!("`{}` is missing", field.trim_end_matches('`')),
+        (None, p) => {
+            let what = if what.starts_with("invalid i64") || what.starts_with("invalid u64") {
+                "must be a whole number".to_string()
+            } else if what.starts_with("duplicate mapping key") {
+                "is given twice".to_string()
+            } else if what.starts_with("multiple YAML documents") {
+                return format!("line {}: a second YAML document starts here (after a `---` line); a scene is one document", line.map_or(0, |l| l.0));
+            } else if what.starts_with("cannot deserialize null into string") {
+                "is empty; it needs a name".to_string()
+            } else if what.starts_with("unknown field `") {
+                let expected = what.split_once(", expected ").map_or("", |(_, e)| e);
+                format!("is not a key of the scene format here (expected {expected})")
+            } else if let Some(rest) = what.strip_prefix("invalid length ") {
+                let got = rest.split(',').next().unwrap_or("");
+                format!("must hold exactly two numbers, [x, y], not {got}")
+            } else {
+                format!("cannot be read: {}", clip(what))
+            };
+            match p {
+                Some(p) => format!("{} {what}", key(&p)),
+                None => what,
+            }
+        }
+    };
+    match line {
+        Some((l, _)) => format!("line {l}: {sentence}"),
+        None => sentence,
+    }
+}
+
+/// A reader message cut to one short line: its echoes of the scene's text are quoted and
+/// shortened like every other excerpt.
+fn clip(message: &str) -> String {
+    if message.chars().count() <= 160 && !message.chars().any(char::is_control) {
+        return message.to_string();
+    }
+    quote(message)
+}
+
+/// The dotted key whose value holds position (`line`, `column`): the block keys above it by
+/// indentation, then the flow mappings open on its own line, then the key at or before it.
+fn path_at(text: &str, line: usize, column: usize) -> Option<Vec<String>> {
+    let lines: Vec<&str> = text.lines().collect();
+    let here = *lines.get(line.checked_sub(1)?)?;
+    let mut path = parents(&lines[..line - 1], indent(here));
+    let cut = here
+        .char_indices()
+        .nth(column.saturating_sub(1))
+        .map_or(here.len(), |(i, _)| i);
+    // The key that starts at the position, if one does, belongs to the prefix.
+    let through = here[cut..]
+        .find(':')
+        .filter(|&i| is_key(here[cut..cut + i].trim()))
+        .map_or(cut, |i| cut + i + 1);
+    let mut open: Vec<Option<String>> = Vec::new();
+    let mut last: Option<String> = None;
+    let mut word = String::new();
+    for ch in here[..through].chars() {
+        match ch {
+            '{' | '[' => {
+                open.push(last.take());
+                word.clear();
+            }
+            '}' | ']' => {
+                open.pop();
+                last = None;
+                word.clear();
+            }
+            ':' if is_key(word.trim()) => {
+                last = Some(word.trim().trim_start_matches("- ").to_string());
+                word.clear();
+            }
+            ',' => word.clear(),
+            c => word.push(c),
+        }
+    }
+    path.extend(open.into_iter().flatten());
+    path.extend(last);
+    (!path.is_empty()).then_some(path)
+}
+
+/// The block keys that enclose a line of this indentation, outermost first.
+fn parents(above: &[&str], mut depth: usize) -> Vec<String> {
+    let mut keys = Vec::new();
+    for l in above.iter().rev() {
+        let t = l.trim_start();
+        if t.is_empty() || t.starts_with('#') || indent(l) >= depth {
+            continue;
+        }
+        depth = indent(l);
+        if let Some((k, _)) = t.trim_start_matches("- ").split_once(':') {
+            if is_key(k) {
+                keys.push(k.to_string());
+            }
+        }
+        if depth == 0 {
+            break;
+        }
+    }
+    keys.reverse();
+    keys
+}
+
+fn indent(line: &str) -> usize {
+    line.len() - line.trim_start_matches([' ', '-']).len()
+}
+
+fn is_key(word: &str) -> bool {
+    let w = word.trim_start_matches("- ");
+    !w.is_empty() && w.len() <= 40 && w.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+#[cfg(test)]
+mod tests {
+    use super::path_at;
+
+    #[test]
+    fn keys_are_found_by_indentation_and_flow() {
+        let text = "duration: 1\ntrack:\n  beam:\n    elements: 8.0\n    supports: {from: pinned, to: rock}\ndisk: {radius: 0.1}\n";
+        let at = |l, c| path_at(text, l, c).map(|p| p.join("."));
+        assert_eq!(at(1, 1).as_deref(), Some("duration"));
+        assert_eq!(at(4, 15).as_deref(), Some("track.beam.elements"));
+        assert_eq!(at(5, 34).as_deref(), Some("track.beam.supports.to"));
+        assert_eq!(at(6, 8).as_deref(), Some("disk.radius"));
+    }
+}
