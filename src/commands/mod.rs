@@ -41,7 +41,13 @@ impl SolverFlags {
                 .as_deref()
                 .map(|m| parse_method(m, scene))
                 .transpose()?,
-            rtol: positive(self.rtol, "--rtol")?,
+            rtol: match positive(self.rtol, "--rtol")? {
+                Some(r) => match crate::ode::rtol_problem(r) {
+                    Some(why) => return Err(Error::Input(format!("--rtol {why}"))),
+                    None => Some(r),
+                },
+                None => None,
+            },
             atol: positive(self.atol, "--atol")?,
             ..Default::default()
         })

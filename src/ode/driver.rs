@@ -65,6 +65,8 @@ struct Driver<'a, E> {
     breaks: Vec<f64>,
     /// Steps shorter than this are round-off.
     h_min: f64,
+    /// Where the current pace window started: (steps, t).
+    pace_from: (usize, f64),
     y_tmp: Vec<f64>,
 }
 
@@ -79,6 +81,9 @@ enum Trial {
         on_error: bool,
     },
 }
+
+/// Accepted steps over which the pace of a run is measured for its step budget.
+const PACE_WINDOW: usize = 2000;
 
 impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
     fn new(
@@ -110,6 +115,7 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             g: (0..p.events().len()).map(|i| p.event(i, t0, y0)).collect(),
             breaks: breakpoints_within(p.breakpoints(), t0, t_end),
             h_min: 1e-14 * t0.abs().max(t_end.abs()).max(1.0),
+            pace_from: (0, t0),
             y_tmp: vec![0.0; n],
         }
     }
@@ -147,12 +153,7 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
         };
         let mut just_rejected = false;
         while self.t < self.t_end {
-            if self.ctx.stats.steps >= self.opts.max_steps {
-                return Err(SolveError::TooManySteps {
-                    t: self.t,
-                    steps: self.ctx.stats.steps,
-                });
-            }
+            self.check_budget()?;
             if self.opts.fixed_step.is_none() {
                 h = h.min(self.p.max_step(self.t, &self.y));
             }
@@ -184,6 +185,29 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             }
         }
         Ok(None)
+    }
+
+    /// The step budget: spent, or sure to be spent at the pace of the last [`PACE_WINDOW`]
+    /// steps, so that a run whose time scale a scene made tiny stops in a fraction of its
+    /// budget, not after all of it.
+    fn check_budget(&mut self) -> Result<(), SolveError> {
+        let steps = self.ctx.stats.steps;
+        let (from_steps, from_t) = self.pace_from;
+        let mut projected = steps;
+        if steps >= from_steps + PACE_WINDOW {
+            let pace = (self.t - from_t) / (steps - from_steps) as f64;
+            projected = steps.saturating_add(((self.t_end - self.t) / pace).min(1e18) as usize);
+            self.pace_from = (steps, self.t);
+        }
+        if steps >= self.opts.max_steps || projected > self.opts.max_steps {
+            return Err(SolveError::TooManySteps {
+                t: self.t,
+                steps,
+                projected,
+                budget: self.opts.max_steps,
+            });
+        }
+        Ok(())
     }
 
     /// Attempt a step of h_try from (t, y), and judge it.

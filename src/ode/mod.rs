@@ -144,6 +144,24 @@ impl Method {
     }
 }
 
+/// Smallest relative tolerance an integrator is asked for: a hundred times the round-off of a
+/// double, below which no step can show its error.
+pub const MIN_RTOL: f64 = 1e-14;
+
+/// Why a relative tolerance cannot be used, if it cannot: it must be a fraction (below 1,
+/// where an error as large as the solution would pass) and no finer than [`MIN_RTOL`].
+pub fn rtol_problem(rtol: f64) -> Option<String> {
+    if !(rtol < 1.0) {
+        Some(format!("= {rtol} would accept an error as large as the solution; a relative tolerance must be below 1"))
+    } else if rtol < MIN_RTOL {
+        Some(format!(
+            "= {rtol:e} is finer than double precision can check; use at least {MIN_RTOL:e}"
+        ))
+    } else {
+        None
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct Options {
     pub method: Method,
@@ -200,11 +218,26 @@ pub struct Outcome<E> {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum SolveError {
-    StepSizeUnderflow { t: f64, h: f64 },
-    NewtonFailed { t: f64 },
-    NonFinite { t: f64 },
-    TooManySteps { t: f64, steps: usize },
-    SingularMatrix { t: f64 },
+    StepSizeUnderflow {
+        t: f64,
+        h: f64,
+    },
+    NewtonFailed {
+        t: f64,
+    },
+    NonFinite {
+        t: f64,
+    },
+    /// The step budget is spent, or `projected` steps would pass it at the recent pace.
+    TooManySteps {
+        t: f64,
+        steps: usize,
+        projected: usize,
+        budget: usize,
+    },
+    SingularMatrix {
+        t: f64,
+    },
     NeedsSecondOrder,
 }
 
@@ -218,11 +251,20 @@ impl fmt::Display for SolveError {
                 write!(f, "Newton iterations did not converge at t = {t:.6} s even with a fresh Jacobian and smaller steps")
             }
             SolveError::NonFinite { t } => write!(f, "the state became non-finite at t = {t:.6} s"),
-            SolveError::TooManySteps { t, steps } => {
-                write!(
-                    f,
-                    "gave up after {steps} steps at t = {t:.6} s; loosen rtol or shorten the run"
-                )
+            SolveError::TooManySteps {
+                t,
+                steps,
+                projected,
+                budget,
+            } => {
+                if projected > budget {
+                    write!(f, "gave up after {steps} steps at t = {t:.6} s: at its recent pace the run would need about {:.1e} steps, past the budget of {budget}; loosen rtol, shorten the run, or look for a time scale the scene makes tiny (a near-zero mass or density, a huge stiffness)", *projected as f64)
+                } else {
+                    write!(
+                        f,
+                        "gave up after {steps} steps at t = {t:.6} s; loosen rtol or shorten the run"
+                    )
+                }
             }
             SolveError::NeedsSecondOrder => {
                 write!(
