@@ -49,9 +49,47 @@ pub fn quote(text: &str) -> String {
     out
 }
 
+/// Longest run of digits a message prints as it is.
+const DIGITS: usize = 17;
+
+/// The text with every number longer than [`DIGITS`] characters in exponent form: Rust prints
+/// 1e300 as 301 digits and 1e-300 with 300 zeros, which no reader wants in a sentence.
+pub fn short_numbers(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut run = String::new();
+    let flush = |run: &mut String, out: &mut String| {
+        match run.parse::<f64>() {
+            Ok(v) if run.len() > DIGITS => out.push_str(&format!("{v:e}")),
+            _ => out.push_str(run),
+        }
+        run.clear();
+    };
+    for c in text.chars() {
+        if c.is_ascii_digit() || (c == '.' && !run.contains('.')) {
+            run.push(c);
+        } else {
+            flush(&mut run, &mut out);
+            out.push(c);
+        }
+    }
+    flush(&mut run, &mut out);
+    out
+}
+
 #[cfg(test)]
 mod tests {
-    use super::quote;
+    use super::{quote, short_numbers};
+
+    #[test]
+    fn long_numbers_are_printed_short() {
+        let big = format!("= {} m is wider", 1e300);
+        assert_eq!(short_numbers(&big), "= 1e300 m is wider");
+        assert_eq!(short_numbers(&format!("{}", 1e-30)), "1e-30");
+        assert_eq!(
+            short_numbers("t = 0.123456 s, 12 steps"),
+            "t = 0.123456 s, 12 steps"
+        );
+    }
 
     #[test]
     fn quotes_are_short_and_on_one_line() {

@@ -79,7 +79,8 @@ fn main() -> ExitCode {
     match done {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("rollbeam: {e}");
+            let sentence = rollbeam::error::short_numbers(&e.to_string());
+            eprintln!("rollbeam: {}", sentence.replace('\n', " "));
             ExitCode::from(e.exit_code() as u8)
         }
     }

@@ -241,6 +241,8 @@ impl Scene {
 }
 
 pub const DEFAULT_GRAVITY: f64 = 9.81;
+/// Finest `solver.accuracy`: with a switched load its rtol is a thousandth of it, 1e-11.
+const MIN_ACCURACY: f64 = 1e-8;
 /// Rows of history.csv a run may write.
 const MAX_ROWS: f64 = 1e6;
 /// Mesh nodes a beam may have (three unknowns each): its sparse factor then takes some
@@ -285,6 +287,53 @@ impl Checker<'_> {
             );
         }
         Ok(x)
+    }
+
+    /// A quantity derived from the scene's values (a length, a stiffness, an inertia) that the
+    /// model divides by or squares: it must be a normal positive double, neither overflowed
+    /// to infinity nor underflowed towards zero by extreme inputs.
+    fn derived(&self, line: u64, key: &str, what: &str, v: f64) -> Result<f64, Error> {
+        if v.is_normal() && v > 0.0 {
+            return Ok(v);
+        }
+        self.err(
+            line,
+            key,
+            format!(
+                "makes {what} {}, which is not a finite positive number a double holds; the values are too extreme",
+                if v.is_finite() { format!("= {v:e}") } else { "infinite".into() }
+            ),
+        )
+    }
+
+    /// The disk of a scene, its mass, radius and what the model derives from them.
+    fn disk(&self, d: &DiskFile, gravity: f64) -> Result<Disk, Error> {
+        let disk = Disk {
+            mass: self.positive(&d.mass, "disk.mass")?,
+            radius: self.positive(&d.radius, "disk.radius")?,
+        };
+        let line = d.radius.referenced.line();
+        self.derived(
+            line,
+            "disk.radius",
+            "the disk's moment of inertia C = m a²/2",
+            disk.inertia(),
+        )?;
+        self.derived(
+            line,
+            "disk.radius",
+            "the disk's rolling mass m + C/a²",
+            disk.rolling_mass(),
+        )?;
+        if gravity != 0.0 {
+            self.derived(
+                d.mass.referenced.line(),
+                "disk.mass",
+                "the disk's weight m |g|",
+                disk.mass * gravity.abs(),
+            )?;
+        }
+        Ok(disk)
     }
 
     fn pair(&self, v: &Spanned<[f64; 2]>, key: &str) -> Result<[f64; 2], Error> {
@@ -647,6 +696,9 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
         }
         if let Some(r) = &s.rtol {
             solver.rtol = c.positive(r, "solver.rtol")?;
+            if let Some(why) = crate::ode::rtol_problem(solver.rtol) {
+                return c.err(r.referenced.line(), "solver.rtol", why);
+            }
             rtol_given = true;
         }
         if let Some(a) = &s.atol {
@@ -732,10 +784,7 @@ fn rolling_scene(
         );
     };
     let d = &disk_file.value;
-    let disk = Disk {
-        mass: c.positive(&d.mass, "disk.mass")?,
-        radius: c.positive(&d.radius, "disk.radius")?,
-    };
+    let disk = c.disk(d, gravity)?;
     let s0 = match &d.s0 {
         Some(s) => c.finite(s, "disk.s0")?,
         None => 0.0,
@@ -810,6 +859,30 @@ fn rolling_scene(
                 1.0 / kappa
             ),
         );
+    }
+    // The start in numbers: a finite point can still lie where the curve's coordinates, or the
+    // energy measured from them, overflow.
+    let start = rolling.curve.at(s0);
+    let centre = rolling.centre(&start);
+    let (kinetic, potential) = rolling.energies(rolling.v0(), omega0, centre[1]);
+    let s0_line =
+        d.s0.as_ref()
+            .map_or(disk_file.referenced.line(), |s| s.referenced.line());
+    for (v, what) in [
+        (centre[0], "the centre's X at the start"),
+        (centre[1], "the centre's Y at the start"),
+        (start.speed(), "the curve's speed |r'| at the start"),
+        (kinetic + potential, "the initial energy"),
+    ] {
+        if !v.is_finite() {
+            return c.err(
+                s0_line,
+                "disk.s0",
+                format!(
+                    "= {s0} makes {what} infinite or undefined; start the disk where the curve's numbers are finite"
+                ),
+            );
+        }
     }
     Ok(RollingScene {
         rolling,
@@ -900,6 +973,13 @@ fn beam_scene(
                     format!("= {v} is a relative error and must be below 0.5"),
                 );
             }
+            if v < MIN_ACCURACY {
+                return c.err(
+                    a.referenced.line(),
+                    "solver.accuracy",
+                    format!("= {v:e} asks for more than the beam's equations hold: the tolerances it implies (down to accuracy/1000) would pass the round-off of a step; use at least {MIN_ACCURACY:e}"),
+                );
+            }
             v
         }
     };
@@ -938,6 +1018,12 @@ fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usize), Error>
             "equals `from`: the beam has zero length",
         );
     }
+    c.derived(
+        b.to.referenced.line(),
+        "track.beam.to",
+        "the beam's length",
+        length,
+    )?;
     let e = c.positive(&b.E, "track.beam.E")?;
     let g = c.positive(&b.G, "track.beam.G")?;
     let rho = c.positive(&b.rho, "track.beam.rho")?;
@@ -953,6 +1039,41 @@ fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usize), Error>
         rho_a: rho * a,
         rho_i: rho * i,
     };
+    for (v, given, key, what) in [
+        (section.ea, &b.E, "track.beam.E", "the axial stiffness E A"),
+        (
+            section.gav,
+            &b.G,
+            "track.beam.G",
+            "the shear stiffness G Av",
+        ),
+        (
+            section.ei,
+            &b.I,
+            "track.beam.I",
+            "the bending stiffness E I",
+        ),
+        (
+            section.rho_a,
+            &b.rho,
+            "track.beam.rho",
+            "the mass per length ρ A",
+        ),
+        (
+            section.rho_i,
+            &b.rho,
+            "track.beam.rho",
+            "the rotary inertia per length ρ I",
+        ),
+        (
+            section.ea / section.rho_a,
+            &b.rho,
+            "track.beam.rho",
+            "the squared axial wave speed E/ρ",
+        ),
+    ] {
+        c.derived(given.referenced.line(), key, what, v)?;
+    }
     let beam = BeamSpec {
         from,
         to,
@@ -1241,10 +1362,7 @@ fn disk_on_beam(
     gravity: f64,
 ) -> Result<DiskOnBeamSpec, Error> {
     let d = &file.value;
-    let disk = Disk {
-        mass: c.positive(&d.mass, "disk.mass")?,
-        radius: c.positive(&d.radius, "disk.radius")?,
-    };
+    let disk = c.disk(d, gravity)?;
     if let Some(f) = &d.formulation {
         return c.err(
             f.referenced.line(),

@@ -517,7 +517,22 @@ fn sweep_ranges_and_keys() {
     for (set, needles) in [
         ("disk.mass=1:2", vec!["--set", "three fields"]),
         ("disk.mass=a:2:3", vec!["--set", "'a'", "finite number"]),
-        ("disk.mass=1:2:0", vec!["--set", "count of at least 1"]),
+        ("disk.mass=1:2:0", vec!["--set", "count from 1 to 100000"]),
+        (
+            "disk.mass=1:2:1000000000000000000",
+            vec!["--set", "count from 1 to 100000"],
+        ),
+        (
+            "disk.mass=1:2:1e18",
+            vec!["--set", "count from 1 to 100000"],
+        ),
+        (
+            "track.beam.elements=4:9:3",
+            vec![
+                "--set track.beam.elements",
+                "takes a whole number (got 6.5)",
+            ],
+        ),
         (
             "disk.nothing=1:2:2",
             vec![

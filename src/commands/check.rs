@@ -17,7 +17,10 @@ pub struct CheckArgs {
 
 pub fn check(args: CheckArgs) -> Result<(), Error> {
     let scene = Scene::load(&args.scene)?;
-    say!("{}", Described(&scene).to_string().trim_end());
+    say!(
+        "{}",
+        crate::error::short_numbers(Described(&scene).to_string().trim_end())
+    );
     Ok(())
 }
 

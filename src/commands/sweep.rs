@@ -5,7 +5,7 @@
 //! run; a run that fails is a row with its reason.
 
 use super::SolverFlags;
-use crate::error::Error;
+use crate::error::{quote, Error};
 use crate::output::plots::line_chart;
 use crate::output::write;
 use crate::plan::Planner;
@@ -16,6 +16,9 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// KEY=FROM:TO:COUNT.
+/// Most cases one sweep runs: each is a whole run, and their rows are held in memory.
+pub const MAX_CASES: usize = 100_000;
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Setting {
     pub key: String,
@@ -28,7 +31,8 @@ impl Setting {
     pub fn parse(arg: &str) -> Result<Setting, Error> {
         let bad = |why: &str| {
             Error::Input(format!(
-                "--set '{arg}' {why}; write KEY=FROM:TO:COUNT, e.g. disk.omega0=-10:-120:111"
+                "--set {} {why}; write KEY=FROM:TO:COUNT, e.g. disk.omega0=-10:-120:111",
+                quote(arg)
             ))
         };
         let (key, range) = arg.split_once('=').ok_or_else(|| bad("has no '='"))?;
@@ -41,16 +45,17 @@ impl Setting {
                 .parse::<f64>()
                 .ok()
                 .filter(|v| v.is_finite())
-                .ok_or_else(|| bad(&format!("has '{s}' where a finite number belongs")))
+                .ok_or_else(|| bad(&format!("has {} where a finite number belongs", quote(s))))
         };
         let count = count
             .trim()
             .parse::<usize>()
             .ok()
-            .filter(|&c| c >= 1)
+            .filter(|&c| (1..=MAX_CASES).contains(&c))
             .ok_or_else(|| {
                 bad(&format!(
-                    "has '{count}' where a count of at least 1 belongs"
+                    "has {} where a count from 1 to {MAX_CASES} belongs",
+                    quote(count)
                 ))
             })?;
         if key.split('.').any(|k| k.trim().is_empty()) {
@@ -154,13 +159,16 @@ pub fn run_sweep(
     // A key the scene cannot hold, or cannot take at either end of the range, is the
     // command's error, not every run's.
     let command_error = |e: Error| Error::Input(format!("--set {}: {e}", setting.key));
-    spec.clone()
-        .set(&setting.key, setting.from)
-        .map_err(command_error)?;
+    let values = setting.values();
+    // Every value must fit the key (a whole number for an element count) before any runs.
+    for &value in &values {
+        spec.clone()
+            .set(&setting.key, value)
+            .map_err(command_error)?;
+    }
     if let (Err(e), Err(_)) = (at(setting.from), at(setting.to)) {
         return Err(command_error(e));
     }
-    let values = setting.values();
     let outcomes = super::parallel::map(&values, show_progress, |&value| {
         at(value)
             .and_then(|scene| run::run(&scene, over, false))

@@ -55,7 +55,10 @@ fn disk_summary(r: &BeamRun) -> Option<BeamDiskSummary> {
     };
     let (rn_min, rn_max) = fold(|d| d.rn);
     let (rt_min, rt_max) = fold(|d| d.rt);
-    let (_, mu_needed_max) = fold(|d| d.rt.abs() / d.rn);
+    let mu_needed_max = on
+        .iter()
+        .filter_map(|(_, d)| d.mu_needed())
+        .reduce(f64::max);
     let (w_under_min, w_under_min_t) = on.iter().fold((f64::INFINITY, 0.0), |(w, t), (row, _)| {
         if row.w_under < w {
             (row.w_under, row.t)
@@ -293,7 +296,7 @@ fn csv(r: &BeamRun) -> String {
                     d.omega,
                     d.rt,
                     d.rn,
-                    d.rt.abs() / d.rn,
+                    d.mu_needed().unwrap_or(f64::NAN),
                 ]
             }));
         }
@@ -309,16 +312,7 @@ fn csv(r: &BeamRun) -> String {
             row.total(),
         ]);
         v.extend(row.reactions.iter().flatten());
-        let line: Vec<String> = v
-            .iter()
-            .map(|x| {
-                if x.is_nan() {
-                    String::new()
-                } else {
-                    format!("{x}")
-                }
-            })
-            .collect();
+        let line: Vec<String> = v.iter().map(|&x| super::cell(x)).collect();
         let _ = writeln!(out, "{}", line.join(","));
     }
     out

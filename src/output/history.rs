@@ -40,14 +40,14 @@ pub fn csv(r: &RunResult) -> String {
             d.rt,
             d.rn,
             d.phi,
-            d.rt.abs() / d.rn,
+            d.mu_needed().unwrap_or(f64::NAN),
             d.kinetic,
             0.0,
             d.potential,
             0.0,
             d.kinetic + d.potential,
         ];
-        let line: Vec<String> = values.iter().map(|v| format!("{v}")).collect();
+        let line: Vec<String> = values.iter().map(|&v| super::cell(v)).collect();
         let _ = writeln!(out, "{}", line.join(","));
     }
     out

@@ -31,8 +31,51 @@ fn write_rolling(result: &RunResult, dir: &Path) -> Result<(), Error> {
     plots::all(result, dir)
 }
 
+/// A number in a CSV cell; a quantity that is undefined at that time (NaN: a disk's columns
+/// after it left, the friction needed where it does not press) leaves the cell empty.
+pub(crate) fn cell(x: f64) -> String {
+    if x.is_nan() {
+        String::new()
+    } else {
+        format!("{x}")
+    }
+}
+
+/// Every output file is written here, and no table or summary leaves with a non-finite number
+/// in it: that would be a run whose numbers overflowed, reported as a solver failure.
 pub(crate) fn write(path: &Path, text: &str) -> Result<(), Error> {
+    let table = matches!(
+        path.extension().and_then(|e| e.to_str()),
+        Some("csv" | "yaml")
+    );
+    if let Some((line, token)) = table.then(|| non_finite(text)).flatten() {
+        return Err(Error::Solver(format!(
+            "{} would hold the non-finite number {token} (line {line}): the run's numbers overflowed, so it was not written",
+            path.display()
+        )));
+    }
     std::fs::write(path, text).map_err(|e| io_error(path, e))
+}
+
+/// The first line and token of a CSV or YAML text that is an infinity or NaN as Rust or YAML
+/// prints them, outside quoted text (a failed sweep case's message is quoted).
+pub(crate) fn non_finite(text: &str) -> Option<(usize, String)> {
+    const TOKENS: [&str; 8] = ["inf", "-inf", "NaN", "nan", ".inf", "-.inf", ".nan", ".NaN"];
+    text.lines().enumerate().find_map(|(k, line)| {
+        let unquoted: String = line.split('"').step_by(2).collect::<Vec<_>>().join(" ");
+        unquoted
+            .split(|c: char| {
+                c == ','
+                    || c == ':'
+                    || c.is_whitespace()
+                    || c == '['
+                    || c == ']'
+                    || c == '{'
+                    || c == '}'
+            })
+            .find(|t| TOKENS.contains(t))
+            .map(|t| (k + 1, t.to_string()))
+    })
 }
 
 pub(crate) fn io_error(path: &Path, e: impl std::fmt::Display) -> Error {
@@ -43,4 +86,20 @@ pub(crate) fn io_error(path: &Path, e: impl std::fmt::Display) -> Error {
 pub fn tolerance(x: f64) -> String {
     let rounded: f64 = format!("{x:.2e}").parse().unwrap_or(x);
     format!("{rounded:e}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::non_finite;
+
+    #[test]
+    fn non_finite_numbers_are_found_outside_quotes() {
+        assert_eq!(non_finite("t,w\n0,1\n0.1,inf\n"), Some((3, "inf".into())));
+        assert_eq!(
+            non_finite("energy:\n  initial: .inf\n"),
+            Some((2, ".inf".into()))
+        );
+        assert_eq!(non_finite("v,status\n1,\"failed: E is inf\"\n"), None);
+        assert_eq!(non_finite("t,w\n0,1e300\n0.1,-2.5\n"), None);
+    }
 }

@@ -62,8 +62,9 @@ pub struct DiskSummary {
     pub rn_max: f64,
     pub rt_min: f64,
     pub rt_max: f64,
-    /// The friction coefficient rolling needed: max |R_t| / R_n.
-    pub mu_needed_max: f64,
+    /// The friction coefficient rolling needed: max |R_t| / R_n over the times the disk
+    /// pressed on the track; null if it never did.
+    pub mu_needed_max: Option<f64>,
     pub left_track_t: Option<f64>,
 }
 
@@ -120,8 +121,8 @@ impl Summary {
         let mu_needed_max = r
             .rows
             .iter()
-            .map(|row| row.disk.rt.abs() / row.disk.rn)
-            .fold(0.0, f64::max);
+            .filter_map(|row| row.disk.mu_needed())
+            .reduce(f64::max);
         let left = matches!(
             r.header.stop,
             crate::run::Stop::Event(crate::rolling::StopReason::LeftTrack)

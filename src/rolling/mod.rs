@@ -31,6 +31,14 @@ pub struct DiskObservation {
     pub potential: f64,
 }
 
+impl DiskObservation {
+    /// The friction coefficient rolling needs here, |R_t| / R_n; none where the disk does not
+    /// press on the track (R_n ≤ 0), since no friction coefficient holds it there.
+    pub fn mu_needed(&self) -> Option<f64> {
+        (self.rn > 0.0).then(|| self.rt.abs() / self.rn)
+    }
+}
+
 /// A rolling model the run can drive: an ODE problem that also knows its initial state and
 /// what its state means.
 pub trait RollingModel: Problem<Event = StopReason> {
