@@ -52,27 +52,50 @@ pub fn quote(text: &str) -> String {
 /// Longest run of digits a message prints as it is.
 const DIGITS: usize = 17;
 
-/// The text with every number longer than [`DIGITS`] characters in exponent form: Rust prints
-/// 1e300 as 301 digits and 1e-300 with 300 zeros, which no reader wants in a sentence.
+/// The text with every number longer than [`DIGITS`] characters in short exponent form: Rust
+/// prints 1e300 as 301 digits, 1e-300 with 300 zeros and C = m a²/2 as 5.0000000000000004e297,
+/// which no reader wants in a sentence.
 pub fn short_numbers(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
     let mut out = String::with_capacity(text.len());
-    let mut run = String::new();
-    let flush = |run: &mut String, out: &mut String| {
-        match run.parse::<f64>() {
-            Ok(v) if run.len() > DIGITS => out.push_str(&format!("{v:e}")),
-            _ => out.push_str(run),
+    let mut i = 0;
+    while i < chars.len() {
+        let starts = chars[i].is_ascii_digit()
+            && (i == 0 || !(chars[i - 1].is_alphanumeric() || chars[i - 1] == '_'));
+        if !starts {
+            out.push(chars[i]);
+            i += 1;
+            continue;
         }
-        run.clear();
-    };
-    for c in text.chars() {
-        if c.is_ascii_digit() || (c == '.' && !run.contains('.')) {
-            run.push(c);
-        } else {
-            flush(&mut run, &mut out);
-            out.push(c);
+        let digits = |mut k: usize| {
+            while k < chars.len() && chars[k].is_ascii_digit() {
+                k += 1;
+            }
+            k
+        };
+        let mut end = digits(i);
+        if end < chars.len() && chars[end] == '.' {
+            end = digits(end + 1);
         }
+        if end < chars.len() && matches!(chars[end], 'e' | 'E') {
+            let sign = usize::from(end + 1 < chars.len() && matches!(chars[end + 1], '-' | '+'));
+            let after = digits(end + 1 + sign);
+            if after > end + 1 + sign {
+                end = after;
+            }
+        }
+        let token: String = chars[i..end].iter().collect();
+        match token.parse::<f64>() {
+            Ok(v) if token.len() > DIGITS => {
+                let e = format!("{v:.6e}");
+                let (mantissa, exponent) = e.split_once('e').unwrap_or((&e, "0"));
+                let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+                out.push_str(&format!("{mantissa}e{exponent}"));
+            }
+            _ => out.push_str(&token),
+        }
+        i = end;
     }
-    flush(&mut run, &mut out);
     out
 }
 

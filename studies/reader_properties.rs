@@ -1,0 +1,218 @@
+//! A bounded, deterministic property test of reading, planning and `check` (issue 14): scenes
+//! made by mutating every study scene (a value replaced by a hostile one, a line dropped or
+//! repeated, text spliced in) must each end, within a time bound, either accepted with every
+//! number the model derives finite, or refused with one sentence that names where (a line or
+//! a key). Never a panic. The cases are drawn from a fixed seed, so a failure reproduces.
+
+use std::cell::Cell;
+use std::time::{Duration, Instant};
+
+use proptest::prelude::*;
+use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+
+use rollbeam::commands::check::Described;
+use rollbeam::plan::Planner;
+use rollbeam::scene::{Model, SceneSpec};
+
+/// Cases per run: about two seconds of the suite's time.
+const CASES: u32 = 3000;
+/// One case (read, plan, describe) taking longer than this is a hang: the slowest plan (a
+/// mesh choice at the finest accuracy) takes about three seconds.
+const BOUND: Duration = Duration::from_secs(8);
+
+const SEEDS: [&str; 10] = [
+    include_str!("parabola-p1.yaml"),
+    include_str!("parabola-p3.yaml"),
+    include_str!("beam-b1.yaml"),
+    include_str!("beam-b3.yaml"),
+    include_str!("cantilever-c2.yaml"),
+    include_str!("bridge-d44.yaml"),
+    include_str!("bridge-d50.yaml"),
+    include_str!("rubber.yaml"),
+    include_str!("zipline.yaml"),
+    include_str!("parabola-p4.yaml"),
+];
+
+/// Values a hostile user types where a number or a name belongs.
+const HOSTILE: [&str; 32] = [
+    "0",
+    "-1",
+    "1e-300",
+    "1e300",
+    "-1e300",
+    "1e308",
+    "5e-324",
+    ".nan",
+    ".inf",
+    "-.inf",
+    "8.0",
+    "99999999999999999999",
+    "-0",
+    "0.5",
+    "1e-12",
+    "10",
+    "null",
+    "~",
+    "\"\"",
+    "[]",
+    "{}",
+    "[1, 2, 3]",
+    "\"../../x\"",
+    "\"a\\nb\"",
+    "&a 1",
+    "*a",
+    "!!str 1",
+    "yes",
+    "\"s^s^s^s\"",
+    "\"((((s))))\"",
+    "[[0, 0], [1, 0.1], [2, 0.1], [3, 0]]",
+    "1e-3",
+];
+
+/// One mutation of a seed scene, by line.
+fn mutate(seed: &str, line: usize, how: u8, pick: usize) -> String {
+    let mut lines: Vec<String> = seed.lines().map(str::to_string).collect();
+    let k = line % lines.len();
+    let value = HOSTILE[pick % HOSTILE.len()];
+    match how % 5 {
+        // Replace the value after the first `key:` on the line.
+        0 => {
+            if let Some(i) = lines[k].find(": ") {
+                lines[k] = format!("{}: {value}", &lines[k][..i]);
+            }
+        }
+        // Replace a number inside a flow mapping or sequence.
+        1 => {
+            let l = &lines[k];
+            if let Some(i) = l.find(|c: char| c.is_ascii_digit()) {
+                let end = l[i..]
+                    .find(|c: char| !(c.is_ascii_alphanumeric() || c == '.' || c == '-'))
+                    .map_or(l.len(), |e| i + e);
+                lines[k] = format!("{}{value}{}", &l[..i], &l[end..]);
+            }
+        }
+        2 => {
+            lines.remove(k);
+        }
+        3 => {
+            let copy = lines[k].clone();
+            lines.insert(k, copy);
+        }
+        _ => {
+            let at = pick % (lines[k].len() + 1);
+            if lines[k].is_char_boundary(at) {
+                lines[k].insert_str(at, value);
+            }
+        }
+    }
+    lines.join("\n") + "\n"
+}
+
+/// Every number the planned model derives, for the finiteness check.
+fn derived_numbers(scene: &rollbeam::scene::Scene) -> Vec<f64> {
+    let mut v = vec![
+        scene.duration,
+        scene.interval,
+        scene.solver.rtol,
+        scene.solver.atol,
+    ];
+    match &scene.model {
+        Model::Rolling(r) => {
+            let d = &r.rolling.disk;
+            v.extend([d.mass, d.radius, d.inertia(), d.rolling_mass()]);
+        }
+        Model::Beam(b) => {
+            let s = &b.beam.section;
+            v.extend([s.ea, s.gav, s.ei, s.rho_a, s.rho_i, b.accuracy]);
+            v.extend(b.beam.from.iter().chain(&b.beam.to));
+            v.extend(
+                b.loads
+                    .iter()
+                    .flat_map(|l| [l.x, l.force[0], l.force[1], l.mz]),
+            );
+            if let Some(d) = &b.disk {
+                v.extend([
+                    d.disk.mass,
+                    d.disk.radius,
+                    d.disk.inertia(),
+                    d.s0,
+                    d.omega0,
+                    d.patch,
+                ]);
+            }
+        }
+    }
+    v
+}
+
+#[test]
+fn mutated_scenes_are_accepted_finite_or_refused_in_one_sentence() {
+    let config = Config {
+        cases: CASES,
+        failure_persistence: None,
+        ..Config::default()
+    };
+    let mut runner =
+        TestRunner::new_with_rng(config, TestRng::deterministic_rng(RngAlgorithm::ChaCha));
+    let (accepted, refused) = (Cell::new(0u32), Cell::new(0u32));
+    let strategy = (
+        0..SEEDS.len(),
+        0..64usize,
+        any::<u8>(),
+        0..4096usize,
+        0..3usize,
+    );
+    let result = runner.run(&strategy, |(seed, line, how, pick, rounds)| {
+        let mut text = SEEDS[seed].to_string();
+        for r in 0..=rounds {
+            text = mutate(
+                &text,
+                line + 7 * r,
+                how.wrapping_add(r as u8),
+                pick + 13 * r,
+            );
+        }
+        let started = Instant::now();
+        let outcome = SceneSpec::parse(&text, "fuzz.yaml", "fuzz")
+            .and_then(|spec| Planner::default().plan(&spec));
+        match outcome {
+            Ok(scene) => {
+                let numbers = derived_numbers(&scene);
+                prop_assert!(numbers.iter().all(|x| x.is_finite()), "{numbers:?}\n{text}");
+                let printed = Described(&scene).to_string();
+                let non_finite = printed
+                    .split(|c: char| c.is_whitespace() || ",;:()[]".contains(c))
+                    .any(|t| ["inf", "-inf", "NaN"].contains(&t));
+                prop_assert!(!non_finite, "{}", printed);
+                accepted.set(accepted.get() + 1);
+            }
+            Err(e) => {
+                let m = e.to_string();
+                prop_assert_eq!(m.lines().count(), 1, "not one line: {}\n{}", m, text);
+                prop_assert!(
+                    m.contains('`') || m.contains("line "),
+                    "names no key or line: {}",
+                    m
+                );
+                prop_assert!(m.len() < 600, "{} bytes", m.len());
+                refused.set(refused.get() + 1);
+            }
+        }
+        prop_assert!(
+            started.elapsed() < BOUND,
+            "took {:?}:\n{}",
+            started.elapsed(),
+            text
+        );
+        Ok(())
+    });
+    if let Err(e) = result {
+        panic!("{e}");
+    }
+    // The mutations must exercise both outcomes, or the property says nothing.
+    let (accepted, refused) = (accepted.get(), refused.get());
+    assert!(
+        accepted > CASES / 20 && refused > CASES / 4,
+        "{accepted} accepted, {refused} refused"
+    );
+}
