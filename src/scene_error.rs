@@ -39,9 +39,20 @@ pub fn describe(text: &str, message: &str, line: Option<(u64, u64)>) -> String {
                 return format!("line {}: a second YAML document starts here (after a `---` line); a scene is one document", line.map_or(0, |l| l.0));
             } else if what.starts_with("cannot deserialize null into string") {
                 "is empty; it needs a name".to_string()
-            } else if what.starts_with("unknown field `") {
-                let expected = what.split_once(", expected ").map_or("", |(_, e)| e);
-                format!("is not a key of the scene format here (expected {expected})")
+            } else if let Some(rest) = what.strip_prefix("unknown field `") {
+                // The field's own text may hold anything, the reader's list of keys comes last.
+                let (field, expected) = rest
+                    .rsplit_once("`, expected ")
+                    .unwrap_or((rest.trim_end_matches('`'), "a key of the scene format"));
+                let named = if p.is_some() {
+                    String::new()
+                } else {
+                    format!("{} ", quote(field))
+                };
+                format!(
+                    "{named}is not a key of the scene format here (expected {})",
+                    clip(expected)
+                )
             } else if let Some(rest) = what.strip_prefix("invalid length ") {
                 let got = rest.split(',').next().unwrap_or("");
                 format!("must hold exactly two numbers, [x, y], not {got}")

@@ -476,6 +476,18 @@ fn item_7_messages_stay_one_short_line() {
         ),
     );
     fails(&["check", &s], 1, &["`solver.method` is 'xxxx", "…'"]);
+    // An unknown key whose own text holds the reader's phrase (found by the scene fuzzer):
+    // the key is quoted short, and the list of keys is the reader's, not the key's text.
+    let trap = format!(
+        "duration: 1\n\"k{}`, expected one of q\": 2\n",
+        "x".repeat(500)
+    );
+    let s = scene("trap", &trap);
+    fails(
+        &["check", &s],
+        1,
+        &["line 2", "'kxxx", "expected one of name, gravity"],
+    );
 }
 
 /// 9. A scene's name names one folder inside out/: a path, `..` or a control character is
