@@ -561,3 +561,46 @@ fn item_10_count_zero_and_long_numbers() {
         "{text}"
     );
 }
+
+/// 8. Sweep keys are the scene format's dotted paths: an integer key sweeps whole numbers, a
+///    top-level key and a key the file leaves out can be swept, and a bare key is refused.
+#[test]
+fn item_8_sweep_keys() {
+    let s = scene(
+        "sweep-mesh",
+        &beam("    elements: 4\n", DISK).replace("duration: 0.5", "duration: 0.05"),
+    );
+    let o = out("sweep-mesh");
+    runs_finite(
+        &[
+            "sweep",
+            &s,
+            "--set",
+            "track.beam.elements=4:8:2",
+            "--out",
+            &o,
+        ],
+        &o,
+    );
+    let csv = std::fs::read_to_string(format!("{o}/sweep.csv")).expect("sweep.csv");
+    let firsts: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(firsts, ["4", "8"], "{csv}");
+    assert!(csv.lines().skip(1).all(|l| l.contains(",ok,")), "{csv}");
+    let p = scene(
+        "sweep-p",
+        &curve("parabola: {k: 1}", "disk: {mass: 1, radius: 0.1, s0: -1}\n"),
+    );
+    for set in ["gravity=9:10:2", "disk.mu=0.5:1:2"] {
+        let o = out(&format!("sweep-{}", &set[..4]));
+        runs_finite(&["sweep", &p, "--set", set, "--out", &o], &o);
+    }
+    fails(
+        &["sweep", &p, "--set", "mass=1:2:2"],
+        1,
+        &["`mass` is not a number the scene format holds"],
+    );
+}
