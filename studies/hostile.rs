@@ -295,6 +295,9 @@ fn item_4_no_hangs() {
         2,
         &["solver failed"],
     );
+    for rtol in ["1e-300", "10"] {
+        fails(&["tradeoff", &p, "--rtols", rtol], 1, &["--rtols", rtol]);
+    }
     let s = scene(
         "rho-budget",
         &beam("", "loads: [{x: 10, fy: -1e4}]\n").replace("rho: 7850", "rho: 1e-10"),

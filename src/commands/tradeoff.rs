@@ -532,6 +532,9 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
     if !rtols.is_empty() {
         for &r in &rtols {
             positive(Some(r), "--rtols")?;
+            if let Some(why) = crate::ode::rtol_problem(r) {
+                return Err(Error::Input(format!("--rtols {why}")));
+            }
         }
         plan.rtols = rtols;
     }
