@@ -40,7 +40,7 @@ pub fn quote(text: &str) -> String {
     let mut out = String::from("'");
     for (i, c) in text.chars().enumerate() {
         if i == QUOTE_CHARS {
-            out.push_str("…");
+            out.push('…');
             break;
         }
         out.extend(c.escape_debug());

@@ -737,6 +737,20 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
     })
 }
 
+/// Why a user's name cannot name a folder or a column, if it cannot: what every such name
+/// must be (not empty, no control character, at most `max` characters).
+fn name_flaw(name: &str, max: usize) -> Option<String> {
+    if name.trim().is_empty() {
+        Some("is empty".into())
+    } else if name.chars().any(char::is_control) {
+        Some("holds a control character".into())
+    } else if name.chars().count() > max {
+        Some(format!("is longer than {max} characters"))
+    } else {
+        None
+    }
+}
+
 /// Longest scene name: it names the output folder.
 const MAX_NAME_CHARS: usize = 100;
 
@@ -748,19 +762,15 @@ fn scene_name(c: &Checker, given: Option<&Spanned<String>>, stem: &str) -> Resul
         Some(n) => (n.value.as_str(), n.referenced.line(), "name"),
         None => (stem, 0, "name (the file's stem, as the scene gives none)"),
     };
-    let why = if name.trim().is_empty() {
-        Some("is empty")
-    } else if name == "." || name == ".." {
-        Some("would name a folder outside out/")
-    } else if name.contains(['/', '\\']) {
-        Some("holds a path separator; a name names one folder in out/")
-    } else if name.chars().any(char::is_control) {
-        Some("holds a control character")
-    } else if name.chars().count() > MAX_NAME_CHARS {
-        Some("is longer than 100 characters")
-    } else {
-        None
-    };
+    let why = name_flaw(name, MAX_NAME_CHARS).or_else(|| {
+        if name == "." || name == ".." {
+            Some("would name a folder outside out/".into())
+        } else if name.contains(['/', '\\']) {
+            Some("holds a path separator; a name names one folder in out/".into())
+        } else {
+            None
+        }
+    });
     match why {
         Some(why) => c.err(line, key, format!("= {} {why}", quote(name))),
         None => Ok(name.to_string()),
@@ -1303,21 +1313,18 @@ fn outputs(
     if let Some(o) = &raw.output {
         for p in o.probes.iter().flat_map(|v| v.value.iter()) {
             let name = &p.value.name;
-            let why = if name.value.trim().is_empty() {
-                Some("is empty")
-            } else if name.value.chars().count() > 40 {
-                Some("is longer than 40 characters")
-            } else if name
-                .value
-                .chars()
-                .any(|ch| ch.is_control() || ch == ',' || ch == '"')
-            {
-                Some("holds a control character, a comma or a quote, which cannot head a column of history.csv")
-            } else if probes.iter().any(|q: &Probe| q.name == name.value) {
-                Some("names two probes")
-            } else {
-                None
-            };
+            let why = name_flaw(&name.value, 40).or_else(|| {
+                if name.value.contains([',', '"']) {
+                    Some(
+                        "holds a comma or a quote, which cannot head a column of history.csv"
+                            .into(),
+                    )
+                } else if probes.iter().any(|q: &Probe| q.name == name.value) {
+                    Some("names two probes".into())
+                } else {
+                    None
+                }
+            });
             if let Some(why) = why {
                 return c.err(
                     name.referenced.line(),

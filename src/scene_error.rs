@@ -18,56 +18,65 @@ pub fn describe(text: &str, message: &str, line: Option<(u64, u64)>) -> String {
         .map_or(first, |(_, rest)| rest);
     let path = line.and_then(|(l, c)| path_at(text, l as usize, c as usize));
     let key = |path: &[String]| format!("`{}`", path.join("."));
-    let sentence = match (what.strip_prefix("missing field `"), path) {
-        (Some(field), Some(mut p)) => {
-            // The reader points into the mapping that lacks the field.
-            p.pop();
-            p.push(field.trim_end_matches('`').to_string());
-            if p.len() == 1 {
-                // The mapping that lacks it is the whole file: no line says more.
-                return format!("`{}` is missing", p[0]);
-            }
-            format!("{} is missing", key(&p))
-        }
-        (Some(field), None) => format!("`{}` is missing", field.trim_end_matches('`')),
-        (None, p) => {
-            let what = if what.starts_with("invalid i64") || what.starts_with("invalid u64") {
-                "must be a whole number".to_string()
-            } else if what.starts_with("duplicate mapping key") {
-                "is given twice".to_string()
-            } else if what.starts_with("multiple YAML documents") {
-                return format!("line {}: a second YAML document starts here (after a `---` line); a scene is one document", line.map_or(0, |l| l.0));
-            } else if what.starts_with("cannot deserialize null into string") {
-                "is empty; it needs a name".to_string()
-            } else if let Some(rest) = what.strip_prefix("unknown field `") {
-                // The field's own text may hold anything, the reader's list of keys comes last.
-                let (field, expected) = rest
-                    .rsplit_once("`, expected ")
-                    .unwrap_or((rest.trim_end_matches('`'), "a key of the scene format"));
-                let named = if p.is_some() {
-                    String::new()
-                } else {
-                    format!("{} ", quote(field))
-                };
-                format!(
-                    "{named}is not a key of the scene format here (expected {})",
-                    clip(expected)
-                )
-            } else if let Some(rest) = what.strip_prefix("invalid length ") {
-                let got = rest.split(',').next().unwrap_or("");
-                format!("must hold exactly two numbers, [x, y], not {got}")
-            } else {
-                format!("cannot be read: {}", clip(what))
-            };
-            match p {
-                Some(p) => format!("{} {what}", key(&p)),
-                None => what,
-            }
-        }
-    };
-    match line {
+    let at = |sentence: String| match line {
         Some((l, _)) => format!("line {l}: {sentence}"),
         None => sentence,
+    };
+    if what.starts_with("multiple YAML documents") {
+        return at(
+            "a second YAML document starts here (after a `---` line); a scene is one document"
+                .into(),
+        );
+    }
+    if let Some(field) = what.strip_prefix("missing field `") {
+        let field = field.trim_end_matches('`');
+        // The reader points into the mapping that lacks the field.
+        return match path {
+            Some(mut p) if p.len() > 1 => {
+                p.pop();
+                p.push(field.to_string());
+                at(format!("{} is missing", key(&p)))
+            }
+            // The mapping that lacks it is the whole file: no line says more.
+            Some(_) => format!("`{field}` is missing"),
+            None => at(format!("`{field}` is missing")),
+        };
+    }
+    let wrong = reworded(what, path.is_none());
+    at(match path {
+        Some(p) => format!("{} {wrong}", key(&p)),
+        None => wrong,
+    })
+}
+
+/// What is wrong with a value, in the scene format's words; `unplaced` when no key could be
+/// read back, so an unknown key's own text must be quoted.
+fn reworded(what: &str, unplaced: bool) -> String {
+    if what.starts_with("invalid i64") || what.starts_with("invalid u64") {
+        "must be a whole number".into()
+    } else if what.starts_with("duplicate mapping key") {
+        "is given twice".into()
+    } else if what.starts_with("cannot deserialize null into string") {
+        "is empty; it needs a name".into()
+    } else if let Some(rest) = what.strip_prefix("unknown field `") {
+        // The field's own text may hold anything, the reader's list of keys comes last.
+        let (field, expected) = rest
+            .rsplit_once("`, expected ")
+            .unwrap_or((rest.trim_end_matches('`'), "a key of the scene format"));
+        let named = if unplaced {
+            format!("{} ", quote(field))
+        } else {
+            String::new()
+        };
+        format!(
+            "{named}is not a key of the scene format here (expected {})",
+            clip(expected)
+        )
+    } else if let Some(rest) = what.strip_prefix("invalid length ") {
+        let got = rest.split(',').next().unwrap_or("");
+        format!("must hold exactly two numbers, [x, y], not {got}")
+    } else {
+        format!("cannot be read: {}", clip(what))
     }
 }
 

@@ -120,11 +120,11 @@ fn subspace(k: &Sparse, m: &Sparse, count: usize) -> Option<(Vec<f64>, DMatrix<f
                 .take(count)
                 .all(|(a, b)| (a - b).abs() <= SETTLED * a.abs())
         });
-        previous = Some(mu);
         if settled {
-            let lambda = previous?.iter().take(count).map(|mu| mu - sigma).collect();
+            let lambda = mu.iter().take(count).map(|mu| mu - sigma).collect();
             return Some((lambda, x.columns(0, count).into_owned()));
         }
+        previous = Some(mu);
     }
     None
 }

@@ -41,13 +41,7 @@ impl SolverFlags {
                 .as_deref()
                 .map(|m| parse_method(m, scene))
                 .transpose()?,
-            rtol: match positive(self.rtol, "--rtol")? {
-                Some(r) => match crate::ode::rtol_problem(r) {
-                    Some(why) => return Err(Error::Input(format!("--rtol {why}"))),
-                    None => Some(r),
-                },
-                None => None,
-            },
+            rtol: rtol_flag(self.rtol, "--rtol")?,
             atol: positive(self.atol, "--atol")?,
             ..Default::default()
         })
@@ -61,6 +55,17 @@ pub(crate) fn positive(value: Option<f64>, flag: &str) -> Result<Option<f64>, Er
             "{flag} must be a positive number (got {v})"
         ))),
         v => Ok(v),
+    }
+}
+
+/// A relative tolerance given on the command line: positive, and one an integrator can honour.
+pub(crate) fn rtol_flag(value: Option<f64>, flag: &str) -> Result<Option<f64>, Error> {
+    match positive(value, flag)? {
+        Some(r) => match crate::ode::rtol_problem(r) {
+            Some(why) => Err(Error::Input(format!("{flag} {why}"))),
+            None => Ok(Some(r)),
+        },
+        None => Ok(None),
     }
 }
 

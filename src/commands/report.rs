@@ -150,7 +150,19 @@ struct ModesFile {
 
 /// The lowest `count` natural frequencies and mode shapes about the undeformed state.
 pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Result<String, Error> {
+    if count == 0 {
+        return Err(Error::Input(
+            "--count must be at least 1: the number of modes to compute".into(),
+        ));
+    }
     let beam = Beam::new(setup.beam.clone());
+    if beam.dim() > modes::DENSE_LIMIT && count > modes::MAX_SPARSE_MODES {
+        return Err(Error::Input(format!(
+            "--count {count} is more than the {} modes computed on a mesh this large ({} unknowns); ask for fewer",
+            modes::MAX_SPARSE_MODES,
+            beam.dim()
+        )));
+    }
     let m = modes::modes(&beam, count).ok_or_else(|| {
         Error::Solver(format!(
             "scene {}: the mass matrix is not positive definite",
@@ -241,20 +253,7 @@ pub fn modes_command(args: ModesArgs) -> Result<(), Error> {
     let scene = Scene::load(&path)?;
     let setup = beam_only(&scene, &path, "modes")?;
     let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
-    let count = count.unwrap_or(6);
-    if count == 0 {
-        return Err(Error::Input(
-            "--count must be at least 1: the number of modes to compute".into(),
-        ));
-    }
-    let unknowns = Beam::new(setup.beam.clone()).dim();
-    if unknowns > modes::DENSE_LIMIT && count > modes::MAX_SPARSE_MODES {
-        return Err(Error::Input(format!(
-            "--count {count} is more than the {} modes computed on a mesh this large ({unknowns} unknowns); ask for fewer",
-            modes::MAX_SPARSE_MODES
-        )));
-    }
-    let result = modes(&scene, setup, count, &dir)?;
+    let result = modes(&scene, setup, count.unwrap_or(6), &dir)?;
     print!("{result}");
     Ok(())
 }

@@ -15,10 +15,10 @@ use crate::scene::SceneSpec;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-/// KEY=FROM:TO:COUNT.
 /// Most cases one sweep runs: each is a whole run, and their rows are held in memory.
 pub const MAX_CASES: usize = 100_000;
 
+/// KEY=FROM:TO:COUNT.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Setting {
     pub key: String,
@@ -156,11 +156,10 @@ pub fn run_sweep(
         changed.set(&setting.key, value)?;
         planner.plan(&changed)
     };
-    // A key the scene cannot hold, or cannot take at either end of the range, is the
-    // command's error, not every run's.
+    // A key the scene cannot hold, a value it cannot take (a fraction for an element count),
+    // or a scene that fails at both ends of the range is the command's error, not every run's.
     let command_error = |e: Error| Error::Input(format!("--set {}: {e}", setting.key));
     let values = setting.values();
-    // Every value must fit the key (a whole number for an element count) before any runs.
     for &value in &values {
         spec.clone()
             .set(&setting.key, value)

@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 
 use plotters::prelude::*;
 
-use super::{parse_method, positive};
+use super::{parse_method, rtol_flag};
 use crate::error::Error;
 use crate::ode::Method;
 use crate::output::plots::PALETTE;
@@ -531,10 +531,7 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
     }
     if !rtols.is_empty() {
         for &r in &rtols {
-            positive(Some(r), "--rtols")?;
-            if let Some(why) = crate::ode::rtol_problem(r) {
-                return Err(Error::Input(format!("--rtols {why}")));
-            }
+            rtol_flag(Some(r), "--rtols")?;
         }
         plan.rtols = rtols;
     }

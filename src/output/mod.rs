@@ -64,15 +64,7 @@ pub(crate) fn non_finite(text: &str) -> Option<(usize, String)> {
     text.lines().enumerate().find_map(|(k, line)| {
         let unquoted: String = line.split('"').step_by(2).collect::<Vec<_>>().join(" ");
         unquoted
-            .split(|c: char| {
-                c == ','
-                    || c == ':'
-                    || c.is_whitespace()
-                    || c == '['
-                    || c == ']'
-                    || c == '{'
-                    || c == '}'
-            })
+            .split(|c: char| c.is_whitespace() || ",:[]{}".contains(c))
             .find(|t| TOKENS.contains(t))
             .map(|t| (k + 1, t.to_string()))
     })
