@@ -14,7 +14,7 @@ use crate::beam::element::Section;
 use crate::beam::load::{BeamStart, PointLoad, Probe};
 use crate::beam::supports::{mesh_multiple, statically_supported, Support};
 use crate::beam::{BeamSpec, Quadrature};
-use crate::coupling::{Coupling, DiskOnBeamSpec};
+use crate::coupling::{patch, Coupling, DiskOnBeamSpec};
 use crate::curve::expr::Formula;
 use crate::curve::spline::Spline;
 use crate::curve::Curve;
@@ -55,6 +55,7 @@ struct BeamFile {
     A: Spanned<f64>,
     Av: Spanned<f64>,
     I: Spanned<f64>,
+    depth: Option<Spanned<f64>>,
     supports: Spanned<SupportsFile>,
     elements: Option<Spanned<i64>>,
     order: Option<Spanned<i64>>,
@@ -204,6 +205,39 @@ pub struct BeamScene {
     /// The size of the displacements its loads cause (m), when the supports allow a static
     /// estimate: see `analysis::discretisation::response_size`. Set by the plan.
     pub response: Option<f64>,
+}
+
+/// The shortest contact patch, and section depth, against the beam's length: below it the
+/// patch's kernel (of height 1/b) and the kink's curvature (θ/b) leave floating point.
+const MIN_PATCH_PER_LENGTH: f64 = 1e-6;
+
+impl BeamScene {
+    /// How much the disk's results depend on its contact patch (see `coupling::patch`): its
+    /// weight's kink in the axis, at the fastest it can roll (its start speed, plus what the
+    /// drop of the axis from its start can add), against the response size.
+    pub fn patch_sensitivity(&self) -> Option<patch::Sensitivity> {
+        let d = self.disk.as_ref()?;
+        let weight = d.disk.mass * d.gravity;
+        let (from, to) = (self.beam.from, self.beam.to);
+        let length = (to[0] - from[0]).hypot(to[1] - from[1]);
+        let start_y = from[1] + (to[1] - from[1]) * d.s0 / length;
+        let drop = (start_y - from[1].min(to[1])).max(0.0);
+        let speed = (d.v0() * d.v0() + 2.0 * d.gravity * drop).sqrt();
+        Some(patch::Sensitivity::of(
+            &self.beam.section,
+            weight,
+            d.gravity,
+            speed,
+            d.patch,
+            self.response.unwrap_or(f64::INFINITY),
+        ))
+    }
+
+    /// What the results depend on beyond the accuracy asked, one sentence each.
+    pub fn warnings(&self) -> Vec<String> {
+        self.patch_sensitivity()
+            .map_or_else(Vec::new, |s| s.warnings(self.accuracy))
+    }
 }
 
 /// What the scene models, and only that.
@@ -453,6 +487,7 @@ impl SceneSpec {
                         "A" => number(&mut b.A),
                         "Av" => number(&mut b.Av),
                         "I" => number(&mut b.I),
+                        "depth" => option(&mut b.depth),
                         "elements" => whole(&mut b.elements)?,
                         "order" => whole(&mut b.order)?,
                         _ => return Err(not_a_number(key)),
@@ -525,7 +560,8 @@ impl SceneSpec {
             "track.beam.elements"
             | "track.beam.order"
             | "track.beam.quadrature"
-            | "track.beam.initial" => {
+            | "track.beam.initial"
+            | "track.beam.depth" => {
                 let Some(b) = f.track.value.beam.as_mut() else {
                     return no("beam track");
                 };
@@ -534,6 +570,7 @@ impl SceneSpec {
                     "track.beam.elements" => b.elements = None,
                     "track.beam.order" => b.order = None,
                     "track.beam.quadrature" => b.quadrature = None,
+                    "track.beam.depth" => b.depth = None,
                     _ => b.initial = None,
                 }
             }
@@ -717,7 +754,7 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
             );
         }
         if duration / interval > MAX_ROWS {
-            return c.err(i.referenced.line(), "output.interval", format!("= {interval} would write {:.0} rows of history; at most {MAX_ROWS:.0} are allowed", duration / interval));
+            return c.err(i.referenced.line(), "output.interval", format!("= {interval:e} would write {:.3e} rows of history; at most {MAX_ROWS:.0} are allowed", duration / interval));
         }
     }
     let (elements, order, multiple) = mesh;
@@ -970,7 +1007,7 @@ fn beam_scene(
     };
     let disk = match &raw.disk {
         None => None,
-        Some(d) => Some(disk_on_beam(c, d, length, gravity)?),
+        Some(d) => Some(disk_on_beam(c, d, &beam, length, gravity)?),
     };
     let accuracy = match raw.solver.as_ref().and_then(|s| s.accuracy.as_ref()) {
         None => DEFAULT_ACCURACY,
@@ -1084,10 +1121,32 @@ fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usize), Error>
     ] {
         c.derived(given.referenced.line(), key, what, v)?;
     }
+    let depth = match &b.depth {
+        Some(d) => {
+            let h = c.positive(d, "track.beam.depth")?;
+            if h < MIN_PATCH_PER_LENGTH * length {
+                return c.err(
+                    d.referenced.line(),
+                    "track.beam.depth",
+                    format!("= {h:e} m is below a millionth of the beam's length (L = {length:e} m): the depth sets the contact patch, which would be a point"),
+                );
+            }
+            if h > length {
+                return c.err(
+                    d.referenced.line(),
+                    "track.beam.depth",
+                    format!("= {h:e} m is deeper than the beam is long (L = {length:e} m): that is not a beam"),
+                );
+            }
+            h
+        }
+        None => patch::rectangular_depth(&section),
+    };
     let beam = BeamSpec {
         from,
         to,
         section,
+        depth,
         supports,
         bearings,
         elements,
@@ -1365,6 +1424,7 @@ fn outputs(
 fn disk_on_beam(
     c: &Checker,
     file: &Spanned<DiskFile>,
+    beam: &BeamSpec,
     length: f64,
     gravity: f64,
 ) -> Result<DiskOnBeamSpec, Error> {
@@ -1447,19 +1507,37 @@ fn disk_on_beam(
         Some(m) => Some(c.positive(m, "disk.mu")?),
         None => None,
     };
+    let kink = disk.mass * gravity / beam.section.gav;
+    if kink > 1.0 {
+        return c.err(
+            file.referenced.line(),
+            "disk.mass",
+            format!("= {:e} kg kinks the beam's axis by m g/(G Av) = {kink:.3e} rad under the disk: over a radian, the beam's shear stiffness cannot carry it (stiffen G or Av, or lighten the disk)", disk.mass),
+        );
+    }
     let patch = match &d.patch {
         Some(p) => {
             let b = c.positive(p, "disk.patch")?;
+            if b < MIN_PATCH_PER_LENGTH * length {
+                return c.err(
+                    p.referenced.line(),
+                    "disk.patch",
+                    format!("= {b:e} m is below a millionth of the beam's length (L = {length:e} m): a contact that short is a point, on which the disk's contact force is not defined (see REPORT.md, \"The contact patch\")"),
+                );
+            }
             if b > length {
                 return c.err(
                     p.referenced.line(),
                     "disk.patch",
-                    format!("= {b} m is wider than the beam (L = {length} m); the patch is the half-width of the contact, a fraction of the radius"),
+                    format!("= {b:e} m is wider than the beam (L = {length} m); the patch is the half-width of the contact, about the section's depth"),
                 );
             }
             b
         }
-        None => disk.radius.min(length),
+        None => {
+            patch::physical_half_width(&beam.section, beam.depth, disk.radius, disk.mass * gravity)
+                .min(length)
+        }
     };
     Ok(DiskOnBeamSpec {
         disk,

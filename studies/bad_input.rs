@@ -358,6 +358,16 @@ fn bad_beams() {
         &beam_scene(&[], "output:\n  probes: [{name: p, x: -1}]\n"),
         &["output.probes.x", "outside the beam"],
     );
+    rejected(
+        "depth-zero",
+        &beam_scene(&[("depth", "0")], ""),
+        &["`track.beam.depth` must be positive"],
+    );
+    rejected(
+        "depth-deeper-than-long",
+        &beam_scene(&[("depth", "9")], ""),
+        &["track.beam.depth", "deeper than the beam is long"],
+    );
 }
 
 /// Intermediate bearings and the static start: each bad setting is named with its key.

@@ -536,3 +536,58 @@ fn static_deflection_under_the_disk_weight() {
     let exact = -(p * l.powi(3) / (48.0 * ei) + p * l / (4.0 * gav));
     assert!((w / exact - 1.0).abs() < 1e-4, "w = {w} against {exact}");
 }
+
+/// The contact patch (`coupling::patch`, REPORT.md "The contact patch"). Its default half-width
+/// is the kernel matching a load dispersed at one to one through half the depth plus Hertz's
+/// half-width, b = √(11/3) (h/2 + a_H): on the rubber's 0.2 m square section 0.217 m. The
+/// estimate the patch warning rests on is checked against the model: widening the patch from
+/// 0.2 to 0.4 m rounds off the shear kink θ = P/(G Av) = 0.049 rad under the disk and lifts
+/// the deflection under it by θ Δb / 4 = 2.45 mm. Tolerance 20 %: the estimate takes the kink as
+/// sharp and the load as static (measured to 1 % at rtol 10⁻⁷, REPORT.md); the bending part of
+/// the averaging adds O((b/L)²) = 0.6 % of 0.42 m, 2.5 mm times 0.1. The same estimate on D44's
+/// steel is 10⁻⁴ of its response, and only the rubber's deflection is warned about.
+#[test]
+fn patch_width_from_the_section_and_its_shear_kink() {
+    let rubber = load("rubber.yaml");
+    let b = rubber.beam().unwrap();
+    let patch = b.disk.as_ref().unwrap().patch;
+    let hertz = (4.0 * 981.0 * 0.2 * 0.2 / (PI * 7.0e6 * 0.04)).sqrt();
+    let expect = (11.0_f64 / 3.0).sqrt() * (0.1 + hertz);
+    // The file gives I = 13333.3 cm⁴, so its rectangle is 0.2 m deep to 2·10⁻⁶.
+    assert!(
+        (patch / expect - 1.0).abs() < 1e-5,
+        "{patch} against {expect}"
+    );
+    let kink = 100.0 * 9.81 / (0.6e6 * 333.3e-4);
+    let w_under = |half: f64| {
+        let scene = variant(
+            "rubber.yaml",
+            &[
+                Set::Number("disk.patch", half),
+                Set::Number("duration", 1.0),
+            ],
+        );
+        let r = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-9);
+        r.rows
+            .iter()
+            .map(|row| row.w_under)
+            .fold(f64::INFINITY, f64::min)
+    };
+    let shift = w_under(0.4) - w_under(0.2);
+    let estimate = kink * 0.2 / 4.0;
+    eprintln!("w under the disk moves by {shift:.4e} m, estimated {estimate:.4e} m");
+    assert!((shift / estimate - 1.0).abs() < 0.2);
+
+    let warned = |file: &str| {
+        let w = load(file).beam().unwrap().warnings();
+        (
+            w.iter().any(|w| w.contains("deflection")),
+            w.iter().any(|w| w.contains("contact force")),
+        )
+    };
+    assert_eq!(warned("rubber.yaml"), (true, true));
+    assert!(!warned("bridge-d44.yaml").0);
+    let d44 = load("bridge-d44.yaml");
+    let d = d44.beam().unwrap().patch_sensitivity().unwrap();
+    assert!(d.deflection < 1e-3 && d.kink_angle < 1e-4, "{d:?}");
+}

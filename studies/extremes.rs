@@ -123,6 +123,7 @@ fn thin_and_thick_beams_at_every_degree() {
                 from: [0.0, 0.0],
                 to: [l, 0.0],
                 section: s,
+                depth: 0.2,
                 supports: [Support::Clamped, Support::Free],
                 bearings: Vec::new(),
                 elements: 10,

@@ -194,7 +194,7 @@ fn mutated_scenes_are_accepted_finite_or_refused_in_one_sentence() {
                     "names no key or line: {}",
                     m
                 );
-                prop_assert!(m.len() < 600, "{} bytes", m.len());
+                prop_assert!(m.len() < 600, "{} bytes: {}", m.len(), m);
                 refused.set(refused.get() + 1);
             }
         }

@@ -26,7 +26,7 @@ fn errors(trials: &[Trial], method: Method) -> Vec<(f64, f64, usize)> {
 fn work_precision_on_the_parabola() {
     let scene = load("parabola-p1.yaml");
     let plan = Plan::default_for(&scene);
-    let reference = tradeoff::reference(&scene, &plan).expect("the reference runs");
+    let reference = tradeoff::reference(&scene, &plan, "test").expect("the reference runs");
     assert!(
         reference.settled_to <= REFERENCE_SETTLED,
         "reference settled only to {:.1e}",
@@ -103,7 +103,7 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
         meshes: vec![2, 4],
         max_steps: 20_000,
     };
-    let reference = tradeoff::reference(&scene, &plan).expect("the reference runs");
+    let reference = tradeoff::reference(&scene, &plan, "test").expect("the reference runs");
     let trials = tradeoff::trials(&scene, &plan, &reference, false);
     assert_eq!(trials.len(), 8);
     for method in plan.methods.iter().copied() {

@@ -151,6 +151,7 @@ mod tests {
                 rho_a: 7850.0 * 181e-4,
                 rho_i: 7850.0 * 43190e-8,
             },
+            depth: 0.36,
             supports: [Support::Pinned, Support::Roller],
             bearings: Vec::new(),
             elements: 40,

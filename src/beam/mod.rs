@@ -61,6 +61,9 @@ pub struct BeamSpec {
     pub from: [f64; 2],
     pub to: [f64; 2],
     pub section: Section,
+    /// The section's depth (m): how far a wheel's load spreads before it reaches the axis
+    /// (see `coupling::patch`).
+    pub depth: f64,
     pub supports: [Support; 2],
     /// Material points x of intermediate bearings, which hold w there; each lies on an
     /// element boundary (see [`supports::mesh_multiple`]).

@@ -5,6 +5,8 @@ use std::path::PathBuf;
 
 use crate::beam::load::BeamStart;
 use crate::beam::Beam;
+use crate::coupling::patch;
+use crate::coupling::DiskOnBeamSpec;
 use crate::error::Error;
 use crate::output;
 use crate::say;
@@ -132,24 +134,26 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
         writeln!(f, "  chosen for accuracy {:e}: {}", d.accuracy, d.why)?;
     }
     match &setup.disk {
-            None => writeln!(f, "  disk: none (no disk unknowns)")?,
-            Some(d) => writeln!(
+        None => writeln!(f, "  disk: none (no disk unknowns)")?,
+        Some(d) => writeln!(
             f,
-                "  disk: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}), contact patch ±{} m{}",
-                d.disk.mass,
-                d.disk.radius,
-                d.s0,
-                d.omega0,
-                d.coupling.name(),
-                if d.coupling.rolls() {
-                    "1 more unknown: the contact point s"
-                } else {
-                    "prescribed travel, no disk unknowns"
-                },
-                d.patch,
-                d.mu.map_or(String::new(), |m| format!(", mu = {m}"))
-            )?,
-        }
+            "  disk: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}){}",
+            d.disk.mass,
+            d.disk.radius,
+            d.s0,
+            d.omega0,
+            d.coupling.name(),
+            if d.coupling.rolls() {
+                "1 more unknown: the contact point s"
+            } else {
+                "prescribed travel, no disk unknowns"
+            },
+            d.mu.map_or(String::new(), |m| format!(", mu = {m}"))
+        )?,
+    }
+    if let Some(d) = &setup.disk {
+        patch(f, setup, d)?;
+    }
     writeln!(
         f,
         "  loads: {}, probes: {}",
@@ -161,5 +165,40 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
             .collect::<Vec<_>>()
             .join(", ")
     )?;
+    Ok(())
+}
+
+/// Where the contact patch's width comes from, and what depends on it.
+fn patch(f: &mut fmt::Formatter<'_>, setup: &BeamScene, d: &DiskOnBeamSpec) -> fmt::Result {
+    let spec = &setup.beam;
+    let weight = d.disk.mass * d.gravity;
+    let hertz = patch::hertz_half_width(&spec.section, spec.depth, d.disk.radius, weight);
+    let rule = patch::physical_half_width(&spec.section, spec.depth, d.disk.radius, weight);
+    writeln!(
+        f,
+        "  contact patch: ±{:.4} m{}; the physical width for this section is ±{rule:.4} m: the load dispersed at one to one through half the depth {:.4} m{} (EN 1991-2 §4.3.6), plus Hertz's half-width {hertz:.2e} m",
+        d.patch,
+        if (d.patch - rule).abs() <= 1e-12 * rule {
+            " (from the section)"
+        } else {
+            " (given)"
+        },
+        spec.depth,
+        if (spec.depth - patch::rectangular_depth(&spec.section)).abs() > 1e-12 * spec.depth {
+            " (given)"
+        } else {
+            ", the depth of the rectangle with the section's A and I"
+        },
+    )?;
+    if let Some(s) = setup.patch_sensitivity() {
+        writeln!(
+            f,
+            "  patch sensitivity: the axis kinks by P/(G Av) = {:.2e} rad under the disk; deflection ~{:.1e} of the response, contact force ~{:.1e} of the weight",
+            s.kink_angle, s.deflection, s.contact_force
+        )?;
+    }
+    for w in setup.warnings() {
+        writeln!(f, "  warning: {w}")?;
+    }
     Ok(())
 }

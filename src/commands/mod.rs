@@ -7,6 +7,7 @@
 
 pub mod check;
 pub mod parallel;
+pub mod reference;
 pub mod report;
 pub mod run;
 pub mod studies;

@@ -64,6 +64,9 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
                     p.x
                 );
             }
+            for w in b.setup.warnings() {
+                say!("  warning: {w}");
+            }
         }
     }
     say!("  energy drift {:.2e} (relative)", h.energy.max_rel_drift());

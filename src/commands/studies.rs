@@ -94,11 +94,9 @@ fn work_precision(studies: &Path, out: &Path, figures: &Path) -> Result<(), Erro
     for file in scene_files(studies)? {
         let scene = Scene::load(&file)?;
         let name = scene.name.clone();
-        let mut plan = tradeoff::Plan::default_for(&scene);
-        if !FULL_GRID.iter().any(|p| name.starts_with(p)) {
-            plan.rtols.retain(|&r| r >= 1e-5);
-        }
-        let reference = tradeoff::reference(&scene, &plan)?;
+        let plan = study_plan(&scene);
+        let (reference, origin) = tradeoff::reference_for(&scene, &file, &plan, false, "rollbeam studies --references")?;
+        say!("{:<14} {origin}", format!("tradeoff {name}"));
         let trials = tradeoff::trials(&scene, &plan, &reference, true);
         let dir = out.join(format!("{name}-tradeoff"));
         for line in tradeoff::write_tradeoff(&scene, &reference, &trials, &dir)? {
@@ -112,6 +110,38 @@ fn work_precision(studies: &Path, out: &Path, figures: &Path) -> Result<(), Erro
 
 /// Studies whose work–precision grid runs to the method's tightest default rtol.
 const FULL_GRID: [&str; 2] = ["parabola-", "bridge-"];
+
+/// The grid a study's work–precision diagram is drawn from.
+fn study_plan(scene: &Scene) -> tradeoff::Plan {
+    let mut plan = tradeoff::Plan::default_for(scene);
+    if !FULL_GRID.iter().any(|p| scene.name.starts_with(p)) {
+        plan.rtols.retain(|&r| r >= 1e-5);
+    }
+    plan
+}
+
+/// Compute every study's work–precision reference again, two at a time, and store each beside
+/// its scene (`references/`): what `--references` does before the rest of the job.
+fn store_references(studies: &Path) -> Result<(), Error> {
+    let mut scenes = Vec::new();
+    for file in scene_files(studies)? {
+        scenes.push((Scene::load(&file)?, file));
+    }
+    let done = super::parallel::map(&scenes, false, |(scene, file)| {
+        tradeoff::reference_for(
+            scene,
+            file,
+            &study_plan(scene),
+            true,
+            "rollbeam studies --references",
+        )
+    });
+    for ((scene, _), outcome) in scenes.iter().zip(done) {
+        let (_, line) = outcome?;
+        say!("{:<14} {line}", scene.name);
+    }
+    Ok(())
+}
 
 /// Study 1 side by side: the four disks' speeds, angular velocities and normal reactions.
 fn compare_parabola(results: &[&RunResult], figures: &Path) -> Result<(), Error> {
@@ -242,9 +272,13 @@ pub struct StudiesArgs {
     /// Folder for the runs (default out).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Leave out the work–precision diagrams: about 51 of the job's 52 minutes on two cores.
+    /// Leave out the work–precision diagrams.
     #[arg(long)]
     no_work_precision: bool,
+    /// First compute every study's work–precision reference again and store it under
+    /// studies/references/ (about 40 minutes on two cores); otherwise the stored ones serve.
+    #[arg(long)]
+    references: bool,
 }
 
 /// `rollbeam studies`.
@@ -252,6 +286,7 @@ pub fn studies(args: StudiesArgs) -> Result<(), Error> {
     let StudiesArgs {
         out,
         no_work_precision,
+        references,
     } = args;
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let here = if Path::new("studies").is_dir() {
@@ -260,6 +295,9 @@ pub fn studies(args: StudiesArgs) -> Result<(), Error> {
         root
     };
     let out = out.unwrap_or_else(|| here.join("out"));
+    if references {
+        store_references(&here.join("studies"))?;
+    }
     run_all(
         &here.join("studies"),
         &out,

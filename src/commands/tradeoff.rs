@@ -76,19 +76,19 @@ impl Plan {
 }
 
 /// One quantity a user reads off a run, and the family whose largest value scales its error.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Headline {
     pub name: String,
     pub value: f64,
-    family: &'static str,
+    family: String,
 }
 
 /// The headline quantities of a run.
 pub fn headlines(r: &Run) -> Vec<Headline> {
-    let h = |name: String, value: f64, family| Headline {
+    let h = |name: String, value: f64, family: &str| Headline {
         name,
         value,
-        family,
+        family: family.to_string(),
     };
     let mut out = Vec::new();
     match r {
@@ -134,7 +134,7 @@ pub fn headline_error(a: &[Headline], reference: &[Headline]) -> f64 {
     };
     a.iter()
         .zip(reference)
-        .map(|(x, r)| (x.value - r.value).abs() / scale(r.family))
+        .map(|(x, r)| (x.value - r.value).abs() / scale(&r.family))
         .fold(0.0, |m, e| if e.is_nan() { f64::NAN } else { m.max(e) })
 }
 
@@ -202,17 +202,26 @@ pub struct Reference {
     /// Largest relative headline change at the last tenfold cut of rtol.
     pub settled_to: f64,
     pub headlines: Vec<Headline>,
-    history: Vec<(f64, Vec<f64>)>,
+    pub history: Vec<(f64, Vec<f64>)>,
     pub wall_s: f64,
+    /// The command that computes it again.
+    pub made_by: String,
 }
 
-pub fn reference(scene: &Scene, plan: &Plan) -> Result<Reference, Error> {
-    let (method, elements) = match &scene.model {
-        Model::Rolling(_) => (Method::Dopri5, None),
-        Model::Beam(_) => (
-            Method::GenAlpha,
-            Some(2 * plan.meshes.iter().copied().max().unwrap_or(1)),
-        ),
+/// The method a reference is computed with: the most accurate for the kind of scene.
+pub fn reference_method(scene: &Scene) -> Method {
+    match &scene.model {
+        Model::Rolling(_) => Method::Dopri5,
+        Model::Beam(_) => Method::GenAlpha,
+    }
+}
+
+/// Compute the reference; `made_by` is the command that does it again.
+pub fn reference(scene: &Scene, plan: &Plan, made_by: &str) -> Result<Reference, Error> {
+    let method = reference_method(scene);
+    let elements = match &scene.model {
+        Model::Rolling(_) => None,
+        Model::Beam(_) => Some(2 * plan.meshes.iter().copied().max().unwrap_or(1)),
     };
     let fine = with_mesh(scene, elements);
     let tightest = plan.rtols.iter().copied().fold(1.0, f64::min);
@@ -239,7 +248,43 @@ pub fn reference(scene: &Scene, plan: &Plan) -> Result<Reference, Error> {
         headlines: headlines(&last),
         history: history(&last),
         wall_s: wall,
+        made_by: made_by.to_string(),
     })
+}
+
+/// The reference for `scene`, read from `file`: the stored one where it serves (see
+/// `reference.rs`), otherwise computed, and stored when `store` is set (`--reference`). The
+/// line says which, and why.
+pub fn reference_for(
+    scene: &Scene,
+    file: &Path,
+    plan: &Plan,
+    store: bool,
+    made_by: &str,
+) -> Result<(Reference, String), Error> {
+    let path = super::reference::stored_path(file, &scene.name);
+    let hash = super::reference::scene_hash(file)?;
+    let why = if store {
+        "asked for with --reference".to_string()
+    } else {
+        match super::reference::load(&path, &hash, plan, reference_method(scene)) {
+            super::reference::Stored::Usable(r) => {
+                let line = format!("stored reference {} ({hash})", path.display());
+                return Ok((r, line));
+            }
+            super::reference::Stored::Missing => format!("no stored reference at {}", path.display()),
+            super::reference::Stored::Stale(why) => format!("the stored reference does not serve: {why}"),
+        }
+    };
+    say!("{}: computing the reference ({why})…", scene.name);
+    let r = reference(scene, plan, made_by)?;
+    let line = if store {
+        super::reference::store(&r, &scene.name, &hash, &path)?;
+        format!("computed and stored the reference in {}", path.display())
+    } else {
+        format!("computed the reference ({why}; `{made_by}` stores one)")
+    };
+    Ok((r, line))
 }
 
 /// One run of the grid.
@@ -509,6 +554,10 @@ pub struct TradeoffArgs {
     /// Steps a run may take before it gives up (default 20000 on a beam, 200000 on a curve).
     #[arg(long)]
     max_steps: Option<usize>,
+    /// Compute the reference again, even where a stored one serves, and store it in
+    /// `references/` beside the scene file.
+    #[arg(long)]
+    reference: bool,
 }
 
 /// `rollbeam tradeoff`.
@@ -520,6 +569,7 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
         rtols,
         elements,
         max_steps,
+        reference: recompute,
     } = args;
     let scene = Scene::load(&path)?;
     let mut plan = Plan::default_for(&scene);
@@ -554,8 +604,12 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
         }
         plan.max_steps = m;
     }
-    say!("{}: computing the reference…", scene.name);
-    let reference = reference(&scene, &plan)?;
+    let made_by = std::iter::once("rollbeam".to_string())
+        .chain(std::env::args().skip(1))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let (reference, origin) = reference_for(&scene, &path, &plan, recompute, &made_by)?;
+    say!("  {origin}");
     let trials = trials(&scene, &plan, &reference, true);
     let dir = out.unwrap_or_else(|| Path::new("out").join(format!("{}-tradeoff", scene.name)));
     for line in write_tradeoff(&scene, &reference, &trials, &dir)? {

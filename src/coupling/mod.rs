@@ -27,6 +27,7 @@ pub mod contact;
 pub(crate) mod law;
 mod moving_force;
 mod moving_mass;
+pub mod patch;
 mod thesis;
 pub mod thesis_system;
 

@@ -25,6 +25,9 @@ struct Summary {
     disk: Option<BeamDiskSummary>,
     probes: BTreeMap<String, ProbeSummary>,
     envelope: EnvelopeSummary,
+    /// What the results depend on beyond the accuracy asked (`BeamScene::warnings`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    warnings: Vec<String>,
 }
 
 /// The disk's final values (where it left the beam, or at the end) and extremes while on it.
@@ -36,6 +39,17 @@ struct BeamDiskSummary {
     /// The lowest deflection of the beam under the disk, and when.
     w_under_min: f64,
     w_under_min_t: f64,
+    patch: PatchSummary,
+}
+
+/// The contact patch and how much the results depend on it (`coupling::patch`).
+#[derive(Serialize)]
+struct PatchSummary {
+    half_width: f64,
+    depth: f64,
+    kink_angle: f64,
+    deflection_sensitivity: f64,
+    contact_force_sensitivity: f64,
 }
 
 fn disk_summary(r: &BeamRun) -> Option<BeamDiskSummary> {
@@ -84,6 +98,16 @@ fn disk_summary(r: &BeamRun) -> Option<BeamDiskSummary> {
         },
         w_under_min,
         w_under_min_t,
+        patch: {
+            let s = r.setup.patch_sensitivity()?;
+            PatchSummary {
+                half_width: spec.patch,
+                depth: r.setup.beam.depth,
+                kink_angle: s.kink_angle,
+                deflection_sensitivity: s.deflection,
+                contact_force_sensitivity: s.contact_force,
+            }
+        },
     })
 }
 
@@ -249,6 +273,7 @@ pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             .map(|k| (r.setup.probes[k].name.clone(), probe_summary(r, k)))
             .collect(),
         envelope: envelope_summary(r),
+        warnings: r.setup.warnings(),
     };
     write(&dir.join("summary.yaml"), &yaml(&summary)?)?;
     write(&dir.join("history.csv"), &csv(r))?;

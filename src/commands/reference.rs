@@ -1,0 +1,172 @@
+//! Stored references: a work–precision reference costs minutes (tens of them for a sudden load),
+//! and depends only on the scene, so it is computed once and kept beside the scene, under
+//! `references/<scene name>.yaml` (how it was made and how settled it is, the headlines) and
+//! `references/<scene name>.history.csv` (the history it is compared on, on the output grid).
+//!
+//! A stored reference is used only for the scene text it was made from: the file carries the
+//! FNV-1a hash of the scene file, and any edit of the scene makes it stale. A change of the code
+//! that moves the physics is caught by the test that reruns every stored reference at a coarser
+//! tolerance (`studies/tradeoff.rs`).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::tradeoff::{Headline, Plan, Reference};
+use crate::error::Error;
+use crate::ode::Method;
+use crate::output::{io_error, write, yaml};
+
+/// FNV-1a (64 bit) of the scene text with carriage returns left out, so that a checkout with
+/// either line ending gives the same hash.
+pub fn content_hash(text: &str) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in text.bytes().filter(|&b| b != b'\r') {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    format!("fnv1a64:{h:016x}")
+}
+
+/// The hash of the scene file at `path`.
+pub fn scene_hash(path: &Path) -> Result<String, Error> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| Error::Input(format!("cannot read {}: {e}", path.display())))?;
+    Ok(content_hash(&text))
+}
+
+/// Where the reference of the scene named `name`, read from `scene_file`, is kept.
+pub fn stored_path(scene_file: &Path, name: &str) -> PathBuf {
+    scene_file
+        .parent()
+        .unwrap_or(Path::new("."))
+        .join("references")
+        .join(format!("{name}.yaml"))
+}
+
+#[derive(Serialize, Deserialize)]
+struct StoredFile {
+    scene: String,
+    scene_hash: String,
+    made_by: String,
+    method: String,
+    rtol: f64,
+    elements: Option<usize>,
+    settled_to: f64,
+    wall_s: f64,
+    headlines: Vec<Headline>,
+    history_columns: usize,
+}
+
+/// Write `reference` for the scene `name` (file hash `hash`) to `path` and its history beside it.
+pub fn store(reference: &Reference, name: &str, hash: &str, path: &Path) -> Result<(), Error> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
+    let file = StoredFile {
+        scene: name.to_string(),
+        scene_hash: hash.to_string(),
+        made_by: reference.made_by.clone(),
+        method: reference.method.name().to_string(),
+        rtol: reference.rtol,
+        elements: reference.elements,
+        settled_to: reference.settled_to,
+        wall_s: reference.wall_s,
+        headlines: reference.headlines.clone(),
+        history_columns: reference.history.first().map_or(0, |(_, v)| v.len()),
+    };
+    write(path, &yaml(&file)?)?;
+    let mut csv = String::new();
+    for (t, values) in &reference.history {
+        let _ = write!(csv, "{t:e}");
+        for v in values {
+            let _ = write!(csv, ",{v:e}");
+        }
+        csv.push('\n');
+    }
+    write(&history_path(path), &csv)
+}
+
+fn history_path(path: &Path) -> PathBuf {
+    path.with_extension("history.csv")
+}
+
+/// Why a stored reference cannot serve, or the reference itself.
+pub enum Stored {
+    Usable(Reference),
+    Missing,
+    Stale(String),
+}
+
+/// The reference stored at `path`, if it was made from the scene text hashed `hash` and is at
+/// least as fine as `plan` asks (a mesh twice its finest, an rtol a decade below its tightest).
+pub fn load(path: &Path, hash: &str, plan: &Plan, method: Method) -> Stored {
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return Stored::Missing;
+    };
+    let bad = |why: String| Stored::Stale(format!("{}: {why}", path.display()));
+    let file: StoredFile = match serde_saphyr::from_str(&text) {
+        Ok(f) => f,
+        Err(e) => return bad(format!("unreadable ({e})")),
+    };
+    if file.scene_hash != hash {
+        return bad(format!(
+            "made from another version of the scene ({}, the scene is now {hash})",
+            file.scene_hash
+        ));
+    }
+    if file.method != method.name() {
+        return bad(format!("made with {}, not {}", file.method, method.name()));
+    }
+    let tightest = plan.rtols.iter().copied().fold(1.0, f64::min);
+    if file.rtol > tightest / 10.0 * (1.0 + 1e-9) {
+        return bad(format!(
+            "made at rtol {:e}, not a decade below the tightest tried, {tightest:e}",
+            file.rtol
+        ));
+    }
+    if let Some(finest) = plan.meshes.iter().copied().max() {
+        if file.elements.is_none_or(|n| n < 2 * finest) {
+            return bad(format!(
+                "made on {:?} elements, not twice the finest tried, {finest}",
+                file.elements
+            ));
+        }
+    }
+    let Ok(csv) = std::fs::read_to_string(history_path(path)) else {
+        return bad("its history file is missing".into());
+    };
+    let mut history = Vec::new();
+    for line in csv.lines() {
+        let numbers: Result<Vec<f64>, _> = line.split(',').map(str::parse::<f64>).collect();
+        match numbers {
+            Ok(n) if n.len() == file.history_columns + 1 && n.iter().all(|x| x.is_finite()) => {
+                history.push((n[0], n[1..].to_vec()));
+            }
+            _ => return bad(format!("its history has a malformed row: {line:.80}")),
+        }
+    }
+    Stored::Usable(Reference {
+        method,
+        rtol: file.rtol,
+        elements: file.elements,
+        settled_to: file.settled_to,
+        headlines: file.headlines,
+        history,
+        wall_s: file.wall_s,
+        made_by: file.made_by,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::content_hash;
+
+    /// The reference FNV-1a 64 values of the empty string and "a".
+    #[test]
+    fn fnv1a_matches_its_definition() {
+        assert_eq!(content_hash(""), "fnv1a64:cbf29ce484222325");
+        assert_eq!(content_hash("a"), "fnv1a64:af63dc4c8601ec8c");
+        assert_eq!(content_hash("a\r\nb"), content_hash("a\nb"));
+    }
+}
