@@ -143,3 +143,82 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
         t[0].outcome
     );
 }
+
+/// Every study has a stored work–precision reference (`studies/references/`, what
+/// `rollbeam studies` scores its diagrams against) made from its scene file as it is now, at
+/// least as fine as the study's grid asks; and each still reproduces. The first tenth of its
+/// history is run again with the same method on the same mesh at ten times its rtol, and
+/// must agree to twice what the reference's headlines moved at its own last tenfold cut of
+/// rtol (`settled_to`, at least 10⁻⁷) of the window's largest value: what the reference itself
+/// resolves. A change of the code that moves the physics by more than that makes the stored
+/// references stale: `rollbeam studies --references` makes them again.
+#[test]
+fn stored_references_serve_and_reproduce() {
+    use rollbeam::commands::reference::{self, Stored};
+    use rollbeam::commands::studies;
+    use rollbeam::run::{self, Overrides};
+    use rollbeam::scene::{Model, Scene};
+
+    let files = studies::scene_files(&common::studies_dir()).expect("the studies folder");
+    for file in files {
+        let scene = Scene::load(&file).expect("a valid study");
+        let plan = studies::study_plan(&scene);
+        let path = reference::stored_path(&file, &scene.name);
+        let hash = reference::scene_hash(&file).expect("a readable scene");
+        let method = tradeoff::reference_method(&scene);
+        let stored = match reference::load(&path, &hash, &plan, method) {
+            Stored::Usable(r) => r,
+            Stored::Missing => panic!("{}: no stored reference at {}", scene.name, path.display()),
+            Stored::Stale(why) => panic!("{}: {why}", scene.name),
+        };
+        let rows = (stored.history.len() / 10).max(2);
+        let window = &stored.history[..=rows];
+        let mut short = scene.clone();
+        // Half an output interval past the window's last row, so that round-off in the times
+        // cannot leave that row out.
+        short.duration = window[rows].0 + 0.5 * short.interval;
+        if let (Model::Beam(b), Some(n)) = (&mut short.model, stored.elements) {
+            b.beam.elements = n;
+            let end = short.duration;
+            b.shapes.retain(|&t| t <= end);
+        }
+        let over = Overrides {
+            method: Some(method),
+            rtol: Some(stored.rtol * 10.0),
+            atol: Some(stored.rtol * 1e-2),
+            ..Default::default()
+        };
+        let again = run::run(&short, &over, false).expect("the reference's settings run");
+        let rerun = tradeoff::history(&again);
+        let scale = window
+            .iter()
+            .flat_map(|(_, v)| v.iter())
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        let error = window
+            .iter()
+            .map(|(t, v)| {
+                let (_, w) = rerun
+                    .iter()
+                    .find(|(u, _)| (u - t).abs() <= 1e-9 * t.max(1.0))
+                    .unwrap_or_else(|| panic!("{}: no row at t = {t}", scene.name));
+                v.iter()
+                    .zip(w)
+                    .map(|(a, b)| (a - b).abs())
+                    .fold(0.0, f64::max)
+            })
+            .fold(0.0, f64::max)
+            / scale;
+        eprintln!(
+            "{}: first {:.3} s at rtol {:.0e}: {error:.1e}",
+            scene.name,
+            short.duration,
+            stored.rtol * 10.0
+        );
+        let resolved = 2.0 * stored.settled_to.max(1e-7);
+        assert!(
+            error <= resolved,
+            "{}: {error:.1e} > {resolved:.1e}",
+            scene.name
+        );
+    }
+}

@@ -95,7 +95,8 @@ fn work_precision(studies: &Path, out: &Path, figures: &Path) -> Result<(), Erro
         let scene = Scene::load(&file)?;
         let name = scene.name.clone();
         let plan = study_plan(&scene);
-        let (reference, origin) = tradeoff::reference_for(&scene, &file, &plan, false, "rollbeam studies --references")?;
+        let (reference, origin) =
+            tradeoff::reference_for(&scene, &file, &plan, false, "rollbeam studies --references")?;
         say!("{:<14} {origin}", format!("tradeoff {name}"));
         let trials = tradeoff::trials(&scene, &plan, &reference, true);
         let dir = out.join(format!("{name}-tradeoff"));
@@ -112,7 +113,7 @@ fn work_precision(studies: &Path, out: &Path, figures: &Path) -> Result<(), Erro
 const FULL_GRID: [&str; 2] = ["parabola-", "bridge-"];
 
 /// The grid a study's work–precision diagram is drawn from.
-fn study_plan(scene: &Scene) -> tradeoff::Plan {
+pub fn study_plan(scene: &Scene) -> tradeoff::Plan {
     let mut plan = tradeoff::Plan::default_for(scene);
     if !FULL_GRID.iter().any(|p| scene.name.starts_with(p)) {
         plan.rtols.retain(|&r| r >= 1e-5);

@@ -140,7 +140,7 @@ pub fn headline_error(a: &[Headline], reference: &[Headline]) -> f64 {
 
 /// The history a run is compared on: per output time, the probes' deflections (beam) or the
 /// disk centre (rigid curve).
-fn history(r: &Run) -> Vec<(f64, Vec<f64>)> {
+pub fn history(r: &Run) -> Vec<(f64, Vec<f64>)> {
     match r {
         Run::Beam(b) => b
             .rows
@@ -265,15 +265,19 @@ pub fn reference_for(
     let path = super::reference::stored_path(file, &scene.name);
     let hash = super::reference::scene_hash(file)?;
     let why = if store {
-        "asked for with --reference".to_string()
+        "asked to compute it again".to_string()
     } else {
         match super::reference::load(&path, &hash, plan, reference_method(scene)) {
             super::reference::Stored::Usable(r) => {
                 let line = format!("stored reference {} ({hash})", path.display());
                 return Ok((r, line));
             }
-            super::reference::Stored::Missing => format!("no stored reference at {}", path.display()),
-            super::reference::Stored::Stale(why) => format!("the stored reference does not serve: {why}"),
+            super::reference::Stored::Missing => {
+                format!("no stored reference at {}", path.display())
+            }
+            super::reference::Stored::Stale(why) => {
+                format!("the stored reference does not serve: {why}")
+            }
         }
     };
     say!("{}: computing the reference ({why})…", scene.name);
