@@ -323,6 +323,32 @@ impl Checker<'_> {
         Ok(x)
     }
 
+    /// A length of the section or the contact (m): positive, at least a millionth of the beam's
+    /// length `length` and at most all of it; `short` says what a shorter one would be, and
+    /// `long` how a longer one exceeds the beam and why that cannot be.
+    fn part_of_length(
+        &self,
+        v: &Spanned<f64>,
+        key: &str,
+        length: f64,
+        short: &str,
+        long: (&str, &str),
+    ) -> Result<f64, Error> {
+        let x = self.positive(v, key)?;
+        let line = v.referenced.line();
+        if x < MIN_PATCH_PER_LENGTH * length {
+            return self.err(line, key, format!("= {x:e} m is below a millionth of the beam's length (L = {length:e} m): {short}"));
+        }
+        if x > length {
+            return self.err(
+                line,
+                key,
+                format!("= {x:e} m {} (L = {length:e} m): {}", long.0, long.1),
+            );
+        }
+        Ok(x)
+    }
+
     /// A quantity derived from the scene's values (a length, a stiffness, an inertia) that the
     /// model divides by or squares: it must be a normal positive double, neither overflowed
     /// to infinity nor underflowed towards zero by extreme inputs.
@@ -1122,24 +1148,13 @@ fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usize), Error>
         c.derived(given.referenced.line(), key, what, v)?;
     }
     let depth = match &b.depth {
-        Some(d) => {
-            let h = c.positive(d, "track.beam.depth")?;
-            if h < MIN_PATCH_PER_LENGTH * length {
-                return c.err(
-                    d.referenced.line(),
-                    "track.beam.depth",
-                    format!("= {h:e} m is below a millionth of the beam's length (L = {length:e} m): the depth sets the contact patch, which would be a point"),
-                );
-            }
-            if h > length {
-                return c.err(
-                    d.referenced.line(),
-                    "track.beam.depth",
-                    format!("= {h:e} m is deeper than the beam is long (L = {length:e} m): that is not a beam"),
-                );
-            }
-            h
-        }
+        Some(d) => c.part_of_length(
+            d,
+            "track.beam.depth",
+            length,
+            "the depth sets the contact patch, which would be a point",
+            ("is deeper than the beam is long", "that is not a beam"),
+        )?,
         None => patch::rectangular_depth(&section),
     };
     let beam = BeamSpec {
@@ -1508,24 +1523,16 @@ fn disk_on_beam(
         None => None,
     };
     let patch = match &d.patch {
-        Some(p) => {
-            let b = c.positive(p, "disk.patch")?;
-            if b < MIN_PATCH_PER_LENGTH * length {
-                return c.err(
-                    p.referenced.line(),
-                    "disk.patch",
-                    format!("= {b:e} m is below a millionth of the beam's length (L = {length:e} m): a contact that short is a point, on which the disk's contact force is not defined (see REPORT.md, \"The contact patch\")"),
-                );
-            }
-            if b > length {
-                return c.err(
-                    p.referenced.line(),
-                    "disk.patch",
-                    format!("= {b:e} m is wider than the beam (L = {length} m); the patch is the half-width of the contact, about the section's depth"),
-                );
-            }
-            b
-        }
+        Some(p) => c.part_of_length(
+            p,
+            "disk.patch",
+            length,
+            "a contact that short is a point, on which the disk's contact force is not defined (see REPORT.md, \"The contact patch\")",
+            (
+                "is wider than the beam",
+                "the patch is the half-width of the contact, about the section's depth",
+            ),
+        )?,
         None => {
             patch::physical_half_width(&beam.section, beam.depth, disk.radius, disk.mass * gravity)
                 .min(length)
