@@ -1,6 +1,7 @@
 //! Planning: a checked scene ([`Checked`]) becomes the [`Scene`] a run is built from, with what
 //! it left out chosen from its accuracy and the reason recorded: the mesh
-//! (`analysis::discretisation::choose`), the size of its response, rtol ([`rtol_for`]) and
+//! (`analysis::discretisation::choose`), the beam model (`analysis::model_choice`), the size
+//! of its response, rtol ([`rtol_for`]) and
 //! atol ([`atol_for`]). A [`Planner`] keeps the mesh choices it has made, so that the cases
 //! of a sweep that share a beam plan it once.
 
@@ -9,6 +10,9 @@ use std::path::Path;
 use std::sync::Mutex;
 
 use crate::analysis::discretisation::{choose, jumps, response_size, Discretisation};
+use crate::analysis::model_choice;
+use crate::beam::BeamModel;
+use crate::coupling::Coupling;
 use crate::error::Error;
 use crate::scene::{BeamScene, Checked, Model, Scene, SceneSpec};
 
@@ -17,6 +21,7 @@ use crate::scene::{BeamScene, Checked, Model, Scene, SceneSpec};
 #[derive(Default)]
 pub struct Planner {
     chosen: Mutex<BTreeMap<String, Discretisation>>,
+    models: Mutex<BTreeMap<String, (BeamModel, String)>>,
 }
 
 impl Planner {
@@ -31,6 +36,7 @@ impl Planner {
             elements,
             order,
             multiple,
+            model_given,
             rtol_given,
             atol_given,
         } = checked;
@@ -57,6 +63,29 @@ impl Planner {
             b.beam.elements = d.elements;
             b.beam.order = d.order;
             b.discretisation = Some(d);
+        }
+        let given = model_given.then_some(b.beam.model);
+        if !model_given || b.beam.model == (BeamModel::Modal { modes: 0 }) {
+            let key = format!(
+                "model {:?} {given:?} {:?} {weight:?} {xs:?} {:?} {:?}",
+                b.beam, b.loads, b.accuracy, b.start
+            );
+            let known = self.models.lock().ok().and_then(|c| c.get(&key).cloned());
+            let (model, why) = known.unwrap_or_else(|| {
+                let thesis = b
+                    .disk
+                    .as_ref()
+                    .is_some_and(|d| d.coupling == Coupling::Thesis);
+                let c = model_choice::choose(
+                    &b.beam, given, &b.loads, weight, &xs, b.accuracy, b.start, thesis,
+                );
+                if let Ok(mut m) = self.models.lock() {
+                    m.insert(key, (c.model, c.why.clone()));
+                }
+                (c.model, c.why)
+            });
+            b.beam.model = model;
+            b.model_choice = Some(why);
         }
         b.response = response_size(&b.beam, &b.loads, weight, &xs);
         if !rtol_given {

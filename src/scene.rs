@@ -13,7 +13,7 @@ use crate::analysis::discretisation::{Discretisation, DEFAULT_ACCURACY, DEFAULT_
 use crate::beam::element::Section;
 use crate::beam::load::{BeamStart, PointLoad, Probe};
 use crate::beam::supports::{mesh_multiple, statically_supported, Support};
-use crate::beam::{BeamSpec, Quadrature};
+use crate::beam::{BeamModel, BeamSpec, Quadrature};
 use crate::coupling::{patch, Coupling, DiskOnBeamSpec};
 use crate::curve::expr::Formula;
 use crate::curve::spline::Spline;
@@ -61,6 +61,8 @@ struct BeamFile {
     order: Option<Spanned<i64>>,
     quadrature: Option<Spanned<String>>,
     initial: Option<Spanned<String>>,
+    model: Option<Spanned<String>>,
+    modes: Option<Spanned<i64>>,
 }
 
 #[derive(Clone, Deserialize)]
@@ -202,6 +204,8 @@ pub struct BeamScene {
     pub accuracy: f64,
     /// The mesh the plan chose for the scene, when it left elements or order out.
     pub discretisation: Option<Discretisation>,
+    /// Why the beam has the model it has, when the plan chose it (or its modes).
+    pub model_choice: Option<String>,
     /// The size of the displacements its loads cause (m), when the supports allow a static
     /// estimate: see `analysis::discretisation::response_size`. Set by the plan.
     pub response: Option<f64>,
@@ -284,6 +288,7 @@ const MAX_ROWS: f64 = 1e6;
 const MAX_NODES: f64 = 100_001.0;
 /// Intermediate bearings must sit at nodes of a uniform mesh of at most this many elements.
 const MAX_SPANS: usize = 1000;
+use crate::beam::modal::MAX_MODES;
 
 /// Reports problems as "FILE line N: KEY ...".
 struct Checker<'a> {
@@ -430,6 +435,8 @@ pub struct Checked {
     pub order: Option<usize>,
     /// Element counts are kept to multiples of this, which puts a node at each bearing.
     pub multiple: usize,
+    /// The scene names its beam model (the plan chooses it otherwise).
+    pub model_given: bool,
     pub rtol_given: bool,
     pub atol_given: bool,
 }
@@ -516,6 +523,7 @@ impl SceneSpec {
                         "depth" => option(&mut b.depth),
                         "elements" => whole(&mut b.elements)?,
                         "order" => whole(&mut b.order)?,
+                        "modes" => whole(&mut b.modes)?,
                         _ => return Err(not_a_number(key)),
                     }
                 }
@@ -587,7 +595,9 @@ impl SceneSpec {
             | "track.beam.order"
             | "track.beam.quadrature"
             | "track.beam.initial"
-            | "track.beam.depth" => {
+            | "track.beam.depth"
+            | "track.beam.model"
+            | "track.beam.modes" => {
                 let Some(b) = f.track.value.beam.as_mut() else {
                     return no("beam track");
                 };
@@ -597,6 +607,8 @@ impl SceneSpec {
                     "track.beam.order" => b.order = None,
                     "track.beam.quadrature" => b.quadrature = None,
                     "track.beam.depth" => b.depth = None,
+                    "track.beam.model" => b.model = None,
+                    "track.beam.modes" => b.modes = None,
                     _ => b.initial = None,
                 }
             }
@@ -669,21 +681,21 @@ impl SceneSpec {
                 }
             }
             "solver.method" => text(&mut f.solver.get_or_insert_with(SolverFile::default).method),
-            "track.beam.quadrature" | "track.beam.initial" => {
+            "track.beam.quadrature" | "track.beam.initial" | "track.beam.model" => {
                 let Some(b) = f.track.value.beam.as_mut() else {
                     return Err(Error::Input(format!(
                         "`{key}` cannot be set: the scene has no beam track"
                     )));
                 };
-                if key == "track.beam.quadrature" {
-                    text(&mut b.value.quadrature)
-                } else {
-                    text(&mut b.value.initial)
+                match key {
+                    "track.beam.quadrature" => text(&mut b.value.quadrature),
+                    "track.beam.model" => text(&mut b.value.model),
+                    _ => text(&mut b.value.initial),
                 }
             }
             _ => {
                 return Err(Error::Input(format!(
-                    "`{key}` is not a name the scene format holds; names are name, disk.coupling, disk.formulation, solver.method, track.beam.quadrature and track.beam.initial"
+                    "`{key}` is not a name the scene format holds; names are name, disk.coupling, disk.formulation, solver.method, track.beam.model, track.beam.quadrature and track.beam.initial"
                 )))
             }
         }
@@ -721,7 +733,12 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
         }
         (Some(curve), None) => (
             Model::Rolling(rolling_scene(&c, raw, curve, gravity)?),
-            (None, None, 1),
+            Given {
+                elements: None,
+                order: None,
+                multiple: 1,
+                model: true,
+            },
         ),
         (None, Some(beam)) => {
             let (scene, mesh) = beam_scene(&c, raw, beam, duration, gravity)?;
@@ -783,7 +800,17 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
             return c.err(i.referenced.line(), "output.interval", format!("= {interval:e} would write {:.3e} rows of history; at most {MAX_ROWS:.0} are allowed", duration / interval));
         }
     }
-    let (elements, order, multiple) = mesh;
+    if let (Model::Beam(b), Some(s)) = (&model, &raw.solver) {
+        if let (Some(d), Some(m)) = (&b.disk, &s.method) {
+            if d.coupling == Coupling::Thesis
+                && solver.method != Method::GenAlpha
+                && b.beam.model != BeamModel::Exact
+                && mesh.model
+            {
+                return c.err(m.referenced.line(), "solver.method", format!("{} integrates the thesis coupling as the published 3n + 6 system, which transcribes the exact beam; use `model: exact`, or genalpha for the thesis coupling on a {} beam", solver.method.name(), b.beam.model.name()));
+            }
+        }
+    }
     Ok(Checked {
         scene: Scene {
             name,
@@ -792,9 +819,10 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
             solver,
             interval,
         },
-        elements,
-        order,
-        multiple,
+        elements: mesh.elements,
+        order: mesh.order,
+        multiple: mesh.multiple,
+        model_given: mesh.model,
         rtol_given,
         atol_given,
     })
@@ -1011,9 +1039,9 @@ fn beam_scene(
     file: &Spanned<BeamFile>,
     duration: f64,
     gravity: f64,
-) -> Result<(BeamScene, (Option<usize>, Option<usize>, usize)), Error> {
+) -> Result<(BeamScene, Given), Error> {
     let b = &file.value;
-    let (beam, length, multiple) = beam_spec(c, b)?;
+    let (beam, length, multiple, model_given) = beam_spec(c, b)?;
     let start = beam_start(c, b, &beam)?;
     let loads = point_loads(c, raw, length)?;
     let (probes, shapes, magnify) = outputs(c, raw, length, duration)?;
@@ -1056,11 +1084,12 @@ fn beam_scene(
             v
         }
     };
-    let given = (
-        b.elements.as_ref().map(|_| beam.elements),
-        b.order.as_ref().map(|_| beam.order),
+    let given = Given {
+        elements: b.elements.as_ref().map(|_| beam.elements),
+        order: b.order.as_ref().map(|_| beam.order),
         multiple,
-    );
+        model: model_given,
+    };
     let scene = BeamScene {
         beam,
         start,
@@ -1072,15 +1101,26 @@ fn beam_scene(
         rho_inf,
         accuracy,
         discretisation: None,
+        model_choice: None,
         response: None,
     };
     Ok((scene, given))
 }
 
+/// What of the mesh and model a beam scene gives itself (the plan chooses the rest).
+pub struct Given {
+    pub elements: Option<usize>,
+    pub order: Option<usize>,
+    /// Element counts are kept to multiples of this, which puts a node at each bearing.
+    pub multiple: usize,
+    /// The scene names its beam model.
+    pub model: bool,
+}
+
 /// The beam as the file gives it: its axis, section, supports and mesh (the element count 0
 /// where the file leaves it to the plan); its length; and the multiple element counts are kept
 /// to, which puts a node at each bearing.
-fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usize), Error> {
+fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usize, bool), Error> {
     let from = c.pair(&b.from, "track.beam.from")?;
     let to = c.pair(&b.to, "track.beam.to")?;
     let length = (to[0] - from[0]).hypot(to[1] - from[1]);
@@ -1155,8 +1195,26 @@ fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usize), Error>
             "the depth sets the contact patch, which would be a point",
             ("is deeper than the beam is long", "that is not a beam"),
         )?,
-        None => patch::rectangular_depth(&section),
+        None => {
+            let depth = patch::rectangular_depth(&section);
+            if !(depth <= length) {
+                return c.err(
+                    b.I.referenced.line(),
+                    "track.beam.I",
+                    format!(
+                        "with A makes the rectangle √(12 I/A) = {} m deep, deeper than the beam is long: that is not a beam (give `track.beam.depth` if the section is not a rectangle)",
+                        crate::error::short_numbers(&format!("{depth:e}"))
+                    ),
+                );
+            }
+            depth
+        }
     };
+    let unknowns = (elements > 0).then(|| {
+        let held: usize = supports.iter().map(|s| s.held_components().len()).sum();
+        3 * (elements * order + 1) - held - bearings.len()
+    });
+    let model = beam_model(c, b, unknowns)?;
     let beam = BeamSpec {
         from,
         to,
@@ -1167,8 +1225,80 @@ fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usize), Error>
         elements,
         order,
         quadrature,
+        model: model.unwrap_or(BeamModel::Exact),
     };
-    Ok((beam, length, multiple))
+    Ok((beam, length, multiple, model.is_some()))
+}
+
+/// The beam model as the file gives it, `None` where it leaves the choice to the plan; a
+/// modal beam whose `modes` are left out has 0 until the plan chooses them. `unknowns`: the
+/// mesh's, where the file gives the element count.
+fn beam_model(
+    c: &Checker,
+    b: &BeamFile,
+    unknowns: Option<usize>,
+) -> Result<Option<BeamModel>, Error> {
+    let model = match &b.model {
+        None => None,
+        Some(m) => Some(match m.value.as_str() {
+            "exact" => BeamModel::Exact,
+            "linear" => BeamModel::Linear,
+            "modal" => BeamModel::Modal { modes: 0 },
+            other => {
+                return c.err(
+                    m.referenced.line(),
+                    "track.beam.model",
+                    format!("is {}; use exact, linear or modal", quote(other)),
+                )
+            }
+        }),
+    };
+    let Some(modes) = &b.modes else {
+        return Ok(model);
+    };
+    let line = modes.referenced.line();
+    if let Some(m @ (BeamModel::Exact | BeamModel::Linear)) = model {
+        return c.err(
+            line,
+            "track.beam.modes",
+            format!(
+                "counts the modes of a modal beam; `model: {}` keeps every unknown of the mesh (use `model: modal`, or leave `modes` out)",
+                m.name()
+            ),
+        );
+    }
+    if modes.value < 1 {
+        return c.err(
+            line,
+            "track.beam.modes",
+            format!("must be at least 1 (got {})", modes.value),
+        );
+    }
+    if let Some(n) = unknowns {
+        if modes.value as u64 > n as u64 {
+            return c.err(
+                line,
+                "track.beam.modes",
+                format!(
+                    "= {} is more than the mesh has: its {n} unknowns have {n} modes",
+                    modes.value
+                ),
+            );
+        }
+    }
+    if modes.value > MAX_MODES as i64 {
+        return c.err(
+            line,
+            "track.beam.modes",
+            format!(
+                "= {} is more than a modal beam keeps ({MAX_MODES}); use `model: linear` for the whole mesh",
+                modes.value
+            ),
+        );
+    }
+    Ok(Some(BeamModel::Modal {
+        modes: modes.value as usize,
+    }))
 }
 
 /// The end supports, the intermediate bearings (sorted), and the multiple of elements that

@@ -490,6 +490,84 @@ fn bad_disks_on_beams() {
     );
 }
 
+/// The beam model: an unknown name, a mode count below 1 or past the mesh's unknowns, a mode
+/// count on a model that keeps every unknown, and the thesis' 3n + 6 system on a reduced beam.
+#[test]
+fn bad_beam_models() {
+    rejected(
+        "model-unknown",
+        &beam_scene(&[("model", "nonlinear")], ""),
+        &["track.beam.model", "'nonlinear'", "exact, linear or modal"],
+    );
+    rejected(
+        "modes-zero",
+        &beam_scene(&[("model", "modal"), ("modes", "0")], ""),
+        &["track.beam.modes", "at least 1"],
+    );
+    // 4 elements of degree 2 clamped–pinned: 27 nodal unknowns less 5 held.
+    rejected(
+        "modes-past-mesh",
+        &beam_scene(&[("model", "modal"), ("modes", "23")], ""),
+        &["track.beam.modes", "more than the mesh has", "22 unknowns"],
+    );
+    for model in ["exact", "linear"] {
+        rejected(
+            &format!("modes-on-{model}"),
+            &beam_scene(&[("model", model), ("modes", "4")], ""),
+            &[
+                "track.beam.modes",
+                &format!("`model: {model}` keeps every unknown"),
+            ],
+        );
+    }
+    rejected(
+        "thesis-system-on-modal",
+        &beam_scene(
+            &[("model", "modal"), ("modes", "4")],
+            "disk:\n  mass: 1500\n  radius: 0.4\n  s0: 1\n  coupling: thesis\nsolver:\n  method: trbdf2\n",
+        ),
+        &["solver.method", "3n + 6", "model: exact"],
+    );
+}
+
+/// A modal beam that is a mechanism has no static answer either, and `modes` asks no more of
+/// a modal beam than the modes it keeps.
+#[test]
+fn modal_mechanism_and_mode_count() {
+    let path = scene_path(
+        "modal-mechanism",
+        &beam_scene(
+            &[
+                ("supports", "{from: free, to: free}"),
+                ("model", "modal"),
+                ("modes", "6"),
+            ],
+            "loads:\n  - {x: 4, fy: -1}\n",
+        ),
+    );
+    let p = path.to_str().unwrap();
+    let (code, err) = rollbeam(&["static", p, "--out", "/tmp/rollbeam-modal-mechanism"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("not supported enough for a static solution")
+            && err.trim().lines().count() == 1,
+        "{err}"
+    );
+    let (code, err) = rollbeam(&[
+        "modes",
+        p,
+        "--count",
+        "7",
+        "--out",
+        "/tmp/rollbeam-modal-mechanism",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("more than the modal beam keeps (6 modes"),
+        "{err}"
+    );
+}
+
 /// A free–free beam has no static equilibrium under a load: one sentence, exit 1.
 #[test]
 fn static_solution_of_a_mechanism() {

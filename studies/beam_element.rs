@@ -6,7 +6,7 @@
 use rollbeam::analysis::{modes, statics};
 use rollbeam::beam::element::Section;
 use rollbeam::beam::supports::Support;
-use rollbeam::beam::{Beam, BeamSpec, Quadrature};
+use rollbeam::beam::{Beam, BeamModel, BeamSpec, Quadrature};
 use rollbeam::linalg;
 
 /// Steel SHS 200 of study 2 (E = 210 GPa, G = 81 GPa, ρ = 7850, A = 59.8 cm², Av = A/2,
@@ -40,6 +40,7 @@ fn beam(
         elements,
         order,
         quadrature,
+        model: BeamModel::Exact,
     })
 }
 
@@ -208,6 +209,7 @@ fn continuous_beam_over_an_intermediate_bearing() {
         elements: 8,
         order: 4,
         quadrature: Quadrature::Reduced,
+        model: BeamModel::Exact,
     });
     let loads = [(0.5 * l, [0.0, p], 0.0), (1.5 * l, [0.0, p], 0.0)];
     let mut f = vec![0.0; b.dim()];

@@ -104,7 +104,7 @@ fn thin_and_thick_beams_at_every_degree() {
     use rollbeam::analysis::statics;
     use rollbeam::beam::element::Section;
     use rollbeam::beam::supports::Support;
-    use rollbeam::beam::{Beam, BeamSpec, Quadrature};
+    use rollbeam::beam::{Beam, BeamModel, BeamSpec, Quadrature};
     let (l, e, g) = (1.0_f64, 210e9, 81e9);
     for slenderness in [3.0, 10.0, 100.0, 1e3, 1e4] {
         let h = l / slenderness;
@@ -129,6 +129,7 @@ fn thin_and_thick_beams_at_every_degree() {
                 elements: 10,
                 order,
                 quadrature: Quadrature::Reduced,
+                model: BeamModel::Exact,
             });
             let mut f = vec![0.0; b.dim()];
             b.add_point_load(l, [0.0, p], 0.0, &mut f);

@@ -157,6 +157,7 @@ mod tests {
             elements: 40,
             order: 4,
             quadrature: Quadrature::Reduced,
+            model: crate::beam::BeamModel::Exact,
         };
         let beam = Beam::new(spec);
         let n = beam.dim();

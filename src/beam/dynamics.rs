@@ -1,4 +1,5 @@
-//! The loaded beam as a structural problem M q'' = F_ext(t) − F_int(q) for the integrators.
+//! The loaded beam as a structural problem M q'' = F_ext(t) − F_int(q) for the integrators;
+//! on a modal beam the unknowns are the modal amplitudes, η̈ = Φᵀ F_ext(t) − Ω² η.
 //! Loads switch on and off at their `from`/`until` times: those are breakpoints, and within
 //! each stretch between them the set of active loads is fixed (the integrator names the
 //! stretch), so no stage ever sees a load on the wrong side of its jump.
@@ -7,6 +8,7 @@ use std::borrow::Cow;
 use std::cell::{Cell, RefCell};
 
 use super::load::PointLoad;
+use super::modal::ModalBasis;
 use super::Beam;
 use crate::linalg::Sparse;
 use crate::ode::second_order::{SecondOrderProblem, Structure};
@@ -15,6 +17,8 @@ use crate::ode::NoEvent;
 pub struct LoadedBeam<'a> {
     pub beam: &'a Beam,
     pub loads: &'a [PointLoad],
+    /// The modes whose amplitudes are the unknowns, on a modal beam.
+    pub modal: Option<&'a ModalBasis>,
     /// Midpoint of the current stretch between breakpoints; NaN outside a run.
     segment: Cell<f64>,
     /// Internal forces, kept so that each force evaluation does not allocate.
@@ -22,10 +26,11 @@ pub struct LoadedBeam<'a> {
 }
 
 impl<'a> LoadedBeam<'a> {
-    pub fn new(beam: &'a Beam, loads: &'a [PointLoad]) -> Self {
+    pub fn new(beam: &'a Beam, loads: &'a [PointLoad], modal: Option<&'a ModalBasis>) -> Self {
         LoadedBeam {
             beam,
             loads,
+            modal,
             segment: Cell::new(f64::NAN),
             scratch: RefCell::new(vec![0.0; beam.dim()]),
         }
@@ -41,30 +46,73 @@ impl<'a> LoadedBeam<'a> {
         self.loads.iter().filter(move |l| l.active(when))
     }
 
-    /// F_ext at time t.
+    /// F_ext at time t, on the mesh's unknowns.
     pub fn external(&self, t: f64, f: &mut [f64]) {
         f.fill(0.0);
         for l in self.active(t) {
             self.beam.add_point_load(l.x, l.force, l.mz, f);
         }
     }
+
+    /// The mass in the model's unknowns: the mesh's, or the identity of mass-normalised modes.
+    pub fn model_mass(&self) -> &Sparse {
+        self.modal.map_or(self.beam.mass(), |m| m.mass())
+    }
+
+    /// The mesh's displacements (or velocities) from the model's unknowns.
+    pub fn to_mesh<'y>(&self, z: &'y [f64]) -> Cow<'y, [f64]> {
+        match self.modal {
+            None => Cow::Borrowed(z),
+            Some(m) => {
+                let mut q = vec![0.0; self.beam.dim()];
+                m.expand(z, &mut q);
+                Cow::Owned(q)
+            }
+        }
+    }
+
+    /// The model's unknowns from the mesh's displacements (or velocities).
+    pub fn from_mesh(&self, q: &[f64]) -> Vec<f64> {
+        match self.modal {
+            None => q.to_vec(),
+            Some(m) => {
+                let mut eta = vec![0.0; m.dim()];
+                m.amplitudes_of(q, &mut eta);
+                eta
+            }
+        }
+    }
 }
 
 impl Structure for LoadedBeam<'_> {
     fn dim(&self) -> usize {
-        self.beam.dim()
+        self.modal.map_or(self.beam.dim(), |m| m.dim())
     }
     fn mass(&self, _t: f64, _q: &[f64]) -> Cow<'_, Sparse> {
-        Cow::Borrowed(self.beam.mass())
+        Cow::Borrowed(self.model_mass())
     }
     fn force(&self, t: f64, q: &[f64], _v: &[f64], f: &mut [f64]) {
-        self.external(t, f);
-        let mut fi = self.scratch.borrow_mut();
-        self.beam.internal_force(q, &mut fi);
-        f.iter_mut().zip(fi.iter()).for_each(|(a, b)| *a -= b);
+        let mut scratch = self.scratch.borrow_mut();
+        match self.modal {
+            None => {
+                self.external(t, f);
+                self.beam.internal_force(q, &mut scratch);
+                f.iter_mut().zip(scratch.iter()).for_each(|(a, b)| *a -= b);
+            }
+            Some(m) => {
+                self.external(t, &mut scratch);
+                m.project(&scratch, f);
+                for (k, fk) in f.iter_mut().enumerate() {
+                    *fk -= m.omega[k] * m.omega[k] * q[k];
+                }
+            }
+        }
     }
     fn stiffness(&self, _t: f64, q: &[f64]) -> Sparse {
-        self.beam.tangent(q)
+        match self.modal {
+            None => self.beam.tangent(q),
+            Some(m) => m.stiffness().clone(),
+        }
     }
 }
 

@@ -6,11 +6,17 @@
 //! rigidly by its angle; loads are turned into this frame and results back. Each step of the
 //! method lives in its own file: `quadrature`, `basis`, `element` (kinematics, resultants,
 //! internal force, tangent, mass), `supports`, and the assembly below.
+//!
+//! The same mesh serves three models of the beam ([`BeamModel`]): the geometrically exact
+//! one; its linearisation about the undeformed state (constant stiffness K₀, assembled here);
+//! and the lowest modes of that linear beam (`modal.rs`), whose amplitudes replace the
+//! mesh's unknowns in the equations of motion while the mesh still gives every displacement.
 
 pub mod basis;
 pub mod dynamics;
 pub mod element;
 pub mod load;
+pub mod modal;
 pub mod quadrature;
 pub mod supports;
 
@@ -55,6 +61,35 @@ impl Quadrature {
     }
 }
 
+/// How the beam's deformation is modelled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BeamModel {
+    /// The geometrically exact Reissner beam.
+    Exact,
+    /// Small displacements: the exact beam's stiffness and mass about the undeformed state.
+    Linear,
+    /// The lowest `modes` natural modes of the linear beam.
+    Modal { modes: usize },
+}
+
+impl BeamModel {
+    pub fn name(self) -> &'static str {
+        match self {
+            BeamModel::Exact => "exact",
+            BeamModel::Linear => "linear",
+            BeamModel::Modal { .. } => "modal",
+        }
+    }
+
+    /// The number of modes of a modal beam.
+    pub fn modes(self) -> Option<usize> {
+        match self {
+            BeamModel::Modal { modes } => Some(modes),
+            _ => None,
+        }
+    }
+}
+
 /// The beam as the scene describes it.
 #[derive(Clone, Debug)]
 pub struct BeamSpec {
@@ -71,6 +106,7 @@ pub struct BeamSpec {
     pub elements: usize,
     pub order: usize,
     pub quadrature: Quadrature,
+    pub model: BeamModel,
 }
 
 /// Material points prepared for repeated reading (see [`Beam::stations`]).
@@ -117,6 +153,9 @@ pub struct Beam {
     full_mass: Sparse,
     /// The tangent's pattern, found at its first assembly.
     tangent_pattern: OnceLock<AssemblyPattern>,
+    /// K₀ on the free unknowns and on all of them (the supports' reactions), for the linear
+    /// and modal models, whose internal force is K₀ q.
+    linear: Option<(Sparse, Sparse)>,
 }
 
 impl Beam {
@@ -163,9 +202,36 @@ impl Beam {
             mass: Sparse::try_new_from_triplets(0, 0, &[]).expect("empty"),
             full_mass: Sparse::try_new_from_triplets(0, 0, &[]).expect("empty"),
             tangent_pattern: OnceLock::new(),
+            linear: None,
         };
         (beam.mass, beam.full_mass) = beam.assemble_mass();
+        if beam.spec.model != BeamModel::Exact {
+            beam.linear = Some(beam.assemble_initial_stiffness());
+        }
         beam
+    }
+
+    /// The exact beam's tangent at the undeformed state, on the free unknowns and on all.
+    fn assemble_initial_stiffness(&self) -> (Sparse, Sparse) {
+        let k = 3 * (self.spec.order + 1);
+        let qe = vec![0.0; k];
+        let mut ke = vec![0.0; k * k];
+        let kernels = ElementKernels {
+            section: &self.spec.section,
+            stiff: &self.stiff,
+        };
+        let mut free = Assembly::new(self.n_free);
+        let mut full = Assembly::new(3 * self.nodes());
+        for e in 0..self.spec.elements {
+            kernels.tangent(&qe, &mut ke);
+            self.scatter_matrix(e, &ke, &mut free);
+            for (i, r) in self.element_dofs(e).enumerate() {
+                for (j, c) in self.element_dofs(e).enumerate() {
+                    full.add(r, c, ke[i * k + j]);
+                }
+            }
+        }
+        (free.build(), full.build())
     }
 
     /// Unknowns after the supports are applied.
@@ -236,6 +302,10 @@ impl Beam {
 
     /// Internal force vector on the free unknowns; returns the strain energy.
     pub fn internal_force(&self, q: &[f64], f: &mut [f64]) -> f64 {
+        if let Some((k0, _)) = &self.linear {
+            crate::linalg::mul(k0, q, f);
+            return 0.5 * f.iter().zip(q).map(|(a, b)| a * b).sum::<f64>();
+        }
         f.fill(0.0);
         let k = 3 * (self.spec.order + 1);
         let mut qe = vec![0.0; k];
@@ -262,8 +332,12 @@ impl Beam {
         self.internal_force(q, &mut f)
     }
 
-    /// Tangent stiffness ∂f_int/∂q on the free unknowns (material + geometric).
+    /// Tangent stiffness ∂f_int/∂q on the free unknowns (material + geometric; K₀ where the
+    /// model is linear).
     pub fn tangent(&self, q: &[f64]) -> Sparse {
+        if let Some((k0, _)) = &self.linear {
+            return k0.clone();
+        }
         let k = 3 * (self.spec.order + 1);
         let mut qe = vec![0.0; k];
         let mut ke = vec![0.0; k * k];
@@ -447,17 +521,22 @@ impl Beam {
         a: Option<&[f64]>,
     ) -> Vec<f64> {
         let mut full = vec![0.0; 3 * self.nodes()];
-        let k = 3 * (self.spec.order + 1);
-        let (mut qe, mut fe) = (vec![0.0; k], vec![0.0; k]);
-        let kernels = ElementKernels {
-            section: &self.spec.section,
-            stiff: &self.stiff,
-        };
-        for e in 0..self.spec.elements {
-            self.gather(e, q, &mut qe);
-            kernels.internal_force(&qe, &mut fe);
-            for (kk, dof) in self.element_dofs(e).enumerate() {
-                full[dof] += fe[kk];
+        if let Some((_, k0)) = &self.linear {
+            let q_full: Vec<f64> = self.eq.iter().map(|e| e.map_or(0.0, |i| q[i])).collect();
+            crate::linalg::mul(k0, &q_full, &mut full);
+        } else {
+            let k = 3 * (self.spec.order + 1);
+            let (mut qe, mut fe) = (vec![0.0; k], vec![0.0; k]);
+            let kernels = ElementKernels {
+                section: &self.spec.section,
+                stiff: &self.stiff,
+            };
+            for e in 0..self.spec.elements {
+                self.gather(e, q, &mut qe);
+                kernels.internal_force(&qe, &mut fe);
+                for (kk, dof) in self.element_dofs(e).enumerate() {
+                    full[dof] += fe[kk];
+                }
             }
         }
         if let Some(a) = a {

@@ -4,7 +4,8 @@ use std::fmt;
 use std::path::PathBuf;
 
 use crate::beam::load::BeamStart;
-use crate::beam::Beam;
+use crate::beam::supports::statically_supported;
+use crate::beam::{Beam, BeamModel};
 use crate::coupling::patch;
 use crate::coupling::DiskOnBeamSpec;
 use crate::error::Error;
@@ -133,6 +134,32 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
     if let Some(d) = &setup.discretisation {
         writeln!(f, "  chosen for accuracy {:e}: {}", d.accuracy, d.why)?;
     }
+    writeln!(
+        f,
+        "  beam model: {}{}",
+        match spec.model {
+            BeamModel::Exact => "exact (geometrically exact Reissner beam)".to_string(),
+            BeamModel::Linear =>
+                "linear (small displacements: constant stiffness and mass about the undeformed state)"
+                    .to_string(),
+            BeamModel::Modal { modes } => format!(
+                "modal ({modes} modes of the linear beam{}; {} unknowns in the equations of motion)",
+                if statically_supported(spec.supports, spec.bearings.len()) {
+                    ", with the static correction of the modes left out"
+                } else {
+                    ""
+                },
+                modes
+            ),
+        },
+        setup
+            .model_choice
+            .as_ref()
+            .map_or(" (as the scene gives)".to_string(), |why| format!(
+                ", chosen for accuracy {:e}: {why}",
+                setup.accuracy
+            ))
+    )?;
     match &setup.disk {
         None => writeln!(f, "  disk: none (no disk unknowns)")?,
         Some(d) => writeln!(

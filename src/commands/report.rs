@@ -155,6 +155,11 @@ pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Resu
             "--count must be at least 1: the number of modes to compute".into(),
         ));
     }
+    if let Some(kept) = setup.beam.model.modes().filter(|&kept| count > kept) {
+        return Err(Error::Input(format!(
+            "--count {count} is more than the modal beam keeps ({kept} modes, `track.beam.modes`); ask for fewer, or use `model: linear` for every mode of the mesh"
+        )));
+    }
     let beam = Beam::new(setup.beam.clone());
     if beam.dim() > modes::DENSE_LIMIT && count > modes::MAX_SPARSE_MODES {
         return Err(Error::Input(format!(
@@ -237,6 +242,7 @@ pub fn static_command(args: StaticArgs) -> Result<(), Error> {
 #[derive(clap::Args)]
 pub struct ModesArgs {
     scene: PathBuf,
+    /// How many modes (default 6, or as many as a modal beam keeps if fewer).
     #[arg(long)]
     count: Option<usize>,
     #[arg(long)]
@@ -253,7 +259,8 @@ pub fn modes_command(args: ModesArgs) -> Result<(), Error> {
     let scene = Scene::load(&path)?;
     let setup = beam_only(&scene, &path, "modes")?;
     let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
-    let result = modes(&scene, setup, count.unwrap_or(6), &dir)?;
+    let kept = setup.beam.model.modes().unwrap_or(usize::MAX);
+    let result = modes(&scene, setup, count.unwrap_or(6.min(kept)), &dir)?;
     print!("{result}");
     Ok(())
 }

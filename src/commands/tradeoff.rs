@@ -191,6 +191,7 @@ fn overrides(method: Method, rtol: f64, max_steps: usize) -> Overrides {
         atol: Some(rtol * 1e-3),
         fixed_step: None,
         max_steps: Some(max_steps),
+        ..Default::default()
     }
 }
 

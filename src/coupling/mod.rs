@@ -35,7 +35,7 @@ use std::borrow::Cow;
 use std::cell::{OnceCell, RefCell};
 use std::ops::Range;
 
-use contact::{dot, AxisPoint};
+use contact::{dot, AxisPoint, Row};
 use law::{AddedMass, Law, Rider};
 
 use crate::beam::dynamics::LoadedBeam;
@@ -160,7 +160,7 @@ struct Terms {
 impl<'a> DiskOnBeam<'a> {
     pub fn new(loaded: &'a LoadedBeam<'a>, spec: DiskOnBeamSpec) -> Self {
         let gravity = loaded.beam.to_local([0.0, -spec.gravity]);
-        let n = loaded.beam.dim();
+        let n = loaded.dim();
         let law: Box<dyn Law> = match spec.coupling {
             Coupling::Consistent => Box::new(consistent::Consistent),
             Coupling::Thesis => Box::new(thesis::Thesis),
@@ -169,18 +169,27 @@ impl<'a> DiskOnBeam<'a> {
         };
         let nz = n + law.unknowns();
         let mut a = Assembly::new(nz);
-        a.add_sparse(loaded.beam.mass(), 1.0, 0, 0);
-        a.add_sparse(&loaded.beam.tangent(&vec![0.0; n]), 0.0, 0, 0);
+        a.add_sparse(loaded.model_mass(), 1.0, 0, 0);
+        a.add_sparse(&loaded.stiffness(0.0, &vec![0.0; n]), 0.0, 0, 0);
         let beam = loaded.beam;
-        let spacing = beam.length / (beam.spec.elements * beam.spec.order) as f64;
-        // In floating point, so that no patch width can overflow the count of nodes it spans.
-        let reach = ((2.0 * spec.patch / spacing).ceil() + (2 * beam.spec.order) as f64)
-            .min(beam.nodes() as f64) as usize;
-        for i in 0..beam.nodes() {
-            for j in i.saturating_sub(reach)..(i + reach + 1).min(beam.nodes()) {
-                for (ci, cj) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
-                    if let (Some(r), Some(c)) = (beam.eq_of(i, ci), beam.eq_of(j, cj)) {
-                        a.add(r, c, 0.0);
+        if loaded.modal.is_some() {
+            // Every mode is felt at every contact point: the rider's rows are dense.
+            for i in 0..n {
+                for j in 0..n {
+                    a.add(i, j, 0.0);
+                }
+            }
+        } else {
+            let spacing = beam.length / (beam.spec.elements * beam.spec.order) as f64;
+            // In floating point, so that no patch width can overflow the count of nodes it spans.
+            let reach = ((2.0 * spec.patch / spacing).ceil() + (2 * beam.spec.order) as f64)
+                .min(beam.nodes() as f64) as usize;
+            for i in 0..beam.nodes() {
+                for j in i.saturating_sub(reach)..(i + reach + 1).min(beam.nodes()) {
+                    for (ci, cj) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+                        if let (Some(r), Some(c)) = (beam.eq_of(i, ci), beam.eq_of(j, cj)) {
+                            a.add(r, c, 0.0);
+                        }
                     }
                 }
             }
@@ -192,7 +201,7 @@ impl<'a> DiskOnBeam<'a> {
             }
         }
         let mut base = Assembly::new(nz);
-        base.add_sparse(loaded.beam.mass(), 1.0, 0, 0);
+        base.add_sparse(loaded.model_mass(), 1.0, 0, 0);
         if nz > n {
             base.add(n, n, 1.0);
         }
@@ -204,7 +213,7 @@ impl<'a> DiskOnBeam<'a> {
             rider: Rider {
                 disk: spec.disk,
                 gravity,
-                n,
+                n: beam.dim(),
                 omega0: spec.omega0,
             },
             spec,
@@ -213,6 +222,42 @@ impl<'a> DiskOnBeam<'a> {
             lu: RefCell::new(None),
             stiffness_pattern: OnceCell::new(),
             basis: RefCell::new(None),
+        }
+    }
+
+    /// A row over the mesh's unknowns and the contact coordinate (as the laws write it, s at
+    /// the mesh's count) as a row over z: on a modal beam the mesh's part through Φᵀ.
+    fn reduce(&self, row: Row) -> Row {
+        let Some(modal) = self.loaded.modal else {
+            return row;
+        };
+        let mesh = self.rider.n;
+        let mut dense = vec![0.0; self.n];
+        let mut out = Vec::with_capacity(self.n + 1);
+        let mut on_s = 0.0;
+        for (i, v) in row {
+            if i < mesh {
+                modal.add_row(i, v, &mut dense);
+            } else {
+                on_s += v;
+            }
+        }
+        out.extend(dense.into_iter().enumerate().filter(|(_, v)| *v != 0.0));
+        if on_s != 0.0 {
+            out.push((self.n, on_s));
+        }
+        out
+    }
+
+    /// (q, s) on the mesh from z, as the laws read a state: on a modal beam q = Φ η.
+    fn on_mesh<'y>(&self, z: &'y [f64]) -> Cow<'y, [f64]> {
+        match self.loaded.modal {
+            None => Cow::Borrowed(z),
+            Some(_) => {
+                let mut out = self.loaded.to_mesh(&z[..self.n]).into_owned();
+                out.extend_from_slice(&z[self.n..]);
+                Cow::Owned(out)
+            }
         }
     }
 
@@ -225,18 +270,19 @@ impl<'a> DiskOnBeam<'a> {
         self.loaded.beam
     }
 
-    /// (z, ż) at t = 0: the beam at rest in displacements q0, the disk at s0 rolling at Ω0.
+    /// (z, ż) at t = 0: the beam at rest in displacements q0 (on the mesh), the disk at s0
+    /// rolling at Ω0.
     pub fn initial_state(&self, q0: &[f64]) -> (Vec<f64>, Vec<f64>) {
         let nz = self.dim();
         let mut z = vec![0.0; nz];
         let mut zd = vec![0.0; nz];
-        z[..self.n].copy_from_slice(q0);
+        z[..self.n].copy_from_slice(&self.loaded.from_mesh(q0));
         if self.rolls() {
             z[self.n] = self.spec.s0;
             let at = AxisPoint::at(
                 self.beam(),
-                &z[..self.n],
-                &zd[..self.n],
+                q0,
+                &vec![0.0; q0.len()],
                 self.spec.s0,
                 0.0,
                 self.spec.patch,
@@ -282,7 +328,18 @@ impl<'a> DiskOnBeam<'a> {
             *basis = Some((s, self.beam().patch_basis_at(s, self.spec.patch)));
         }
         let nodes = basis.as_ref().expect("filled above").1.clone();
-        AxisPoint::on(nodes, &z[..self.n], &zd[..self.n], s, sdot)
+        match self.loaded.modal {
+            None => AxisPoint::on(nodes, &z[..self.n], &zd[..self.n], s, sdot),
+            Some(modal) => {
+                // Only the unknowns under the patch are read.
+                let mesh = self.rider.n;
+                let (mut q, mut v) = (vec![0.0; mesh], vec![0.0; mesh]);
+                let under = || nodes.iter().flat_map(|nb| [nb.u, nb.w, nb.phi]).flatten();
+                modal.expand_at(under(), &z[..self.n], &mut q);
+                modal.expand_at(under(), &zd[..self.n], &mut v);
+                AxisPoint::on(nodes, &q, &v, s, sdot)
+            }
+        }
     }
 
     fn terms(&self, t: f64, z: &[f64], zd: &[f64]) -> Terms {
@@ -290,9 +347,18 @@ impl<'a> DiskOnBeam<'a> {
         let mut force = Vec::new();
         self.law.force(&self.rider, &at, &mut force);
         Terms {
-            added: self.law.added_mass(&self.rider, &at),
-            force,
+            added: self.added_mass(&at),
+            force: self.reduce(force),
         }
+    }
+
+    /// The rider's inertia as z feels it.
+    fn added_mass(&self, at: &AxisPoint) -> AddedMass {
+        self.law
+            .added_mass(&self.rider, at)
+            .into_iter()
+            .map(|(w, row)| (w, self.reduce(row)))
+            .collect()
     }
 
     fn mass_matrix(&self, added: &AddedMass) -> Sparse {
@@ -334,16 +400,25 @@ impl<'a> DiskOnBeam<'a> {
         added
     }
 
-    /// Add to f the force of the disk resting at s0 on the beam displaced by q: its weight,
-    /// passed on as the coupling passes it (through the contact patch when it rolls).
+    /// Add to f the force of the disk resting at s0 on the beam displaced by q (both on the
+    /// mesh): its weight, passed on as the coupling passes it (through the contact patch when
+    /// it rolls).
     pub fn add_weight_at_rest(&self, q: &[f64], f: &mut [f64]) {
-        let nz = self.dim();
-        let mut z = vec![0.0; nz];
-        z[..self.n].copy_from_slice(q);
-        if self.rolls() {
-            z[self.n] = self.spec.s0;
+        let at = AxisPoint::at(
+            self.beam(),
+            q,
+            &vec![0.0; q.len()],
+            self.spec.s0,
+            0.0,
+            self.spec.patch,
+        );
+        let mut force = Vec::new();
+        self.law.force(&self.rider, &at, &mut force);
+        for (i, v) in force {
+            if i < self.rider.n {
+                f[i] += v;
+            }
         }
-        self.add_disk_force_on_beam(0.0, &z, &vec![0.0; nz], f);
     }
 
     /// Add the disk's generalised force on the beam's unknowns (not on s) to f.
@@ -398,7 +473,9 @@ impl<'a> DiskOnBeam<'a> {
 
     fn observe_with(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> DiskObservation {
         let at = self.contact(t, z, zd);
-        let motion = self.law.motion(&self.rider, &at, zd, zdd);
+        let motion = self
+            .law
+            .motion(&self.rider, &at, &self.on_mesh(zd), &self.on_mesh(zdd));
         let tg = at.tangent();
         let nm = at.normal();
         let beam = self.beam();
@@ -425,6 +502,22 @@ impl<'a> DiskOnBeam<'a> {
                 .potential
                 .unwrap_or(self.spec.disk.mass * self.spec.gravity * (origin[1] + cg[1])),
         }
+    }
+
+    /// Add the force the disk, observed as `d`, exerts on the beam at (t, z, ż), spread over
+    /// the contact patch, to `f` on the mesh's unknowns.
+    pub fn add_contact_force_on_beam(
+        &self,
+        t: f64,
+        z: &[f64],
+        zd: &[f64],
+        d: &DiskObservation,
+        f: &mut [f64],
+    ) {
+        let at = self.contact(t, z, zd);
+        let (tg, nm) = (at.tangent(), at.normal());
+        let on_disk = [d.rt * tg[0] + d.rn * nm[0], d.rt * tg[1] + d.rn * nm[1]];
+        at.spread([-on_disk[0], -on_disk[1]], f);
     }
 
     /// Tangent and normal of the axis at the contact, global axes.
@@ -467,7 +560,7 @@ impl Structure for DiskOnBeam<'_> {
 
     fn mass(&self, t: f64, q: &[f64]) -> Cow<'_, Sparse> {
         let zero = vec![0.0; q.len()];
-        Cow::Owned(self.mass_matrix(&self.law.added_mass(&self.rider, &self.contact(t, q, &zero))))
+        Cow::Owned(self.mass_matrix(&self.added_mass(&self.contact(t, q, &zero))))
     }
 
     fn mass_is_constant(&self) -> bool {
@@ -478,17 +571,17 @@ impl Structure for DiskOnBeam<'_> {
     /// low-rank part takes back out, plus the disk's inertia as seen by z.
     fn mass_split(&self, t: f64, q: &[f64]) -> Option<(&Sparse, LowRank)> {
         let zero = vec![0.0; q.len()];
-        let added = self.law.added_mass(&self.rider, &self.contact(t, q, &zero));
+        let added = self.added_mass(&self.contact(t, q, &zero));
         Some((&self.base_mass, self.low_rank_mass(added)))
     }
 
     fn mass_mul(&self, t: f64, q: &[f64], a: &[f64], out: &mut [f64]) {
-        linalg::mul(self.beam().mass(), &a[..self.n], &mut out[..self.n]);
+        linalg::mul(self.loaded.model_mass(), &a[..self.n], &mut out[..self.n]);
         if out.len() > self.n {
             out[self.n] = 0.0;
         }
         let zero = vec![0.0; q.len()];
-        for (w, row) in self.law.added_mass(&self.rider, &self.contact(t, q, &zero)) {
+        for (w, row) in self.added_mass(&self.contact(t, q, &zero)) {
             let ga = w * dot(&row, a);
             for (i, gi) in row {
                 out[i] += gi * ga;

@@ -173,6 +173,11 @@ fn envelope_summary(r: &BeamRun) -> EnvelopeSummary {
 #[derive(Serialize)]
 struct Model {
     track: &'static str,
+    /// The beam model: exact, linear or modal.
+    beam: &'static str,
+    /// The modes a modal beam keeps.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    modes: Option<usize>,
     unknowns: usize,
     #[serde(skip_serializing_if = "Option::is_none")]
     coupling: Option<&'static str>,
@@ -188,6 +193,8 @@ struct Model {
 #[derive(Serialize)]
 struct Chosen {
     accuracy: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    beam: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     mesh: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -258,6 +265,8 @@ pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
         stopped: super::summary::Stopped::of(&r.header),
         model: Model {
             track: "beam",
+            beam: r.beam.spec.model.name(),
+            modes: r.beam.spec.model.modes(),
             unknowns: r.header.unknowns,
             coupling: r.setup.disk.as_ref().map(|d| d.coupling.name()),
             elements: r.beam.spec.elements,
@@ -636,8 +645,10 @@ fn chosen(r: &BeamRun) -> Option<Chosen> {
         .and_then(|_| atol_for(&r.setup, r.header.rtol))
         .filter(|(atol, _)| *atol == r.header.atol)
         .map(|(atol, why)| format!("{}, {why}", super::tolerance(atol)));
-    (mesh.is_some() || rtol.is_some() || atol.is_some()).then(|| Chosen {
+    let beam = r.setup.model_choice.clone();
+    (beam.is_some() || mesh.is_some() || rtol.is_some() || atol.is_some()).then(|| Chosen {
         accuracy: r.setup.accuracy,
+        beam,
         mesh,
         rtol,
         atol,

@@ -105,6 +105,9 @@ pub struct Overrides {
     pub fixed_step: Option<f64>,
     /// Give up after this many steps (a budget, for `tradeoff`).
     pub max_steps: Option<usize>,
+    /// Read a modal beam's displacements without the static correction of the modes left
+    /// out: what the correction does, measured.
+    pub uncorrected_modes: bool,
 }
 
 impl Overrides {

@@ -126,10 +126,10 @@ impl<'a> Ledger<'a> {
         disk: Option<&DiskObservation>,
     ) -> Energy {
         let (q, v) = phase.beam_state(y);
-        let (kinetic, strain) = self.beam_energies(phase.beam, q, v);
+        let (kinetic, strain) = self.beam_energies(phase.beam, &q, &v);
         let (disk_kinetic, potential) = self.disk_energies(phase, disk);
         let kinetic = kinetic + disk_kinetic;
-        let now = load_displacements(phase.beam, self.loads, q);
+        let now = load_displacements(phase.beam, self.loads, &q);
         let work = self.done
             + work_since(self.loads, self.t, t, &self.at_loads, &now)
             + self.moving_work(phase, t, y);
@@ -148,7 +148,7 @@ impl<'a> Ledger<'a> {
     /// An accepted step ends at (t, y): the work so far is booked, and the balance checked.
     pub fn at_step(&mut self, phase: &Phase, t: f64, y: &[f64]) {
         let (q, v) = phase.beam_state(y);
-        let now = load_displacements(phase.beam, self.loads, q);
+        let now = load_displacements(phase.beam, self.loads, &q);
         self.done += work_since(self.loads, self.t, t, &self.at_loads, &now);
         self.t = t;
         self.at_loads = now;
@@ -158,7 +158,7 @@ impl<'a> Ledger<'a> {
             let w = self.moving_work(phase, t, y);
             self.moving = (t, p, w);
         }
-        let (kinetic, strain) = self.beam_energies(phase.beam, q, v);
+        let (kinetic, strain) = self.beam_energies(phase.beam, &q, &v);
         let disk = match phase.coupled {
             Some(c) if c.disk_in_system() => {
                 let (z, zd) = phase.split(y);

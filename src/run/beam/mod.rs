@@ -16,10 +16,12 @@ use phase::Phase;
 use sensors::{History, Pictures, Sample};
 
 use super::{Overrides, Progress, RunHeader, Stop};
+use crate::analysis::modes::modes;
 use crate::analysis::statics;
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::load::BeamStart;
-use crate::beam::{Beam, PointDisplacement, Stations};
+use crate::beam::modal::ModalBasis;
+use crate::beam::{Beam, BeamModel, PointDisplacement, Stations};
 use crate::coupling::thesis_system::ThesisSystem;
 use crate::coupling::{Coupling, DiskOnBeam};
 use crate::error::Error;
@@ -130,11 +132,11 @@ impl Observer for Recorder<'_> {
         let disk = phase.disk(t, y);
         let energy = self.ledger.at_output(phase, t, y, disk.as_ref());
         let reactions = phase.reactions(t, y, disk.as_ref());
-        let (q, _) = phase.beam_state(y);
-        let along = phase.beam.displacements(&self.stations, q);
+        let q = phase.displaced(t, y, disk.as_ref());
+        let along = phase.beam.displacements(&self.stations, &q);
         let sample = Sample {
             t,
-            q,
+            q: &q,
             along: &along,
             disk,
             energy,
@@ -168,6 +170,46 @@ impl Observer for Literal<'_, '_> {
         let r = self.sys.reduced(t, y);
         self.rec.step(t, &r);
     }
+}
+
+/// The modes of a modal beam, from its linear stiffness and mass.
+fn modal_basis(scene: &Scene, beam: &Beam) -> Result<Option<ModalBasis>, Error> {
+    let Some(count) = beam.spec.model.modes() else {
+        return Ok(None);
+    };
+    let n = beam.dim();
+    if count > n {
+        return Err(Error::Input(format!(
+            "scene {}: `track.beam.modes` = {count} is more than the mesh has: its {n} unknowns have {n} modes",
+            scene.name
+        )));
+    }
+    let m = modes(beam, count).ok_or_else(|| {
+        Error::Solver(format!(
+            "scene {}: the natural modes of the modal beam could not be computed",
+            scene.name
+        ))
+    })?;
+    Ok(Some(ModalBasis::new(
+        m.shapes,
+        m.omega,
+        &beam.tangent(&vec![0.0; n]),
+        beam.mass(),
+    )))
+}
+
+/// A state (z, ż) of the run's model with the beam's part on the mesh (q = Φ η on a modal
+/// beam): what the run reports as its end state.
+fn on_mesh(phase: &Phase, y: &[f64]) -> Vec<f64> {
+    let n = phase.loaded.dim();
+    let (z, zd) = phase.split(y);
+    let (q, v) = phase.beam_state(y);
+    q.iter()
+        .chain(&z[n..])
+        .chain(v.iter())
+        .chain(&zd[n..])
+        .copied()
+        .collect()
 }
 
 /// The beam's displacements at t = 0: undeformed, or in static equilibrium under the loads
@@ -310,14 +352,16 @@ pub fn run(
     over: &Overrides,
     show_progress: bool,
 ) -> Result<BeamRun, Error> {
-    // Set up: the beam, its loads, the disk on it, and the integrator.
+    // Set up: the beam (and its modes, on a modal beam), its loads, the disk on it, and the
+    // integrator.
     let beam = Beam::new(setup.beam.clone());
-    let loaded = LoadedBeam::new(&beam, &setup.loads);
+    let modal = modal_basis(scene, &beam)?;
+    let loaded = LoadedBeam::new(&beam, &setup.loads, modal.as_ref());
     let coupled = setup
         .disk
         .clone()
         .map(|spec| DiskOnBeam::new(&loaded, spec));
-    let n = beam.dim();
+    let n = loaded.dim();
     let opts = ode::Options {
         rho_inf: setup.rho_inf,
         ..over.options(scene)
@@ -326,13 +370,21 @@ pub fn run(
     outputs.extend(setup.shapes.iter().copied());
     outputs.sort_by(f64::total_cmp);
     outputs.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
-    let mass_lu = SparseLu::factor(beam.mass(), None).ok_or_else(|| {
+    let mass_lu = SparseLu::factor(loaded.model_mass(), None).ok_or_else(|| {
         Error::Solver(format!("scene {}: the mass matrix is singular", scene.name))
     })?;
     let literal = coupled
         .as_ref()
         .is_some_and(|c| c.spec.coupling == Coupling::Thesis)
         && opts.method != Method::GenAlpha;
+    if literal && setup.beam.model != BeamModel::Exact {
+        return Err(Error::Input(format!(
+            "scene {}: {} integrates the thesis coupling as the published 3n + 6 system, which transcribes the exact beam; use `model: exact`, or genalpha for the thesis coupling on a {} beam",
+            scene.name,
+            opts.method.name(),
+            setup.beam.model.name()
+        )));
+    }
     let unknowns = match &coupled {
         None => n,
         Some(_) if literal => n + 6,
@@ -347,13 +399,18 @@ pub fn run(
         coupled: coupled.as_ref(),
         nz: coupled.as_ref().map_or(n, |c| c.dim()),
         mass_lu: &mass_lu,
+        correct: !over.uncorrected_modes,
     };
     let y0: Vec<f64> = match &coupled {
         Some(c) => {
             let (z0, zd0) = c.initial_state(&start);
             z0.into_iter().chain(zd0).collect()
         }
-        None => start.iter().copied().chain(vec![0.0; n]).collect(),
+        None => loaded
+            .from_mesh(&start)
+            .into_iter()
+            .chain(vec![0.0; n])
+            .collect(),
     };
     let xs: Vec<f64> = (0..SAMPLES)
         .map(|k| beam.length * k as f64 / (SAMPLES - 1) as f64)
@@ -386,7 +443,7 @@ pub fn run(
     let mut stats = Stats::default();
     let mut stop = Stop::End;
     let mut left_track_t = None;
-    let (mut t0, mut q0, mut v0) = (0.0, start.clone(), vec![0.0; n]);
+    let (mut t0, mut q0, mut v0) = (0.0, loaded.from_mesh(&start), vec![0.0; n]);
     let mut ended = None;
     if let Some(c) = &coupled {
         match integrate_coupled(
@@ -402,8 +459,8 @@ pub fn run(
             }
             CoupledEnd::Left { t, y } => {
                 rec.ledger.disk_leaves(&rec.phase, t, &y);
-                let (q, v) = rec.phase.beam_state(&y);
-                (t0, q0, v0) = (t, q.to_vec(), v.to_vec());
+                let (z, zd) = rec.phase.split(&y);
+                (t0, q0, v0) = (t, z[..n].to_vec(), zd[..n].to_vec());
                 left_track_t = Some(t);
             }
         }
@@ -433,6 +490,7 @@ pub fn run(
     if let Some(p) = &rec.progress {
         p.finish();
     }
+    let y_end = on_mesh(&rec.phase, &y_end);
     Ok(BeamRun {
         header: RunHeader {
             scene: scene.clone(),

@@ -1,7 +1,10 @@
 //! What a beam run integrates at a time: the beam with the disk riding on it (the state is
 //! (z, ż) with z = (q, s) or q), or, once the disk has left, the beam alone. Besides slicing
 //! the state, a phase computes what the outputs observe at an output time and the model does
-//! not already give: the support reactions, inertia included.
+//! not already give: the support reactions, inertia included, and on a modal beam the mesh's
+//! displacements with the static correction of the modes left out.
+
+use std::borrow::Cow;
 
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::Beam;
@@ -17,8 +20,11 @@ pub(super) struct Phase<'a> {
     pub coupled: Option<&'a DiskOnBeam<'a>>,
     /// Unknowns of the phase's z.
     pub nz: usize,
-    /// The beam's mass matrix, factorised once: accelerations of the free beam.
+    /// The beam's mass matrix (in the model's unknowns), factorised once: accelerations of
+    /// the free beam.
     pub mass_lu: &'a SparseLu,
+    /// Add the static correction of the modes a modal beam leaves out to its displacements.
+    pub correct: bool,
 }
 
 impl Phase<'_> {
@@ -27,16 +33,44 @@ impl Phase<'_> {
         y.split_at(self.nz)
     }
 
-    /// The beam's (q, v).
-    pub fn beam_state<'y>(&self, y: &'y [f64]) -> (&'y [f64], &'y [f64]) {
-        let n = self.beam.dim();
-        (&y[..n], &y[self.nz..self.nz + n])
+    /// The beam's (q, v) on the mesh: the state itself, or on a modal beam Φ (η, η̇). This is
+    /// the state the equations of motion and the energy budget hold.
+    pub fn beam_state<'y>(&self, y: &'y [f64]) -> (Cow<'y, [f64]>, Cow<'y, [f64]>) {
+        let n = self.loaded.dim();
+        (
+            self.loaded.to_mesh(&y[..n]),
+            self.loaded.to_mesh(&y[self.nz..self.nz + n]),
+        )
+    }
+
+    /// The mesh's displacements as the outputs read them: on a modal beam Φ η plus the static
+    /// response of the modes left out to what acts on the beam at t (its loads and the disk's
+    /// contact force).
+    pub fn displaced<'y>(
+        &self,
+        t: f64,
+        y: &'y [f64],
+        disk: Option<&DiskObservation>,
+    ) -> Cow<'y, [f64]> {
+        let (q, _) = self.beam_state(y);
+        let Some(modal) = self.loaded.modal.filter(|_| self.correct) else {
+            return q;
+        };
+        let mut f = vec![0.0; self.beam.dim()];
+        self.loaded.external(t, &mut f);
+        if let (Some(c), Some(d)) = (self.coupled, disk) {
+            let (z, zd) = self.split(y);
+            c.add_contact_force_on_beam(t, z, zd, d, &mut f);
+        }
+        let mut q = q.into_owned();
+        modal.add_static_correction(&f, &mut q);
+        Cow::Owned(q)
     }
 
     /// The beam alone, vibrating freely from here on.
     pub fn free(&mut self) {
         self.coupled = None;
-        self.nz = self.beam.dim();
+        self.nz = self.loaded.dim();
     }
 
     /// The disk as it is at (t, y), while it is on the beam.
@@ -48,8 +82,9 @@ impl Phase<'_> {
     /// What the supports exert on the beam at (t, y), global (fx, fy, mz) at `from` and at
     /// `to`: the loads acting then, the disk's contact force, and the beam's inertia.
     pub fn reactions(&self, t: f64, y: &[f64], disk: Option<&DiskObservation>) -> [[f64; 3]; 2] {
-        let n = self.beam.dim();
-        let (q, v) = self.beam_state(y);
+        let n = self.loaded.dim();
+        let q = self.displaced(t, y, disk);
+        let v = &y[self.nz..self.nz + n];
         let mut acting: Vec<(f64, [f64; 2], f64)> = self
             .loaded
             .active(t)
@@ -72,11 +107,12 @@ impl Phase<'_> {
             }
             None => {
                 let mut a = vec![0.0; n];
-                self.loaded.force(t, q, v, &mut a);
+                self.loaded.force(t, &y[..n], v, &mut a);
                 self.mass_lu.solve_in_place(&mut a);
                 a
             }
         };
-        self.beam.support_reactions(q, &acting, Some(&a))
+        self.beam
+            .support_reactions(&q, &acting, Some(&self.loaded.to_mesh(&a)))
     }
 }

@@ -1,0 +1,230 @@
+//! The beam model a scene gets when it leaves `track.beam.model` out, and the number of modes
+//! of a modal beam that leaves `track.beam.modes` out, chosen from the accuracy ε it asks for.
+//!
+//! 1. Geometric nonlinearity, measured: the exact and the linear static response of the
+//!    scene's mesh under the largest load the scene applies (all its loads together, with the
+//!    disk's weight standing at each probe in turn), compared in the deflection across the
+//!    undeformed axis, which the accuracy is asked of. Where the two differ at a probe by more
+//!    than ε/4 of the largest deflection, what the linear models leave out is visible at the
+//!    accuracy asked, and the beam is `exact`; otherwise it is `modal`. (The shortening of
+//!    the chord a sagging beam pulls in at a roller is second order in the deflection and
+//!    is not a deflection: it does not count.)
+//! 2. The modes: as the mesh is chosen (`discretisation.rs`), the static deflection at the
+//!    probes under the loads that change during the run is expanded in the modes; the loading
+//!    excites up to the last mode that adds more than ε/4 of the peak, K. One refinement
+//!    confirms it: modes K+1 … 2K together must add less than ε/4, or K doubles (ε/8 both,
+//!    where a load is switched during the run: each mode it excites swings by its whole
+//!    static part about it, undamped). The
+//!    static correction of the modes left out (`beam/modal.rs`) holds their quasi-static
+//!    part, so what the count must carry is the dynamics.
+
+use crate::analysis::modes::modes;
+use crate::analysis::statics;
+use crate::beam::load::{BeamStart, PointLoad};
+use crate::beam::{Beam, BeamModel, BeamSpec};
+use crate::linalg::SparseLu;
+
+/// The part of the accuracy each check of the choice may take.
+const SHARE: f64 = 0.25;
+
+/// The model chosen, and why (one sentence for `check` and the summary).
+pub struct Choice {
+    pub model: BeamModel,
+    pub why: String,
+}
+
+/// Every load as (x, global force, moment).
+type Pattern = Vec<(f64, [f64; 2], f64)>;
+
+fn displacements_at(beam: &Beam, q: &[f64], xs: &[f64]) -> Vec<[f64; 2]> {
+    xs.iter()
+        .map(|&x| {
+            let d = beam.displacement_at(q, x);
+            [d.u, d.w]
+        })
+        .collect()
+}
+
+/// The largest linear and exact static response at the probes, and their largest difference,
+/// over the load cases; `None` where the exact beam cannot be solved statically (a mechanism,
+/// or a load it buckles under).
+fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Option<(f64, f64)> {
+    let across = |beam: &Beam, q: &[f64]| -> Vec<f64> {
+        displacements_at(beam, q, xs)
+            .iter()
+            .map(|d| beam.to_local(*d)[1])
+            .collect()
+    };
+    let exact = Beam::new(BeamSpec {
+        model: BeamModel::Exact,
+        ..spec.clone()
+    });
+    let n = exact.dim();
+    let lu = SparseLu::factor(&exact.tangent(&vec![0.0; n]), None)?;
+    let (mut size, mut gap) = (0.0_f64, 0.0_f64);
+    for case in cases {
+        let mut f = vec![0.0; n];
+        for &(x, force, mz) in case {
+            exact.add_point_load(x, force, mz, &mut f);
+        }
+        let mut linear = f.clone();
+        lu.solve_in_place(&mut linear);
+        let solved = statics::solve(&exact, &f).ok()?;
+        let (a, b) = (across(&exact, &linear), across(&exact, &solved.q));
+        for (l, e) in a.iter().zip(&b) {
+            size = size.max(l.abs());
+            gap = gap.max((l - e).abs());
+        }
+    }
+    (size.is_finite() && size > 0.0).then_some((size, gap))
+}
+
+/// The number of modes the loading excites on the scene's mesh, and why.
+fn mode_count(
+    spec: &BeamSpec,
+    excite: &Pattern,
+    xs: &[f64],
+    accuracy: f64,
+    switched: bool,
+) -> (usize, String) {
+    let beam = Beam::new(BeamSpec {
+        model: BeamModel::Linear,
+        ..spec.clone()
+    });
+    let n = beam.dim();
+    let limit = n.min(crate::beam::modal::MAX_MODES);
+    let fallback = |why: &str| (limit.min(12), why.to_string());
+    let Some(m) = modes(&beam, limit) else {
+        return fallback("12 modes (or as many as the mesh has): the natural modes could not be computed for an estimate");
+    };
+    let mut f = vec![0.0; n];
+    for &(x, force, mz) in excite {
+        beam.add_point_load(x, force, mz, &mut f);
+    }
+    // The deflection at the probes after the first k modes, for every k.
+    let mut partial = vec![0.0; n];
+    let mut after = Vec::with_capacity(m.omega.len());
+    for k in 0..m.omega.len() {
+        let shape = m.shapes.column(k);
+        let w2 = m.omega[k] * m.omega[k];
+        if w2 > 0.0 {
+            let participation: f64 = shape.iter().zip(&f).map(|(a, b)| a * b).sum();
+            for (p, s) in partial.iter_mut().zip(shape.iter()) {
+                *p += s * participation / w2;
+            }
+        }
+        after.push(displacements_at(&beam, &partial, xs));
+    }
+    let scale = after.last().map_or(0.0, |d| {
+        d.iter().fold(0.0_f64, |s, v| s.max(v[0].hypot(v[1])))
+    });
+    if !(scale > 0.0) {
+        return fallback("12 modes (or as many as the mesh has): the loads that change during the run do not deflect the probes");
+    }
+    let moved = |a: usize, b: usize| -> f64 {
+        let none = vec![[0.0; 2]; xs.len()];
+        let pa = if a == 0 { &none } else { &after[a - 1] };
+        pa.iter()
+            .zip(&after[b - 1])
+            .fold(0.0_f64, |m, (x, y)| m.max((x[0] - y[0]).hypot(x[1] - y[1])))
+            / scale
+    };
+    // A load switched on or off sets every mode it excites swinging by up to its whole static
+    // part (twice it at the peak), undamped: the share is halved.
+    let tol = SHARE * accuracy * if switched { 0.5 } else { 1.0 };
+    let single = (1..=after.len())
+        .rev()
+        .find(|&k| moved(k - 1, k) > tol)
+        .unwrap_or(1);
+    let mut count = single;
+    while 2 * count <= after.len() && moved(count, 2 * count) > tol {
+        count *= 2;
+    }
+    let count = count.min(limit);
+    let confirm = if 2 * count <= after.len() {
+        format!(
+            "modes {}–{} together add {:.1e}",
+            count + 1,
+            2 * count,
+            moved(count, 2 * count)
+        )
+    } else {
+        format!("the mesh has {} modes", after.len())
+    };
+    (
+        count,
+        format!(
+            "{count} modes: the loads excite {single} (each adds more than {tol:.1e} of the peak static deflection at the probes); {confirm}"
+        ),
+    )
+}
+
+/// Choose what the scene left out of its beam model. `given` is the model the scene names,
+/// if it names one (a modal beam with `modes: 0` has its count chosen).
+#[allow(clippy::too_many_arguments)]
+pub fn choose(
+    spec: &BeamSpec,
+    given: Option<BeamModel>,
+    loads: &[PointLoad],
+    weight: Option<f64>,
+    xs: &[f64],
+    accuracy: f64,
+    start: BeamStart,
+    thesis_coupling: bool,
+) -> Choice {
+    let all: Pattern = loads.iter().map(|l| (l.x, l.force, l.mz)).collect();
+    let mut cases: Vec<Pattern> = vec![all.clone()];
+    if let Some(weight) = weight {
+        cases = xs
+            .iter()
+            .map(|&x| {
+                let mut c = all.clone();
+                c.push((x, [0.0, -weight], 0.0));
+                c
+            })
+            .collect();
+    }
+    let switching: Vec<&PointLoad> = loads
+        .iter()
+        .filter(|l| !(start == BeamStart::Static && l.active(0.0) && l.until == f64::INFINITY))
+        .collect();
+    let switched = !switching.is_empty();
+    let mut excite: Pattern = switching.iter().map(|l| (l.x, l.force, l.mz)).collect();
+    if let Some(weight) = weight {
+        excite.extend(xs.iter().map(|&x| (x, [0.0, -weight], 0.0)));
+    }
+    let modal = |why: String| {
+        let (modes, count_why) = mode_count(spec, &excite, xs, accuracy, switched);
+        Choice {
+            model: BeamModel::Modal { modes },
+            why: format!("{why}{count_why}"),
+        }
+    };
+    if given == Some(BeamModel::Modal { modes: 0 }) {
+        return modal(String::new());
+    }
+    if thesis_coupling {
+        return Choice {
+            model: BeamModel::Exact,
+            why: "exact: the thesis coupling is the thesis' equations, which are written for the exact beam".into(),
+        };
+    }
+    let tol = SHARE * accuracy;
+    match nonlinearity(spec, &cases, xs) {
+        None => Choice {
+            model: BeamModel::Exact,
+            why: "exact: the beam has no static response to measure its nonlinearity by (the supports leave a mechanism, or it does not carry the load statically)".into(),
+        },
+        Some((size, gap)) if gap > tol * size => Choice {
+            model: BeamModel::Exact,
+            why: format!(
+                "exact: under the largest load the scene applies the linear beam's static deflection at the probes is off the exact one by {:.1e} of it, more than {tol:.1e}",
+                gap / size
+            ),
+        },
+        Some((size, gap)) => modal(format!(
+            "modal: under the largest load the scene applies the linear and the exact static deflections at the probes differ by {:.1e} of them (within {tol:.1e}); ",
+            gap / size
+        )),
+    }
+}

@@ -1,0 +1,161 @@
+//! The modal beam: the lowest m natural modes of the linear beam (K₀ φ = ω² M φ, supports
+//! applied, φᵀ M φ = 1), whose amplitudes η replace the mesh's unknowns, q = Φ η. In them the
+//! beam's equations are m uncoupled oscillators, η̈ + Ω² η = Φᵀ F, and whatever rides on the
+//! beam sees it through the mesh's shape functions at the contact, projected by Φᵀ.
+//!
+//! What m modes leave out of a load's response is, for the modes well above the loading's
+//! frequencies, its static part: the residual flexibility R = K₀⁻¹ − Φ Ω⁻² Φᵀ. Under a force
+//! F the displacement Φ η + R F is the mode-acceleration method's: it recovers the deflection
+//! under a moving load (the shear kink and the short waves of a point force, which a few modes
+//! cannot hold) with the few modes that carry the dynamics. The correction is applied where
+//! displacements are read (probes, envelopes, shapes); the equations of motion and the
+//! energy budget keep Φ η, for which ½ ηᵀΩ²η + ½ η̇ᵀη̇ is the energy (R F does no work on
+//! the modes: Φᵀ K₀ R F = 0).
+
+use nalgebra::DMatrix;
+
+use crate::linalg::{Assembly, Sparse, SparseLu};
+
+/// Most modes a modal beam keeps: its matrices are dense in the modes, and on a large mesh
+/// the sparse eigensolver computes at most this many.
+pub const MAX_MODES: usize = 200;
+
+pub struct ModalBasis {
+    /// Φ, mass-normalised, one column per mode, on the beam's free unknowns.
+    shapes: DMatrix<f64>,
+    /// Circular frequencies, ascending.
+    pub omega: Vec<f64>,
+    /// Φᵀ M: the amplitudes of a displacement, η = Φᵀ M q.
+    amplitudes: DMatrix<f64>,
+    /// The identity (the modes are mass-normalised) and Ω².
+    mass: Sparse,
+    stiffness: Sparse,
+    /// K₀, factorised: the static part of the modes left out. `None` where the supports leave
+    /// a mechanism, whose static response is not defined.
+    flexibility: Option<SparseLu>,
+}
+
+impl ModalBasis {
+    /// From the lowest modes of the linear beam with stiffness `k0` and mass `mass`.
+    pub fn new(shapes: DMatrix<f64>, omega: Vec<f64>, k0: &Sparse, mass: &Sparse) -> ModalBasis {
+        let m = omega.len();
+        let dense_mass = {
+            let mut d = DMatrix::zeros(mass.nrows(), mass.ncols());
+            for (j, (i, v)) in crate::linalg::entries(mass) {
+                d[(i, j)] += v;
+            }
+            d
+        };
+        let amplitudes = shapes.transpose() * dense_mass;
+        let diagonal = |values: &mut dyn Iterator<Item = f64>| {
+            let mut a = Assembly::new(m);
+            for (k, v) in values.enumerate() {
+                a.add(k, k, v);
+            }
+            a.build()
+        };
+        let highest = omega.last().copied().unwrap_or(0.0);
+        let rigid = omega.first().is_some_and(|&w| w <= 1e-6 * highest);
+        ModalBasis {
+            mass: diagonal(&mut std::iter::repeat_n(1.0, m)),
+            stiffness: diagonal(&mut omega.iter().map(|w| w * w)),
+            shapes,
+            omega,
+            amplitudes,
+            flexibility: if rigid {
+                None
+            } else {
+                SparseLu::factor(k0, None)
+            },
+        }
+    }
+
+    /// The number of modes.
+    pub fn dim(&self) -> usize {
+        self.omega.len()
+    }
+
+    pub fn mass(&self) -> &Sparse {
+        &self.mass
+    }
+
+    /// Ω².
+    pub fn stiffness(&self) -> &Sparse {
+        &self.stiffness
+    }
+
+    /// q = Φ η.
+    pub fn expand(&self, eta: &[f64], q: &mut [f64]) {
+        q.fill(0.0);
+        for (k, e) in eta.iter().enumerate() {
+            for (qi, p) in q.iter_mut().zip(self.shapes.column(k).iter()) {
+                *qi += p * e;
+            }
+        }
+    }
+
+    /// q_i = Σ_k Φ_ik η_k for the unknowns `at` only.
+    pub fn expand_at(&self, at: impl Iterator<Item = usize>, eta: &[f64], q: &mut [f64]) {
+        for i in at {
+            q[i] = (0..eta.len()).map(|k| self.shapes[(i, k)] * eta[k]).sum();
+        }
+    }
+
+    /// out = Φᵀ f: a force on the mesh's unknowns as the modes feel it.
+    pub fn project(&self, f: &[f64], out: &mut [f64]) {
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = self
+                .shapes
+                .column(k)
+                .iter()
+                .zip(f)
+                .map(|(p, v)| p * v)
+                .sum();
+        }
+    }
+
+    /// Add v Φ_i· (row i of Φ, scaled) to `out`: one term of a sparse row projected.
+    pub fn add_row(&self, i: usize, v: f64, out: &mut [f64]) {
+        for (k, o) in out.iter_mut().enumerate() {
+            *o += self.shapes[(i, k)] * v;
+        }
+    }
+
+    /// η = Φᵀ M q: the modal amplitudes of a displacement (exact where q lies in the modes'
+    /// span, the mass-orthogonal projection otherwise).
+    pub fn amplitudes_of(&self, q: &[f64], eta: &mut [f64]) {
+        for (k, e) in eta.iter_mut().enumerate() {
+            *e = self
+                .amplitudes
+                .row(k)
+                .iter()
+                .zip(q)
+                .map(|(a, b)| a * b)
+                .sum();
+        }
+    }
+
+    /// R f = K₀⁻¹ f − Φ Ω⁻² Φᵀ f, added to `q`: the static response of the modes left out.
+    /// Nothing where the beam is a mechanism.
+    pub fn add_static_correction(&self, f: &[f64], q: &mut [f64]) {
+        let Some(lu) = &self.flexibility else { return };
+        let mut full = f.to_vec();
+        lu.solve_in_place(&mut full);
+        let mut p = vec![0.0; self.dim()];
+        self.project(f, &mut p);
+        for (k, pk) in p.iter().enumerate() {
+            let w2 = self.omega[k] * self.omega[k];
+            if w2 > 0.0 {
+                for (fi, s) in full.iter_mut().zip(self.shapes.column(k).iter()) {
+                    *fi -= s * pk / w2;
+                }
+            }
+        }
+        q.iter_mut().zip(&full).for_each(|(a, b)| *a += b);
+    }
+
+    /// Whether the static correction is available (the supports hold the beam).
+    pub fn corrects(&self) -> bool {
+        self.flexibility.is_some()
+    }
+}
