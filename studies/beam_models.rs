@@ -14,7 +14,6 @@
 mod common;
 
 use common::{changed, run_beam, Set};
-use rollbeam::analysis::moving_load::MovingForce;
 use rollbeam::beam::BeamModel;
 use rollbeam::ode::Method;
 use rollbeam::run::beam::BeamRun;
@@ -215,25 +214,7 @@ fn modal_moving_force_matches_frybas_series() {
         ],
     );
     let r = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-10);
-    let k = r.setup.probes.iter().position(|p| p.name == "mid").unwrap();
-    let fryba = MovingForce {
-        p: 1500.0 * 9.81,
-        span: 20.0,
-        ei: 210.0e9 * 43190.0e-8,
-        mu: 7850.0 * 181.0e-4,
-        v: 17.6,
-    };
-    let midspan = |t: f64| fryba.deflection(10.0, t, 301);
-    let peak = r
-        .rows
-        .iter()
-        .map(|row| midspan(row.t).abs())
-        .fold(0.0, f64::max);
-    let worst = r
-        .rows
-        .iter()
-        .map(|row| (row.probes[k].w + midspan(row.t)).abs())
-        .fold(0.0, f64::max);
+    let (worst, peak) = common::midspan_against_fryba(&r);
     assert!(
         worst <= 5e-3 * peak,
         "midspan off Frýba's series by {worst:.3e} m, peak {peak:.3e} m"

@@ -4,6 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
+use rollbeam::analysis::moving_load::MovingForce;
 use rollbeam::ode::Method;
 use rollbeam::plan::Planner;
 use rollbeam::run::beam::BeamRun;
@@ -107,4 +108,34 @@ pub fn log_slope(x: &[f64], y: &[f64]) -> f64 {
     let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
     let sxx: f64 = lx.iter().map(|a| (a - mx).powi(2)).sum();
     sxy / sxx
+}
+
+/// The bridge's midspan deflection under the moving force (D44's weight and speed, shear made
+/// stiff) against Frýba's modal series: (largest difference, largest series value), m.
+pub fn midspan_against_fryba(r: &BeamRun) -> (f64, f64) {
+    let k = r
+        .setup
+        .probes
+        .iter()
+        .position(|p| p.name == "mid")
+        .expect("a probe named mid");
+    let fryba = MovingForce {
+        p: 1500.0 * 9.81,
+        span: 20.0,
+        ei: 210.0e9 * 43190.0e-8,
+        mu: 7850.0 * 181.0e-4,
+        v: 17.6,
+    };
+    let midspan = |t: f64| fryba.deflection(10.0, t, 301);
+    let peak = r
+        .rows
+        .iter()
+        .map(|row| midspan(row.t).abs())
+        .fold(0.0, f64::max);
+    let worst = r
+        .rows
+        .iter()
+        .map(|row| (row.probes[k].w + midspan(row.t)).abs())
+        .fold(0.0, f64::max);
+    (worst, peak)
 }
