@@ -8,6 +8,10 @@
 //! automatic defaults (test `defaults_land_within_the_accuracy_asked`) are measured both ways
 //! a user meets them: the solver block left empty (ρ∞ = 1, atol from the response's size: the
 //! defaults proper) and the mesh and tolerances left out (the study's ρ∞ = 0.8, atol 10⁻⁹).
+//!
+//! Issue 16's targets: the same with the beam model left out too (the automatic choice, a
+//! modal beam of 16 modes), and the exact beam with its defaults at the real shear modulus and
+//! at G × 10⁴ (what an undamped stiff shear costs).
 
 use std::path::Path;
 
@@ -60,8 +64,15 @@ fn at_a_tenth_of_a_percent(c: &mut Criterion) {
 
 /// D44 with the lines that start with `keys` left out, as a user would write it.
 fn d44_without(keys: &[&str]) -> Scene {
+    d44_text_without(keys, 1.0)
+}
+
+/// The same, with the shear modulus multiplied by `shear`.
+fn d44_text_without(keys: &[&str], shear: f64) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/bridge-d44.yaml");
-    let text = std::fs::read_to_string(&path).expect("D44 is readable");
+    let text = std::fs::read_to_string(&path)
+        .expect("D44 is readable")
+        .replace("G: 81.0e9", &format!("G: {:e}", 81.0e9 * shear));
     let kept: String = text
         .lines()
         .filter(|l| !keys.iter().any(|k| l.trim_start().starts_with(k)))
@@ -94,5 +105,37 @@ fn with_the_defaults(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, whole, at_a_tenth_of_a_percent, with_the_defaults);
+fn beam_models(c: &mut Criterion) {
+    let mut group = c.benchmark_group("bridge-d44-models");
+    group.sample_size(10);
+    let defaults = [
+        "elements:",
+        "order:",
+        "rtol:",
+        "atol:",
+        "shapes:",
+        "method:",
+        "rho_inf:",
+    ];
+    let automatic = [&defaults[..], &["model:"]].concat();
+    for (name, keys, shear) in [
+        ("automatic", &automatic[..], 1.0),
+        ("exact", &defaults[..], 1.0),
+        ("exact-shear-x1e4", &defaults[..], 1e4),
+    ] {
+        let scene = d44_text_without(keys, shear);
+        group.bench_function(name, |b| {
+            b.iter(|| run(&scene, &Overrides::default(), false).expect("runs"))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    whole,
+    at_a_tenth_of_a_percent,
+    with_the_defaults,
+    beam_models
+);
 criterion_main!(benches);

@@ -101,6 +101,7 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
         methods: vec![Method::GenAlpha, Method::Dopri5],
         rtols: vec![1e-3, 1e-5],
         meshes: vec![2, 4],
+        models: Vec::new(),
         max_steps: 20_000,
     };
     let reference = tradeoff::reference(&scene, &plan, "test").expect("the reference runs");
@@ -132,6 +133,7 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
         methods: vec![Method::Dopri5],
         rtols: vec![1e-5],
         meshes: vec![4],
+        models: Vec::new(),
         max_steps: 100,
     };
     let t = tradeoff::trials(&scene, &starved, &reference, false);

@@ -6,7 +6,9 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
-use crate::beam::Beam;
+use std::sync::{Mutex, OnceLock};
+
+use crate::beam::{Beam, BeamModel, BeamSpec};
 use crate::linalg::{self, Combination, Sparse, SparseLu};
 
 /// Largest mesh (unknowns) solved densely: 2000² doubles are 32 MB and a second of work.
@@ -35,21 +37,73 @@ fn dense(m: &Sparse) -> DMatrix<f64> {
     d
 }
 
+/// Dense eigensolutions kept for the meshes last solved: planning a scene (the mesh and the
+/// model it chooses) and running it (a modal beam's basis) ask for the modes of the same mesh
+/// several times, and a sweep's cases share their beam.
+const KEPT: usize = 8;
+/// Largest mesh (unknowns) whose dense eigensolution is kept: n² doubles each.
+const KEPT_LIMIT: usize = 400;
+
+type Eigen = std::sync::Arc<(Vec<f64>, DMatrix<f64>)>;
+
+fn kept() -> &'static Mutex<Vec<(String, Eigen)>> {
+    static KEPT_SOLUTIONS: OnceLock<Mutex<Vec<(String, Eigen)>>> = OnceLock::new();
+    KEPT_SOLUTIONS.get_or_init(|| Mutex::new(Vec::new()))
+}
+
+/// Every eigenpair of the beam's K₀ φ = λ M φ, dense, from the kept ones where the same mesh
+/// was solved before. K₀ is the tangent at the undeformed state whatever the model, so the
+/// key leaves the model out.
+fn dense_all(beam: &Beam) -> Option<Eigen> {
+    let n = beam.dim();
+    let key = format!(
+        "{:?}",
+        BeamSpec {
+            model: BeamModel::Exact,
+            ..beam.spec.clone()
+        }
+    );
+    if let Some(hit) = kept()
+        .lock()
+        .ok()
+        .and_then(|k| k.iter().find(|(at, _)| *at == key).map(|(_, e)| e.clone()))
+    {
+        return Some(hit);
+    }
+    let k = beam.tangent(&vec![0.0; n]);
+    let solved: Eigen = std::sync::Arc::new(generalized(&dense(&k), &dense(beam.mass()), n)?);
+    if n <= KEPT_LIMIT {
+        if let Ok(mut k) = kept().lock() {
+            if k.len() == KEPT {
+                k.remove(0);
+            }
+            k.push((key, solved.clone()));
+        }
+    }
+    Some(solved)
+}
+
 /// The lowest `count` modes; `None` when M is not positive definite or the sparse iteration
 /// does not settle. Beyond [`DENSE_LIMIT`] unknowns `count` is capped at [`MAX_SPARSE_MODES`].
 pub fn modes(beam: &Beam, count: usize) -> Option<Modes> {
     let n = beam.dim();
-    let k = beam.tangent(&vec![0.0; n]);
     let (lambda, shapes) = if n <= DENSE_LIMIT {
-        generalized(&dense(&k), &dense(beam.mass()), count.min(n))?
+        let all = dense_all(beam)?;
+        let count = count.min(n);
+        (
+            all.0[..count].to_vec(),
+            all.1.columns(0, count).into_owned(),
+        )
     } else {
+        let k = beam.tangent(&vec![0.0; n]);
         subspace(&k, beam.mass(), count.min(MAX_SPARSE_MODES).min(n))?
     };
     let omega = lambda.iter().map(|l| l.max(0.0).sqrt()).collect();
     Some(Modes { omega, shapes })
 }
 
-/// The lowest `count` eigenpairs of K φ = λ M φ, dense, φ mass-normalised.
+/// The lowest `count` eigenpairs of K φ = λ M φ, dense, φ mass-normalised: with M = L Lᵀ,
+/// C = L⁻¹ K L⁻ᵀ is symmetric, found by two triangular solves, and φ = L⁻ᵀ y.
 fn generalized(
     k: &DMatrix<f64>,
     m: &DMatrix<f64>,
@@ -57,17 +111,25 @@ fn generalized(
 ) -> Option<(Vec<f64>, DMatrix<f64>)> {
     let n = k.nrows();
     let l = m.clone().cholesky()?.l();
-    let l_inv = l.try_inverse()?;
-    let c = &l_inv * k * l_inv.transpose();
+    let mut c = k.clone();
+    if !l.solve_lower_triangular_mut(&mut c) {
+        return None;
+    }
+    let mut c = c.transpose();
+    if !l.solve_lower_triangular_mut(&mut c) {
+        return None;
+    }
     let c = (&c + c.transpose()) * 0.5;
     let eig = SymmetricEigen::new(c);
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
     let lambda = order[..count].iter().map(|&i| eig.eigenvalues[i]).collect();
-    let lt_inv = l_inv.transpose();
     let mut shapes = DMatrix::zeros(n, count);
     for (c, &i) in order[..count].iter().enumerate() {
-        shapes.set_column(c, &(&lt_inv * eig.eigenvectors.column(i)));
+        shapes.set_column(c, &eig.eigenvectors.column(i));
+    }
+    if !l.tr_solve_lower_triangular_mut(&mut shapes) {
+        return None;
     }
     Some((lambda, shapes))
 }
@@ -167,8 +229,10 @@ mod tests {
         for j in 0..6 {
             assert!(
                 (dense_l[j] - sparse_l[j]).abs() <= 1e-8 * dense_l[j],
-                "mode {}",
-                j + 1
+                "mode {}: {} {}",
+                j + 1,
+                dense_l[j],
+                sparse_l[j]
             );
             let dot: f64 = dense_x.column(j).dot(&sparse_x.column(j));
             let scale = dense_x.column(j).norm() * sparse_x.column(j).norm();

@@ -59,6 +59,27 @@ impl<'a> LoadedBeam<'a> {
         self.modal.map_or(self.beam.mass(), |m| m.mass())
     }
 
+    /// The beam's kinetic and strain energy at the model's (q, v): ½ vᵀM v and the strain
+    /// energy of the beam (½ qᵀK₀q on the linear models; on a modal beam ½|η̇|² and ½ηᵀΩ²η).
+    pub fn energies(&self, q: &[f64], v: &[f64]) -> (f64, f64) {
+        match self.modal {
+            Some(m) => (
+                0.5 * v.iter().map(|x| x * x).sum::<f64>(),
+                0.5 * q
+                    .iter()
+                    .zip(&m.omega)
+                    .map(|(x, w)| (w * x).powi(2))
+                    .sum::<f64>(),
+            ),
+            None => {
+                let mut mv = self.scratch.borrow_mut();
+                crate::linalg::mul(self.beam.mass(), v, &mut mv);
+                let kinetic = 0.5 * v.iter().zip(mv.iter()).map(|(a, b)| a * b).sum::<f64>();
+                (kinetic, self.beam.strain_energy(q))
+            }
+        }
+    }
+
     /// The mesh's displacements (or velocities) from the model's unknowns.
     pub fn to_mesh<'y>(&self, z: &'y [f64]) -> Cow<'y, [f64]> {
         match self.modal {
@@ -100,13 +121,20 @@ impl Structure for LoadedBeam<'_> {
                 f.iter_mut().zip(scratch.iter()).for_each(|(a, b)| *a -= b);
             }
             Some(m) => {
-                self.external(t, &mut scratch);
-                m.project(&scratch, f);
+                if self.active(t).next().is_some() {
+                    self.external(t, &mut scratch);
+                    m.project(&scratch, f);
+                } else {
+                    f.fill(0.0);
+                }
                 for (k, fk) in f.iter_mut().enumerate() {
                     *fk -= m.omega[k] * m.omega[k] * q[k];
                 }
             }
         }
+    }
+    fn norm_weights(&self) -> Option<Vec<f64>> {
+        self.modal.map(|m| m.displacement_per_amplitude())
     }
     fn stiffness(&self, _t: f64, q: &[f64]) -> Sparse {
         match self.modal {

@@ -154,6 +154,19 @@ impl ModalBasis {
         q.iter_mut().zip(&full).for_each(|(a, b)| *a += b);
     }
 
+    /// The largest displacement (or rotation) of the mesh that a unit amplitude of each mode
+    /// makes: what an amplitude stands for in the error norm.
+    pub fn displacement_per_amplitude(&self) -> Vec<f64> {
+        (0..self.dim())
+            .map(|k| {
+                self.shapes
+                    .column(k)
+                    .iter()
+                    .fold(0.0_f64, |m, v| m.max(v.abs()))
+            })
+            .collect()
+    }
+
     /// Whether the static correction is available (the supports hold the beam).
     pub fn corrects(&self) -> bool {
         self.flexibility.is_some()

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use super::sweep::{run_sweep, Setting};
 use super::tradeoff;
 use crate::analysis::moving_load::MovingForce;
+use crate::beam::BeamModel;
 use crate::coupling::Coupling;
 use crate::error::Error;
 use crate::output::{self, io_error, plots};
@@ -112,11 +113,21 @@ fn work_precision(studies: &Path, out: &Path, figures: &Path) -> Result<(), Erro
 /// Studies whose work–precision grid runs to the method's tightest default rtol.
 const FULL_GRID: [&str; 2] = ["parabola-", "bridge-"];
 
+/// The study whose diagram also trades the beam model: the thesis' exact beam against the
+/// linear one and modal ones of 4 to 32 modes (REPORT.md, "Beam models").
+const MODEL_TRADE: &str = "bridge-d44";
+
 /// The grid a study's work–precision diagram is drawn from.
 pub fn study_plan(scene: &Scene) -> tradeoff::Plan {
     let mut plan = tradeoff::Plan::default_for(scene);
     if !FULL_GRID.iter().any(|p| scene.name.starts_with(p)) {
         plan.rtols.retain(|&r| r >= 1e-5);
+    }
+    if scene.name == MODEL_TRADE {
+        plan.models = std::iter::once(BeamModel::Exact)
+            .chain(std::iter::once(BeamModel::Linear))
+            .chain([4, 8, 16, 32].map(|modes| BeamModel::Modal { modes }))
+            .collect();
     }
     plan
 }

@@ -22,6 +22,7 @@ use std::path::{Path, PathBuf};
 use plotters::prelude::*;
 
 use super::{parse_method, rtol_flag};
+use crate::beam::BeamModel;
 use crate::error::Error;
 use crate::ode::Method;
 use crate::output::plots::PALETTE;
@@ -48,6 +49,8 @@ pub struct Plan {
     pub rtols: Vec<f64>,
     /// Element counts (beam scenes; empty on a rigid curve).
     pub meshes: Vec<usize>,
+    /// Beam models (beam scenes; empty: the scene's own).
+    pub models: Vec<BeamModel>,
     pub max_steps: usize,
 }
 
@@ -63,12 +66,14 @@ impl Plan {
                 methods: vec![Method::Dopri5, Method::TrBdf2, Method::Esdirk4],
                 rtols: (2..=8).map(|k| 10f64.powi(-k)).collect(),
                 meshes: Vec::new(),
+                models: Vec::new(),
                 max_steps: 200_000,
             },
             Model::Beam(b) => Plan {
                 methods: vec![Method::GenAlpha, Method::Esdirk4, Method::TrBdf2],
                 rtols: (2..=6).map(|k| 10f64.powi(-k)).collect(),
                 meshes: vec![b.beam.elements.div_ceil(2), b.beam.elements],
+                models: Vec::new(),
                 max_steps: 20_000,
             },
         }
@@ -173,13 +178,46 @@ pub fn history_error(a: &[(f64, Vec<f64>)], reference: &[(f64, Vec<f64>)]) -> f6
         / scale
 }
 
-/// The scene with its beam meshed into `elements`.
-fn with_mesh(scene: &Scene, elements: Option<usize>) -> Scene {
+/// The scene with its beam meshed into `elements` and modelled as `model`.
+fn with_mesh(scene: &Scene, elements: Option<usize>, model: Option<BeamModel>) -> Scene {
     let mut s = scene.clone();
-    if let (Model::Beam(b), Some(n)) = (&mut s.model, elements) {
-        b.beam.elements = n;
+    if let Model::Beam(b) = &mut s.model {
+        if let Some(n) = elements {
+            b.beam.elements = n;
+        }
+        if let Some(m) = model {
+            b.beam.model = m;
+        }
     }
     s
+}
+
+/// "exact", "linear", "modal:16".
+pub fn model_label(model: BeamModel) -> String {
+    match model {
+        BeamModel::Modal { modes } => format!("modal:{modes}"),
+        other => other.name().to_string(),
+    }
+}
+
+/// A beam model as `--models` names it: exact, linear or modal:N.
+pub fn parse_model(text: &str) -> Result<BeamModel, Error> {
+    match text {
+        "exact" => Ok(BeamModel::Exact),
+        "linear" => Ok(BeamModel::Linear),
+        _ => text
+            .strip_prefix("modal:")
+            .and_then(|n| n.parse::<usize>().ok())
+            .filter(|n| (1..=crate::beam::modal::MAX_MODES).contains(n))
+            .map(|modes| BeamModel::Modal { modes })
+            .ok_or_else(|| {
+                Error::Input(format!(
+                    "--models {}: a beam model is exact, linear or modal:N with N from 1 to {}",
+                    crate::error::quote(text),
+                    crate::beam::modal::MAX_MODES
+                ))
+            }),
+    }
 }
 
 /// atol is a thousandth of rtol, so that the tolerance a run is asked for is its rtol: the
@@ -224,7 +262,7 @@ pub fn reference(scene: &Scene, plan: &Plan, made_by: &str) -> Result<Reference,
         Model::Rolling(_) => None,
         Model::Beam(_) => Some(2 * plan.meshes.iter().copied().max().unwrap_or(1)),
     };
-    let fine = with_mesh(scene, elements);
+    let fine = with_mesh(scene, elements, None);
     let tightest = plan.rtols.iter().copied().fold(1.0, f64::min);
     let mut rtol = tightest / 10.0;
     let run_at = |rtol: f64| run::run(&fine, &overrides(method, rtol, usize::MAX), false);
@@ -298,6 +336,8 @@ pub struct Trial {
     pub method: Method,
     pub rtol: f64,
     pub elements: Option<usize>,
+    /// The beam model, where the plan sweeps it.
+    pub model: Option<BeamModel>,
     pub outcome: Result<Measured, String>,
 }
 
@@ -322,16 +362,23 @@ pub fn trials(
     } else {
         plan.meshes.iter().map(|&n| Some(n)).collect()
     };
+    let models: Vec<Option<BeamModel>> = if plan.models.is_empty() {
+        vec![None]
+    } else {
+        plan.models.iter().map(|&m| Some(m)).collect()
+    };
     let mut grid = Vec::new();
     for &method in &plan.methods {
-        for &elements in &meshes {
-            for &rtol in &plan.rtols {
-                grid.push((method, elements, rtol));
+        for &model in &models {
+            for &elements in &meshes {
+                for &rtol in &plan.rtols {
+                    grid.push((method, elements, model, rtol));
+                }
             }
         }
     }
-    super::parallel::map(&grid, show_progress, |&(method, elements, rtol)| {
-        let scene = with_mesh(scene, elements);
+    super::parallel::map(&grid, show_progress, |&(method, elements, model, rtol)| {
+        let scene = with_mesh(scene, elements, model);
         let over = overrides(method, rtol, plan.max_steps);
         let outcome = run::run(&scene, &over, false)
             .and_then(|r| {
@@ -350,6 +397,7 @@ pub fn trials(
             method,
             rtol,
             elements,
+            model,
             outcome,
         }
     })
@@ -378,12 +426,15 @@ pub fn cheapest(trials: &[Trial], target: f64) -> Option<&Trial> {
 }
 
 impl Trial {
-    /// "genalpha, rtol 1e-4, 10 elements".
+    /// "genalpha, rtol 1e-4, 10 elements, modal:16".
     pub fn settings(&self) -> String {
         let mesh = self
             .elements
             .map_or(String::new(), |n| format!(", {n} elements"));
-        format!("{}, rtol {:e}{mesh}", self.method.name(), self.rtol)
+        let model = self
+            .model
+            .map_or(String::new(), |m| format!(", {}", model_label(m)));
+        format!("{}, rtol {:e}{mesh}{model}", self.method.name(), self.rtol)
     }
 }
 
@@ -396,14 +447,15 @@ pub fn write_tradeoff(
 ) -> Result<Vec<String>, Error> {
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
     let mut csv = String::from(
-        "method,rtol,elements,status,headline_error,history_error,wall_s,steps,rejected,rhs_evals\n",
+        "method,rtol,elements,model,status,headline_error,history_error,wall_s,steps,rejected,rhs_evals\n",
     );
     for t in trials {
         let mesh = t.elements.map_or(String::new(), |n| n.to_string());
+        let model = t.model.map_or(String::new(), model_label);
         let _ = match &t.outcome {
             Ok(m) => writeln!(
                 csv,
-                "{},{:e},{mesh},ok,{:e},{:e},{},{},{},{}",
+                "{},{:e},{mesh},{model},ok,{:e},{:e},{},{},{},{}",
                 t.method.name(),
                 t.rtol,
                 m.headline_error,
@@ -415,7 +467,7 @@ pub fn write_tradeoff(
             ),
             Err(e) => writeln!(
                 csv,
-                "{},{:e},{mesh},\"failed: {}\",,,,,,",
+                "{},{:e},{mesh},{model},\"failed: {}\",,,,,,",
                 t.method.name(),
                 t.rtol,
                 e.replace('"', "'")
@@ -468,10 +520,13 @@ fn diagram(scene: &Scene, trials: &[Trial], path: &Path) -> Result<(), Error> {
     let mut lines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
     for t in trials {
         let Ok(m) = &t.outcome else { continue };
-        let name = match t.elements {
+        let mut name = match t.elements {
             Some(n) => format!("{} ({n} el.)", t.method.name()),
             None => t.method.name().to_string(),
         };
+        if let Some(m) = t.model {
+            name = format!("{name} {}", model_label(m));
+        }
         let point = (m.wall_s.max(1e-5), m.headline_error.max(1e-12));
         match lines.iter_mut().find(|(n, _)| *n == name) {
             Some((_, pts)) => pts.push(point),
@@ -556,6 +611,9 @@ pub struct TradeoffArgs {
     /// Element counts to try on a beam, comma-separated (default: the scene's and half of it).
     #[arg(long, value_delimiter = ',')]
     elements: Vec<usize>,
+    /// Beam models to try, comma-separated: exact, linear, modal:N (default: the scene's).
+    #[arg(long, value_delimiter = ',')]
+    models: Vec<String>,
     /// Steps a run may take before it gives up (default 20000 on a beam, 200000 on a curve).
     #[arg(long)]
     max_steps: Option<usize>,
@@ -573,6 +631,7 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
         methods,
         rtols,
         elements,
+        models,
         max_steps,
         reference: recompute,
     } = args;
@@ -602,6 +661,17 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
             )));
         }
         plan.meshes = elements;
+    }
+    if !models.is_empty() {
+        if scene.beam().is_none() {
+            return Err(Error::Input(
+                "--models models a beam; this scene has a rigid curve".into(),
+            ));
+        }
+        plan.models = models
+            .iter()
+            .map(|m| parse_model(m))
+            .collect::<Result<_, _>>()?;
     }
     if let Some(m) = max_steps {
         if m == 0 {

@@ -249,12 +249,19 @@ impl<'a> DiskOnBeam<'a> {
         out
     }
 
-    /// (q, s) on the mesh from z, as the laws read a state: on a modal beam q = Φ η.
-    fn on_mesh<'y>(&self, z: &'y [f64]) -> Cow<'y, [f64]> {
+    /// (q, s) on the mesh from z, as the laws read a state at the contact `at`: on a modal
+    /// beam q = Φ η, formed only under the patch, where the laws read it.
+    fn on_mesh<'y>(&self, at: &AxisPoint, z: &'y [f64]) -> Cow<'y, [f64]> {
         match self.loaded.modal {
             None => Cow::Borrowed(z),
-            Some(_) => {
-                let mut out = self.loaded.to_mesh(&z[..self.n]).into_owned();
+            Some(modal) => {
+                let mut out = vec![0.0; self.rider.n];
+                let under = at
+                    .nodes
+                    .iter()
+                    .flat_map(|nb| [nb.u, nb.w, nb.phi])
+                    .flatten();
+                modal.expand_at(under, &z[..self.n], &mut out);
                 out.extend_from_slice(&z[self.n..]);
                 Cow::Owned(out)
             }
@@ -473,9 +480,12 @@ impl<'a> DiskOnBeam<'a> {
 
     fn observe_with(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> DiskObservation {
         let at = self.contact(t, z, zd);
-        let motion = self
-            .law
-            .motion(&self.rider, &at, &self.on_mesh(zd), &self.on_mesh(zdd));
+        let motion = self.law.motion(
+            &self.rider,
+            &at,
+            &self.on_mesh(&at, zd),
+            &self.on_mesh(&at, zdd),
+        );
         let tg = at.tangent();
         let nm = at.normal();
         let beam = self.beam();
@@ -602,6 +612,12 @@ impl Structure for DiskOnBeam<'_> {
         let mut a = Assembly::new(self.dim());
         a.add_sparse(&k, 1.0, 0, 0);
         self.stiffness_pattern.get_or_init(|| a.pattern()).build(&a)
+    }
+
+    fn norm_weights(&self) -> Option<Vec<f64>> {
+        let mut w = self.loaded.norm_weights()?;
+        w.resize(self.dim(), 1.0);
+        Some(w)
     }
 
     fn norm_groups(&self) -> Vec<Range<usize>> {

@@ -106,6 +106,7 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
                 stats: Stats::default(),
                 mass_lu: None,
                 groups: p.norm_groups(),
+                weights: p.norm_weights(),
             },
             stepper: make_stepper(opts, n),
             t: t0,

@@ -35,6 +35,7 @@ const MAX_NEWTON: usize = 10;
 const NEWTON_KAPPA: f64 = 0.01;
 
 /// q, v, a and f(t, q, v) at one time, f on the side of the current segment.
+#[derive(Clone)]
 struct State {
     q: Vec<f64>,
     v: Vec<f64>,
@@ -58,6 +59,8 @@ pub(crate) struct GenAlphaStepper {
     /// The structure's norm groups: the error is a displacement error, measured per group
     /// against the group's largest displacement.
     groups: Vec<std::ops::Range<usize>>,
+    /// The structure's norm weights (see `Structure::norm_weights`).
+    weights: Option<Vec<f64>>,
     /// Factorised (1 − α_m) M + (1 − α_f) β h² K and the h it was built for; with a split
     /// mass, M is its constant part B.
     iteration: Option<(f64, SparseLu)>,
@@ -91,6 +94,7 @@ impl GenAlphaStepper {
         GenAlphaStepper {
             c: GenAlpha::new(rho_inf),
             groups: Vec::new(),
+            weights: None,
             iteration: None,
             woodbury: None,
             k: None,
@@ -122,7 +126,15 @@ impl GenAlphaStepper {
     }
 
     fn norm(&self, ctx: &Ctx, e: &[f64], q: &[f64]) -> f64 {
-        super::grouped_norm(&self.groups, ctx.atol, ctx.rtol, e, q, q)
+        super::grouped_norm(
+            &self.groups,
+            self.weights.as_deref(),
+            ctx.atol,
+            ctx.rtol,
+            e,
+            q,
+            q,
+        )
     }
 
     fn factor(
@@ -214,6 +226,7 @@ impl GenAlphaStepper {
         p: &dyn Structure,
         t: f64,
         h: f64,
+        full: bool,
         ctx: &mut Ctx,
     ) -> Result<Option<f64>, SolveError> {
         let n = self.now.q.len();
@@ -223,7 +236,8 @@ impl GenAlphaStepper {
         let factored = self.factor(p, t, &q0, h, ctx);
         self.now.q = q0;
         factored?;
-        let s = &self.now;
+        let start = self.now.clone();
+        let s = &start;
         let mut a1 = s.a.clone();
         let mut q1 = vec![0.0; n];
         let mut v1 = vec![0.0; n];
@@ -250,6 +264,10 @@ impl GenAlphaStepper {
                 r[i] = -((1.0 - c.alpha_m) * ma[i] + c.alpha_m * ma0[i]
                     - (1.0 - c.alpha_f) * f1[i]
                     - c.alpha_f * s.f[i]);
+            }
+            if full {
+                self.k = None;
+                self.factor(p, t1, &q1, h, ctx)?;
             }
             self.solve(&mut r);
             for i in 0..n {
@@ -314,6 +332,7 @@ impl Stepper for GenAlphaStepper {
     ) -> Result<(), SolveError> {
         let s = structural(p)?;
         self.groups = s.norm_groups();
+        self.weights = s.norm_weights();
         let n = self.now.q.len();
         self.now.q.copy_from_slice(&y0[..n]);
         self.now.v.copy_from_slice(&y0[n..]);
@@ -353,11 +372,16 @@ impl Stepper for GenAlphaStepper {
         ctx: &mut Ctx,
     ) -> Result<Attempt, SolveError> {
         let s = structural(p)?;
+        let mut full = false;
         let err = loop {
-            match self.step(s, t, h, ctx)? {
+            match self.step(s, t, h, full, ctx)? {
                 Some(err) => break err,
                 // A fresh tangent first; the factorisation keeps its symbolic analysis.
                 None if !self.k_fresh => self.k = None,
+                // Then a tangent at every iterate: a stiff constraint that turns with the
+                // state (a shear stiffness G Av far above E A, rotating with φ) can leave
+                // the tangent of the step's start no use past its first iteration.
+                None if !full => full = true,
                 None => return Ok(Attempt::NewtonFailed),
             }
         };

@@ -61,6 +61,13 @@ pub trait Dynamics {
     fn norm_groups(&self) -> Option<Vec<std::ops::Range<usize>>> {
         None
     }
+    /// What each unknown stands for in the error norm, as a factor: an unknown that is not
+    /// itself a displacement (a modal amplitude, in units of √kg·m) is measured by the largest
+    /// displacement a unit of it makes, so that atol means the same on every model. `None`:
+    /// every unknown is measured as it is.
+    fn norm_weights(&self) -> Option<Vec<f64>> {
+        None
+    }
     /// The structure M q'' = f(t, q, v) this is the first-order view y = (q, v) of, where
     /// there is one: generalized-α steps that directly.
     fn second_order(&self) -> Option<&dyn second_order::Structure> {
@@ -353,23 +360,26 @@ fn worst(m: f64, x: f64) -> f64 {
     }
 }
 
-/// Per group, max |e_i| / (atol + rtol max_j max(|a_j|, |b_j|)).
+/// Per group, max |e_i| / (atol + rtol max_j max(|a_j|, |b_j|)), every value first scaled by
+/// its unknown's weight where the problem gives weights (see [`Dynamics::norm_weights`]).
 pub(crate) fn grouped_norm(
     groups: &[std::ops::Range<usize>],
+    weights: Option<&[f64]>,
     atol: f64,
     rtol: f64,
     e: &[f64],
     a: &[f64],
     b: &[f64],
 ) -> f64 {
+    let w = |i: usize| weights.map_or(1.0, |w| w[i]);
     groups
         .iter()
         .map(|g| {
-            let size = a[g.clone()]
-                .iter()
-                .chain(&b[g.clone()])
-                .fold(0.0_f64, |m, v| m.max(v.abs()));
-            e[g.clone()].iter().fold(0.0_f64, |m, v| worst(m, v.abs())) / (atol + rtol * size)
+            let size = g
+                .clone()
+                .map(|i| w(i) * a[i].abs().max(b[i].abs()))
+                .fold(0.0_f64, f64::max);
+            g.clone().map(|i| w(i) * e[i].abs()).fold(0.0_f64, worst) / (atol + rtol * size)
         })
         .fold(0.0, worst)
 }
@@ -382,6 +392,7 @@ pub(crate) struct Ctx {
     /// Factorised mass matrix of a problem whose mass is constant.
     mass_lu: Option<SparseLu>,
     groups: Option<Vec<std::ops::Range<usize>>>,
+    weights: Option<Vec<f64>>,
 }
 
 impl Ctx {
@@ -390,13 +401,18 @@ impl Ctx {
     /// per group against the group's largest value instead, so that components that are tiny
     /// only because they are near a node of the motion do not dictate the step.
     pub fn norm(&self, e: &[f64], a: &[f64], b: &[f64]) -> f64 {
+        let weights = self.weights.as_deref();
         match &self.groups {
-            None => e
-                .iter()
-                .zip(a.iter().zip(b))
-                .map(|(ei, (ai, bi))| (ei / (self.atol + self.rtol * ai.abs().max(bi.abs()))).abs())
-                .fold(0.0, worst),
-            Some(groups) => grouped_norm(groups, self.atol, self.rtol, e, a, b),
+            None => {
+                let w = |i: usize| weights.map_or(1.0, |w| w[i]);
+                (0..e.len())
+                    .map(|i| {
+                        (w(i) * e[i] / (self.atol + self.rtol * w(i) * a[i].abs().max(b[i].abs())))
+                            .abs()
+                    })
+                    .fold(0.0, worst)
+            }
+            Some(groups) => grouped_norm(groups, weights, self.atol, self.rtol, e, a, b),
         }
     }
 

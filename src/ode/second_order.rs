@@ -37,6 +37,11 @@ pub trait Structure {
     fn norm_groups(&self) -> Vec<Range<usize>> {
         vec![0..self.dim()]
     }
+    /// See [`super::Dynamics::norm_weights`]; for the displacements, and the same again for
+    /// the velocities in the first-order view.
+    fn norm_weights(&self) -> Option<Vec<f64>> {
+        None
+    }
 }
 
 /// A structure over time: what the driver watches besides the steps (see [`Problem`]).
@@ -102,6 +107,11 @@ impl<E: Copy + std::fmt::Debug> Dynamics for FirstOrder<'_, E> {
         let q = self.inner.norm_groups();
         let v = q.iter().map(|g| g.start + n..g.end + n);
         Some(q.iter().cloned().chain(v).collect())
+    }
+    fn norm_weights(&self) -> Option<Vec<f64>> {
+        self.inner
+            .norm_weights()
+            .map(|w| w.iter().chain(&w).copied().collect())
     }
     fn second_order(&self) -> Option<&dyn Structure> {
         Some(self.inner)

@@ -7,7 +7,7 @@
 use super::phase::Phase;
 use crate::beam::load::PointLoad;
 use crate::beam::{Beam, PointDisplacement};
-use crate::linalg;
+use crate::ode::second_order::Structure;
 use crate::rolling::DiskObservation;
 use crate::run::EnergyCheck;
 
@@ -31,7 +31,6 @@ pub(super) struct Ledger<'a> {
     /// The disk's energy when it left (it leaves the model with it): (kinetic, potential).
     left_with: (f64, f64),
     pub check: EnergyCheck,
-    mv: Vec<f64>,
 }
 
 fn load_displacements(beam: &Beam, loads: &[PointLoad], q: &[f64]) -> Vec<PointDisplacement> {
@@ -57,11 +56,10 @@ fn work_since(
 }
 
 impl<'a> Ledger<'a> {
-    /// The budget from the start state (q0, at rest): its strain energy, and the disk's energy
+    /// The budget from the start state y0 (at rest): its strain energy, and the disk's energy
     /// where it belongs to the system.
-    pub fn new(phase: &Phase, loads: &'a [PointLoad], q0: &[f64], y0: &[f64]) -> Self {
-        let beam = phase.beam;
-        let strain0 = beam.strain_energy(q0);
+    pub fn new(phase: &Phase, loads: &'a [PointLoad], y0: &[f64]) -> Self {
+        let strain0 = Self::beam_energies(phase, y0).1;
         let mut check = EnergyCheck::new(strain0, strain0);
         let mut moving = (0.0, 0.0, 0.0);
         if let Some(c) = phase.coupled {
@@ -77,23 +75,33 @@ impl<'a> Ledger<'a> {
                 moving = (0.0, c.power_on_beam(0.0, z0, zd0), 0.0);
             }
         }
-        Ledger {
+        let mut ledger = Ledger {
             loads,
             done: 0.0,
             t: 0.0,
-            at_loads: load_displacements(beam, loads, q0),
+            at_loads: Vec::new(),
             moving,
             left_with: (0.0, 0.0),
             check,
-            mv: vec![0.0; beam.dim()],
-        }
+        };
+        ledger.at_loads = ledger.at_loads(phase, y0);
+        ledger
     }
 
-    /// The beam's kinetic and strain energy.
-    fn beam_energies(&mut self, beam: &Beam, q: &[f64], v: &[f64]) -> (f64, f64) {
-        linalg::mul(beam.mass(), v, &mut self.mv);
-        let kinetic = 0.5 * v.iter().zip(&self.mv).map(|(a, b)| a * b).sum::<f64>();
-        (kinetic, beam.strain_energy(q))
+    /// The beam's kinetic and strain energy, in the model's unknowns.
+    fn beam_energies(phase: &Phase, y: &[f64]) -> (f64, f64) {
+        let n = phase.loaded.dim();
+        let (z, zd) = phase.split(y);
+        phase.loaded.energies(&z[..n], &zd[..n])
+    }
+
+    /// The displacements at the loads' points (none to read without loads).
+    fn at_loads(&self, phase: &Phase, y: &[f64]) -> Vec<PointDisplacement> {
+        if self.loads.is_empty() {
+            return Vec::new();
+        }
+        let (q, _) = phase.beam_state(y);
+        load_displacements(phase.beam, self.loads, &q)
     }
 
     /// The disk's kinetic and potential energy, as far as it belongs to the system.
@@ -125,11 +133,10 @@ impl<'a> Ledger<'a> {
         y: &[f64],
         disk: Option<&DiskObservation>,
     ) -> Energy {
-        let (q, v) = phase.beam_state(y);
-        let (kinetic, strain) = self.beam_energies(phase.beam, &q, &v);
+        let (kinetic, strain) = Self::beam_energies(phase, y);
         let (disk_kinetic, potential) = self.disk_energies(phase, disk);
         let kinetic = kinetic + disk_kinetic;
-        let now = load_displacements(phase.beam, self.loads, &q);
+        let now = self.at_loads(phase, y);
         let work = self.done
             + work_since(self.loads, self.t, t, &self.at_loads, &now)
             + self.moving_work(phase, t, y);
@@ -147,8 +154,7 @@ impl<'a> Ledger<'a> {
 
     /// An accepted step ends at (t, y): the work so far is booked, and the balance checked.
     pub fn at_step(&mut self, phase: &Phase, t: f64, y: &[f64]) {
-        let (q, v) = phase.beam_state(y);
-        let now = load_displacements(phase.beam, self.loads, &q);
+        let now = self.at_loads(phase, y);
         self.done += work_since(self.loads, self.t, t, &self.at_loads, &now);
         self.t = t;
         self.at_loads = now;
@@ -158,7 +164,7 @@ impl<'a> Ledger<'a> {
             let w = self.moving_work(phase, t, y);
             self.moving = (t, p, w);
         }
-        let (kinetic, strain) = self.beam_energies(phase.beam, &q, &v);
+        let (kinetic, strain) = Self::beam_energies(phase, y);
         let disk = match phase.coupled {
             Some(c) if c.disk_in_system() => {
                 let (z, zd) = phase.split(y);

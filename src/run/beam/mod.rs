@@ -131,8 +131,8 @@ impl Observer for Recorder<'_> {
         let phase = &self.phase;
         let disk = phase.disk(t, y);
         let energy = self.ledger.at_output(phase, t, y, disk.as_ref());
-        let reactions = phase.reactions(t, y, disk.as_ref());
         let q = phase.displaced(t, y, disk.as_ref());
+        let reactions = phase.reactions(t, y, &q, disk.as_ref());
         let along = phase.beam.displacements(&self.stations, &q);
         let sample = Sample {
             t,
@@ -416,7 +416,7 @@ pub fn run(
         .map(|k| beam.length * k as f64 / (SAMPLES - 1) as f64)
         .collect();
     let mut rec = Recorder {
-        ledger: Ledger::new(&phase, &setup.loads, &start, &y0),
+        ledger: Ledger::new(&phase, &setup.loads, &y0),
         phase,
         stations: beam.stations(&xs),
         history: History {

@@ -52,7 +52,8 @@ impl Phase<'_> {
         y: &'y [f64],
         disk: Option<&DiskObservation>,
     ) -> Cow<'y, [f64]> {
-        let (q, _) = self.beam_state(y);
+        let n = self.loaded.dim();
+        let q = self.loaded.to_mesh(&y[..n]);
         let Some(modal) = self.loaded.modal.filter(|_| self.correct) else {
             return q;
         };
@@ -81,9 +82,15 @@ impl Phase<'_> {
 
     /// What the supports exert on the beam at (t, y), global (fx, fy, mz) at `from` and at
     /// `to`: the loads acting then, the disk's contact force, and the beam's inertia.
-    pub fn reactions(&self, t: f64, y: &[f64], disk: Option<&DiskObservation>) -> [[f64; 3]; 2] {
+    /// `q` is the mesh's displacements as [`Phase::displaced`] reads them.
+    pub fn reactions(
+        &self,
+        t: f64,
+        y: &[f64],
+        q: &[f64],
+        disk: Option<&DiskObservation>,
+    ) -> [[f64; 3]; 2] {
         let n = self.loaded.dim();
-        let q = self.displaced(t, y, disk);
         let v = &y[self.nz..self.nz + n];
         let mut acting: Vec<(f64, [f64; 2], f64)> = self
             .loaded
@@ -113,6 +120,6 @@ impl Phase<'_> {
             }
         };
         self.beam
-            .support_reactions(&q, &acting, Some(&self.loaded.to_mesh(&a)))
+            .support_reactions(q, &acting, Some(&self.loaded.to_mesh(&a)))
     }
 }
