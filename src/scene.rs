@@ -10,6 +10,7 @@ use serde::Deserialize;
 use serde_saphyr::{Location, Spanned};
 
 use crate::analysis::discretisation::{Discretisation, DEFAULT_ACCURACY, DEFAULT_ORDER};
+use crate::beam::damping::DampingSpec;
 use crate::beam::element::Section;
 use crate::beam::load::{BeamStart, PointLoad, Probe};
 use crate::beam::supports::{mesh_multiple, statically_supported, Support};
@@ -63,6 +64,17 @@ struct BeamFile {
     initial: Option<Spanned<String>>,
     model: Option<Spanned<String>>,
     modes: Option<Spanned<i64>>,
+    damping: Option<Spanned<DampingFile>>,
+    self_weight: Option<Spanned<bool>>,
+}
+
+#[derive(Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DampingFile {
+    ratio: Option<Spanned<f64>>,
+    modes: Option<Spanned<Vec<i64>>>,
+    alpha: Option<Spanned<f64>>,
+    beta: Option<Spanned<f64>>,
 }
 
 #[derive(Clone, Deserialize)]
@@ -150,6 +162,7 @@ struct OutputFile {
     probes: Option<Spanned<Vec<Spanned<ProbeFile>>>>,
     shapes: Option<Spanned<Vec<Spanned<f64>>>>,
     magnify: Option<Spanned<f64>>,
+    acceleration_cutoff_hz: Option<Spanned<f64>>,
 }
 
 /// How the disk on a rigid curve is formulated.
@@ -206,6 +219,9 @@ pub struct BeamScene {
     pub discretisation: Option<Discretisation>,
     /// Why the beam has the model it has, when the plan chose it (or its modes).
     pub model_choice: Option<String>,
+    /// The frequency (Hz) above which the modes are left out of the recorded accelerations;
+    /// `None`: EN 1991-2's max(30 Hz, 1.5 f1, f3).
+    pub acceleration_cutoff_hz: Option<f64>,
     /// The size of the displacements its loads cause (m), when the supports allow a static
     /// estimate: see `analysis::discretisation::response_size`. Set by the plan.
     pub response: Option<f64>,
@@ -524,6 +540,17 @@ impl SceneSpec {
                         "elements" => whole(&mut b.elements)?,
                         "order" => whole(&mut b.order)?,
                         "modes" => whole(&mut b.modes)?,
+                        "damping.ratio" | "damping.alpha" | "damping.beta" => {
+                            let d = &mut b
+                                .damping
+                                .get_or_insert_with(|| given(DampingFile::default()))
+                                .value;
+                            match field {
+                                "damping.ratio" => option(&mut d.ratio),
+                                "damping.alpha" => option(&mut d.alpha),
+                                _ => option(&mut d.beta),
+                            }
+                        }
                         _ => return Err(not_a_number(key)),
                     }
                 }
@@ -571,6 +598,7 @@ impl SceneSpec {
                 match field {
                     "interval" => option(&mut o.interval),
                     "magnify" => option(&mut o.magnify),
+                    "acceleration_cutoff_hz" => option(&mut o.acceleration_cutoff_hz),
                     _ => return Err(not_a_number(key)),
                 }
             }
@@ -597,7 +625,9 @@ impl SceneSpec {
             | "track.beam.initial"
             | "track.beam.depth"
             | "track.beam.model"
-            | "track.beam.modes" => {
+            | "track.beam.modes"
+            | "track.beam.damping"
+            | "track.beam.self_weight" => {
                 let Some(b) = f.track.value.beam.as_mut() else {
                     return no("beam track");
                 };
@@ -609,6 +639,8 @@ impl SceneSpec {
                     "track.beam.depth" => b.depth = None,
                     "track.beam.model" => b.model = None,
                     "track.beam.modes" => b.modes = None,
+                    "track.beam.damping" => b.damping = None,
+                    "track.beam.self_weight" => b.self_weight = None,
                     _ => b.initial = None,
                 }
             }
@@ -639,13 +671,18 @@ impl SceneSpec {
                     }
                 }
             }
-            "output.interval" | "output.probes" | "output.shapes" | "output.magnify" => {
+            "output.interval"
+            | "output.probes"
+            | "output.shapes"
+            | "output.magnify"
+            | "output.acceleration_cutoff_hz" => {
                 if let Some(o) = f.output.as_mut() {
                     match key {
                         "output.interval" => o.interval = None,
                         "output.probes" => o.probes = None,
                         "output.shapes" => o.shapes = None,
-                        _ => o.magnify = None,
+                        "output.magnify" => o.magnify = None,
+                        _ => o.acceleration_cutoff_hz = None,
                     }
                 }
             }
@@ -681,6 +718,24 @@ impl SceneSpec {
                 }
             }
             "solver.method" => text(&mut f.solver.get_or_insert_with(SolverFile::default).method),
+            "track.beam.self_weight" => {
+                let Some(b) = f.track.value.beam.as_mut() else {
+                    return Err(Error::Input(format!(
+                        "`{key}` cannot be set: the scene has no beam track"
+                    )));
+                };
+                let on = match value {
+                    "true" => true,
+                    "false" => false,
+                    _ => {
+                        return Err(Error::Input(format!(
+                            "`{key}` is true or false (got {})",
+                            quote(value)
+                        )))
+                    }
+                };
+                b.value.self_weight = Some(given(on));
+            }
             "track.beam.quadrature" | "track.beam.initial" | "track.beam.model" => {
                 let Some(b) = f.track.value.beam.as_mut() else {
                     return Err(Error::Input(format!(
@@ -695,7 +750,7 @@ impl SceneSpec {
             }
             _ => {
                 return Err(Error::Input(format!(
-                    "`{key}` is not a name the scene format holds; names are name, disk.coupling, disk.formulation, solver.method, track.beam.model, track.beam.quadrature and track.beam.initial"
+                    "`{key}` is not a name the scene format holds; names are name, disk.coupling, disk.formulation, solver.method, track.beam.model, track.beam.quadrature, track.beam.initial and track.beam.self_weight"
                 )))
             }
         }
@@ -1019,12 +1074,16 @@ fn refuse_beam_keys(c: &Checker, raw: &SceneFile) -> Result<(), Error> {
             o.probes.as_ref().map(|v| v.referenced.line()),
             o.shapes.as_ref().map(|v| v.referenced.line()),
             o.magnify.as_ref().map(|v| v.referenced.line()),
+            o.acceleration_cutoff_hz
+                .as_ref()
+                .map(|v| v.referenced.line()),
         ];
-        for (line, key) in
-            beam_only
-                .iter()
-                .zip(["output.probes", "output.shapes", "output.magnify"])
-        {
+        for (line, key) in beam_only.iter().zip([
+            "output.probes",
+            "output.shapes",
+            "output.magnify",
+            "output.acceleration_cutoff_hz",
+        ]) {
             if let Some(line) = line {
                 return c.err(*line, key, "applies to beam tracks only");
             }
@@ -1041,7 +1100,11 @@ fn beam_scene(
     gravity: f64,
 ) -> Result<(BeamScene, Given), Error> {
     let b = &file.value;
-    let (beam, length, multiple, model_given) = beam_spec(c, b)?;
+    let (mut beam, length, multiple, model_given) = beam_spec(c, b)?;
+    beam.damping = damping(c, b)?;
+    if b.self_weight.as_ref().is_some_and(|w| w.value) {
+        beam.self_weight = Some(gravity);
+    }
     let start = beam_start(c, b, &beam)?;
     let loads = point_loads(c, raw, length)?;
     let (probes, shapes, magnify) = outputs(c, raw, length, duration)?;
@@ -1102,6 +1165,14 @@ fn beam_scene(
         accuracy,
         discretisation: None,
         model_choice: None,
+        acceleration_cutoff_hz: match raw
+            .output
+            .as_ref()
+            .and_then(|o| o.acceleration_cutoff_hz.as_ref())
+        {
+            None => None,
+            Some(f) => Some(c.positive(f, "output.acceleration_cutoff_hz")?),
+        },
         response: None,
     };
     Ok((scene, given))
@@ -1226,8 +1297,88 @@ fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usize, bool), 
         order,
         quadrature,
         model: model.unwrap_or(BeamModel::Exact),
+        damping: None,
+        self_weight: None,
     };
     Ok((beam, length, multiple, model.is_some()))
+}
+
+/// Rayleigh damping as the file gives it: a ratio at two modes, or α and β.
+fn damping(c: &Checker, b: &BeamFile) -> Result<Option<DampingSpec>, Error> {
+    let Some(d) = &b.damping else {
+        return Ok(None);
+    };
+    let line = d.referenced.line();
+    let d = &d.value;
+    let non_negative = |v: &Spanned<f64>, key: &str| -> Result<f64, Error> {
+        let x = c.finite(v, key)?;
+        if x < 0.0 {
+            return c.err(
+                v.referenced.line(),
+                key,
+                format!("= {x} must not be negative"),
+            );
+        }
+        Ok(x)
+    };
+    match (&d.ratio, d.alpha.is_some() || d.beta.is_some()) {
+        (Some(r), true) => c.err(
+            r.referenced.line(),
+            "track.beam.damping",
+            "gives a ratio and alpha or beta: give {ratio, modes} or {alpha, beta}, not both",
+        ),
+        (None, false) => c.err(
+            line,
+            "track.beam.damping",
+            "is empty: give {ratio: ζ, modes: [i, j]} or {alpha: α, beta: β}",
+        ),
+        (Some(r), false) => {
+            let zeta = c.finite(r, "track.beam.damping.ratio")?;
+            if !(0.0..1.0).contains(&zeta) {
+                return c.err(
+                    r.referenced.line(),
+                    "track.beam.damping.ratio",
+                    format!("= {zeta} must lie in [0, 1): a ratio of 1 or more is no longer a vibration"),
+                );
+            }
+            let modes = match &d.modes {
+                None => [1, 2],
+                Some(m) => match m.value.as_slice() {
+                    &[i, j] if i >= 1 && j >= 1 && i != j && i.max(j) <= MAX_MODES as i64 => {
+                        [i as usize, j as usize]
+                    }
+                    _ => {
+                        return c.err(
+                            m.referenced.line(),
+                            "track.beam.damping.modes",
+                            format!(
+                            "must be two distinct mode numbers from 1 to {MAX_MODES}, e.g. [1, 2]"
+                        ),
+                        )
+                    }
+                },
+            };
+            Ok(Some(DampingSpec::Ratio { zeta, modes }))
+        }
+        (None, true) => {
+            if let Some(m) = &d.modes {
+                return c.err(
+                    m.referenced.line(),
+                    "track.beam.damping.modes",
+                    "anchors a ratio; alpha and beta need no modes",
+                );
+            }
+            let alpha = d
+                .alpha
+                .as_ref()
+                .map_or(Ok(0.0), |v| non_negative(v, "track.beam.damping.alpha"))?;
+            let beta = d
+                .beta
+                .as_ref()
+                .map_or(Ok(0.0), |v| non_negative(v, "track.beam.damping.beta"))?;
+            Ok(Some(DampingSpec::Rayleigh { alpha, beta }))
+        }
+    }
 }
 
 /// The beam model as the file gives it, `None` where it leaves the choice to the plan; a

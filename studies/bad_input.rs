@@ -530,6 +530,63 @@ fn bad_beam_models() {
     );
 }
 
+/// Damping: a ratio outside [0, 1), anchors that are not two distinct mode numbers, a
+/// negative α or β, both forms at once, or none.
+#[test]
+fn bad_damping() {
+    let damped = |d: &str| beam_scene(&[("damping", d)], "");
+    rejected(
+        "ratio-one",
+        &damped("{ratio: 1.0}"),
+        &["track.beam.damping.ratio", "[0, 1)"],
+    );
+    rejected(
+        "ratio-negative",
+        &damped("{ratio: -0.01}"),
+        &["track.beam.damping.ratio", "[0, 1)"],
+    );
+    for modes in ["[1]", "[2, 2]", "[0, 1]", "[1, 2, 3]"] {
+        rejected(
+            &format!("anchors-{modes}"),
+            &damped(&format!("{{ratio: 0.02, modes: {modes}}}")),
+            &["track.beam.damping.modes", "two distinct mode numbers"],
+        );
+    }
+    rejected(
+        "alpha-negative",
+        &damped("{alpha: -0.5, beta: 1.0e-4}"),
+        &["track.beam.damping.alpha", "must not be negative"],
+    );
+    rejected(
+        "beta-negative",
+        &damped("{alpha: 0.5, beta: -1.0e-4}"),
+        &["track.beam.damping.beta", "must not be negative"],
+    );
+    rejected(
+        "both-forms",
+        &damped("{ratio: 0.02, beta: 1.0e-4}"),
+        &["track.beam.damping", "not both"],
+    );
+    rejected("empty", &damped("{}"), &["track.beam.damping", "is empty"]);
+}
+
+/// An anchor mode the mesh does not have is found when the modes are computed: one sentence,
+/// exit 1, from `run` (4 elements of degree 2, 22 unknowns).
+#[test]
+fn damping_anchored_past_the_mesh() {
+    let path = scene_path(
+        "damping-past-mesh",
+        &beam_scene(&[("damping", "{ratio: 0.02, modes: [1, 40]}")], ""),
+    );
+    let p = path.to_str().unwrap();
+    let (code, err) = rollbeam(&["run", p, "--out", "/tmp/rollbeam-damping-past-mesh"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("names mode 40, but the mesh has 22 modes") && err.trim().lines().count() == 1,
+        "{err}"
+    );
+}
+
 /// A modal beam that is a mechanism has no static answer either, and `modes` asks no more of
 /// a modal beam than the modes it keeps.
 #[test]

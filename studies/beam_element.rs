@@ -41,6 +41,8 @@ fn beam(
         order,
         quadrature,
         model: BeamModel::Exact,
+        damping: None,
+        self_weight: None,
     })
 }
 
@@ -210,6 +212,8 @@ fn continuous_beam_over_an_intermediate_bearing() {
         order: 4,
         quadrature: Quadrature::Reduced,
         model: BeamModel::Exact,
+        damping: None,
+        self_weight: None,
     });
     let loads = [(0.5 * l, [0.0, p], 0.0), (1.5 * l, [0.0, p], 0.0)];
     let mut f = vec![0.0; b.dim()];

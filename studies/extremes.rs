@@ -130,6 +130,8 @@ fn thin_and_thick_beams_at_every_degree() {
                 order,
                 quadrature: Quadrature::Reduced,
                 model: BeamModel::Exact,
+                damping: None,
+                self_weight: None,
             });
             let mut f = vec![0.0; b.dim()];
             b.add_point_load(l, [0.0, p], 0.0, &mut f);

@@ -8,6 +8,7 @@ use nalgebra::{DMatrix, SymmetricEigen};
 
 use std::sync::{Mutex, OnceLock};
 
+use crate::beam::damping::Rayleigh;
 use crate::beam::{Beam, BeamModel, BeamSpec};
 use crate::linalg::{self, Combination, Sparse, SparseLu};
 
@@ -51,6 +52,28 @@ fn kept() -> &'static Mutex<Vec<(String, Eigen)>> {
     KEPT_SOLUTIONS.get_or_init(|| Mutex::new(Vec::new()))
 }
 
+/// The beam's Rayleigh damping, a ratio anchored on the natural frequencies its mesh has;
+/// `Err` names a mode the mesh does not have.
+pub fn rayleigh(beam: &Beam) -> Result<Option<Rayleigh>, String> {
+    let Some(spec) = beam.spec.damping else {
+        return Ok(None);
+    };
+    let needed = Rayleigh::modes_needed(spec);
+    let omega = if needed == 0 {
+        Vec::new()
+    } else {
+        modes(beam, needed)
+            .ok_or("the natural modes the damping ratio is anchored on could not be computed")?
+            .omega
+    };
+    Rayleigh::resolve(spec, &omega).map(Some).ok_or_else(|| {
+        format!(
+            "`track.beam.damping.modes` names mode {needed}, but the mesh has {} modes",
+            beam.dim()
+        )
+    })
+}
+
 /// Every eigenpair of the beam's K₀ φ = λ M φ, dense, from the kept ones where the same mesh
 /// was solved before. K₀ is the tangent at the undeformed state whatever the model, so the
 /// key leaves the model out.
@@ -60,6 +83,8 @@ fn dense_all(beam: &Beam) -> Option<Eigen> {
         "{:?}",
         BeamSpec {
             model: BeamModel::Exact,
+            damping: None,
+            self_weight: None,
             ..beam.spec.clone()
         }
     );
@@ -220,6 +245,8 @@ mod tests {
             order: 4,
             quadrature: Quadrature::Reduced,
             model: crate::beam::BeamModel::Exact,
+            damping: None,
+            self_weight: None,
         };
         let beam = Beam::new(spec);
         let n = beam.dim();

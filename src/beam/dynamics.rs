@@ -7,10 +7,11 @@
 use std::borrow::Cow;
 use std::cell::{Cell, RefCell};
 
+use super::damping::Rayleigh;
 use super::load::PointLoad;
 use super::modal::ModalBasis;
 use super::Beam;
-use crate::linalg::Sparse;
+use crate::linalg::{Assembly, Sparse};
 use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::NoEvent;
 
@@ -19,6 +20,8 @@ pub struct LoadedBeam<'a> {
     pub loads: &'a [PointLoad],
     /// The modes whose amplitudes are the unknowns, on a modal beam.
     pub modal: Option<&'a ModalBasis>,
+    /// C = α M + β K₀ in the model's unknowns (diagonal on a modal beam), and α, β.
+    damping: Option<(Sparse, Rayleigh)>,
     /// Midpoint of the current stretch between breakpoints; NaN outside a run.
     segment: Cell<f64>,
     /// Internal forces, kept so that each force evaluation does not allocate.
@@ -26,11 +29,35 @@ pub struct LoadedBeam<'a> {
 }
 
 impl<'a> LoadedBeam<'a> {
-    pub fn new(beam: &'a Beam, loads: &'a [PointLoad], modal: Option<&'a ModalBasis>) -> Self {
+    pub fn new(
+        beam: &'a Beam,
+        loads: &'a [PointLoad],
+        modal: Option<&'a ModalBasis>,
+        damping: Option<Rayleigh>,
+    ) -> Self {
+        let damping = damping.map(|r| {
+            let c = match modal {
+                Some(m) => {
+                    let mut a = Assembly::new(m.dim());
+                    for (k, w) in m.omega.iter().enumerate() {
+                        a.add(k, k, r.alpha + r.beta * w * w);
+                    }
+                    a.build()
+                }
+                None => {
+                    let mut a = Assembly::new(beam.dim());
+                    a.add_sparse(beam.mass(), r.alpha, 0, 0);
+                    a.add_sparse(&beam.initial_stiffness(), r.beta, 0, 0);
+                    a.build()
+                }
+            };
+            (c, r)
+        });
         LoadedBeam {
             beam,
             loads,
             modal,
+            damping,
             segment: Cell::new(f64::NAN),
             scratch: RefCell::new(vec![0.0; beam.dim()]),
         }
@@ -46,12 +73,39 @@ impl<'a> LoadedBeam<'a> {
         self.loads.iter().filter(move |l| l.active(when))
     }
 
-    /// F_ext at time t, on the mesh's unknowns.
+    /// F_ext at time t, on the mesh's unknowns: the point loads acting, and the beam's own
+    /// weight where the scene puts it on.
     pub fn external(&self, t: f64, f: &mut [f64]) {
         f.fill(0.0);
         for l in self.active(t) {
             self.beam.add_point_load(l.x, l.force, l.mz, f);
         }
+        self.beam.add_weight(f);
+    }
+
+    /// The Rayleigh damping acting, if any.
+    pub fn rayleigh(&self) -> Option<Rayleigh> {
+        self.damping.as_ref().map(|(_, r)| *r)
+    }
+
+    /// The power the damping takes at the model's velocities v: vᵀ C v.
+    pub fn dissipation(&self, v: &[f64]) -> f64 {
+        let Some((c, _)) = &self.damping else {
+            return 0.0;
+        };
+        let mut cv = vec![0.0; v.len()];
+        crate::linalg::mul(c, v, &mut cv);
+        v.iter().zip(&cv).map(|(a, b)| a * b).sum()
+    }
+
+    /// The beam's own weight as the model's unknowns feel it, dotted with their displacements:
+    /// the work the weight has done since the undeformed state is this less its start value.
+    pub fn weight_dot(&self, q: &[f64]) -> f64 {
+        let Some(w) = self.beam.weight() else {
+            return 0.0;
+        };
+        let q = self.to_mesh(q);
+        w.iter().zip(q.iter()).map(|(a, b)| a * b).sum()
     }
 
     /// The mass in the model's unknowns: the mesh's, or the identity of mass-normalised modes.
@@ -112,7 +166,7 @@ impl Structure for LoadedBeam<'_> {
     fn mass(&self, _t: f64, _q: &[f64]) -> Cow<'_, Sparse> {
         Cow::Borrowed(self.model_mass())
     }
-    fn force(&self, t: f64, q: &[f64], _v: &[f64], f: &mut [f64]) {
+    fn force(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
         let mut scratch = self.scratch.borrow_mut();
         match self.modal {
             None => {
@@ -121,7 +175,7 @@ impl Structure for LoadedBeam<'_> {
                 f.iter_mut().zip(scratch.iter()).for_each(|(a, b)| *a -= b);
             }
             Some(m) => {
-                if self.active(t).next().is_some() {
+                if self.active(t).next().is_some() || self.beam.weight().is_some() {
                     self.external(t, &mut scratch);
                     m.project(&scratch, f);
                 } else {
@@ -132,6 +186,14 @@ impl Structure for LoadedBeam<'_> {
                 }
             }
         }
+        if let Some((c, _)) = &self.damping {
+            let mut cv = vec![0.0; v.len()];
+            crate::linalg::mul(c, v, &mut cv);
+            f.iter_mut().zip(&cv).for_each(|(a, b)| *a -= b);
+        }
+    }
+    fn damping(&self) -> Option<Cow<'_, Sparse>> {
+        self.damping.as_ref().map(|(c, _)| Cow::Borrowed(c))
     }
     fn norm_weights(&self) -> Option<Vec<f64>> {
         self.modal.map(|m| m.displacement_per_amplitude())

@@ -13,6 +13,7 @@
 //! mesh's unknowns in the equations of motion while the mesh still gives every displacement.
 
 pub mod basis;
+pub mod damping;
 pub mod dynamics;
 pub mod element;
 pub mod load;
@@ -107,6 +108,11 @@ pub struct BeamSpec {
     pub order: usize,
     pub quadrature: Quadrature,
     pub model: BeamModel,
+    /// Rayleigh damping, as the scene gives it.
+    pub damping: Option<damping::DampingSpec>,
+    /// Gravity's acceleration (m/s², acting in −Y) on the beam's own mass, where the scene
+    /// puts its self-weight on it.
+    pub self_weight: Option<f64>,
 }
 
 /// Material points prepared for repeated reading (see [`Beam::stations`]).
@@ -156,6 +162,9 @@ pub struct Beam {
     /// K₀ on the free unknowns and on all of them (the supports' reactions), for the linear
     /// and modal models, whose internal force is K₀ q.
     linear: Option<(Sparse, Sparse)>,
+    /// The beam's own weight as a load on the free unknowns and on all of them: M g, the
+    /// consistent mass times gravity's acceleration on every node's displacements.
+    weight: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 impl Beam {
@@ -203,12 +212,48 @@ impl Beam {
             full_mass: Sparse::try_new_from_triplets(0, 0, &[]).expect("empty"),
             tangent_pattern: OnceLock::new(),
             linear: None,
+            weight: None,
         };
         (beam.mass, beam.full_mass) = beam.assemble_mass();
+        if let Some(g) = beam.spec.self_weight {
+            beam.weight = Some(beam.assemble_weight(g));
+        }
         if beam.spec.model != BeamModel::Exact {
             beam.linear = Some(beam.assemble_initial_stiffness());
         }
         beam
+    }
+
+    /// M g on the free unknowns and on all, for gravity's acceleration g acting in −Y.
+    fn assemble_weight(&self, g: f64) -> (Vec<f64>, Vec<f64>) {
+        let local = self.to_local([0.0, -g]);
+        let accel: Vec<f64> = (0..3 * self.nodes())
+            .map(|dof| match dof % 3 {
+                2 => 0.0,
+                c => local[c],
+            })
+            .collect();
+        let mut full = vec![0.0; accel.len()];
+        crate::linalg::mul(&self.full_mass, &accel, &mut full);
+        let mut free = vec![0.0; self.n_free];
+        for (dof, eq) in self.eq.iter().enumerate() {
+            if let Some(i) = eq {
+                free[*i] = full[dof];
+            }
+        }
+        (free, full)
+    }
+
+    /// Add the beam's own weight (on the free unknowns) to f, where the scene puts it on.
+    pub fn add_weight(&self, f: &mut [f64]) {
+        if let Some((free, _)) = &self.weight {
+            f.iter_mut().zip(free).for_each(|(a, b)| *a += b);
+        }
+    }
+
+    /// The beam's own weight on the free unknowns, where the scene puts it on.
+    pub fn weight(&self) -> Option<&[f64]> {
+        self.weight.as_ref().map(|(free, _)| free.as_slice())
     }
 
     /// The exact beam's tangent at the undeformed state, on the free unknowns and on all.
@@ -330,6 +375,14 @@ impl Beam {
     pub fn strain_energy(&self, q: &[f64]) -> f64 {
         let mut f = vec![0.0; self.n_free];
         self.internal_force(q, &mut f)
+    }
+
+    /// K₀, the tangent about the undeformed state, on the free unknowns.
+    pub fn initial_stiffness(&self) -> Sparse {
+        match &self.linear {
+            Some((k0, _)) => k0.clone(),
+            None => self.assemble_initial_stiffness().0,
+        }
     }
 
     /// Tangent stiffness ∂f_int/∂q on the free unknowns (material + geometric; K₀ where the
@@ -538,6 +591,9 @@ impl Beam {
                     full[dof] += fe[kk];
                 }
             }
+        }
+        if let Some((_, weight)) = &self.weight {
+            full.iter_mut().zip(weight).for_each(|(f, w)| *f -= w);
         }
         if let Some(a) = a {
             let a_full: Vec<f64> = self.eq.iter().map(|e| e.map_or(0.0, |i| a[i])).collect();

@@ -3,6 +3,7 @@
 use std::fmt;
 use std::path::PathBuf;
 
+use crate::beam::damping::DampingSpec;
 use crate::beam::load::BeamStart;
 use crate::beam::supports::statically_supported;
 use crate::beam::{Beam, BeamModel};
@@ -160,6 +161,14 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
                 setup.accuracy
             ))
     )?;
+    damping(f, &b)?;
+    if let Some(g) = spec.self_weight {
+        writeln!(
+            f,
+            "  self-weight: on, ρA g = {:.6e} N/m (g = {g} m/s²), as a consistent load M g",
+            spec.section.rho_a * g
+        )?;
+    }
     match &setup.disk {
         None => writeln!(f, "  disk: none (no disk unknowns)")?,
         Some(d) => writeln!(
@@ -193,6 +202,38 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
             .join(", ")
     )?;
     Ok(())
+}
+
+/// The Rayleigh damping, its α and β, and the ratio it gives the lowest modes.
+fn damping(f: &mut fmt::Formatter<'_>, b: &Beam) -> fmt::Result {
+    let Some(spec) = b.spec.damping else {
+        return Ok(());
+    };
+    let r = match crate::analysis::modes::rayleigh(b) {
+        Ok(Some(r)) => r,
+        Ok(None) => return Ok(()),
+        Err(why) => return writeln!(f, "  damping: cannot be anchored: {why}"),
+    };
+    let anchored = match spec {
+        DampingSpec::Ratio { zeta, modes } => {
+            format!(", from ζ = {zeta} at modes {} and {}", modes[0], modes[1])
+        }
+        DampingSpec::Rayleigh { .. } => String::new(),
+    };
+    let lowest = crate::analysis::modes::modes(b, 6.min(b.dim()))
+        .map(|m| {
+            m.omega
+                .iter()
+                .map(|w| format!("{:.3} Hz {:.4}", w / std::f64::consts::TAU, r.ratio_at(*w)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        })
+        .unwrap_or_default();
+    writeln!(
+        f,
+        "  damping: Rayleigh C = α M + β K₀, α = {:.6e} 1/s, β = {:.6e} s{anchored}; ζ of the lowest modes: {lowest}",
+        r.alpha, r.beta
+    )
 }
 
 /// Where the contact patch's width comes from, and what depends on it.

@@ -40,8 +40,9 @@ struct StaticFile {
     load_steps: usize,
 }
 
-/// Static equilibrium under the loads active at t = 0 and, with a disk, its weight at s0 (a
-/// point force: the static answer does not depend on how the disk rolls).
+/// Static equilibrium under the loads active at t = 0, the beam's own weight where the scene
+/// puts it on and, with a disk, its weight at s0 (a point force: the static answer does not
+/// depend on how the disk rolls).
 pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, Error> {
     if !statically_supported(setup.beam.supports, setup.beam.bearings.len()) {
         return Err(Error::Input(format!(
@@ -68,6 +69,7 @@ pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, E
     for &(x, force, mz) in &active {
         beam.add_point_load(x, force, mz, &mut f);
     }
+    beam.add_weight(&mut f);
     let sol = statics::solve(&beam, &f)
         .map_err(|e| Error::Solver(format!("scene {}: {e}", scene.name)))?;
     let r = beam.support_reactions(&sol.q, &active, None);

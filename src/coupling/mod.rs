@@ -614,6 +614,17 @@ impl Structure for DiskOnBeam<'_> {
         self.stiffness_pattern.get_or_init(|| a.pattern()).build(&a)
     }
 
+    /// The beam's damping; the contact coordinate is not damped.
+    fn damping(&self) -> Option<Cow<'_, Sparse>> {
+        let c = self.loaded.damping()?;
+        if self.dim() == self.n {
+            return Some(c);
+        }
+        let mut a = Assembly::new(self.dim());
+        a.add_sparse(&c, 1.0, 0, 0);
+        Some(Cow::Owned(a.build()))
+    }
+
     fn norm_weights(&self) -> Option<Vec<f64>> {
         let mut w = self.loaded.norm_weights()?;
         w.resize(self.dim(), 1.0);

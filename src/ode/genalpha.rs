@@ -6,7 +6,7 @@
 
 use super::second_order::Structure;
 use super::{Attempt, Ctx, Dynamics, SolveError, StepEnds, Stepper};
-use crate::linalg::{Combination, Sparse, SparseLu, Woodbury};
+use crate::linalg::{Assembly, Combination, Sparse, SparseLu, Woodbury};
 
 /// Chung–Hulbert parameters for a given ρ∞ ∈ [0, 1].
 #[derive(Clone, Copy, Debug)]
@@ -68,6 +68,9 @@ pub(crate) struct GenAlphaStepper {
     woodbury: Option<Woodbury>,
     /// The tangent stiffness the iteration matrix is built from, kept until Newton stalls.
     k: Option<Sparse>,
+    /// K, or K + γ/(β h) C for a damped structure: the operand the combination scales by
+    /// (1 − α_f) β h².
+    operand: Option<Sparse>,
     /// (1 − α_m) M + c K on their joint pattern, for the current K (and M, if it is constant).
     combination: Option<Combination>,
     k_fresh: bool,
@@ -98,6 +101,7 @@ impl GenAlphaStepper {
             iteration: None,
             woodbury: None,
             k: None,
+            operand: None,
             combination: None,
             k_fresh: false,
             now: State::zeros(nq),
@@ -189,10 +193,29 @@ impl GenAlphaStepper {
             self.k = Some(p.stiffness(t, q));
             ctx.stats.jacobians += 1;
             self.k_fresh = true;
+        }
+        // Damping enters as (1 − α_f) γ h C beside (1 − α_f) β h² K: folded into the stiffness
+        // operand as K + γ/(β h) C, which changes with h.
+        let damping = p.damping();
+        if fresh_k_due || damping.is_some() {
             let k = self.k.as_ref().expect("built above");
-            if !self.combination.as_mut().is_some_and(|c| c.update_b(k)) {
+            let operand = match &damping {
+                None => k.clone(),
+                Some(c) => {
+                    let mut a = Assembly::new(k.nrows());
+                    a.add_sparse(k, 1.0, 0, 0);
+                    a.add_sparse(c, self.c.gamma / (self.c.beta * h), 0, 0);
+                    a.build()
+                }
+            };
+            if !self
+                .combination
+                .as_mut()
+                .is_some_and(|c| c.update_b(&operand))
+            {
                 self.combination = None;
             }
+            self.operand = Some(operand);
         }
         if self.combination.is_none() || !constant {
             let mut m = match split {
@@ -204,8 +227,8 @@ impl GenAlphaStepper {
                 .for_each(|v| *v *= 1.0 - self.c.alpha_m);
             let same = self.combination.as_mut().is_some_and(|c| c.update_a(&m));
             if !same {
-                let k = self.k.as_ref().expect("built above");
-                self.combination = Some(Combination::new(&m, k));
+                let operand = self.operand.as_ref().expect("built above");
+                self.combination = Some(Combination::new(&m, operand));
             }
         }
         let c = (1.0 - self.c.alpha_f) * self.c.beta * h * h;

@@ -32,6 +32,11 @@ pub trait Structure {
     fn force(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]);
     /// K(q) = −∂f/∂q, the tangent stiffness (the part that matters for Newton's convergence).
     fn stiffness(&self, t: f64, q: &[f64]) -> Sparse;
+    /// C = −∂f/∂v where the structure is damped (constant): it enters the iteration matrix
+    /// beside the stiffness.
+    fn damping(&self) -> Option<Cow<'_, Sparse>> {
+        None
+    }
     /// Blocks of unknowns of one kind (beam displacements, the contact coordinate): each is
     /// measured against its own largest value in the error norm.
     fn norm_groups(&self) -> Vec<Range<usize>> {
@@ -99,6 +104,9 @@ impl<E: Copy + std::fmt::Debug> Dynamics for FirstOrder<'_, E> {
         let mut a = Assembly::new(2 * n);
         (0..n).for_each(|i| a.add(i, n + i, 1.0));
         a.add_sparse(&self.inner.stiffness(t, &y[..n]), -1.0, n, 0);
+        if let Some(c) = self.inner.damping() {
+            a.add_sparse(&c, -1.0, n, n);
+        }
         Some(a.build())
     }
     /// The structure's groups, once for the displacements and once for the velocities.

@@ -25,6 +25,9 @@ struct Summary {
     disk: Option<BeamDiskSummary>,
     probes: BTreeMap<String, ProbeSummary>,
     envelope: EnvelopeSummary,
+    /// What the recorded accelerations count (the cutoff, and the modes below it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    acceleration: Option<crate::run::beam::CutoffReport>,
     /// What the results depend on beyond the accuracy asked (`BeamScene::warnings`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     warnings: Vec<String>,
@@ -126,6 +129,10 @@ struct EnvelopeSummary {
     phi_max_x: f64,
     /// Largest length of the deformed axis minus L.
     stretch_max: f64,
+    /// The largest |vertical acceleration| over the beam, where and when.
+    a_max: f64,
+    a_max_x: f64,
+    a_max_t: f64,
 }
 
 fn envelope_summary(r: &BeamRun) -> EnvelopeSummary {
@@ -167,6 +174,9 @@ fn envelope_summary(r: &BeamRun) -> EnvelopeSummary {
         phi_max,
         phi_max_x,
         stretch_max: e.stretch_max,
+        a_max: e.a_max.0,
+        a_max_x: e.a_max.1,
+        a_max_t: e.a_max.2,
     }
 }
 
@@ -178,6 +188,9 @@ struct Model {
     /// The modes a modal beam keeps.
     #[serde(skip_serializing_if = "Option::is_none")]
     modes: Option<usize>,
+    /// Rayleigh damping: α (1/s) and β (s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    damping: Option<crate::beam::damping::Rayleigh>,
     unknowns: usize,
     #[serde(skip_serializing_if = "Option::is_none")]
     coupling: Option<&'static str>,
@@ -217,6 +230,9 @@ struct ProbeSummary {
     /// Half the range of w after the disk left the beam: the residual vibration.
     #[serde(skip_serializing_if = "Option::is_none")]
     w_amplitude_after_exit: Option<f64>,
+    /// The largest |vertical acceleration| and when.
+    a_max: f64,
+    a_max_t: f64,
 }
 
 fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
@@ -245,6 +261,14 @@ fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
     let w_amplitude_after_exit = r
         .left_track_t
         .map(|_| r.amplitude_after_exit(k).unwrap_or(0.0));
+    let (a_max, a_max_t) = rows.iter().fold((0.0_f64, 0.0), |(a, t), row| {
+        let v = row.accelerations[k].abs();
+        if v > a {
+            (v, row.t)
+        } else {
+            (a, t)
+        }
+    });
     ProbeSummary {
         x: r.setup.probes[k].x,
         w_min,
@@ -256,6 +280,8 @@ fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
         phi_min,
         phi_max,
         w_amplitude_after_exit,
+        a_max,
+        a_max_t,
     }
 }
 
@@ -267,6 +293,7 @@ pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             track: "beam",
             beam: r.beam.spec.model.name(),
             modes: r.beam.spec.model.modes(),
+            damping: r.damping,
             unknowns: r.header.unknowns,
             coupling: r.setup.disk.as_ref().map(|d| d.coupling.name()),
             elements: r.beam.spec.elements,
@@ -282,6 +309,7 @@ pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             .map(|k| (r.setup.probes[k].name.clone(), probe_summary(r, k)))
             .collect(),
         envelope: envelope_summary(r),
+        acceleration: r.acceleration.clone(),
         warnings: r.setup.warnings(),
     };
     write(&dir.join("summary.yaml"), &yaml(&summary)?)?;
@@ -299,7 +327,7 @@ fn csv(r: &BeamRun) -> String {
         head.extend(DISK_COLUMNS.iter().map(|c| format!("disk.{c}")));
     }
     for p in &r.setup.probes {
-        head.extend(["u", "w", "phi"].map(|c| format!("{}.{c}", p.name)));
+        head.extend(["u", "w", "phi", "a"].map(|c| format!("{}.{c}", p.name)));
     }
     head.extend(
         [
@@ -307,6 +335,7 @@ fn csv(r: &BeamRun) -> String {
             "energy.strain",
             "energy.potential",
             "energy.work",
+            "energy.dissipated",
             "energy.total",
         ]
         .map(String::from),
@@ -334,15 +363,17 @@ fn csv(r: &BeamRun) -> String {
                 ]
             }));
         }
-        for d in &row.probes {
-            v.extend([d.u, d.w, d.phi]);
+        for (d, a) in row.probes.iter().zip(&row.accelerations) {
+            v.extend([d.u, d.w, d.phi, *a]);
         }
-        // The beam's own weight is left out (erratum 6): the potential is the disk's alone.
+        // The potential is the disk's alone: the beam's own weight, where the scene puts it
+        // on (erratum 6 leaves it out), is a load, whose work is in `work`.
         v.extend([
             row.kinetic,
             row.strain,
             row.potential,
             row.work,
+            row.dissipated,
             row.total(),
         ]);
         v.extend(row.reactions.iter().flatten());

@@ -1,8 +1,11 @@
-//! The energy budget of a beam run: kinetic + strain + potential − work, recorded at every
-//! step and every output time. The work of the scene's point loads is exact (within a step
-//! the active set is fixed, so each load adds P·Δd and M_z Δφ at its point); the work of a
-//! prescribed moving load is its power on the beam by the trapezoidal rule over the steps.
-//! A disk that leaves the beam takes its energy with it, which the budget keeps from then on.
+//! The energy budget of a beam run: kinetic + strain + potential − work + dissipated,
+//! recorded at every step and every output time. The work of the scene's point loads is exact
+//! (within a step the active set is fixed, so each load adds P·Δd and M_z Δφ at its point), and
+//! so is the work of the beam's own weight (a constant load: its dot product with the
+//! displacement since the start); the work of a prescribed moving load is its power on the
+//! beam, and the energy damping takes is its power vᵀCv, both by the trapezoidal rule over the
+//! steps. A disk that leaves the beam takes its energy with it, which the budget keeps from
+//! then on.
 
 use super::phase::Phase;
 use crate::beam::load::PointLoad;
@@ -17,6 +20,7 @@ pub(super) struct Energy {
     pub strain: f64,
     pub potential: f64,
     pub work: f64,
+    pub dissipated: f64,
 }
 
 pub(super) struct Ledger<'a> {
@@ -30,6 +34,10 @@ pub(super) struct Ledger<'a> {
     moving: (f64, f64, f64),
     /// The disk's energy when it left (it leaves the model with it): (kinetic, potential).
     left_with: (f64, f64),
+    /// The beam's weight dotted with the start's displacements.
+    weight0: f64,
+    /// Energy taken by damping, by the trapezoidal rule over the steps: (t, power, energy).
+    damped: (f64, f64, f64),
     pub check: EnergyCheck,
 }
 
@@ -75,6 +83,8 @@ impl<'a> Ledger<'a> {
                 moving = (0.0, c.power_on_beam(0.0, z0, zd0), 0.0);
             }
         }
+        let n = phase.loaded.dim();
+        let (z0, zd0) = phase.split(y0);
         let mut ledger = Ledger {
             loads,
             done: 0.0,
@@ -82,6 +92,8 @@ impl<'a> Ledger<'a> {
             at_loads: Vec::new(),
             moving,
             left_with: (0.0, 0.0),
+            weight0: phase.loaded.weight_dot(&z0[..n]),
+            damped: (0.0, phase.loaded.dissipation(&zd0[..n]), 0.0),
             check,
         };
         ledger.at_loads = ledger.at_loads(phase, y0);
@@ -113,6 +125,20 @@ impl<'a> Ledger<'a> {
         }
     }
 
+    /// The work of the beam's own weight since the start.
+    fn weight_work(&self, phase: &Phase, y: &[f64]) -> f64 {
+        let n = phase.loaded.dim();
+        phase.loaded.weight_dot(&phase.split(y).0[..n]) - self.weight0
+    }
+
+    /// The energy damping has taken up to (t, y), and its power there.
+    fn dissipated(&self, phase: &Phase, t: f64, y: &[f64]) -> (f64, f64) {
+        let n = phase.loaded.dim();
+        let p = phase.loaded.dissipation(&phase.split(y).1[..n]);
+        let (t0, p0, done) = self.damped;
+        (done + 0.5 * (p0 + p) * (t - t0), p)
+    }
+
     fn moving_work(&self, phase: &Phase, t: f64, y: &[f64]) -> f64 {
         let (t0, p0, done) = self.moving;
         match phase.coupled {
@@ -139,9 +165,11 @@ impl<'a> Ledger<'a> {
         let now = self.at_loads(phase, y);
         let work = self.done
             + work_since(self.loads, self.t, t, &self.at_loads, &now)
-            + self.moving_work(phase, t, y);
+            + self.moving_work(phase, t, y)
+            + self.weight_work(phase, y);
+        let dissipated = self.dissipated(phase, t, y).0;
         self.check.record(
-            kinetic + strain + potential - work,
+            kinetic + strain + potential - work + dissipated,
             kinetic + strain + potential.abs(),
         );
         Energy {
@@ -149,6 +177,7 @@ impl<'a> Ledger<'a> {
             strain,
             potential,
             work,
+            dissipated,
         }
     }
 
@@ -178,8 +207,11 @@ impl<'a> Ledger<'a> {
             None => self.left_with,
         };
         let kinetic = kinetic + disk_kinetic;
+        let (dissipated, power) = self.dissipated(phase, t, y);
+        self.damped = (t, power, dissipated);
         self.check.record(
-            kinetic + strain + potential - self.done - self.moving.2,
+            kinetic + strain + potential - self.done - self.moving.2 - self.weight_work(phase, y)
+                + dissipated,
             kinetic + strain + potential.abs(),
         );
     }

@@ -7,10 +7,13 @@
 //! end. The energy budget is kept by `ledger.rs`; the outputs are recorded by the sensors of
 //! `sensors.rs`, which observe and compute nothing. [`run`] names the phases of a run.
 
+mod acceleration;
 mod ledger;
 mod phase;
 mod sensors;
 
+use acceleration::AccelerationFilter;
+pub use acceleration::CutoffReport;
 use ledger::Ledger;
 use phase::Phase;
 use sensors::{History, Pictures, Sample};
@@ -18,6 +21,7 @@ use sensors::{History, Pictures, Sample};
 use super::{Overrides, Progress, RunHeader, Stop};
 use crate::analysis::modes::modes;
 use crate::analysis::statics;
+use crate::beam::damping::Rayleigh;
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::load::BeamStart;
 use crate::beam::modal::ModalBasis;
@@ -59,13 +63,18 @@ pub struct BeamRow {
     /// The disk's gravity potential (zero without a disk in the system).
     pub potential: f64,
     pub work: f64,
+    /// What damping has taken since the start.
+    pub dissipated: f64,
+    /// One per probe: the vertical (global Y) acceleration, with the modes above the cutoff
+    /// left out (see [`AccelerationFilter`]).
+    pub accelerations: Vec<f64>,
     /// What the supports exert on the beam, global (fx, fy, mz), at `from` and at `to`.
     pub reactions: [[f64; 3]; 2],
 }
 
 impl BeamRow {
     pub fn total(&self) -> f64 {
-        self.kinetic + self.strain + self.potential - self.work
+        self.kinetic + self.strain + self.potential - self.work + self.dissipated
     }
 }
 
@@ -77,6 +86,9 @@ pub struct Envelope {
     pub max: Vec<PointDisplacement>,
     /// The largest length the deformed axis reached minus L (over the sample polyline).
     pub stretch_max: f64,
+    /// The largest vertical acceleration over the sample points (filtered as the probes'),
+    /// with where and when: (|a|, x, t).
+    pub a_max: (f64, f64, f64),
 }
 
 pub struct BeamRun {
@@ -94,6 +106,10 @@ pub struct BeamRun {
     pub left_track_t: Option<f64>,
     /// (q, v) at the end of the run.
     pub y_end: Vec<f64>,
+    /// What the recorded accelerations count.
+    pub acceleration: Option<CutoffReport>,
+    /// The Rayleigh damping the run had, α and β resolved.
+    pub damping: Option<Rayleigh>,
 }
 
 impl BeamRun {
@@ -120,6 +136,8 @@ struct Recorder<'a> {
     ledger: Ledger<'a>,
     /// The beam's axis at the envelope's sample points.
     stations: Stations,
+    /// What of the acceleration is recorded.
+    filter: Option<AccelerationFilter>,
     history: History<'a>,
     envelope: Envelope,
     pictures: Pictures<'a>,
@@ -132,11 +150,24 @@ impl Observer for Recorder<'_> {
         let disk = phase.disk(t, y);
         let energy = self.ledger.at_output(phase, t, y, disk.as_ref());
         let q = phase.displaced(t, y, disk.as_ref());
-        let reactions = phase.reactions(t, y, &q, disk.as_ref());
+        let a = phase.acceleration(t, y);
+        let reactions = phase.reactions(t, y, &q, &a, disk.as_ref());
         let along = phase.beam.displacements(&self.stations, &q);
+        let a = match &self.filter {
+            Some(f) => f.filtered(phase.loaded, &a),
+            None => phase.loaded.to_mesh(&a).into_owned(),
+        };
+        let along_a: Vec<f64> = phase
+            .beam
+            .displacements(&self.stations, &a)
+            .iter()
+            .map(|d| d.w)
+            .collect();
         let sample = Sample {
             t,
             q: &q,
+            a: &a,
+            along_a: &along_a,
             along: &along,
             disk,
             energy,
@@ -356,7 +387,9 @@ pub fn run(
     // integrator.
     let beam = Beam::new(setup.beam.clone());
     let modal = modal_basis(scene, &beam)?;
-    let loaded = LoadedBeam::new(&beam, &setup.loads, modal.as_ref());
+    let damping = crate::analysis::modes::rayleigh(&beam)
+        .map_err(|why| Error::Input(format!("scene {}: {why}", scene.name)))?;
+    let loaded = LoadedBeam::new(&beam, &setup.loads, modal.as_ref(), damping);
     let coupled = setup
         .disk
         .clone()
@@ -417,6 +450,7 @@ pub fn run(
         .collect();
     let mut rec = Recorder {
         ledger: Ledger::new(&phase, &setup.loads, &y0),
+        filter: AccelerationFilter::new(&beam, &loaded, setup.acceleration_cutoff_hz),
         phase,
         stations: beam.stations(&xs),
         history: History {
@@ -510,6 +544,8 @@ pub fn run(
         frames: rec.pictures.frames,
         left_track_t,
         y_end,
+        acceleration: rec.filter.as_ref().map(|f| f.report()),
+        damping,
         beam,
     })
 }

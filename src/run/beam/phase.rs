@@ -1,8 +1,8 @@
 //! What a beam run integrates at a time: the beam with the disk riding on it (the state is
 //! (z, ż) with z = (q, s) or q), or, once the disk has left, the beam alone. Besides slicing
 //! the state, a phase computes what the outputs observe at an output time and the model does
-//! not already give: the support reactions, inertia included, and on a modal beam the mesh's
-//! displacements with the static correction of the modes left out.
+//! not already give: the accelerations, the support reactions, inertia included, and on a
+//! modal beam the mesh's displacements with the static correction of the modes left out.
 
 use std::borrow::Cow;
 
@@ -80,33 +80,13 @@ impl Phase<'_> {
         self.coupled.map(|c| c.observe(t, z, zd))
     }
 
-    /// What the supports exert on the beam at (t, y), global (fx, fy, mz) at `from` and at
-    /// `to`: the loads acting then, the disk's contact force, and the beam's inertia.
-    /// `q` is the mesh's displacements as [`Phase::displaced`] reads them.
-    pub fn reactions(
-        &self,
-        t: f64,
-        y: &[f64],
-        q: &[f64],
-        disk: Option<&DiskObservation>,
-    ) -> [[f64; 3]; 2] {
+    /// The model's accelerations at (t, y): with the disk on the beam, the coupled system's
+    /// (from the disk's observation); the free beam's otherwise.
+    pub fn acceleration(&self, t: f64, y: &[f64]) -> Vec<f64> {
         let n = self.loaded.dim();
-        let v = &y[self.nz..self.nz + n];
-        let mut acting: Vec<(f64, [f64; 2], f64)> = self
-            .loaded
-            .active(t)
-            .map(|l| (l.x, l.force, l.mz))
-            .collect();
-        let a = match self.coupled {
+        match self.coupled {
             Some(c) => {
-                let d = disk.expect("observed while coupled");
                 let (z, zd) = self.split(y);
-                let at_s = c.contact_frame(t, z, zd);
-                let on_disk = [
-                    d.rt * at_s[0][0] + d.rn * at_s[1][0],
-                    d.rt * at_s[0][1] + d.rn * at_s[1][1],
-                ];
-                acting.push((d.s, [-on_disk[0], -on_disk[1]], 0.0));
                 c.observe_with_acceleration(t, z, zd)
                     .1
                     .map(|a| a[..n].to_vec())
@@ -114,12 +94,42 @@ impl Phase<'_> {
             }
             None => {
                 let mut a = vec![0.0; n];
-                self.loaded.force(t, &y[..n], v, &mut a);
+                self.loaded
+                    .force(t, &y[..n], &y[self.nz..self.nz + n], &mut a);
                 self.mass_lu.solve_in_place(&mut a);
                 a
             }
-        };
+        }
+    }
+
+    /// What the supports exert on the beam at (t, y), global (fx, fy, mz) at `from` and at
+    /// `to`: the loads acting then, the disk's contact force, and the beam's inertia. `q` is
+    /// the mesh's displacements as [`Phase::displaced`] reads them, `a` the model's
+    /// accelerations.
+    pub fn reactions(
+        &self,
+        t: f64,
+        y: &[f64],
+        q: &[f64],
+        a: &[f64],
+        disk: Option<&DiskObservation>,
+    ) -> [[f64; 3]; 2] {
+        let mut acting: Vec<(f64, [f64; 2], f64)> = self
+            .loaded
+            .active(t)
+            .map(|l| (l.x, l.force, l.mz))
+            .collect();
+        if let Some(c) = self.coupled {
+            let d = disk.expect("observed while coupled");
+            let (z, zd) = self.split(y);
+            let at_s = c.contact_frame(t, z, zd);
+            let on_disk = [
+                d.rt * at_s[0][0] + d.rn * at_s[1][0],
+                d.rt * at_s[0][1] + d.rn * at_s[1][1],
+            ];
+            acting.push((d.s, [-on_disk[0], -on_disk[1]], 0.0));
+        }
         self.beam
-            .support_reactions(q, &acting, Some(&self.loaded.to_mesh(&a)))
+            .support_reactions(q, &acting, Some(&self.loaded.to_mesh(a)))
     }
 }

@@ -13,8 +13,12 @@ use crate::rolling::DiskObservation;
 pub(super) struct Sample<'s> {
     pub t: f64,
     pub q: &'s [f64],
+    /// The mesh's accelerations, the modes above the cutoff left out.
+    pub a: &'s [f64],
     /// Displacements at the beam's sample points.
     pub along: &'s [PointDisplacement],
+    /// Vertical accelerations at the beam's sample points.
+    pub along_a: &'s [f64],
     pub disk: Option<DiskObservation>,
     pub energy: Energy,
     pub reactions: [[f64; 3]; 2],
@@ -45,6 +49,12 @@ impl History<'_> {
             strain: s.energy.strain,
             potential: s.energy.potential,
             work: s.energy.work,
+            dissipated: s.energy.dissipated,
+            accelerations: self
+                .probes
+                .iter()
+                .map(|p| beam.displacement_at(s.a, p.x).w)
+                .collect(),
             reactions: s.reactions,
         });
     }
@@ -73,6 +83,7 @@ impl Envelope {
                 n
             ],
             stretch_max: f64::NEG_INFINITY,
+            a_max: (0.0, 0.0, 0.0),
         }
     }
 
@@ -84,6 +95,11 @@ impl Envelope {
             .map(|(x, d)| (x[1] + d[1].u - x[0] - d[0].u).hypot(d[1].w - d[0].w))
             .sum();
         self.stretch_max = self.stretch_max.max(stretched - length);
+        for (k, a) in s.along_a.iter().enumerate() {
+            if a.abs() > self.a_max.0 {
+                self.a_max = (a.abs(), self.x[k], s.t);
+            }
+        }
         for (k, d) in s.along.iter().enumerate() {
             let (lo, hi) = (&mut self.min[k], &mut self.max[k]);
             lo.u = lo.u.min(d.u);
