@@ -43,7 +43,17 @@ impl Planner {
         let Model::Beam(b) = &mut scene.model else {
             return scene;
         };
-        let weight = b.disk.as_ref().map(|d| d.disk.mass * d.gravity);
+        // What rides on the beam, as the static load the mesh and model are chosen for: the
+        // disk's weight, or a train's heaviest axle, standing at each probe.
+        let weight = b
+            .disk
+            .as_ref()
+            .map(|d| d.disk.mass * d.gravity)
+            .or_else(|| {
+                b.train
+                    .as_ref()
+                    .map(|t| t.loads.iter().fold(0.0_f64, |m, p| m.max(p.abs())))
+            });
         let xs: Vec<f64> = b.probes.iter().map(|p| p.x).collect();
         if elements.is_none() || order.is_none() {
             let key = format!(

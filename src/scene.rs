@@ -14,6 +14,7 @@ use crate::beam::damping::DampingSpec;
 use crate::beam::element::Section;
 use crate::beam::load::{BeamStart, PointLoad, Probe};
 use crate::beam::supports::{mesh_multiple, statically_supported, Support};
+use crate::beam::train::{hslm, Train, TrainModel, HSLM_NAMES};
 use crate::beam::{BeamModel, BeamSpec, Quadrature};
 use crate::coupling::{patch, Coupling, DiskOnBeamSpec};
 use crate::curve::expr::Formula;
@@ -32,6 +33,7 @@ struct SceneFile {
     duration: Spanned<f64>,
     track: Spanned<TrackFile>,
     disk: Option<Spanned<DiskFile>>,
+    train: Option<Spanned<TrainFile>>,
     loads: Option<Spanned<Vec<Spanned<LoadFile>>>>,
     solver: Option<SolverFile>,
     output: Option<OutputFile>,
@@ -66,6 +68,24 @@ struct BeamFile {
     modes: Option<Spanned<i64>>,
     damping: Option<Spanned<DampingFile>>,
     self_weight: Option<Spanned<bool>>,
+}
+
+#[derive(Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TrainFile {
+    hslm: Option<Spanned<String>>,
+    axles: Option<Spanned<Vec<f64>>>,
+    load: Option<Spanned<AxleLoads>>,
+    speed: Spanned<f64>,
+    model: Option<Spanned<String>>,
+}
+
+/// One force for every axle, or one each.
+#[derive(Clone, Deserialize)]
+#[serde(untagged)]
+enum AxleLoads {
+    Each(Vec<f64>),
+    All(f64),
 }
 
 #[derive(Clone, Default, Deserialize)]
@@ -206,6 +226,8 @@ pub struct BeamScene {
     pub start: BeamStart,
     /// A disk riding on the beam, if the scene has one.
     pub disk: Option<DiskOnBeamSpec>,
+    /// A train of axle loads crossing the beam, if the scene has one (never with a disk).
+    pub train: Option<Train>,
     pub loads: Vec<PointLoad>,
     pub probes: Vec<Probe>,
     pub shapes: Vec<f64>,
@@ -304,6 +326,8 @@ const MAX_ROWS: f64 = 1e6;
 const MAX_NODES: f64 = 100_001.0;
 /// Intermediate bearings must sit at nodes of a uniform mesh of at most this many elements.
 const MAX_SPANS: usize = 1000;
+/// Most axles a train may have: every one is a load the beam reads at every evaluation.
+const MAX_AXLES: usize = 10_000;
 use crate::beam::modal::MAX_MODES;
 
 /// Reports problems as "FILE line N: KEY ...".
@@ -583,6 +607,15 @@ impl SceneSpec {
                     _ => return Err(not_a_number(key)),
                 }
             }
+            Some(("train", field)) => {
+                let Some(t) = f.train.as_mut() else {
+                    return unset("train");
+                };
+                match field {
+                    "speed" => number(&mut t.value.speed),
+                    _ => return Err(not_a_number(key)),
+                }
+            }
             Some(("solver", field)) => {
                 let s = f.solver.get_or_insert_with(SolverFile::default);
                 match field {
@@ -718,6 +751,20 @@ impl SceneSpec {
                 }
             }
             "solver.method" => text(&mut f.solver.get_or_insert_with(SolverFile::default).method),
+            "train.hslm" | "train.model" => {
+                let Some(t) = f.train.as_mut() else {
+                    return Err(Error::Input(format!(
+                        "`{key}` cannot be set: the scene has no train"
+                    )));
+                };
+                if key == "train.hslm" {
+                    text(&mut t.value.hslm);
+                    t.value.axles = None;
+                    t.value.load = None;
+                } else {
+                    text(&mut t.value.model);
+                }
+            }
             "track.beam.self_weight" => {
                 let Some(b) = f.track.value.beam.as_mut() else {
                     return Err(Error::Input(format!(
@@ -750,7 +797,7 @@ impl SceneSpec {
             }
             _ => {
                 return Err(Error::Input(format!(
-                    "`{key}` is not a name the scene format holds; names are name, disk.coupling, disk.formulation, solver.method, track.beam.model, track.beam.quadrature, track.beam.initial and track.beam.self_weight"
+                    "`{key}` is not a name the scene format holds; names are name, disk.coupling, disk.formulation, solver.method, train.hslm, train.model, track.beam.model, track.beam.quadrature, track.beam.initial and track.beam.self_weight"
                 )))
             }
         }
@@ -793,6 +840,7 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
                 order: None,
                 multiple: 1,
                 model: true,
+                duration,
             },
         ),
         (None, Some(beam)) => {
@@ -800,6 +848,7 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
             (Model::Beam(scene), mesh)
         }
     };
+    let duration = mesh.duration;
     let beam_default = matches!(model, Model::Beam(_));
     let mut solver = SolverSettings {
         method: if beam_default {
@@ -1048,6 +1097,13 @@ fn rolling_scene(
 
 /// Keys that belong to beam tracks, refused on a rigid curve with the reason.
 fn refuse_beam_keys(c: &Checker, raw: &SceneFile) -> Result<(), Error> {
+    if let Some(t) = &raw.train {
+        return c.err(
+            t.referenced.line(),
+            "train",
+            "crosses beam tracks only; on a rigid curve give a disk",
+        );
+    }
     if let Some(loads) = &raw.loads {
         return c.err(
             loads.referenced.line(),
@@ -1107,6 +1163,14 @@ fn beam_scene(
     }
     let start = beam_start(c, b, &beam)?;
     let loads = point_loads(c, raw, length)?;
+    let train = match &raw.train {
+        None => None,
+        Some(t) => Some(train(c, raw, t)?),
+    };
+    // With a train `duration` is the free vibration after its last axle has left.
+    let duration = train
+        .as_ref()
+        .map_or(duration, |t| t.gone(length) + duration);
     let (probes, shapes, magnify) = outputs(c, raw, length, duration)?;
     let rho_inf = match raw.solver.as_ref().and_then(|s| s.rho_inf.as_ref()) {
         None => 1.0,
@@ -1152,11 +1216,13 @@ fn beam_scene(
         order: b.order.as_ref().map(|_| beam.order),
         multiple,
         model: model_given,
+        duration,
     };
     let scene = BeamScene {
         beam,
         start,
         disk,
+        train,
         loads,
         probes,
         shapes,
@@ -1186,6 +1252,8 @@ pub struct Given {
     pub multiple: usize,
     /// The scene names its beam model.
     pub model: bool,
+    /// The run's duration: the scene's, or with a train the crossing plus the scene's.
+    pub duration: f64,
 }
 
 /// The beam as the file gives it: its axis, section, supports and mesh (the element count 0
@@ -1301,6 +1369,122 @@ fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usize, bool), 
         self_weight: None,
     };
     Ok((beam, length, multiple, model.is_some()))
+}
+
+/// The train as the file gives it: an HSLM name, or axles and their load; its speed and model.
+fn train(c: &Checker, raw: &SceneFile, file: &Spanned<TrainFile>) -> Result<Train, Error> {
+    let t = &file.value;
+    if let Some(d) = &raw.disk {
+        return c.err(
+            d.referenced.line(),
+            "disk",
+            "and `train` are both given: a scene has one rider, a disk or a train",
+        );
+    }
+    let speed = c.positive(&t.speed, "train.speed")?;
+    let model = match &t.model {
+        None => TrainModel::MovingForce,
+        Some(m) if m.value == "moving-force" => TrainModel::MovingForce,
+        Some(m) => {
+            return c.err(
+                m.referenced.line(),
+                "train.model",
+                format!(
+                    "is {}; a train's axles are moving forces: use moving-force",
+                    quote(&m.value)
+                ),
+            )
+        }
+    };
+    let (name, axles, loads) =
+        match (&t.hslm, &t.axles, &t.load) {
+            (Some(h), None, None) => {
+                let (axles, force) = hslm(&h.value).map_or_else(
+                    || {
+                        c.err(
+                            h.referenced.line(),
+                            "train.hslm",
+                            format!(
+                                "is {}; EN 1991-2's HSLM-A trains are {HSLM_NAMES}",
+                                quote(&h.value)
+                            ),
+                        )
+                    },
+                    Ok,
+                )?;
+                let loads = vec![force; axles.len()];
+                (h.value.clone(), axles, loads)
+            }
+            (Some(h), _, _) => return c.err(
+                h.referenced.line(),
+                "train.hslm",
+                "names a train whose axles and loads are EN 1991-2's: leave `axles` and `load` out",
+            ),
+            (None, Some(a), Some(l)) => {
+                let line = a.referenced.line();
+                let axles = a.value.clone();
+                if axles.is_empty() || axles.len() > MAX_AXLES {
+                    return c.err(
+                        line,
+                        "train.axles",
+                        format!("must hold 1 to {MAX_AXLES} axles"),
+                    );
+                }
+                if axles.iter().any(|x| !x.is_finite() || *x < 0.0)
+                    || axles.windows(2).any(|w| w[1] <= w[0])
+                {
+                    return c.err(
+                        line,
+                        "train.axles",
+                        "must be distances behind the first axle (m), from 0 and increasing",
+                    );
+                }
+                let loads = match &l.value {
+                    AxleLoads::All(p) => vec![*p; axles.len()],
+                    AxleLoads::Each(each) if each.len() == axles.len() => each.clone(),
+                    AxleLoads::Each(each) => {
+                        return c.err(
+                            l.referenced.line(),
+                            "train.load",
+                            format!(
+                            "lists {} loads for {} axles: give one per axle, or one number for all",
+                            each.len(),
+                            axles.len()
+                        ),
+                        )
+                    }
+                };
+                if loads.iter().any(|p| !p.is_finite()) {
+                    return c.err(
+                        l.referenced.line(),
+                        "train.load",
+                        "must hold finite forces (N)",
+                    );
+                }
+                ("axles".to_string(), axles, loads)
+            }
+            (None, Some(_), None) => {
+                return c.err(
+                    file.referenced.line(),
+                    "train.load",
+                    "is missing: give the force per axle (N), or one per axle",
+                )
+            }
+            (None, None, _) => {
+                return c.err(
+                    file.referenced.line(),
+                    "train",
+                    "needs `hslm` (A1 to A10), or `axles` and `load`",
+                )
+            }
+        };
+    Ok(Train {
+        name,
+        axles,
+        loads,
+        speed,
+        model,
+    })
 }
 
 /// Rayleigh damping as the file gives it: a ratio at two modes, or α and β.

@@ -587,6 +587,56 @@ fn damping_anchored_past_the_mesh() {
     );
 }
 
+/// A train: an unknown HSLM name, axles not increasing or negative, a load list of the wrong
+/// length, a speed not above zero, a train beside a disk, an HSLM name with axles, and a
+/// train on a rigid curve.
+#[test]
+fn bad_trains() {
+    let train = |body: &str| beam_scene(&[], &format!("train:\n{body}"));
+    rejected(
+        "hslm-unknown",
+        &train("  hslm: A11\n  speed: 50\n"),
+        &["train.hslm", "'A11'", "A1 to A10"],
+    );
+    for axles in ["[0, 3, 3]", "[0, -3]", "[5, 3]"] {
+        rejected(
+            &format!("axles-{axles}"),
+            &train(&format!("  axles: {axles}\n  load: 1.0e5\n  speed: 50\n")),
+            &["train.axles", "from 0 and increasing"],
+        );
+    }
+    rejected(
+        "load-count",
+        &train("  axles: [0, 3, 14]\n  load: [1.0e5, 2.0e5]\n  speed: 50\n"),
+        &["train.load", "2 loads for 3 axles"],
+    );
+    for speed in ["0", "-90"] {
+        rejected(
+            &format!("speed-{speed}"),
+            &train(&format!("  hslm: A1\n  speed: {speed}\n")),
+            &["train.speed", "must be positive"],
+        );
+    }
+    rejected(
+        "train-and-disk",
+        &beam_scene(
+            &[],
+            "disk:\n  mass: 1500\n  radius: 0.4\n  s0: 1\ntrain:\n  hslm: A1\n  speed: 50\n",
+        ),
+        &["disk", "both given"],
+    );
+    rejected(
+        "hslm-and-axles",
+        &train("  hslm: A1\n  axles: [0, 3]\n  load: 1.0e5\n  speed: 50\n"),
+        &["train.hslm", "leave `axles` and `load` out"],
+    );
+    rejected(
+        "train-on-curve",
+        &format!("duration: 1\n{PARABOLA}{GOOD_DISK}train:\n  hslm: A1\n  speed: 50\n"),
+        &["train", "beam tracks only"],
+    );
+}
+
 /// A modal beam that is a mechanism has no static answer either, and `modes` asks no more of
 /// a modal beam than the modes it keeps.
 #[test]

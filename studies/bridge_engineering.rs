@@ -225,3 +225,142 @@ fn recorded_acceleration_is_the_deflection_differentiated_twice() {
     );
     assert!(worst <= 1e-2 * largest, "{worst:.3e} against {largest:.3e}");
 }
+
+/// The bridge (D44's beam, of the given model) carrying a train instead of the disk, as scene
+/// text: `train` is the train block's body.
+fn bridge_with_train(model: &str, train: &str, duration: f64) -> rollbeam::scene::Scene {
+    let text = std::fs::read_to_string(common::studies_dir().join("bridge-d44.yaml")).unwrap();
+    let body: String = text
+        .lines()
+        .take_while(|l| !l.starts_with("disk:"))
+        .map(|l| format!("{l}\n"))
+        .collect::<String>()
+        .replace("duration: 3.0", &format!("duration: {duration}"))
+        .replace("    model: exact", &format!("    model: {model}"));
+    common::parse(&format!(
+        "{body}train:\n{train}output:\n  interval: 0.005\n  probes: [{{name: mid, x: 10.0}}]\n"
+    ))
+}
+
+/// On the linear beam the response is linear in the loads, so a train of three unequal axles
+/// is the sum of three runs with one axle each, at the same fixed steps: equal to round-off
+/// (1e-9 of the peak; the fixed step makes every run take the same time grid, and Newton on a
+/// linear system is exact after one iteration).
+#[test]
+fn a_train_is_the_superposition_of_its_axles() {
+    let run = |train: &str| {
+        let scene = bridge_with_train("linear", train, 0.5);
+        let over = rollbeam::run::Overrides {
+            method: Some(Method::GenAlpha),
+            fixed_step: Some(1e-3),
+            rtol: Some(1e-10),
+            atol: Some(1e-14),
+            ..Default::default()
+        };
+        rollbeam::run::run(&scene, &over, false)
+            .expect("runs")
+            .beam()
+            .expect("a beam")
+    };
+    let full = run("  axles: [0.0, 3.0, 14.0]\n  load: [1.0e5, 2.0e5, 1.5e5]\n  speed: 50.0\n");
+    // Each axle alone, the others weightless: the same train length, so the same clock and
+    // the same end of the run.
+    let parts: Vec<BeamRun> = [
+        "[1.0e5, 0.0, 0.0]",
+        "[0.0, 2.0e5, 0.0]",
+        "[0.0, 0.0, 1.5e5]",
+    ]
+    .iter()
+    .map(|load| {
+        run(&format!(
+            "  axles: [0.0, 3.0, 14.0]\n  load: {load}\n  speed: 50.0\n"
+        ))
+    })
+    .collect();
+    let peak = full
+        .rows
+        .iter()
+        .map(|r| r.probes[0].w.abs())
+        .fold(0.0, f64::max);
+    let worst = full
+        .rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let sum: f64 = parts.iter().map(|p| p.rows[i].probes[0].w).sum();
+            (r.probes[0].w - sum).abs()
+        })
+        .fold(0.0, f64::max);
+    eprintln!(
+        "superposition off by {:.2e} of the peak {peak:.3e} m",
+        worst / peak
+    );
+    assert!(worst <= 1e-9 * peak, "{worst:.3e} of {peak:.3e}");
+}
+
+/// Twenty equal loads D = 18 m apart crossing the undamped bridge: the free vibration they
+/// leave, against speed, peaks where the loads come once per period of the first mode,
+/// v = f1 D (f1 from the beam's own modes), and vanishes where a single load leaves none,
+/// v = 2 f1 L/3 (Frýba §1.3: the first mode's free vibration after one load is
+/// ∝ |cos(π/(2α))|, α = v/(2 f1 L)); both within the sweep's resolution of 0.5 m/s.
+#[test]
+fn resonance_and_cancellation_speeds_of_a_train() {
+    let axles: Vec<String> = (0..20).map(|k| format!("{}", 18.0 * k as f64)).collect();
+    let residual = |v: f64| {
+        let train = format!(
+            "  axles: [{}]\n  load: 1.0e5\n  speed: {v}\n",
+            axles.join(", ")
+        );
+        let scene = bridge_with_train("modal\n    modes: 8", &train, 1.0);
+        let gone = (18.0 * 19.0 + 20.0) / v;
+        let r = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-10);
+        r.rows
+            .iter()
+            .filter(|row| row.t > gone)
+            .map(|row| row.probes[0].w.abs())
+            .fold(0.0, f64::max)
+    };
+    let beam = Beam::new(
+        bridge_with_train("linear", "  hslm: A1\n  speed: 50.0\n", 1.0)
+            .beam()
+            .unwrap()
+            .beam
+            .clone(),
+    );
+    let f1 = rollbeam::analysis::modes::modes(&beam, 1).unwrap().omega[0] / std::f64::consts::TAU;
+    // Two windows of 0.5 m/s around the speeds sought.
+    let speeds: Vec<f64> = (0..=14)
+        .map(|k| 38.0 + 0.5 * k as f64)
+        .chain((0..=14).map(|k| 52.0 + 0.5 * k as f64))
+        .collect();
+    let amplitudes: Vec<f64> = speeds.iter().map(|&v| residual(v)).collect();
+    let (peak, _) = speeds
+        .iter()
+        .zip(&amplitudes)
+        .filter(|(v, _)| **v > 50.0)
+        .fold(
+            (0.0, 0.0),
+            |best, (v, a)| if *a > best.1 { (*v, *a) } else { best },
+        );
+    let (quiet, _) = speeds
+        .iter()
+        .zip(&amplitudes)
+        .filter(|(v, _)| **v < 50.0)
+        .fold((0.0, f64::INFINITY), |best, (v, a)| {
+            if *a < best.1 {
+                (*v, *a)
+            } else {
+                best
+            }
+        });
+    let (resonant, cancelling) = (f1 * 18.0, 2.0 * f1 * 20.0 / 3.0);
+    eprintln!("f1 {f1:.4} Hz: peak at {peak} m/s (f1 D = {resonant:.2}), least at {quiet} m/s (2 f1 L/3 = {cancelling:.2})");
+    assert!(
+        (peak - resonant).abs() <= 0.5,
+        "peak at {peak}, f1 D = {resonant}"
+    );
+    assert!(
+        (quiet - cancelling).abs() <= 0.5,
+        "least at {quiet}, 2 f1 L/3 = {cancelling}"
+    );
+}

@@ -10,6 +10,7 @@ use std::cell::{Cell, RefCell};
 use super::damping::Rayleigh;
 use super::load::PointLoad;
 use super::modal::ModalBasis;
+use super::train::Train;
 use super::Beam;
 use crate::linalg::{Assembly, Sparse};
 use crate::ode::second_order::{SecondOrderProblem, Structure};
@@ -22,6 +23,8 @@ pub struct LoadedBeam<'a> {
     pub modal: Option<&'a ModalBasis>,
     /// C = α M + β K₀ in the model's unknowns (diagonal on a modal beam), and α, β.
     damping: Option<(Sparse, Rayleigh)>,
+    /// A train of axle loads crossing the beam.
+    pub train: Option<&'a Train>,
     /// Midpoint of the current stretch between breakpoints; NaN outside a run.
     segment: Cell<f64>,
     /// Internal forces, kept so that each force evaluation does not allocate.
@@ -34,6 +37,7 @@ impl<'a> LoadedBeam<'a> {
         loads: &'a [PointLoad],
         modal: Option<&'a ModalBasis>,
         damping: Option<Rayleigh>,
+        train: Option<&'a Train>,
     ) -> Self {
         let damping = damping.map(|r| {
             let c = match modal {
@@ -58,6 +62,7 @@ impl<'a> LoadedBeam<'a> {
             loads,
             modal,
             damping,
+            train,
             segment: Cell::new(f64::NAN),
             scratch: RefCell::new(vec![0.0; beam.dim()]),
         }
@@ -81,6 +86,56 @@ impl<'a> LoadedBeam<'a> {
             self.beam.add_point_load(l.x, l.force, l.mz, f);
         }
         self.beam.add_weight(f);
+        for (x, p) in self.axles(t) {
+            self.beam.add_point_load(x, [0.0, -p], 0.0, f);
+        }
+    }
+
+    /// The train's axles on the beam at t, with their forces. Where an end is free an axle
+    /// that enters or leaves there is a jump of the load: which axles are on is then decided
+    /// within the current stretch between breakpoints (an axle enters or leaves only at one).
+    /// Where the ends hold w an axle comes on and goes off at nothing, so it is decided at t.
+    pub fn axles(&self, t: f64) -> Vec<(f64, f64)> {
+        let Some(train) = self.train else {
+            return Vec::new();
+        };
+        let length = self.beam.length;
+        let when = if self.segment.get().is_nan() || self.train_breakpoints().is_empty() {
+            t
+        } else {
+            self.segment.get()
+        };
+        (0..train.axles.len())
+            .filter(|&a| (0.0..=length).contains(&train.position(a, when)))
+            .map(|a| (train.position(a, t).clamp(0.0, length), train.loads[a]))
+            .collect()
+    }
+
+    /// When an axle enters or leaves at an end that does not hold w.
+    fn train_breakpoints(&self) -> Vec<f64> {
+        let Some(train) = self.train else {
+            return Vec::new();
+        };
+        let length = self.beam.length;
+        train
+            .axles
+            .iter()
+            .flat_map(|d| {
+                [
+                    (!self.beam.holds_w_at(false)).then_some(d / train.speed),
+                    (!self.beam.holds_w_at(true)).then_some((d + length) / train.speed),
+                ]
+            })
+            .flatten()
+            .collect()
+    }
+
+    /// The power of the train's axle forces on the beam moving at the mesh's velocities v.
+    pub fn train_power(&self, t: f64, v: &[f64]) -> f64 {
+        self.axles(t)
+            .into_iter()
+            .map(|(x, p)| -p * self.beam.displacement_at(v, x).w)
+            .sum()
     }
 
     /// The Rayleigh damping acting, if any.
@@ -175,11 +230,18 @@ impl Structure for LoadedBeam<'_> {
                 f.iter_mut().zip(scratch.iter()).for_each(|(a, b)| *a -= b);
             }
             Some(m) => {
-                if self.active(t).next().is_some() || self.beam.weight().is_some() {
-                    self.external(t, &mut scratch);
-                    m.project(&scratch, f);
+                if let Some(w) = self.beam.weight() {
+                    m.project(w, f);
                 } else {
                     f.fill(0.0);
+                }
+                // A point load or axle reaches only its element's unknowns: projected there.
+                let mut add = |i: usize, v: f64| m.add_row(i, v, f);
+                for l in self.active(t) {
+                    self.beam.point_load_terms(l.x, l.force, l.mz, &mut add);
+                }
+                for (x, p) in self.axles(t) {
+                    self.beam.point_load_terms(x, [0.0, -p], 0.0, &mut add);
                 }
                 for (k, fk) in f.iter_mut().enumerate() {
                     *fk -= m.omega[k] * m.omega[k] * q[k];
@@ -209,9 +271,11 @@ impl Structure for LoadedBeam<'_> {
 impl SecondOrderProblem for LoadedBeam<'_> {
     type Event = NoEvent;
     fn breakpoints(&self) -> Vec<f64> {
+        let train = self.train_breakpoints();
         self.loads
             .iter()
             .flat_map(|l| [l.from, l.until])
+            .chain(train)
             .filter(|t| t.is_finite())
             .collect()
     }

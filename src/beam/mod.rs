@@ -20,6 +20,7 @@ pub mod load;
 pub mod modal;
 pub mod quadrature;
 pub mod supports;
+pub mod train;
 
 use basis::Lagrange;
 use element::{ElementKernels, Section, Tabulated};
@@ -510,6 +511,18 @@ impl Beam {
     /// Add a point force (global fx, fy) and moment mz at material point x: the Dirac load's
     /// virtual work puts P·P_i(x) on each unknown, no mesh node needed at x.
     pub fn add_point_load(&self, x: f64, force: [f64; 2], mz: f64, f: &mut [f64]) {
+        self.point_load_terms(x, force, mz, |i, v| f[i] += v);
+    }
+
+    /// The terms (unknown, value) of a point load at x, handed to `add` one by one: the few
+    /// unknowns of the element that holds x.
+    pub fn point_load_terms(
+        &self,
+        x: f64,
+        force: [f64; 2],
+        mz: f64,
+        mut add: impl FnMut(usize, f64),
+    ) {
         let local = self.to_local(force);
         let (e, n, _) = self.locate(x);
         let first = e * self.spec.order;
@@ -517,10 +530,17 @@ impl Beam {
             let node = first + a;
             for (c, value) in [(0, local[0]), (1, local[1]), (2, mz)] {
                 if let Some(i) = self.eq[3 * node + c] {
-                    f[i] += na * value;
+                    add(i, na * value);
                 }
             }
         }
+    }
+
+    /// Whether a support holds w at the end x = 0 (`false`) or x = L (`true`).
+    pub fn holds_w_at(&self, end: bool) -> bool {
+        self.spec.supports[usize::from(end)]
+            .held_components()
+            .contains(&1)
     }
 
     /// Displacement (global u, w) and rotation at material point x.

@@ -1,8 +1,10 @@
-//! `rollbeam sweep SCENE.yaml --set KEY=FROM:TO:COUNT`: one scene over an evenly spaced range
-//! of one of its numbers, the runs spread over every core. Each value is set at its key of the
-//! scene ([`SceneSpec::set`]) and the scene checked and planned again, so a value the scene
-//! cannot take is refused with the same sentence a scene file would get. One summary row per
-//! run; a run that fails is a row with its reason.
+//! `rollbeam sweep SCENE.yaml --set KEY=FROM:TO:COUNT [--set KEY=A,B,…]`: one scene over a
+//! grid of its values, the runs spread over every core. A number is swept over an evenly
+//! spaced range, a name (`train.hslm`, `disk.coupling`, …) over a list; several `--set` make
+//! the grid of every combination. Each case's values are set at their keys of the scene
+//! ([`SceneSpec::set`], [`SceneSpec::set_name`]) and the scene checked and planned again, so a
+//! value the scene cannot take is refused with the same sentence a scene file would get. One
+//! summary row per case; a run that fails is a row with its reason.
 
 use super::SolverFlags;
 use crate::error::{quote, Error};
@@ -17,25 +19,68 @@ use std::path::{Path, PathBuf};
 
 /// Most cases one sweep runs: each is a whole run, and their rows are held in memory.
 pub const MAX_CASES: usize = 100_000;
+/// EN 1991-2 §6.4.6.2's limit of the deck acceleration on ballasted track (m/s²), drawn on a
+/// train sweep's figure.
+const BALLASTED_LIMIT: f64 = 3.5;
 
-/// KEY=FROM:TO:COUNT.
+/// What one key is swept over.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Sweep {
+    /// FROM:TO:COUNT, evenly spaced.
+    Range { from: f64, to: f64, count: usize },
+    /// A list of names.
+    Names(Vec<String>),
+}
+
+/// KEY=FROM:TO:COUNT or KEY=A,B,….
 #[derive(Clone, Debug, PartialEq)]
 pub struct Setting {
     pub key: String,
-    pub from: f64,
-    pub to: f64,
-    pub count: usize,
+    pub sweep: Sweep,
+}
+
+/// One value of a swept key.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    Number(f64),
+    Name(String),
+}
+
+impl std::fmt::Display for Value {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Value::Number(v) => write!(f, "{v}"),
+            Value::Name(n) => write!(f, "{n}"),
+        }
+    }
 }
 
 impl Setting {
     pub fn parse(arg: &str) -> Result<Setting, Error> {
         let bad = |why: &str| {
             Error::Input(format!(
-                "--set {} {why}; write KEY=FROM:TO:COUNT, e.g. disk.omega0=-10:-120:111",
+                "--set {} {why}; write KEY=FROM:TO:COUNT (e.g. disk.omega0=-10:-120:111) or KEY=NAME,NAME (e.g. train.hslm=A1,A2)",
                 quote(arg)
             ))
         };
         let (key, range) = arg.split_once('=').ok_or_else(|| bad("has no '='"))?;
+        if key.split('.').any(|k| k.trim().is_empty()) {
+            return Err(bad("has an empty key"));
+        }
+        let key = key.trim().to_string();
+        if !range.contains(':') {
+            let names: Vec<String> = range.split(',').map(|n| n.trim().to_string()).collect();
+            if names.iter().any(|n| n.is_empty()) {
+                return Err(bad("has an empty name"));
+            }
+            if names.len() > MAX_CASES {
+                return Err(bad(&format!("lists more than {MAX_CASES} names")));
+            }
+            return Ok(Setting {
+                key,
+                sweep: Sweep::Names(names),
+            });
+        }
         let parts: Vec<&str> = range.split(':').collect();
         let [from, to, count] = parts[..] else {
             return Err(bad("needs three fields after '='"));
@@ -58,30 +103,58 @@ impl Setting {
                     quote(count)
                 ))
             })?;
-        if key.split('.').any(|k| k.trim().is_empty()) {
-            return Err(bad("has an empty key"));
-        }
         Ok(Setting {
-            key: key.trim().to_string(),
-            from: number(from)?,
-            to: number(to)?,
-            count,
+            key,
+            sweep: Sweep::Range {
+                from: number(from)?,
+                to: number(to)?,
+                count,
+            },
         })
     }
 
+    /// The numbers of a range (none for a list of names).
     pub fn values(&self) -> Vec<f64> {
-        if self.count == 1 {
-            return vec![self.from];
+        match self.sweep {
+            Sweep::Range { from, count: 1, .. } => vec![from],
+            Sweep::Range { from, to, count } => (0..count)
+                .map(|i| from + (to - from) * i as f64 / (count - 1) as f64)
+                .collect(),
+            Sweep::Names(_) => Vec::new(),
         }
-        (0..self.count)
-            .map(|i| self.from + (self.to - self.from) * i as f64 / (self.count - 1) as f64)
-            .collect()
+    }
+
+    /// Every value, in the order swept.
+    pub fn all(&self) -> Vec<Value> {
+        match &self.sweep {
+            Sweep::Range { .. } => self.values().into_iter().map(Value::Number).collect(),
+            Sweep::Names(names) => names.iter().cloned().map(Value::Name).collect(),
+        }
+    }
+
+    /// Set one value at the key of a scene.
+    fn apply(&self, spec: &mut SceneSpec, value: &Value) -> Result<(), Error> {
+        match value {
+            Value::Number(v) => spec.set(&self.key, *v),
+            Value::Name(n) => spec.set_name(&self.key, n),
+        }
+    }
+
+    /// "FROM to TO" or "A, B".
+    fn describe(&self) -> String {
+        match &self.sweep {
+            Sweep::Range { from, to, .. } => format!("from {from} to {to}"),
+            Sweep::Names(names) => names.join(", "),
+        }
     }
 }
 
-/// What one run of the sweep reports.
+/// What one case of the sweep reports.
 #[derive(Clone, Debug)]
 pub struct SweepRow {
+    /// The case's value of each key, in the order the keys were given.
+    pub values: Vec<Value>,
+    /// The first key's number (NaN for a name): a one-key range's value.
     pub value: f64,
     pub outcome: Result<Summary, String>,
 }
@@ -93,8 +166,9 @@ pub struct Summary {
     pub energy_drift: f64,
     pub steps: usize,
     pub wall_s: f64,
-    /// Beam scenes: per probe (name, w_min, w_max, amplitude after the disk left or NaN).
-    pub probes: Vec<(String, f64, f64, f64)>,
+    /// Beam scenes: per probe (name, w_min, w_max, amplitude after the disk left or NaN,
+    /// largest |vertical acceleration|).
+    pub probes: Vec<(String, f64, f64, f64, f64)>,
     /// With a disk: (rn_min, rn_max, left_track_t or NaN).
     pub disk: Option<(f64, f64, f64)>,
 }
@@ -110,7 +184,12 @@ fn summarise(r: &Run) -> Summary {
                     (l.min(v), h.max(v))
                 });
                 let after = b.amplitude_after_exit(k).unwrap_or(f64::NAN);
-                probes.push((p.name.clone(), lo, hi, after));
+                let a_max = b
+                    .rows
+                    .iter()
+                    .map(|row| row.accelerations[k].abs())
+                    .fold(0.0, f64::max);
+                probes.push((p.name.clone(), lo, hi, after, a_max));
             }
             let on: Vec<_> = b.rows.iter().filter_map(|row| row.disk).collect();
             if !on.is_empty() {
@@ -143,49 +222,120 @@ fn summarise(r: &Run) -> Summary {
     }
 }
 
-/// Run the scene at every value of the setting, on every core.
+/// Run the scene at every value of one setting, on every core.
 pub fn run_sweep(
     spec: &SceneSpec,
     setting: &Setting,
     over: &Overrides,
     show_progress: bool,
 ) -> Result<Vec<SweepRow>, Error> {
+    run_grid(spec, std::slice::from_ref(setting), over, show_progress)
+}
+
+/// Run the scene at every combination of the settings' values, on every core.
+pub fn run_grid(
+    spec: &SceneSpec,
+    settings: &[Setting],
+    over: &Overrides,
+    show_progress: bool,
+) -> Result<Vec<SweepRow>, Error> {
     let planner = Planner::default();
-    let at = |value: f64| {
+    let cases = settings
+        .iter()
+        .try_fold(1_usize, |n, s| n.checked_mul(s.all().len()))
+        .filter(|&n| n <= MAX_CASES)
+        .ok_or_else(|| {
+            Error::Input(format!(
+                "the --set options make more than {MAX_CASES} cases; sweep fewer values"
+            ))
+        })?;
+    // A key the scene cannot hold, a value it cannot take (a fraction for an element count,
+    // a name the key does not know), is the command's error, not every run's.
+    for s in settings {
+        for value in s.all() {
+            s.apply(&mut spec.clone(), &value)
+                .map_err(|e| Error::Input(format!("--set {}: {e}", s.key)))?;
+        }
+    }
+    let mut grid: Vec<Vec<Value>> = vec![Vec::new()];
+    for s in settings {
+        grid = grid
+            .into_iter()
+            .flat_map(|case| {
+                s.all().into_iter().map(move |v| {
+                    let mut c = case.clone();
+                    c.push(v);
+                    c
+                })
+            })
+            .collect();
+    }
+    debug_assert_eq!(grid.len(), cases);
+    let at = |case: &[Value]| {
         let mut changed = spec.clone();
-        changed.set(&setting.key, value)?;
+        for (s, v) in settings.iter().zip(case) {
+            s.apply(&mut changed, v)?;
+        }
         planner.plan(&changed)
     };
-    // A key the scene cannot hold, a value it cannot take (a fraction for an element count),
-    // or a scene that fails at both ends of the range is the command's error, not every run's.
-    let command_error = |e: Error| Error::Input(format!("--set {}: {e}", setting.key));
-    let values = setting.values();
-    for &value in &values {
-        spec.clone()
-            .set(&setting.key, value)
-            .map_err(command_error)?;
+    // A scene that fails at both ends of a one-key range is the command's error.
+    if let [s] = settings {
+        let all = s.all();
+        if let (Err(e), Err(_)) = (at(&all[..1]), at(&all[all.len() - 1..])) {
+            return Err(Error::Input(format!("--set {}: {e}", s.key)));
+        }
     }
-    if let (Err(e), Err(_)) = (at(setting.from), at(setting.to)) {
-        return Err(command_error(e));
-    }
-    let outcomes = super::parallel::map(&values, show_progress, |&value| {
-        at(value)
+    let outcomes = super::parallel::map(&grid, show_progress, |case| {
+        at(case)
             .and_then(|scene| run::run(&scene, over, false))
             .map(|r| summarise(&r))
             .map_err(|e| e.to_string())
     });
-    let mut rows: Vec<SweepRow> = values
+    let mut rows: Vec<SweepRow> = grid
         .into_iter()
         .zip(outcomes)
-        .map(|(value, outcome)| SweepRow { value, outcome })
+        .map(|(values, outcome)| SweepRow {
+            value: match values.first() {
+                Some(Value::Number(v)) => *v,
+                _ => f64::NAN,
+            },
+            values,
+            outcome,
+        })
         .collect();
-    rows.sort_by(|a, b| a.value.total_cmp(&b.value));
+    // Numbers ascending within each key, names in the order given, keys in the order given.
+    let rank = |row: &SweepRow| -> Vec<f64> {
+        row.values
+            .iter()
+            .zip(settings)
+            .map(|(v, s)| match (v, &s.sweep) {
+                (Value::Number(x), _) => *x,
+                (Value::Name(n), Sweep::Names(names)) => {
+                    names.iter().position(|m| m == n).unwrap_or(0) as f64
+                }
+                (Value::Name(_), Sweep::Range { .. }) => 0.0,
+            })
+            .collect()
+    };
+    rows.sort_by(|a, b| {
+        rank(a)
+            .iter()
+            .zip(rank(b).iter())
+            .map(|(x, y)| x.total_cmp(y))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
     Ok(rows)
 }
 
-/// `sweep.csv` (one row per run) and `sweep.svg` (the probes' extreme deflections, or the
-/// disk's normal reaction on a rigid curve, against the parameter).
+/// `sweep.csv` (one row per case) and `sweep.svg`: the probes' extreme deflections (or, on a
+/// rigid curve, the disk's normal reaction) against the first key; over a train's speed and
+/// its HSLM names, the deck acceleration and deflection per train with their envelope.
 pub fn write_sweep(rows: &[SweepRow], setting: &Setting, dir: &Path) -> Result<(), Error> {
+    write_grid(rows, std::slice::from_ref(setting), dir)
+}
+
+pub fn write_grid(rows: &[SweepRow], settings: &[Setting], dir: &Path) -> Result<(), Error> {
     std::fs::create_dir_all(dir).map_err(|e| crate::output::io_error(dir, e))?;
     let probe_names: Vec<String> = rows
         .iter()
@@ -195,19 +345,34 @@ pub fn write_sweep(rows: &[SweepRow], setting: &Setting, dir: &Path) -> Result<(
         });
     write(
         &dir.join("sweep.csv"),
-        &sweep_csv(rows, setting, &probe_names),
+        &sweep_csv(rows, settings, &probe_names),
     )?;
-    sweep_chart(rows, setting, &probe_names, dir)
+    match settings {
+        [speed, names] | [names, speed]
+            if matches!(speed.sweep, Sweep::Range { .. })
+                && matches!(names.sweep, Sweep::Names(_))
+                && !probe_names.is_empty() =>
+        {
+            let x = settings.iter().position(|s| s == speed).unwrap_or(0);
+            train_charts(rows, speed, x, &probe_names[0], dir)
+        }
+        _ => sweep_chart(rows, &settings[0], &probe_names, dir),
+    }
 }
 
-/// One row per run: its value, status, stop, solver effort, and the disk's and probes' extremes.
-fn sweep_csv(rows: &[SweepRow], setting: &Setting, probe_names: &[String]) -> String {
+/// One row per case: its values, status, stop, solver effort, and the disk's and probes'
+/// extremes.
+fn sweep_csv(rows: &[SweepRow], settings: &[Setting], probe_names: &[String]) -> String {
+    let keys: Vec<&str> = settings.iter().map(|s| s.key.as_str()).collect();
     let mut csv = format!(
         "{},status,stopped,t_end,energy_drift,steps,wall_s,disk.rn_min,disk.rn_max,disk.left_track_t",
-        setting.key
+        keys.join(",")
     );
     for p in probe_names {
-        let _ = write!(csv, ",{p}.w_min,{p}.w_max,{p}.w_amplitude_after_exit");
+        let _ = write!(
+            csv,
+            ",{p}.w_min,{p}.w_max,{p}.w_amplitude_after_exit,{p}.a_max"
+        );
     }
     csv.push('\n');
     let cell = |v: f64| {
@@ -218,13 +383,14 @@ fn sweep_csv(rows: &[SweepRow], setting: &Setting, probe_names: &[String]) -> St
         }
     };
     for r in rows {
+        let values: Vec<String> = r.values.iter().map(|v| v.to_string()).collect();
+        let values = values.join(",");
         match &r.outcome {
             Ok(s) => {
                 let (lo, hi, left) = s.disk.unwrap_or((f64::NAN, f64::NAN, f64::NAN));
                 let _ = write!(
                     csv,
-                    "{},ok,{},{},{},{},{},{},{},{}",
-                    r.value,
+                    "{values},ok,{},{},{},{},{},{},{},{}",
                     s.stop,
                     s.t_end,
                     s.energy_drift,
@@ -235,24 +401,102 @@ fn sweep_csv(rows: &[SweepRow], setting: &Setting, probe_names: &[String]) -> St
                     cell(left)
                 );
                 for p in &s.probes {
-                    let _ = write!(csv, ",{},{},{}", p.1, p.2, cell(p.3));
+                    let _ = write!(csv, ",{},{},{},{}", p.1, p.2, cell(p.3), p.4);
                 }
             }
             Err(e) => {
-                let _ = write!(
-                    csv,
-                    "{},\"failed: {}\",,,,,,,,",
-                    r.value,
-                    e.replace('"', "'")
-                );
+                let _ = write!(csv, "{values},\"failed: {}\",,,,,,,,", e.replace('"', "'"));
                 for _ in probe_names {
-                    csv.push_str(",,,");
+                    csv.push_str(",,,,");
                 }
             }
         }
         csv.push('\n');
     }
     csv
+}
+
+/// Over a train's speed (the key at position `x` of each case) and a list of names: the
+/// probe's largest acceleration and deflection against speed, a line per name, their
+/// envelope, and on the acceleration figure EN 1991-2's limit for ballasted track.
+fn train_charts(
+    rows: &[SweepRow],
+    speed: &Setting,
+    x: usize,
+    probe: &str,
+    dir: &Path,
+) -> Result<(), Error> {
+    let name_of = |r: &SweepRow| r.values[1 - x].to_string();
+    let mut names: Vec<String> = Vec::new();
+    for r in rows {
+        if !names.contains(&name_of(r)) {
+            names.push(name_of(r));
+        }
+    }
+    for (file, what, pick) in [
+        (
+            "sweep.svg",
+            format!("{probe}: largest |a| (m/s²)"),
+            (|s: &Summary| s.probes[0].4) as fn(&Summary) -> f64,
+        ),
+        (
+            "sweep-deflection.svg",
+            format!("{probe}: largest |w| (m)"),
+            |s: &Summary| s.probes[0].1.abs().max(s.probes[0].2.abs()),
+        ),
+    ] {
+        let point = |r: &SweepRow| -> Option<(f64, f64)> {
+            let Value::Number(v) = r.values[x] else {
+                return None;
+            };
+            r.outcome.as_ref().ok().map(|s| (v, pick(s)))
+        };
+        let mut series: Vec<(String, Vec<(f64, f64)>)> = names
+            .iter()
+            .map(|n| {
+                (
+                    n.clone(),
+                    rows.iter()
+                        .filter(|r| name_of(r) == *n)
+                        .filter_map(point)
+                        .collect(),
+                )
+            })
+            .collect();
+        let envelope: Vec<(f64, f64)> = speed
+            .values()
+            .iter()
+            .filter_map(|&v| {
+                rows.iter()
+                    .filter(|r| r.values[x] == Value::Number(v))
+                    .filter_map(point)
+                    .map(|p| p.1)
+                    .reduce(f64::max)
+                    .map(|a| (v, a))
+            })
+            .collect();
+        series.push(("envelope".to_string(), envelope));
+        if file == "sweep.svg" {
+            let (lo, hi) = (speed.values()[0], speed.values()[speed.values().len() - 1]);
+            series.push((
+                "EN 1991-2 limit, ballasted track".to_string(),
+                vec![(lo, BALLASTED_LIMIT), (hi, BALLASTED_LIMIT)],
+            ));
+        }
+        let series: Vec<(&str, Vec<(f64, f64)>)> = series
+            .iter()
+            .filter(|(_, pts)| !pts.is_empty())
+            .map(|(n, pts)| (n.as_str(), pts.clone()))
+            .collect();
+        line_chart(
+            &dir.join(file),
+            &format!("sweep over {} per train", speed.key),
+            &speed.key,
+            &what,
+            &series,
+        )?;
+    }
+    Ok(())
 }
 
 /// The probes' lowest deflections and residual amplitudes (or, on a rigid curve, the disk's
@@ -265,6 +509,7 @@ fn sweep_chart(
 ) -> Result<(), Error> {
     let ok: Vec<(f64, &Summary)> = rows
         .iter()
+        .filter(|r| r.value.is_finite())
         .filter_map(|r| r.outcome.as_ref().ok().map(|s| (r.value, s)))
         .collect();
     let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
@@ -337,9 +582,10 @@ mod tests {
 #[derive(clap::Args)]
 pub struct SweepArgs {
     scene: PathBuf,
-    /// KEY=FROM:TO:COUNT, e.g. disk.omega0=-10:-120:111 (any number the scene holds).
-    #[arg(long = "set")]
-    set: String,
+    /// KEY=FROM:TO:COUNT (any number the scene holds, e.g. disk.omega0=-10:-120:111) or
+    /// KEY=NAME,NAME (a name, e.g. train.hslm=A1,A2); several make a grid.
+    #[arg(long = "set", required = true)]
+    set: Vec<String>,
     /// Output folder (default out/<scene name>-sweep).
     #[arg(long)]
     out: Option<PathBuf>,
@@ -357,19 +603,34 @@ pub fn sweep(args: SweepArgs) -> Result<(), Error> {
     } = args;
     let spec = SceneSpec::load(&path)?;
     let scene = Planner::default().plan(&spec)?;
-    let setting = Setting::parse(&set)?;
+    let settings: Vec<Setting> = set
+        .iter()
+        .map(|s| Setting::parse(s))
+        .collect::<Result<_, _>>()?;
+    if let Some(twice) = settings
+        .iter()
+        .enumerate()
+        .find(|(i, s)| settings[..*i].iter().any(|t| t.key == s.key))
+    {
+        return Err(Error::Input(format!(
+            "--set {} is given twice; sweep each key once",
+            twice.1.key
+        )));
+    }
     let over = solver.overrides(&scene)?;
-    let rows = run_sweep(&spec, &setting, &over, true)?;
+    let rows = run_grid(&spec, &settings, &over, true)?;
     let dir = out.unwrap_or_else(|| Path::new("out").join(format!("{}-sweep", scene.name)));
-    write_sweep(&rows, &setting, &dir)?;
+    write_grid(&rows, &settings, &dir)?;
     let failed = rows.iter().filter(|r| r.outcome.is_err()).count();
+    let over_keys: Vec<String> = settings
+        .iter()
+        .map(|s| format!("{} {}", s.key, s.describe()))
+        .collect();
     say!(
-        "{}: {} runs over {} from {} to {}, {} failed; wrote {}",
+        "{}: {} runs over {}, {} failed; wrote {}",
         scene.name,
         rows.len(),
-        setting.key,
-        setting.from,
-        setting.to,
+        over_keys.join(" × "),
         failed,
         dir.display()
     );

@@ -79,10 +79,8 @@ impl<'a> Ledger<'a> {
                 (0.0, 0.0)
             };
             check = EnergyCheck::new(dk + dp + strain0, dk + dp.abs() + strain0);
-            if !c.disk_in_system() {
-                moving = (0.0, c.power_on_beam(0.0, z0, zd0), 0.0);
-            }
         }
+        moving.1 = Self::moving_power(phase, 0.0, y0);
         let n = phase.loaded.dim();
         let (z0, zd0) = phase.split(y0);
         let mut ledger = Ledger {
@@ -139,16 +137,27 @@ impl<'a> Ledger<'a> {
         (done + 0.5 * (p0 + p) * (t - t0), p)
     }
 
-    fn moving_work(&self, phase: &Phase, t: f64, y: &[f64]) -> f64 {
-        let (t0, p0, done) = self.moving;
-        match phase.coupled {
+    /// The power of the prescribed moving loads on the beam at (t, y): a disk carried at its
+    /// speed, and a train's axles.
+    fn moving_power(phase: &Phase, t: f64, y: &[f64]) -> f64 {
+        let disk = match phase.coupled {
             Some(c) if !c.disk_in_system() => {
                 let (z, zd) = phase.split(y);
-                let p = c.power_on_beam(t, z, zd);
-                done + 0.5 * (p0 + p) * (t - t0)
+                c.power_on_beam(t, z, zd)
             }
-            _ => done,
-        }
+            _ => 0.0,
+        };
+        let train = if phase.loaded.train.is_some() {
+            phase.loaded.train_power(t, &phase.beam_state(y).1)
+        } else {
+            0.0
+        };
+        disk + train
+    }
+
+    fn moving_work(&self, phase: &Phase, t: f64, y: &[f64]) -> f64 {
+        let (t0, p0, done) = self.moving;
+        done + 0.5 * (p0 + Self::moving_power(phase, t, y)) * (t - t0)
     }
 
     /// The terms at an output time, with the disk as observed there; recorded in the check.
@@ -187,12 +196,8 @@ impl<'a> Ledger<'a> {
         self.done += work_since(self.loads, self.t, t, &self.at_loads, &now);
         self.t = t;
         self.at_loads = now;
-        if let Some(c) = phase.coupled.filter(|c| !c.disk_in_system()) {
-            let (z, zd) = phase.split(y);
-            let p = c.power_on_beam(t, z, zd);
-            let w = self.moving_work(phase, t, y);
-            self.moving = (t, p, w);
-        }
+        let w = self.moving_work(phase, t, y);
+        self.moving = (t, Self::moving_power(phase, t, y), w);
         let (kinetic, strain) = Self::beam_energies(phase, y);
         let disk = match phase.coupled {
             Some(c) if c.disk_in_system() => {

@@ -389,7 +389,13 @@ pub fn run(
     let modal = modal_basis(scene, &beam)?;
     let damping = crate::analysis::modes::rayleigh(&beam)
         .map_err(|why| Error::Input(format!("scene {}: {why}", scene.name)))?;
-    let loaded = LoadedBeam::new(&beam, &setup.loads, modal.as_ref(), damping);
+    let loaded = LoadedBeam::new(
+        &beam,
+        &setup.loads,
+        modal.as_ref(),
+        damping,
+        setup.train.as_ref(),
+    );
     let coupled = setup
         .disk
         .clone()

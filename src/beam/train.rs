@@ -1,0 +1,112 @@
+//! A train of axle loads crossing the beam at constant speed: each axle a vertical force that
+//! enters at x = 0 and leaves at x = L (moving forces, the model of EN 1991-2 §6.4 and of
+//! CALDINTAV). The axles are given as distances behind the first, or as one of EN 1991-2's
+//! High Speed Load Models HSLM-A1…A10 (Annex E, Table E.1, Figure E.2).
+
+/// HSLM-A trains: (intermediate coaches N, coach length D, bogie axle spacing d, axle force P).
+const HSLM_A: [(usize, f64, f64, f64); 10] = [
+    (18, 18.0, 2.0, 170.0e3),
+    (17, 19.0, 3.5, 200.0e3),
+    (16, 20.0, 2.0, 180.0e3),
+    (15, 21.0, 3.0, 190.0e3),
+    (14, 22.0, 2.0, 170.0e3),
+    (13, 23.0, 2.0, 180.0e3),
+    (13, 24.0, 2.0, 190.0e3),
+    (12, 25.0, 2.5, 190.0e3),
+    (11, 26.0, 2.0, 210.0e3),
+    (11, 27.0, 2.0, 210.0e3),
+];
+
+/// A power car's axles, from its first.
+const POWER_CAR: [f64; 4] = [0.0, 3.0, 14.0, 17.0];
+/// From a power car's last axle to the first trailer axle, and from the last trailer axle to
+/// the rear power car.
+const POWER_CAR_GAP: f64 = 3.525;
+
+/// The axles of HSLM-Ak (k from 1 to 10), as distances behind the first, and the axle force.
+/// A power car, N + 3 trailer bogies with centres D apart (each two axles d apart), and the
+/// mirror power car: 2N + 14 axles.
+pub fn hslm(name: &str) -> Option<(Vec<f64>, f64)> {
+    let k: usize = name.strip_prefix('A')?.parse().ok()?;
+    let &(n, coach, bogie, force) = HSLM_A.get(k.checked_sub(1)?)?;
+    let mut axles = POWER_CAR.to_vec();
+    let first = POWER_CAR[3] + POWER_CAR_GAP;
+    for b in 0..n + 3 {
+        let start = first + b as f64 * coach;
+        axles.extend([start, start + bogie]);
+    }
+    let rear = axles[axles.len() - 1] + POWER_CAR_GAP;
+    axles.extend(POWER_CAR.iter().map(|x| rear + x));
+    Some((axles, force))
+}
+
+/// The names `hslm` knows.
+pub const HSLM_NAMES: &str = "A1 to A10";
+
+/// How the axles act on the beam.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TrainModel {
+    /// Constant vertical forces.
+    MovingForce,
+}
+
+#[derive(Clone, Debug)]
+pub struct Train {
+    /// What the scene calls it: the HSLM name, or "axles".
+    pub name: String,
+    /// Distances behind the first axle (m), increasing from 0.
+    pub axles: Vec<f64>,
+    /// Force per axle (N, acting in −Y).
+    pub loads: Vec<f64>,
+    /// m/s; the first axle is at x = 0 at t = 0.
+    pub speed: f64,
+    pub model: TrainModel,
+}
+
+impl Train {
+    /// From the first axle to the last.
+    pub fn length(&self) -> f64 {
+        self.axles.last().copied().unwrap_or(0.0)
+    }
+
+    /// Where axle a is at time t (it is on a beam of length L while 0 ≤ x ≤ L).
+    pub fn position(&self, a: usize, t: f64) -> f64 {
+        self.speed * t - self.axles[a]
+    }
+
+    /// The axles on a beam of length `length` at time t, with their positions and forces.
+    pub fn on_beam(&self, t: f64, length: f64) -> impl Iterator<Item = (f64, f64)> + '_ {
+        (0..self.axles.len()).filter_map(move |a| {
+            let x = self.position(a, t);
+            (0.0..=length).contains(&x).then(|| (x, self.loads[a]))
+        })
+    }
+
+    /// When the last axle leaves a beam of length `length`.
+    pub fn gone(&self, length: f64) -> f64 {
+        (self.length() + length) / self.speed
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// EN 1991-2 Table E.1 gives each train 2N + 14 axles: A1 50, A2 48, A3 46, A4 44, A5 42,
+    /// A6 40, A7 40, A8 38, A9 36, A10 36; the axles increase, and each train is its own
+    /// mirror image (power car, coaches, power car).
+    #[test]
+    fn hslm_axle_counts_and_symmetry() {
+        let counts = [50, 48, 46, 44, 42, 40, 40, 38, 36, 36];
+        for (k, &count) in counts.iter().enumerate() {
+            let (axles, _) = hslm(&format!("A{}", k + 1)).expect("a known train");
+            assert_eq!(axles.len(), count, "A{}", k + 1);
+            assert!(axles.windows(2).all(|w| w[1] > w[0]));
+            let length = axles[axles.len() - 1];
+            for (a, b) in axles.iter().zip(axles.iter().rev()) {
+                assert!((a + b - length).abs() < 1e-9, "A{} is not symmetric", k + 1);
+            }
+        }
+        assert!(hslm("A0").is_none() && hslm("A11").is_none() && hslm("B1").is_none());
+    }
+}
