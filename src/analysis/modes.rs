@@ -44,6 +44,8 @@ fn dense(m: &Sparse) -> DMatrix<f64> {
 const KEPT: usize = 8;
 /// Largest mesh (unknowns) whose dense eigensolution is kept: n² doubles each.
 const KEPT_LIMIT: usize = 400;
+/// Past [`KEPT_LIMIT`] unknowns, this many modes or fewer come from the sparse path.
+const FEW_MODES: usize = 48;
 
 type Eigen = std::sync::Arc<(Vec<f64>, DMatrix<f64>)>;
 
@@ -112,7 +114,10 @@ fn dense_all(beam: &Beam) -> Option<Eigen> {
 /// does not settle. Beyond [`DENSE_LIMIT`] unknowns `count` is capped at [`MAX_SPARSE_MODES`].
 pub fn modes(beam: &Beam, count: usize) -> Option<Modes> {
     let n = beam.dim();
-    let (lambda, shapes) = if n <= DENSE_LIMIT {
+    // A few modes of a mesh past what is kept are found by subspace iteration: a dense
+    // solution would cost n³ for every run that asks (the acceleration filter asks each run).
+    let few = n > KEPT_LIMIT && count <= FEW_MODES;
+    let (lambda, shapes) = if n <= DENSE_LIMIT && !few {
         let all = dense_all(beam)?;
         let count = count.min(n);
         (

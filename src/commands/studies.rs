@@ -80,6 +80,7 @@ pub fn run_all(
         .collect();
     compare_parabola(&rolling, figures)?;
     bridge_speed_sweep(studies, figures)?;
+    hslm_sweep(studies, out, figures)?;
     if with_work_precision {
         work_precision(studies, out, figures)?;
     }
@@ -130,6 +131,41 @@ pub fn study_plan(scene: &Scene) -> tradeoff::Plan {
             .collect();
     }
     plan
+}
+
+/// The HSLM study (`hslm-15m.yaml`) as EN 1991-2 §6.4 asks it: every train A1–A10 at every
+/// speed from 40 to 120 m/s in steps of 1 m/s, 810 runs; the deck acceleration and deflection
+/// against speed, a line per train and their envelope (REPORT.md, "The HSLM sweep").
+fn hslm_sweep(studies: &Path, out: &Path, figures: &Path) -> Result<(), Error> {
+    let file = studies.join("hslm-15m.yaml");
+    if !file.exists() {
+        return Ok(());
+    }
+    let spec = SceneSpec::load(&file)?;
+    let names: Vec<String> = (1..=10).map(|k| format!("A{k}")).collect();
+    let settings = [
+        Setting::parse("train.speed=40:120:81")?,
+        Setting::parse(&format!("train.hslm={}", names.join(",")))?,
+    ];
+    let started = std::time::Instant::now();
+    let rows = super::sweep::run_grid(&spec, &settings, &Overrides::default(), true)?;
+    let dir = out.join("hslm-15m-sweep");
+    super::sweep::write_grid(&rows, &settings, &dir)?;
+    say!(
+        "{:<14} {} runs in {:.1} s; wrote {}",
+        "hslm-15m",
+        rows.len(),
+        started.elapsed().as_secs_f64(),
+        dir.display()
+    );
+    for (from, to) in [
+        ("sweep.svg", "hslm-15m-acceleration.svg"),
+        ("sweep-deflection.svg", "hslm-15m-deflection.svg"),
+    ] {
+        let to = figures.join(to);
+        std::fs::copy(dir.join(from), &to).map_err(|e| io_error(&to, e))?;
+    }
+    Ok(())
 }
 
 /// Compute every study's work–precision reference again, two at a time, and store each beside
