@@ -7,7 +7,8 @@
 //!   correction of the modes left out, against the linear beam it truncates.
 //! - Energy: with the consistent coupling and no damping the linear and modal beams conserve
 //!   disk + beam energy as the exact one does, the drift shrinking with rtol.
-//! - The moving force on the modal beam against Frýba's series.
+//! - (The moving force on the modal beam against Frýba's series is in `disk_on_beam.rs`,
+//!   beside the exact beam's.)
 //! - The automatic choice: the bridge comes out modal, the rubber beam and the zip-line exact,
 //!   each with the measured reason, and the linear model's error on those two stated.
 
@@ -195,30 +196,6 @@ fn linear_and_modal_beams_conserve_energy_with_the_consistent_coupling() {
         assert!(tight * 3.0 < loose, "{model}: {loose:.2e} → {tight:.2e}");
         assert!(tight < 1e-5, "{model}: drift {tight:.2e}");
     }
-}
-
-/// The moving force on the modal bridge with shear made stiff (G × 10⁴), against Frýba's
-/// modal series (`analysis::moving_load`; the same comparison the exact model passes in
-/// `disk_on_beam.rs`), within 0.5 % of the peak.
-#[test]
-fn modal_moving_force_matches_frybas_series() {
-    let scene = with_model(
-        "bridge-d44.yaml",
-        "modal",
-        &[
-            Set::Number("track.beam.G", 81.0e13),
-            Set::Name("disk.coupling", "moving-force"),
-            Set::Number("disk.patch", 0.05),
-            Set::Number("duration", 2.0),
-            Set::LeftOut("output.shapes"),
-        ],
-    );
-    let r = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-10);
-    let (worst, peak) = common::midspan_against_fryba(&r);
-    assert!(
-        worst <= 5e-3 * peak,
-        "midspan off Frýba's series by {worst:.3e} m, peak {peak:.3e} m"
-    );
 }
 
 /// Left to choose, the bridges come out modal and the rubber beam and the zip-line exact,

@@ -12,7 +12,6 @@
 mod common;
 
 use common::{changed, run_beam, Set};
-use rollbeam::analysis::moving_load::MovingForce;
 use rollbeam::analysis::statics;
 use rollbeam::beam::Beam;
 use rollbeam::ode::Method;
@@ -39,36 +38,22 @@ fn damped_moving_force_matches_the_damped_series_on_every_model() {
         let scene = changed(
             "bridge-d44.yaml",
             &[
-                Set::Name("track.beam.model", model),
-                Set::Number("track.beam.G", 81.0e13),
-                Set::Number("track.beam.damping.ratio", 0.02),
-                Set::Name("disk.coupling", "moving-force"),
-                Set::Number("disk.patch", 0.05),
-                Set::Number("duration", 3.0),
-            ],
+                common::FRYBA_BRIDGE.as_slice(),
+                &[
+                    Set::Name("track.beam.model", model),
+                    Set::Number("track.beam.damping.ratio", 0.02),
+                    Set::Number("duration", 3.0),
+                ],
+            ]
+            .concat(),
         );
         let r = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-10);
         let damping = r.damping.expect("the run is damped");
-        let k = probe(&r, "mid");
-        let series = MovingForce {
-            p: 1500.0 * 9.81,
-            span: 20.0,
-            ei: 210.0e9 * 43190.0e-8,
-            mu: 7850.0 * 181.0e-4,
-            v: 17.6,
-        };
-        let midspan = |t: f64| series.deflection_damped(10.0, t, 301, damping.alpha, damping.beta);
-        let peak = r
-            .rows
-            .iter()
-            .map(|row| midspan(row.t).abs())
-            .fold(0.0, f64::max);
+        let series = common::fryba_bridge();
+        let (worst, peak) = common::midspan_against(&r, |t| {
+            series.deflection_damped(10.0, t, 301, damping.alpha, damping.beta)
+        });
         assert!(peak > 0.0, "{model}: the series is {peak}");
-        let worst = r
-            .rows
-            .iter()
-            .map(|row| (row.probes[k].w + midspan(row.t)).abs())
-            .fold(0.0, f64::max);
         let last = r.rows.last().unwrap();
         let scale = r.rows.iter().map(|row| row.work.abs()).fold(0.0, f64::max);
         let drift = r.header.energy.max_rel_drift();
