@@ -1168,9 +1168,15 @@ fn beam_scene(
         Some(t) => Some(train(c, raw, t)?),
     };
     // With a train `duration` is the free vibration after its last axle has left.
-    let duration = train
-        .as_ref()
-        .map_or(duration, |t| t.gone(length) + duration);
+    let duration = match (&train, &raw.train) {
+        (Some(t), Some(file)) => c.derived(
+            file.value.speed.referenced.line(),
+            "train.speed",
+            "the run's length, the crossing plus `duration`,",
+            t.gone(length) + duration,
+        )?,
+        _ => duration,
+    };
     let (probes, shapes, magnify) = outputs(c, raw, length, duration)?;
     let rho_inf = match raw.solver.as_ref().and_then(|s| s.rho_inf.as_ref()) {
         None => 1.0,

@@ -618,6 +618,11 @@ fn bad_trains() {
         );
     }
     rejected(
+        "speed-subnormal",
+        &train("  hslm: A1\n  speed: 1.0e-320\n"),
+        &["train.speed", "infinite"],
+    );
+    rejected(
         "train-and-disk",
         &beam_scene(
             &[],

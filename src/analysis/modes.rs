@@ -68,12 +68,21 @@ pub fn rayleigh(beam: &Beam) -> Result<Option<Rayleigh>, String> {
             .ok_or("the natural modes the damping ratio is anchored on could not be computed")?
             .omega
     };
-    Rayleigh::resolve(spec, &omega).map(Some).ok_or_else(|| {
-        format!(
+    if omega.len() < needed {
+        return Err(format!(
             "`track.beam.damping.modes` names mode {needed}, but the mesh has {} modes",
             beam.dim()
-        )
-    })
+        ));
+    }
+    let r = Rayleigh::resolve(spec, &omega)
+        .filter(|r| r.alpha.is_finite() && r.beta.is_finite() && r.alpha >= 0.0 && r.beta >= 0.0);
+    match r {
+        Some(r) if needed == 0 || omega[..needed].iter().all(|w| w.is_normal()) => Ok(Some(r)),
+        _ => Err(format!(
+            "`track.beam.damping` is anchored on modes whose frequencies ({}) are not positive numbers: the beam moves as a rigid body, or its values are too extreme",
+            crate::error::short_numbers(&format!("{:?} rad/s", &omega[..needed]))
+        )),
+    }
 }
 
 /// Every eigenpair of the beam's K₀ φ = λ M φ, dense, from the kept ones where the same mesh

@@ -224,6 +224,7 @@ fn damping(f: &mut fmt::Formatter<'_>, b: &Beam) -> fmt::Result {
         .map(|m| {
             m.omega
                 .iter()
+                .filter(|w| w.is_normal())
                 .map(|w| format!("{:.3} Hz {:.4}", w / std::f64::consts::TAU, r.ratio_at(*w)))
                 .collect::<Vec<_>>()
                 .join(", ")
