@@ -29,6 +29,8 @@ pub struct LoadedBeam<'a> {
     segment: Cell<f64>,
     /// Internal forces, kept so that each force evaluation does not allocate.
     scratch: RefCell<Vec<f64>>,
+    /// C v, in the model's unknowns, kept for the same reason.
+    damped: RefCell<Vec<f64>>,
 }
 
 impl<'a> LoadedBeam<'a> {
@@ -65,7 +67,16 @@ impl<'a> LoadedBeam<'a> {
             train,
             segment: Cell::new(f64::NAN),
             scratch: RefCell::new(vec![0.0; beam.dim()]),
+            damped: RefCell::new(vec![0.0; modal.map_or(beam.dim(), |m| m.dim())]),
         }
+    }
+
+    /// `then` of the damping force C v at the model's velocities v; `None` undamped.
+    fn with_damping_force<R>(&self, v: &[f64], then: impl FnOnce(&[f64]) -> R) -> Option<R> {
+        let (c, _) = self.damping.as_ref()?;
+        let mut cv = self.damped.borrow_mut();
+        crate::linalg::mul(c, v, &mut cv);
+        Some(then(&cv))
     }
 
     /// The loads acting at time t (within the current stretch, if one is set).
@@ -145,12 +156,8 @@ impl<'a> LoadedBeam<'a> {
 
     /// The power the damping takes at the model's velocities v: vᵀ C v.
     pub fn dissipation(&self, v: &[f64]) -> f64 {
-        let Some((c, _)) = &self.damping else {
-            return 0.0;
-        };
-        let mut cv = vec![0.0; v.len()];
-        crate::linalg::mul(c, v, &mut cv);
-        v.iter().zip(&cv).map(|(a, b)| a * b).sum()
+        self.with_damping_force(v, |cv| v.iter().zip(cv).map(|(a, b)| a * b).sum())
+            .unwrap_or(0.0)
     }
 
     /// The beam's own weight as the model's unknowns feel it, dotted with their displacements:
@@ -248,11 +255,9 @@ impl Structure for LoadedBeam<'_> {
                 }
             }
         }
-        if let Some((c, _)) = &self.damping {
-            let mut cv = vec![0.0; v.len()];
-            crate::linalg::mul(c, v, &mut cv);
-            f.iter_mut().zip(&cv).for_each(|(a, b)| *a -= b);
-        }
+        self.with_damping_force(v, |cv| {
+            f.iter_mut().zip(cv).for_each(|(a, b)| *a -= b);
+        });
     }
     fn damping(&self) -> Option<Cow<'_, Sparse>> {
         self.damping.as_ref().map(|(c, _)| Cow::Borrowed(c))

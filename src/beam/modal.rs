@@ -39,14 +39,13 @@ impl ModalBasis {
     /// From the lowest modes of the linear beam with stiffness `k0` and mass `mass`.
     pub fn new(shapes: DMatrix<f64>, omega: Vec<f64>, k0: &Sparse, mass: &Sparse) -> ModalBasis {
         let m = omega.len();
-        let dense_mass = {
-            let mut d = DMatrix::zeros(mass.nrows(), mass.ncols());
-            for (j, (i, v)) in crate::linalg::entries(mass) {
-                d[(i, j)] += v;
-            }
-            d
-        };
-        let amplitudes = shapes.transpose() * dense_mass;
+        // Φᵀ M row by row, M sparse: no n × n matrix for a mesh of any size.
+        let mut amplitudes = DMatrix::zeros(m, shapes.nrows());
+        let mut column = vec![0.0; shapes.nrows()];
+        for k in 0..m {
+            crate::linalg::mul(mass, shapes.column(k).as_slice(), &mut column);
+            amplitudes.row_mut(k).copy_from_slice(&column);
+        }
         let diagonal = |values: &mut dyn Iterator<Item = f64>| {
             let mut a = Assembly::new(m);
             for (k, v) in values.enumerate() {
@@ -165,10 +164,5 @@ impl ModalBasis {
                     .fold(0.0_f64, |m, v| m.max(v.abs()))
             })
             .collect()
-    }
-
-    /// Whether the static correction is available (the supports hold the beam).
-    pub fn corrects(&self) -> bool {
-        self.flexibility.is_some()
     }
 }

@@ -74,14 +74,6 @@ impl Train {
         self.speed * t - self.axles[a]
     }
 
-    /// The axles on a beam of length `length` at time t, with their positions and forces.
-    pub fn on_beam(&self, t: f64, length: f64) -> impl Iterator<Item = (f64, f64)> + '_ {
-        (0..self.axles.len()).filter_map(move |a| {
-            let x = self.position(a, t);
-            (0.0..=length).contains(&x).then(|| (x, self.loads[a]))
-        })
-    }
-
     /// When the last axle leaves a beam of length `length`.
     pub fn gone(&self, length: f64) -> f64 {
         (self.length() + length) / self.speed

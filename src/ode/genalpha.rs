@@ -35,7 +35,7 @@ const MAX_NEWTON: usize = 10;
 const NEWTON_KAPPA: f64 = 0.01;
 
 /// q, v, a and f(t, q, v) at one time, f on the side of the current segment.
-#[derive(Clone)]
+#[derive(Default)]
 struct State {
     q: Vec<f64>,
     v: Vec<f64>,
@@ -252,15 +252,30 @@ impl GenAlphaStepper {
         full: bool,
         ctx: &mut Ctx,
     ) -> Result<Option<f64>, SolveError> {
-        let n = self.now.q.len();
-        let c = self.c;
-        let t1 = t + h;
         let q0 = std::mem::take(&mut self.now.q);
         let factored = self.factor(p, t, &q0, h, ctx);
         self.now.q = q0;
         factored?;
-        let start = self.now.clone();
-        let s = &start;
+        // The start is read while a full Newton refactorises: taken out of `self` meanwhile.
+        let start = std::mem::take(&mut self.now);
+        let out = self.step_from(p, &start, t, h, full, ctx);
+        self.now = start;
+        out
+    }
+
+    /// [`Self::step`] from the state `s` at t, with the iteration matrix factorised.
+    fn step_from(
+        &mut self,
+        p: &dyn Structure,
+        s: &State,
+        t: f64,
+        h: f64,
+        full: bool,
+        ctx: &mut Ctx,
+    ) -> Result<Option<f64>, SolveError> {
+        let n = s.q.len();
+        let c = self.c;
+        let t1 = t + h;
         let mut a1 = s.a.clone();
         let mut q1 = vec![0.0; n];
         let mut v1 = vec![0.0; n];
