@@ -31,7 +31,7 @@ const FALLBACK_ELEMENTS: usize = 10;
 /// Elements of the mesh the modal estimate is made on.
 const ESTIMATION_ELEMENTS: usize = 16;
 /// The confirming refinement stops doubling past this many nodes (the modal check is dense).
-const MAX_NODES: usize = 400;
+pub(crate) const MAX_NODES: usize = 400;
 
 /// Whether a load is switched on or off during the run (rather than carried throughout from a
 /// static start): it then excites the modes.

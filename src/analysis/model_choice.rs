@@ -14,10 +14,12 @@
 //!    excites up to the last mode that adds more than ε/4 of the peak, K. One refinement
 //!    confirms it: modes K+1 … 2K together must add less than ε/4, or K doubles (ε/8 both,
 //!    where a load is switched during the run: each mode it excites swings by its whole
-//!    static part about it, undamped). The
+//!    static part about it, undamped). On a mesh past 400 nodes the estimate is made on
+//!    the finest one within them. The
 //!    static correction of the modes left out (`beam/modal.rs`) holds their quasi-static
 //!    part, so what the count must carry is the dynamics.
 
+use crate::analysis::discretisation::MAX_NODES;
 use crate::analysis::modes::modes;
 use crate::analysis::statics;
 use crate::beam::load::{BeamStart, PointLoad};
@@ -87,8 +89,16 @@ fn mode_count(
     accuracy: f64,
     switched: bool,
 ) -> (usize, String) {
+    // The estimate is dense: as for the mesh's own choice, no mesh past MAX_NODES nodes is
+    // analysed; a finer mesh is estimated on the coarsest one within it.
+    let elements = if spec.elements * spec.order < MAX_NODES {
+        spec.elements
+    } else {
+        ((MAX_NODES - 1) / spec.order).max(1)
+    };
     let beam = Beam::new(BeamSpec {
         model: BeamModel::Linear,
+        elements,
         ..spec.clone()
     });
     let n = beam.dim();
