@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use serde_saphyr::{Location, Spanned};
 
 use crate::analysis::discretisation::{Discretisation, DEFAULT_ACCURACY, DEFAULT_ORDER};
@@ -25,28 +25,37 @@ use crate::error::{quote, Error};
 use crate::ode::Method;
 use crate::rolling::Rolling;
 
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct SceneFile {
+    #[serde(skip_serializing_if = "Option::is_none")]
     name: Option<Spanned<String>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     gravity: Option<Spanned<f64>>,
     duration: Spanned<f64>,
     track: Spanned<TrackFile>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     disk: Option<Spanned<DiskFile>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     train: Option<Spanned<TrainFile>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     loads: Option<Spanned<Vec<Spanned<LoadFile>>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     solver: Option<SolverFile>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     output: Option<OutputFile>,
 }
 
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct TrackFile {
+    #[serde(skip_serializing_if = "Option::is_none")]
     curve: Option<Spanned<CurveFile>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     beam: Option<Spanned<BeamFile>>,
 }
 
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 #[allow(non_snake_case)]
 struct BeamFile {
@@ -58,130 +67,173 @@ struct BeamFile {
     A: Spanned<f64>,
     Av: Spanned<f64>,
     I: Spanned<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     depth: Option<Spanned<f64>>,
     supports: Spanned<SupportsFile>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     elements: Option<Spanned<i64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     order: Option<Spanned<i64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     quadrature: Option<Spanned<String>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     initial: Option<Spanned<String>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     model: Option<Spanned<String>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     modes: Option<Spanned<i64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     damping: Option<Spanned<DampingFile>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     self_weight: Option<Spanned<bool>>,
 }
 
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct TrainFile {
+    #[serde(skip_serializing_if = "Option::is_none")]
     hslm: Option<Spanned<String>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     axles: Option<Spanned<Vec<f64>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     load: Option<Spanned<AxleLoads>>,
     speed: Spanned<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     model: Option<Spanned<String>>,
 }
 
 /// One force for every axle, or one each.
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(untagged)]
 enum AxleLoads {
     Each(Vec<f64>),
     All(f64),
 }
 
-#[derive(Clone, Default, Deserialize)]
+#[derive(Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct DampingFile {
+    #[serde(skip_serializing_if = "Option::is_none")]
     ratio: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     modes: Option<Spanned<Vec<i64>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     alpha: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     beta: Option<Spanned<f64>>,
 }
 
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct SupportsFile {
     from: Spanned<String>,
     to: Spanned<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     intermediate: Option<Spanned<Vec<Spanned<f64>>>>,
 }
 
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct LoadFile {
     x: Spanned<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     fx: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     fy: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     mz: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     from: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     until: Option<Spanned<f64>>,
 }
 
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct ProbeFile {
     name: Spanned<String>,
     x: Spanned<f64>,
 }
 
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct CurveFile {
+    #[serde(skip_serializing_if = "Option::is_none")]
     parabola: Option<ParabolaFile>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     line: Option<LineFile>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     expr: Option<ExprFile>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     points: Option<Spanned<Vec<Spanned<[f64; 2]>>>>,
 }
 
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct ParabolaFile {
     k: Spanned<f64>,
 }
 
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct LineFile {
     from: Spanned<[f64; 2]>,
     to: Spanned<[f64; 2]>,
 }
 
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct ExprFile {
     x: Spanned<String>,
     y: Spanned<String>,
 }
 
-#[derive(Clone, Deserialize)]
+#[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct DiskFile {
     mass: Spanned<f64>,
     radius: Spanned<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     s0: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     omega0: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     coupling: Option<Spanned<String>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     formulation: Option<Spanned<String>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     mu: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     patch: Option<Spanned<f64>>,
 }
 
-#[derive(Clone, Default, Deserialize)]
+#[derive(Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct SolverFile {
+    #[serde(skip_serializing_if = "Option::is_none")]
     method: Option<Spanned<String>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     rtol: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     atol: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     rho_inf: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     accuracy: Option<Spanned<f64>>,
 }
 
-#[derive(Clone, Default, Deserialize)]
+#[derive(Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct OutputFile {
+    #[serde(skip_serializing_if = "Option::is_none")]
     interval: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     probes: Option<Spanned<Vec<Spanned<ProbeFile>>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     shapes: Option<Spanned<Vec<Spanned<f64>>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     magnify: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     acceleration_cutoff_hz: Option<Spanned<f64>>,
 }
 
@@ -506,6 +558,13 @@ impl SceneSpec {
         };
         spec.check()?;
         Ok(spec)
+    }
+
+    /// The scene as a scene file: what it was read from with every [`SceneSpec::set`]
+    /// applied. Reading the text back gives the same scene (a planned sweep's case files,
+    /// the Python package's pickled scenes).
+    pub fn to_yaml(&self) -> Result<String, Error> {
+        crate::output::yaml(&self.file)
     }
 
     /// The model the scene names, checked; mesh and tolerances as given.

@@ -19,7 +19,7 @@ use std::path::Path;
 use crate::error::{quote, Error};
 use crate::ode::Method;
 use crate::run::Overrides;
-use crate::scene::{method_names, BeamScene, Scene};
+use crate::scene::{method_names, BeamScene, Scene, SceneSpec};
 
 /// The integrator settings a run or sweep may take from the command line.
 #[derive(clap::Args)]
@@ -34,6 +34,11 @@ pub struct SolverFlags {
 }
 
 impl SolverFlags {
+    /// Whether any flag is given.
+    pub(crate) fn given(&self) -> bool {
+        self.method.is_some() || self.rtol.is_some() || self.atol.is_some()
+    }
+
     /// The flags checked against the scene, as overrides of its own settings.
     fn overrides(&self, scene: &Scene) -> Result<Overrides, Error> {
         Ok(Overrides {
@@ -47,6 +52,21 @@ impl SolverFlags {
             ..Default::default()
         })
     }
+}
+
+/// The integrator settings of the command line written into a scene, so that the scene
+/// alone runs as the command would (a planned sweep's case files).
+pub(crate) fn write_solver(over: &Overrides, spec: &mut SceneSpec) -> Result<(), Error> {
+    if let Some(m) = over.method {
+        spec.set_name("solver.method", m.name())?;
+    }
+    if let Some(r) = over.rtol {
+        spec.set("solver.rtol", r)?;
+    }
+    if let Some(a) = over.atol {
+        spec.set("solver.atol", a)?;
+    }
+    Ok(())
 }
 
 /// A tolerance given on the command line: positive and finite.

@@ -16,34 +16,61 @@ use crate::output::{io_error, plots, write, yaml};
 use crate::scene::{BeamScene, Scene};
 
 #[derive(Serialize)]
-struct ProbeState {
-    x: f64,
-    u: f64,
-    w: f64,
-    phi: f64,
+pub struct ProbeState {
+    pub x: f64,
+    pub u: f64,
+    pub w: f64,
+    pub phi: f64,
 }
 
 #[derive(Serialize)]
-struct Reaction {
-    fx: f64,
-    fy: f64,
-    mz: f64,
+pub struct Reaction {
+    pub fx: f64,
+    pub fy: f64,
+    pub mz: f64,
 }
 
 #[derive(Serialize)]
-struct StaticFile {
-    scene: String,
-    probes: BTreeMap<String, ProbeState>,
+pub struct StaticFile {
+    pub scene: String,
+    pub probes: BTreeMap<String, ProbeState>,
     /// What each support exerts on the beam, global axes.
-    reactions: BTreeMap<String, Reaction>,
-    iterations: usize,
-    load_steps: usize,
+    pub reactions: BTreeMap<String, Reaction>,
+    pub iterations: usize,
+    pub load_steps: usize,
 }
 
 /// Static equilibrium under the loads active at t = 0, the beam's own weight where the scene
 /// puts it on and, with a disk, its weight at s0 (a point force: the static answer does not
 /// depend on how the disk rolls).
 pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, Error> {
+    let sol = static_solution(scene, setup)?;
+    let mut text = format!(
+        "{}: static equilibrium in {} load steps, {} Newton iterations\n",
+        scene.name, sol.load_steps, sol.iterations
+    );
+    for (name, p) in &sol.probes {
+        let _ = writeln!(
+            text,
+            "  {name} (x = {}): u = {:.6e} m, w = {:.6e} m, phi = {:.6e} rad",
+            p.x, p.u, p.w, p.phi
+        );
+    }
+    for (end, r) in &sol.reactions {
+        let _ = writeln!(
+            text,
+            "  reaction at `{end}`: fx = {:.6e} N, fy = {:.6e} N, mz = {:.6e} N m",
+            r.fx, r.fy, r.mz
+        );
+    }
+    std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
+    write(&dir.join("static.yaml"), &yaml(&sol)?)?;
+    let _ = writeln!(text, "  wrote {}", dir.join("static.yaml").display());
+    Ok(text)
+}
+
+/// The static equilibrium of [`statics`], as `static.yaml` holds it.
+pub fn static_solution(scene: &Scene, setup: &BeamScene) -> Result<StaticFile, Error> {
     if !statically_supported(setup.beam.supports, setup.beam.bearings.len()) {
         return Err(Error::Input(format!(
             "scene {}: the beam is not supported enough for a static solution (supports {} and {} hold fewer than 3 independent motions)",
@@ -111,37 +138,13 @@ pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, E
             )
         })
         .collect();
-    let mut text = format!(
-        "{}: static equilibrium in {} load steps, {} Newton iterations\n",
-        scene.name, sol.load_steps, sol.iterations
-    );
-    for (name, p) in &probes {
-        let _ = writeln!(
-            text,
-            "  {name} (x = {}): u = {:.6e} m, w = {:.6e} m, phi = {:.6e} rad",
-            p.x, p.u, p.w, p.phi
-        );
-    }
-    for (end, r) in &reactions {
-        let _ = writeln!(
-            text,
-            "  reaction at `{end}`: fx = {:.6e} N, fy = {:.6e} N, mz = {:.6e} N m",
-            r.fx, r.fy, r.mz
-        );
-    }
-    std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
-    write(
-        &dir.join("static.yaml"),
-        &yaml(&StaticFile {
-            scene: scene.name.clone(),
-            probes,
-            reactions,
-            iterations: sol.iterations,
-            load_steps: sol.load_steps,
-        })?,
-    )?;
-    let _ = writeln!(text, "  wrote {}", dir.join("static.yaml").display());
-    Ok(text)
+    Ok(StaticFile {
+        scene: scene.name.clone(),
+        probes,
+        reactions,
+        iterations: sol.iterations,
+        load_steps: sol.load_steps,
+    })
 }
 
 #[derive(Serialize)]
@@ -150,8 +153,22 @@ struct ModesFile {
     frequencies_hz: Vec<f64>,
 }
 
-/// The lowest `count` natural frequencies and mode shapes about the undeformed state.
-pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Result<String, Error> {
+/// Natural frequencies (Hz) and mode shapes, mass-normalised, sampled at `xs`.
+pub struct NaturalModes {
+    pub hz: Vec<f64>,
+    pub xs: Vec<f64>,
+    /// Per mode, u, w and φ at each of `xs`.
+    pub shapes: Vec<Vec<crate::beam::PointDisplacement>>,
+}
+
+/// The lowest `count` natural frequencies and mode shapes about the undeformed state, the
+/// shapes at `samples` + 1 evenly spaced points.
+pub fn natural_modes(
+    scene: &Scene,
+    setup: &BeamScene,
+    count: usize,
+    samples: usize,
+) -> Result<NaturalModes, Error> {
     if count == 0 {
         return Err(Error::Input(
             "--count must be at least 1: the number of modes to compute".into(),
@@ -177,6 +194,23 @@ pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Resu
         ))
     })?;
     let hz: Vec<f64> = m.omega.iter().map(|w| w / std::f64::consts::TAU).collect();
+    let xs: Vec<f64> = (0..=samples)
+        .map(|k| beam.length * k as f64 / samples as f64)
+        .collect();
+    let shapes = (0..hz.len())
+        .map(|k| {
+            let shape: Vec<f64> = m.shapes.column(k).iter().copied().collect();
+            xs.iter()
+                .map(|&x| beam.displacement_at(&shape, x))
+                .collect()
+        })
+        .collect();
+    Ok(NaturalModes { hz, xs, shapes })
+}
+
+/// The lowest `count` natural frequencies and mode shapes about the undeformed state.
+pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Result<String, Error> {
+    let NaturalModes { hz, xs, shapes } = natural_modes(scene, setup, count, 200)?;
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
     write(
         &dir.join("modes.yaml"),
@@ -185,7 +219,6 @@ pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Resu
             frequencies_hz: hz.clone(),
         })?,
     )?;
-    let xs: Vec<f64> = (0..=200).map(|k| beam.length * k as f64 / 200.0).collect();
     let labels: Vec<String> = hz
         .iter()
         .enumerate()
@@ -193,11 +226,7 @@ pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Resu
         .collect();
     let series: Vec<(&str, Vec<(f64, f64)>)> = (0..hz.len())
         .map(|k| {
-            let shape: Vec<f64> = m.shapes.column(k).iter().copied().collect();
-            let w: Vec<f64> = xs
-                .iter()
-                .map(|&x| beam.displacement_at(&shape, x).w)
-                .collect();
+            let w: Vec<f64> = shapes[k].iter().map(|d| d.w).collect();
             let peak = w
                 .iter()
                 .fold(0.0_f64, |a, v| a.max(v.abs()))

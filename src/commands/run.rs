@@ -29,7 +29,22 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
         solver,
         animate,
     } = args;
-    let scene = Scene::load(&scene)?;
+    // A planned sweep's case runs into its plan folder, once.
+    let case = super::sweep::cluster::planned_case(&scene);
+    if let Some((plan, id)) = &case {
+        if solver.given() {
+            return Err(Error::Input(format!(
+                "{} is a planned case, which carries its solver settings; run it without --method, --rtol or --atol",
+                scene.display()
+            )));
+        }
+        if super::sweep::cluster::is_done(plan, id) {
+            say!("{}: case {id} is done already; skipped", plan.display());
+            return Ok(());
+        }
+    }
+    let path = scene;
+    let scene = Scene::load(&path)?;
     if animate && scene.beam().is_none() {
         return Err(Error::Input(
             "--animate draws a beam scene; a rigid curve's positions are drawn in track.svg".into(),
@@ -37,10 +52,16 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
     }
     let over = solver.overrides(&scene)?;
     let result = run::run(&scene, &over, true)?;
-    let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
+    let dir = out.unwrap_or_else(|| match &case {
+        Some((plan, id)) => plan.join("runs").join(id),
+        None => Path::new("out").join(&scene.name),
+    });
     output::write_all(&result, &dir)?;
     if let (true, Run::Beam(b)) = (animate, &result) {
         output::animation::write_animation(b, &dir.join("animation.svg"))?;
+    }
+    if let Some((plan, id)) = &case {
+        super::sweep::cluster::record_case(plan, id, &result)?;
     }
     let h = result.header();
     say!("{}: {}", scene.name, h.stop.sentence(h.t_end));

@@ -623,6 +623,94 @@ pub struct TradeoffArgs {
     reference: bool,
 }
 
+/// What a work–precision run may be told, beside the scene: empty lists keep the defaults.
+#[derive(Clone, Debug, Default)]
+pub struct TradeoffOptions {
+    pub methods: Vec<String>,
+    pub rtols: Vec<f64>,
+    pub elements: Vec<usize>,
+    pub models: Vec<String>,
+    pub max_steps: Option<usize>,
+    /// Compute the reference again and store it beside the scene file.
+    pub recompute: bool,
+}
+
+impl TradeoffOptions {
+    /// The scene's default plan with the options applied, each checked.
+    pub fn plan(&self, scene: &Scene) -> Result<Plan, Error> {
+        let mut plan = Plan::default_for(scene);
+        if !self.methods.is_empty() {
+            plan.methods = self
+                .methods
+                .iter()
+                .map(|m| parse_method(m, scene))
+                .collect::<Result<_, _>>()?;
+        }
+        if !self.rtols.is_empty() {
+            for &r in &self.rtols {
+                rtol_flag(Some(r), "--rtols")?;
+            }
+            plan.rtols = self.rtols.clone();
+        }
+        if !self.elements.is_empty() {
+            if scene.beam().is_none() {
+                return Err(Error::Input(
+                    "--elements meshes a beam; this scene has a rigid curve".into(),
+                ));
+            }
+            if let Some(&bad) = self.elements.iter().find(|&&n| n == 0 || n > 1000) {
+                return Err(Error::Input(format!(
+                    "--elements {bad}: an element count is from 1 to 1000"
+                )));
+            }
+            plan.meshes = self.elements.clone();
+        }
+        if !self.models.is_empty() {
+            if scene.beam().is_none() {
+                return Err(Error::Input(
+                    "--models models a beam; this scene has a rigid curve".into(),
+                ));
+            }
+            plan.models = self
+                .models
+                .iter()
+                .map(|m| parse_model(m))
+                .collect::<Result<_, _>>()?;
+        }
+        if let Some(m) = self.max_steps {
+            if m == 0 {
+                return Err(Error::Input("--max-steps must be at least 1".into()));
+            }
+            plan.max_steps = m;
+        }
+        Ok(plan)
+    }
+}
+
+/// Work–precision of a scene into `dir`: the reference (stored beside `file` where one
+/// serves; computed otherwise), every trial, the files and the lines to print.
+pub fn run_tradeoff(
+    scene: &Scene,
+    file: Option<&Path>,
+    options: &TradeoffOptions,
+    dir: &Path,
+    made_by: &str,
+    show_progress: bool,
+) -> Result<(Vec<Trial>, Vec<String>), Error> {
+    let plan = options.plan(scene)?;
+    let (reference, origin) = match file {
+        Some(file) => reference_for(scene, file, &plan, options.recompute, made_by)?,
+        None => (
+            reference(scene, &plan, made_by)?,
+            "computed the reference (a scene without a file has no stored one)".to_string(),
+        ),
+    };
+    let trials = trials(scene, &plan, &reference, show_progress);
+    let mut lines = vec![origin];
+    lines.extend(write_tradeoff(scene, &reference, &trials, dir)?);
+    Ok((trials, lines))
+}
+
 /// `rollbeam tradeoff`.
 pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
     let TradeoffArgs {
@@ -636,58 +724,21 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
         reference: recompute,
     } = args;
     let scene = Scene::load(&path)?;
-    let mut plan = Plan::default_for(&scene);
-    if !methods.is_empty() {
-        plan.methods = methods
-            .iter()
-            .map(|m| parse_method(m, &scene))
-            .collect::<Result<_, _>>()?;
-    }
-    if !rtols.is_empty() {
-        for &r in &rtols {
-            rtol_flag(Some(r), "--rtols")?;
-        }
-        plan.rtols = rtols;
-    }
-    if !elements.is_empty() {
-        if scene.beam().is_none() {
-            return Err(Error::Input(
-                "--elements meshes a beam; this scene has a rigid curve".into(),
-            ));
-        }
-        if let Some(&bad) = elements.iter().find(|&&n| n == 0 || n > 1000) {
-            return Err(Error::Input(format!(
-                "--elements {bad}: an element count is from 1 to 1000"
-            )));
-        }
-        plan.meshes = elements;
-    }
-    if !models.is_empty() {
-        if scene.beam().is_none() {
-            return Err(Error::Input(
-                "--models models a beam; this scene has a rigid curve".into(),
-            ));
-        }
-        plan.models = models
-            .iter()
-            .map(|m| parse_model(m))
-            .collect::<Result<_, _>>()?;
-    }
-    if let Some(m) = max_steps {
-        if m == 0 {
-            return Err(Error::Input("--max-steps must be at least 1".into()));
-        }
-        plan.max_steps = m;
-    }
+    let options = TradeoffOptions {
+        methods,
+        rtols,
+        elements,
+        models,
+        max_steps,
+        recompute,
+    };
     let made_by = std::iter::once("rollbeam".to_string())
         .chain(std::env::args().skip(1))
         .collect::<Vec<_>>()
         .join(" ");
-    let (reference, origin) = reference_for(&scene, &path, &plan, recompute, &made_by)?;
-    say!("  {origin}");
-    let trials = trials(&scene, &plan, &reference, true);
     let dir = out.unwrap_or_else(|| Path::new("out").join(format!("{}-tradeoff", scene.name)));
-    for line in write_tradeoff(&scene, &reference, &trials, &dir)? {
+    let (_, lines) = run_tradeoff(&scene, Some(&path), &options, &dir, &made_by, true)?;
+    for line in lines {
         say!("  {line}");
     }
     say!("  wrote {}", dir.display());

@@ -286,6 +286,13 @@ fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
 }
 
 pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
+    write(&dir.join("summary.yaml"), &summary_yaml(r)?)?;
+    write(&dir.join("history.csv"), &csv(r))?;
+    figures(r, dir)
+}
+
+/// The text of `summary.yaml`.
+pub fn summary_yaml(r: &BeamRun) -> Result<String, Error> {
     let summary = Summary {
         scene: r.header.scene.name.clone(),
         stopped: super::summary::Stopped::of(&r.header),
@@ -312,15 +319,14 @@ pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
         acceleration: r.acceleration.clone(),
         warnings: r.setup.warnings(),
     };
-    write(&dir.join("summary.yaml"), &yaml(&summary)?)?;
-    write(&dir.join("history.csv"), &csv(r))?;
-    figures(r, dir)
+    yaml(&summary)
 }
 
 /// The disk's columns of history.csv, after `disk.`.
 const DISK_COLUMNS: [&str; 9] = ["s", "x", "y", "vx", "vy", "omega", "rt", "rn", "mu_needed"];
 
-fn csv(r: &BeamRun) -> String {
+/// The text of `history.csv`.
+pub fn csv(r: &BeamRun) -> String {
     let mut head = vec!["t".to_string()];
     let disk = r.setup.disk.is_some();
     if disk {

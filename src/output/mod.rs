@@ -19,6 +19,22 @@ pub fn write_all(run: &Run, dir: &Path) -> Result<(), Error> {
     }
 }
 
+/// The text of `summary.yaml`, as `write_all` writes it.
+pub fn summary_yaml(run: &Run) -> Result<String, Error> {
+    match run {
+        Run::Rolling(r) => yaml(&summary::Summary::from_run(r)),
+        Run::Beam(b) => beam::summary_yaml(b),
+    }
+}
+
+/// The text of `history.csv`, as `write_all` writes it.
+pub fn history_csv(run: &Run) -> String {
+    match run {
+        Run::Rolling(r) => history::csv(r),
+        Run::Beam(b) => beam::csv(b),
+    }
+}
+
 pub(crate) fn yaml(value: &impl serde::Serialize) -> Result<String, Error> {
     serde_saphyr::to_string(value)
         .map_err(|e| Error::Output(format!("cannot format YAML output: {e}")))

@@ -5,6 +5,12 @@
 //! ([`SceneSpec::set`], [`SceneSpec::set_name`]) and the scene checked and planned again, so a
 //! value the scene cannot take is refused with the same sentence a scene file would get. One
 //! summary row per case; a run that fails is a row with its reason.
+//!
+//! A sweep larger than one machine is planned into case files, run in shards anywhere and
+//! merged (`cluster.rs`); the Python package's `sweep` runs the same cases through the same
+//! functions, so every route gives the same table.
+
+pub mod cluster;
 
 use super::SolverFlags;
 use crate::error::{quote, Error};
@@ -134,10 +140,19 @@ impl Setting {
 
     /// Set one value at the key of a scene.
     fn apply(&self, spec: &mut SceneSpec, value: &Value) -> Result<(), Error> {
-        match value {
-            Value::Number(v) => spec.set(&self.key, *v),
-            Value::Name(n) => spec.set_name(&self.key, n),
+        apply(spec, &self.key, value)
+    }
+
+    /// Every value, in the order the rows report them: numbers ascending, names as given.
+    fn in_row_order(&self) -> Vec<Value> {
+        let mut values = self.all();
+        if let Sweep::Range { .. } = self.sweep {
+            values.sort_by(|a, b| match (a, b) {
+                (Value::Number(x), Value::Number(y)) => x.total_cmp(y),
+                _ => std::cmp::Ordering::Equal,
+            });
         }
+        values
     }
 
     /// "FROM to TO" or "A, B".
@@ -147,6 +162,23 @@ impl Setting {
             Sweep::Names(names) => names.join(", "),
         }
     }
+}
+
+/// Set one value at a dotted key of a scene: a number or a name.
+pub fn apply(spec: &mut SceneSpec, key: &str, value: &Value) -> Result<(), Error> {
+    match value {
+        Value::Number(v) => spec.set(key, *v),
+        Value::Name(n) => spec.set_name(key, n),
+    }
+}
+
+/// The scene of one case: its values set at the keys, in order.
+pub fn case_spec(spec: &SceneSpec, keys: &[String], values: &[Value]) -> Result<SceneSpec, Error> {
+    let mut changed = spec.clone();
+    for (key, v) in keys.iter().zip(values) {
+        apply(&mut changed, key, v)?;
+    }
+    Ok(changed)
 }
 
 /// What one case of the sweep reports.
@@ -161,7 +193,7 @@ pub struct SweepRow {
 
 #[derive(Clone, Debug)]
 pub struct Summary {
-    pub stop: &'static str,
+    pub stop: String,
     pub t_end: f64,
     pub energy_drift: f64,
     pub steps: usize,
@@ -212,7 +244,7 @@ fn summarise(r: &Run) -> Summary {
         }
     }
     Summary {
-        stop: r.header().stop.name(),
+        stop: r.header().stop.name().to_string(),
         t_end: r.header().t_end,
         energy_drift: r.header().energy.max_rel_drift(),
         steps: r.header().stats.steps,
@@ -239,8 +271,29 @@ pub fn run_grid(
     over: &Overrides,
     show_progress: bool,
 ) -> Result<Vec<SweepRow>, Error> {
-    let planner = Planner::default();
-    let cases = settings
+    let grid = grid(spec, settings)?;
+    // A scene that fails at both ends of a one-key range is the command's error.
+    if let [s] = settings {
+        let all = s.all();
+        let planner = Planner::default();
+        let at = |v: &Value| {
+            case_spec(spec, std::slice::from_ref(&s.key), std::slice::from_ref(v))
+                .and_then(|c| planner.plan(&c))
+        };
+        if let (Err(e), Err(_)) = (at(&all[0]), at(&all[all.len() - 1])) {
+            return Err(Error::Input(format!("--set {}: {e}", s.key)));
+        }
+    }
+    let keys: Vec<String> = settings.iter().map(|s| s.key.clone()).collect();
+    Ok(run_cases(spec, &keys, &grid, over, show_progress))
+}
+
+/// Every combination of the settings' values, in the order the rows are reported: numbers
+/// ascending within each key, names in the order given, keys in the order given. A key the
+/// scene cannot hold, or a value it cannot take (a fraction for an element count, a name the
+/// key does not know), is the command's error, not every run's.
+pub fn grid(spec: &SceneSpec, settings: &[Setting]) -> Result<Vec<Vec<Value>>, Error> {
+    settings
         .iter()
         .try_fold(1_usize, |n, s| n.checked_mul(s.all().len()))
         .filter(|&n| n <= MAX_CASES)
@@ -249,8 +302,6 @@ pub fn run_grid(
                 "the --set options make more than {MAX_CASES} cases; sweep fewer values"
             ))
         })?;
-    // A key the scene cannot hold, a value it cannot take (a fraction for an element count,
-    // a name the key does not know), is the command's error, not every run's.
     for s in settings {
         for value in s.all() {
             s.apply(&mut spec.clone(), &value)
@@ -259,73 +310,71 @@ pub fn run_grid(
     }
     let mut grid: Vec<Vec<Value>> = vec![Vec::new()];
     for s in settings {
+        let values = s.in_row_order();
         grid = grid
             .into_iter()
             .flat_map(|case| {
-                s.all().into_iter().map(move |v| {
+                values.iter().map(move |v| {
                     let mut c = case.clone();
-                    c.push(v);
+                    c.push(v.clone());
                     c
                 })
             })
             .collect();
     }
-    debug_assert_eq!(grid.len(), cases);
-    let at = |case: &[Value]| {
-        let mut changed = spec.clone();
-        for (s, v) in settings.iter().zip(case) {
-            s.apply(&mut changed, v)?;
-        }
-        planner.plan(&changed)
-    };
-    // A scene that fails at both ends of a one-key range is the command's error.
-    if let [s] = settings {
-        let all = s.all();
-        if let (Err(e), Err(_)) = (at(&all[..1]), at(&all[all.len() - 1..])) {
-            return Err(Error::Input(format!("--set {}: {e}", s.key)));
-        }
+    Ok(grid)
+}
+
+/// The values of row `i` of [`grid`], without building the grid: the last key varies fastest.
+pub fn case_at(settings: &[Setting], mut i: usize) -> Option<Vec<Value>> {
+    let mut values = Vec::with_capacity(settings.len());
+    for s in settings.iter().rev() {
+        let all = s.in_row_order();
+        values.push(all.get(i % all.len().max(1))?.clone());
+        i /= all.len().max(1);
     }
-    let outcomes = super::parallel::map(&grid, show_progress, |case| {
-        at(case)
-            .and_then(|scene| run::run(&scene, over, false))
-            .map(|r| summarise(&r))
-            .map_err(|e| e.to_string())
+    values.reverse();
+    (i == 0).then_some(values)
+}
+
+/// One row per case, in the order of the cases, the runs spread over every core.
+pub fn run_cases(
+    spec: &SceneSpec,
+    keys: &[String],
+    cases: &[Vec<Value>],
+    over: &Overrides,
+    show_progress: bool,
+) -> Vec<SweepRow> {
+    let outcomes = super::parallel::map(cases, show_progress, |case| {
+        run_case(spec, keys, case, over)
     });
-    let mut rows: Vec<SweepRow> = grid
-        .into_iter()
-        .zip(outcomes)
-        .map(|(values, outcome)| SweepRow {
-            value: match values.first() {
-                Some(Value::Number(v)) => *v,
-                _ => f64::NAN,
-            },
-            values,
-            outcome,
-        })
-        .collect();
-    // Numbers ascending within each key, names in the order given, keys in the order given.
-    let rank = |row: &SweepRow| -> Vec<f64> {
-        row.values
-            .iter()
-            .zip(settings)
-            .map(|(v, s)| match (v, &s.sweep) {
-                (Value::Number(x), _) => *x,
-                (Value::Name(n), Sweep::Names(names)) => {
-                    names.iter().position(|m| m == n).unwrap_or(0) as f64
-                }
-                (Value::Name(_), Sweep::Range { .. }) => 0.0,
-            })
-            .collect()
-    };
-    rows.sort_by(|a, b| {
-        rank(a)
-            .iter()
-            .zip(rank(b).iter())
-            .map(|(x, y)| x.total_cmp(y))
-            .find(|o| o.is_ne())
-            .unwrap_or(std::cmp::Ordering::Equal)
-    });
-    Ok(rows)
+    cases.iter().cloned().zip(outcomes).map(row).collect()
+}
+
+/// One case run: its summary, or why it could not run.
+pub fn run_case(
+    spec: &SceneSpec,
+    keys: &[String],
+    values: &[Value],
+    over: &Overrides,
+) -> Result<Summary, String> {
+    case_spec(spec, keys, values)
+        .and_then(|c| Planner::default().plan(&c))
+        .and_then(|scene| run::run(&scene, over, false))
+        .map(|r| summarise(&r))
+        .map_err(|e| e.to_string())
+}
+
+/// A case's row from its values and outcome.
+pub fn row((values, outcome): (Vec<Value>, Result<Summary, String>)) -> SweepRow {
+    SweepRow {
+        value: match values.first() {
+            Some(Value::Number(v)) => *v,
+            _ => f64::NAN,
+        },
+        values,
+        outcome,
+    }
 }
 
 /// `sweep.csv` (one row per case) and `sweep.svg`: the probes' extreme deflections (or, on a
@@ -337,16 +386,9 @@ pub fn write_sweep(rows: &[SweepRow], setting: &Setting, dir: &Path) -> Result<(
 
 pub fn write_grid(rows: &[SweepRow], settings: &[Setting], dir: &Path) -> Result<(), Error> {
     std::fs::create_dir_all(dir).map_err(|e| crate::output::io_error(dir, e))?;
-    let probe_names: Vec<String> = rows
-        .iter()
-        .find_map(|r| r.outcome.as_ref().ok())
-        .map_or(Vec::new(), |s| {
-            s.probes.iter().map(|p| p.0.clone()).collect()
-        });
-    write(
-        &dir.join("sweep.csv"),
-        &sweep_csv(rows, settings, &probe_names),
-    )?;
+    let probe_names = probe_names(rows);
+    let keys: Vec<String> = settings.iter().map(|s| s.key.clone()).collect();
+    write(&dir.join("sweep.csv"), &sweep_csv(rows, &keys))?;
     match settings {
         [speed, names] | [names, speed]
             if matches!(speed.sweep, Sweep::Range { .. })
@@ -360,10 +402,19 @@ pub fn write_grid(rows: &[SweepRow], settings: &[Setting], dir: &Path) -> Result
     }
 }
 
-/// One row per case: its values, status, stop, solver effort, and the disk's and probes'
-/// extremes.
-fn sweep_csv(rows: &[SweepRow], settings: &[Setting], probe_names: &[String]) -> String {
-    let keys: Vec<&str> = settings.iter().map(|s| s.key.as_str()).collect();
+/// The probes of the first case that ran.
+fn probe_names(rows: &[SweepRow]) -> Vec<String> {
+    rows.iter()
+        .find_map(|r| r.outcome.as_ref().ok())
+        .map_or(Vec::new(), |s| {
+            s.probes.iter().map(|p| p.0.clone()).collect()
+        })
+}
+
+/// `sweep.csv`: one row per case: its values, status, stop, solver effort, and the disk's and
+/// probes' extremes.
+pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
+    let probe_names = &probe_names(rows);
     let mut csv = format!(
         "{},status,stopped,t_end,energy_drift,steps,wall_s,disk.rn_min,disk.rn_max,disk.left_track_t",
         keys.join(",")
@@ -581,14 +632,25 @@ mod tests {
 
 #[derive(clap::Args)]
 pub struct SweepArgs {
-    scene: PathBuf,
+    /// The scene (not with --merge, nor with --plan and --shard).
+    scene: Option<PathBuf>,
     /// KEY=FROM:TO:COUNT (any number the scene holds, e.g. disk.omega0=-10:-120:111) or
     /// KEY=NAME,NAME (a name, e.g. train.hslm=A1,A2); several make a grid.
-    #[arg(long = "set", required = true)]
+    #[arg(long = "set")]
     set: Vec<String>,
-    /// Output folder (default out/<scene name>-sweep).
+    /// Output folder (default out/<scene name>-sweep; with --merge, the plan folder).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// With a scene and --set: write the sweep's cases into this folder instead of running
+    /// them. With --shard: the plan folder whose cases to run.
+    #[arg(long)]
+    plan: Option<PathBuf>,
+    /// K/N: run the K-th of N shares of the plan's cases (with --plan), skipping those done.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Write sweep.csv and the figures of a plan folder whose cases are all done.
+    #[arg(long)]
+    merge: Option<PathBuf>,
     #[command(flatten)]
     solver: SolverFlags,
 }
@@ -599,10 +661,101 @@ pub fn sweep(args: SweepArgs) -> Result<(), Error> {
         scene: path,
         set,
         out,
+        plan,
+        shard,
+        merge,
         solver,
     } = args;
-    let spec = SceneSpec::load(&path)?;
-    let scene = Planner::default().plan(&spec)?;
+    let no_scene = |what: &str| -> Result<(), Error> {
+        if path.is_some() || !set.is_empty() || solver.given() {
+            return Err(Error::Input(format!(
+                "{what} takes no scene, --set or solver flag: the plan holds them"
+            )));
+        }
+        Ok(())
+    };
+    match (merge, plan, shard) {
+        (Some(dir), None, None) => {
+            no_scene("--merge")?;
+            let (name, rows, settings) = cluster::merge(&dir)?;
+            let out = out.unwrap_or(dir);
+            write_grid(&rows, &settings, &out)?;
+            report(&name, &rows, &settings, &out);
+            Ok(())
+        }
+        (Some(_), _, _) => Err(Error::Input(
+            "--merge is given alone with its plan folder (and --out)".into(),
+        )),
+        (None, Some(dir), Some(share)) => {
+            no_scene("--shard")?;
+            if out.is_some() {
+                return Err(Error::Input(
+                    "--shard writes its records into the plan folder; --out belongs to --merge"
+                        .into(),
+                ));
+            }
+            let (k, n) = cluster::parse_shard(&share)?;
+            let r = cluster::run_shard(&dir, k, n, true)?;
+            say!(
+                "shard {k}/{n} of {}: {} cases run ({} failed), {} already done",
+                dir.display(),
+                r.ran,
+                r.failed,
+                r.skipped
+            );
+            Ok(())
+        }
+        (None, None, Some(_)) => Err(Error::Input(
+            "--shard K/N runs a share of a plan; give the plan folder with --plan".into(),
+        )),
+        (None, plan, None) => {
+            let path = path.ok_or_else(|| {
+                Error::Input(
+                    "sweep needs a scene file, or --merge DIR, or --plan DIR --shard K/N".into(),
+                )
+            })?;
+            if set.is_empty() {
+                return Err(Error::Input(
+                    "sweep needs at least one --set KEY=FROM:TO:COUNT or KEY=NAME,NAME".into(),
+                ));
+            }
+            let spec = SceneSpec::load(&path)?;
+            let scene = Planner::default().plan(&spec)?;
+            let settings = parse_settings(&set)?;
+            let over = solver.overrides(&scene)?;
+            if let Some(dir) = plan {
+                if out.is_some() {
+                    return Err(Error::Input(
+                        "--plan writes into its own folder; --out belongs to a sweep run here or to --merge".into(),
+                    ));
+                }
+                let (cases, done) = cluster::write_plan(
+                    &spec,
+                    &settings,
+                    &set,
+                    |c| super::write_solver(&over, c),
+                    &dir,
+                )?;
+                say!(
+                    "{}: planned {cases} cases in {} ({done} already done); run them with `rollbeam sweep --plan {} --shard K/N`, then `rollbeam sweep --merge {}`",
+                    scene.name,
+                    dir.display(),
+                    dir.display(),
+                    dir.display()
+                );
+                return Ok(());
+            }
+            let rows = run_grid(&spec, &settings, &over, true)?;
+            let dir = out.unwrap_or_else(|| Path::new("out").join(format!("{}-sweep", scene.name)));
+            write_grid(&rows, &settings, &dir)?;
+            report(&scene.name, &rows, &settings, &dir);
+            Ok(())
+        }
+    }
+}
+
+/// The --set options, each key once.
+fn parse_settings(set: &[String]) -> Result<Vec<Setting>, Error> {
     let settings: Vec<Setting> = set
         .iter()
         .map(|s| Setting::parse(s))
@@ -617,10 +770,10 @@ pub fn sweep(args: SweepArgs) -> Result<(), Error> {
             twice.1.key
         )));
     }
-    let over = solver.overrides(&scene)?;
-    let rows = run_grid(&spec, &settings, &over, true)?;
-    let dir = out.unwrap_or_else(|| Path::new("out").join(format!("{}-sweep", scene.name)));
-    write_grid(&rows, &settings, &dir)?;
+    Ok(settings)
+}
+
+fn report(name: &str, rows: &[SweepRow], settings: &[Setting], dir: &Path) {
     let failed = rows.iter().filter(|r| r.outcome.is_err()).count();
     let over_keys: Vec<String> = settings
         .iter()
@@ -628,11 +781,10 @@ pub fn sweep(args: SweepArgs) -> Result<(), Error> {
         .collect();
     say!(
         "{}: {} runs over {}, {} failed; wrote {}",
-        scene.name,
+        name,
         rows.len(),
         over_keys.join(" × "),
         failed,
         dir.display()
     );
-    Ok(())
 }

@@ -1,0 +1,438 @@
+//! A sweep that outgrows one machine, without a scheduler of our own: `sweep --plan DIR`
+//! writes one scene file per case, `sweep --plan DIR --shard K/N` (or `rollbeam run` on one
+//! case file) runs cases anywhere the folder is visible, skipping those done, and
+//! `sweep --merge DIR` writes the usual `sweep.csv` and figures. Any job array or `parallel`
+//! line drives it (README.md shows both).
+//!
+//! The folder:
+//! - `plan.yaml`: the scene's name, the `--set` options, and the case ids in row order;
+//! - `cases/<id>.yaml`: each case's whole scene, its values and solver flags written in, so
+//!   that a case file runs alone; the id is the case's row number and the hash of that text;
+//! - `done/<id>.yaml`: each case's record (its values and summary, or why it failed), written
+//!   whole or not at all, which is what "done" means.
+//!
+//! The Python package's `sweep` sends the same records through an executor and merges them
+//! with the same function.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::{
+    case_at, case_spec, grid, row, summarise, Setting, Summary, SweepRow, Value, MAX_CASES,
+};
+use crate::error::{quote, Error};
+use crate::output::{io_error, yaml};
+use crate::plan::Planner;
+use crate::run::{self, Overrides, Run};
+use crate::scene::SceneSpec;
+
+/// Largest plan file read back: the ids of [`MAX_CASES`] cases with room to spare.
+const MAX_PLAN_BYTES: u64 = 16 << 20;
+/// Largest case record read back: a summary of a few probes is under a kilobyte.
+const MAX_RECORD_BYTES: u64 = 1 << 20;
+
+/// `plan.yaml`.
+#[derive(Serialize, Deserialize)]
+struct Plan {
+    scene: String,
+    sets: Vec<String>,
+    cases: Vec<String>,
+}
+
+/// One case's outcome as `done/<id>.yaml` holds it, and as the Python package passes it
+/// between processes. Quantities a run does not have (no exit, no disk) are left out rather
+/// than written as NaN.
+#[derive(Serialize, Deserialize)]
+pub struct Record {
+    values: Vec<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    ok: Option<RecordSummary>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    failed: Option<String>,
+}
+
+#[derive(Serialize, Deserialize)]
+struct RecordSummary {
+    stop: String,
+    t_end: f64,
+    energy_drift: f64,
+    steps: usize,
+    wall_s: f64,
+    probes: Vec<RecordProbe>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    disk: Option<RecordDisk>,
+}
+
+#[derive(Serialize, Deserialize)]
+struct RecordProbe {
+    name: String,
+    w_min: f64,
+    w_max: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    w_amplitude_after_exit: Option<f64>,
+    a_max: f64,
+}
+
+#[derive(Serialize, Deserialize)]
+struct RecordDisk {
+    rn_min: f64,
+    rn_max: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    left_track_t: Option<f64>,
+}
+
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+impl Record {
+    pub fn of(row: &SweepRow) -> Record {
+        let (ok, failed) = match &row.outcome {
+            Ok(s) => (
+                Some(RecordSummary {
+                    stop: s.stop.clone(),
+                    t_end: s.t_end,
+                    energy_drift: s.energy_drift,
+                    steps: s.steps,
+                    wall_s: s.wall_s,
+                    probes: s
+                        .probes
+                        .iter()
+                        .map(|p| RecordProbe {
+                            name: p.0.clone(),
+                            w_min: p.1,
+                            w_max: p.2,
+                            w_amplitude_after_exit: finite(p.3),
+                            a_max: p.4,
+                        })
+                        .collect(),
+                    disk: s.disk.map(|(rn_min, rn_max, left)| RecordDisk {
+                        rn_min,
+                        rn_max,
+                        left_track_t: finite(left),
+                    }),
+                }),
+                None,
+            ),
+            Err(e) => (None, Some(e.clone())),
+        };
+        Record {
+            values: row.values.iter().map(Value::to_string).collect(),
+            ok,
+            failed,
+        }
+    }
+
+    /// The record as text; a summary that holds a non-finite number (a run whose numbers
+    /// overflowed) is recorded as that case's failure.
+    pub fn to_yaml(&self) -> Result<String, Error> {
+        let text = yaml(self)?;
+        match crate::output::non_finite(&text) {
+            None => Ok(text),
+            Some(_) => yaml(&Record {
+                values: self.values.clone(),
+                ok: None,
+                failed: Some("the run's numbers overflowed".into()),
+            }),
+        }
+    }
+
+    pub fn from_yaml(text: &str, source: &str) -> Result<Record, Error> {
+        serde_saphyr::from_str(text)
+            .map_err(|e| Error::Input(format!("{source} is not a case record: {e}")))
+    }
+
+    /// The row it records; a value that reads as a number is one.
+    pub fn row(&self) -> SweepRow {
+        let values = self
+            .values
+            .iter()
+            .map(|v| match v.parse::<f64>() {
+                Ok(x) if x.is_finite() => Value::Number(x),
+                _ => Value::Name(v.clone()),
+            })
+            .collect();
+        let outcome = match (&self.ok, &self.failed) {
+            (Some(s), _) => Ok(Summary {
+                stop: s.stop.clone(),
+                t_end: s.t_end,
+                energy_drift: s.energy_drift,
+                steps: s.steps,
+                wall_s: s.wall_s,
+                probes: s
+                    .probes
+                    .iter()
+                    .map(|p| {
+                        (
+                            p.name.clone(),
+                            p.w_min,
+                            p.w_max,
+                            p.w_amplitude_after_exit.unwrap_or(f64::NAN),
+                            p.a_max,
+                        )
+                    })
+                    .collect(),
+                disk: s
+                    .disk
+                    .as_ref()
+                    .map(|d| (d.rn_min, d.rn_max, d.left_track_t.unwrap_or(f64::NAN))),
+            }),
+            (None, Some(e)) => Err(e.clone()),
+            (None, None) => Err("the record holds no outcome".into()),
+        };
+        row((values, outcome))
+    }
+}
+
+/// Where a case's record goes.
+fn record_path(dir: &Path, id: &str) -> PathBuf {
+    dir.join("done").join(format!("{id}.yaml"))
+}
+
+/// Write a file whole or not at all: a shard killed mid-write leaves no record that claims
+/// the case is done.
+fn write_whole(path: &Path, text: &str) -> Result<(), Error> {
+    let partial = path.with_extension("partial");
+    std::fs::write(&partial, text).map_err(|e| io_error(&partial, e))?;
+    std::fs::rename(&partial, path).map_err(|e| io_error(path, e))
+}
+
+fn read_bounded(path: &Path, limit: u64, what: &str) -> Result<String, Error> {
+    let size = std::fs::metadata(path)
+        .map_err(|e| Error::Input(format!("cannot read {what} {}: {e}", path.display())))?
+        .len();
+    if size > limit {
+        return Err(Error::Input(format!(
+            "{} is {size} bytes, more than a {what} can be ({limit} bytes)",
+            path.display()
+        )));
+    }
+    std::fs::read_to_string(path)
+        .map_err(|e| Error::Input(format!("cannot read {what} {}: {e}", path.display())))
+}
+
+/// Write the plan of a sweep into `dir`: one case file per combination of the settings'
+/// values, with the solver settings `solver` sets written into each. Returns the number of
+/// cases, and of those already done by an earlier plan of the same cases.
+pub fn write_plan(
+    spec: &SceneSpec,
+    settings: &[Setting],
+    sets: &[String],
+    solver: impl Fn(&mut SceneSpec) -> Result<(), Error>,
+    dir: &Path,
+) -> Result<(usize, usize), Error> {
+    let cases = grid(spec, settings)?;
+    let keys: Vec<String> = settings.iter().map(|s| s.key.clone()).collect();
+    let name = Planner::default().plan(spec)?.name;
+    let case_dir = dir.join("cases");
+    for sub in [&case_dir, &dir.join("done")] {
+        std::fs::create_dir_all(sub).map_err(|e| io_error(sub, e))?;
+    }
+    let width = cases.len().saturating_sub(1).to_string().len().max(4);
+    let mut ids = Vec::with_capacity(cases.len());
+    let mut done = 0;
+    for (i, values) in cases.iter().enumerate() {
+        let mut case = case_spec(spec, &keys, values)?;
+        solver(&mut case)?;
+        let text = case.to_yaml()?;
+        let hash = super::super::reference::content_hash(&text);
+        let hash = hash.trim_start_matches("fnv1a64:");
+        let id = format!("{i:0width$}-{hash}");
+        let path = case_dir.join(format!("{id}.yaml"));
+        if !path.exists() {
+            write_whole(&path, &text)?;
+        }
+        done += usize::from(record_path(dir, &id).exists());
+        ids.push(id);
+    }
+    let plan = Plan {
+        scene: name,
+        sets: sets.to_vec(),
+        cases: ids,
+    };
+    write_whole(&dir.join("plan.yaml"), &yaml(&plan)?)?;
+    Ok((cases.len(), done))
+}
+
+/// A plan folder read back.
+fn read_plan(dir: &Path) -> Result<(Plan, Vec<Setting>), Error> {
+    let path = dir.join("plan.yaml");
+    if !path.is_file() {
+        return Err(Error::Input(format!(
+            "{} holds no plan.yaml; write one with `rollbeam sweep SCENE --set … --plan {}`",
+            dir.display(),
+            dir.display()
+        )));
+    }
+    let text = read_bounded(&path, MAX_PLAN_BYTES, "plan")?;
+    let plan: Plan = serde_saphyr::from_str(&text)
+        .map_err(|e| Error::Input(format!("{} is not a sweep plan: {e}", path.display())))?;
+    let settings: Vec<Setting> = plan
+        .sets
+        .iter()
+        .map(|s| Setting::parse(s))
+        .collect::<Result<_, _>>()?;
+    let count = settings
+        .iter()
+        .try_fold(1_usize, |n, s| n.checked_mul(s.all().len()));
+    if plan.cases.len() > MAX_CASES || count != Some(plan.cases.len()) {
+        return Err(Error::Input(format!(
+            "{} lists {} cases where its --set options make {}; write the plan again",
+            path.display(),
+            plan.cases.len(),
+            count.map_or("too many".to_string(), |c| c.to_string())
+        )));
+    }
+    if let Some(bad) = plan.cases.iter().find(|id| !valid_id(id)) {
+        return Err(Error::Input(format!(
+            "{} names the case {}, which is not a case id (digits, '-', hex digits)",
+            path.display(),
+            quote(bad)
+        )));
+    }
+    Ok((plan, settings))
+}
+
+/// A case id names a file inside the plan folder and nothing else.
+fn valid_id(id: &str) -> bool {
+    id.split_once('-').is_some_and(|(n, h)| {
+        !n.is_empty()
+            && n.bytes().all(|b| b.is_ascii_digit())
+            && !h.is_empty()
+            && h.bytes().all(|b| b.is_ascii_hexdigit())
+    })
+}
+
+/// `K/N`: shard K (1-based) of N.
+pub fn parse_shard(text: &str) -> Result<(usize, usize), Error> {
+    let bad = || {
+        Error::Input(format!(
+            "--shard {} must be K/N with 1 ≤ K ≤ N (e.g. 3/16)",
+            quote(text)
+        ))
+    };
+    let (k, n) = text.split_once('/').ok_or_else(bad)?;
+    let k: usize = k.trim().parse().map_err(|_| bad())?;
+    let n: usize = n.trim().parse().map_err(|_| bad())?;
+    if k == 0 || k > n {
+        return Err(bad());
+    }
+    Ok((k, n))
+}
+
+/// What a shard did.
+pub struct ShardReport {
+    pub ran: usize,
+    pub skipped: usize,
+    pub failed: usize,
+}
+
+/// Run shard k of n of the plan in `dir`: the cases whose row number is k − 1 modulo n,
+/// those without a record, on every core of this machine.
+pub fn run_shard(
+    dir: &Path,
+    k: usize,
+    n: usize,
+    show_progress: bool,
+) -> Result<ShardReport, Error> {
+    let (plan, settings) = read_plan(dir)?;
+    let mine: Vec<&String> = plan
+        .cases
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| i % n == k - 1)
+        .map(|(_, id)| id)
+        .collect();
+    let todo: Vec<&String> = mine
+        .iter()
+        .copied()
+        .filter(|id| !record_path(dir, id).exists())
+        .collect();
+    let outcomes = super::super::parallel::map(&todo, show_progress, |id| {
+        let case = dir.join("cases").join(format!("{id}.yaml"));
+        let spec = SceneSpec::load(&case)?;
+        let values = case_values(&plan, &settings, id)?;
+        let outcome = Planner::default()
+            .plan(&spec)
+            .and_then(|scene| run::run(&scene, &Overrides::default(), false))
+            .map(|r| summarise(&r))
+            .map_err(|e| e.to_string());
+        let record = Record::of(&row((values, outcome)));
+        write_whole(&record_path(dir, id), &record.to_yaml()?)?;
+        Ok::<bool, Error>(record.failed.is_some())
+    });
+    let mut failed = 0;
+    for outcome in outcomes {
+        failed += usize::from(outcome?);
+    }
+    Ok(ShardReport {
+        ran: todo.len(),
+        skipped: mine.len() - todo.len(),
+        failed,
+    })
+}
+
+/// The values of case `id`, from its row number (the id's first part) in the plan's grid.
+fn case_values(plan: &Plan, settings: &[Setting], id: &str) -> Result<Vec<Value>, Error> {
+    id.split_once('-')
+        .and_then(|(i, _)| i.parse::<usize>().ok())
+        .filter(|&i| plan.cases.get(i).is_some_and(|c| c == id))
+        .and_then(|i| case_at(settings, i))
+        .ok_or_else(|| Error::Input(format!("the plan has no case {}", quote(id))))
+}
+
+/// The plan folder and id of a case file (`DIR/cases/<id>.yaml` listed in `DIR/plan.yaml`),
+/// or `None` for any other scene file.
+pub fn planned_case(path: &Path) -> Option<(PathBuf, String)> {
+    let cases = path.parent()?;
+    if cases.file_name()? != "cases" {
+        return None;
+    }
+    let dir = cases.parent()?.to_path_buf();
+    let id = path.file_stem()?.to_str()?.to_string();
+    let (plan, _) = read_plan(&dir).ok()?;
+    plan.cases.contains(&id).then_some((dir, id))
+}
+
+/// Whether case `id` of the plan in `dir` has its record.
+pub fn is_done(dir: &Path, id: &str) -> bool {
+    record_path(dir, id).exists()
+}
+
+/// Record a case that `rollbeam run` ran from its case file.
+pub fn record_case(dir: &Path, id: &str, run: &Run) -> Result<(), Error> {
+    let (plan, settings) = read_plan(dir)?;
+    let values = case_values(&plan, &settings, id)?;
+    let record = Record::of(&row((values, Ok(summarise(run)))));
+    write_whole(&record_path(dir, id), &record.to_yaml()?)
+}
+
+/// The rows and settings of a plan whose cases are all done.
+pub fn merge(dir: &Path) -> Result<(String, Vec<SweepRow>, Vec<Setting>), Error> {
+    let (plan, settings) = read_plan(dir)?;
+    let missing: Vec<&String> = plan
+        .cases
+        .iter()
+        .filter(|id| !record_path(dir, id).exists())
+        .collect();
+    if let Some(first) = missing.first() {
+        return Err(Error::Input(format!(
+            "{} of the {} cases planned in {} have no record yet (the first: {first}); run them with `rollbeam sweep --plan {} --shard K/N`",
+            missing.len(),
+            plan.cases.len(),
+            dir.display(),
+            dir.display()
+        )));
+    }
+    let rows = plan
+        .cases
+        .iter()
+        .map(|id| {
+            let path = record_path(dir, id);
+            let text = read_bounded(&path, MAX_RECORD_BYTES, "case record")?;
+            Ok(Record::from_yaml(&text, &path.display().to_string())?.row())
+        })
+        .collect::<Result<Vec<_>, Error>>()?;
+    Ok((plan.scene, rows, settings))
+}
