@@ -776,6 +776,106 @@ fn sweep_ranges_and_keys() {
     assert!(rows[1].contains("failed") && rows[2].contains(",ok,"));
 }
 
+/// A planned sweep (`--plan`, `--shard`, `--merge`): flags that do not fit together, a shard
+/// that is not K/N, a folder without a plan, a plan not yet run, and a plan file edited to
+/// name cases outside its folder are one sentence and exit 1, with nothing run or written.
+#[test]
+fn sweep_plans_shards_and_merges() {
+    let path = scene_path(
+        "planned",
+        &beam_scene(&[], "disk:\n  mass: 10\n  radius: 0.1\n  s0: 1\n"),
+    );
+    let p = path.to_str().expect("utf-8 path");
+    let dir = format!("{p}.plan");
+    let _ = std::fs::remove_dir_all(&dir);
+    let (code, err) = rollbeam(&["sweep", p, "--set", "disk.mass=5:10:2", "--plan", &dir]);
+    assert_eq!(code, 0, "{err}");
+    let empty = format!("{p}.empty");
+    std::fs::create_dir_all(&empty).expect("dir");
+    for (args, needles) in [
+        (
+            vec!["sweep", "--plan", &dir, "--shard", "0/2"],
+            vec!["--shard '0/2'", "K/N"],
+        ),
+        (
+            vec!["sweep", "--plan", &dir, "--shard", "3/2"],
+            vec!["1 ≤ K ≤ N"],
+        ),
+        (
+            vec!["sweep", "--plan", &dir, "--shard", "x"],
+            vec!["--shard 'x'"],
+        ),
+        (
+            vec!["sweep", "--shard", "1/2"],
+            vec!["give the plan folder with --plan"],
+        ),
+        (
+            vec!["sweep", p, "--plan", &dir, "--shard", "1/2"],
+            vec!["--shard takes no scene"],
+        ),
+        (
+            vec!["sweep", "--merge", &dir, "--rtol", "1e-4"],
+            vec!["--merge takes no scene"],
+        ),
+        (
+            vec!["sweep", "--merge", &dir, "--plan", &dir],
+            vec!["--merge is given alone"],
+        ),
+        (
+            vec!["sweep", "--merge", &dir],
+            vec!["2 of the 2 cases", "no record yet", "--shard K/N"],
+        ),
+        (vec!["sweep", "--merge", &empty], vec!["holds no plan.yaml"]),
+        (
+            vec!["sweep", "--plan", &empty, "--shard", "1/1"],
+            vec!["holds no plan.yaml"],
+        ),
+        (
+            vec!["sweep", "--plan", &dir],
+            vec!["sweep needs a scene file"],
+        ),
+        (vec!["sweep", p, "--plan", &dir], vec!["at least one --set"]),
+    ] {
+        let (code, err) = rollbeam(&args);
+        assert_eq!(code, 1, "{args:?}: exit {code}, {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+        for n in &needles {
+            assert!(err.contains(n), "{args:?}: '{n}' missing from {err}");
+        }
+    }
+    // A planned case carries its solver settings.
+    let case = std::fs::read_dir(format!("{dir}/cases"))
+        .expect("cases")
+        .next()
+        .expect("a case")
+        .expect("entry")
+        .path();
+    let (code, err) = rollbeam(&["run", case.to_str().expect("utf-8"), "--rtol", "1e-3"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("carries its solver settings"), "{err}");
+    // A plan edited to point outside its folder is refused before anything runs.
+    let plan = std::fs::read_to_string(format!("{dir}/plan.yaml")).expect("plan");
+    let first = plan
+        .lines()
+        .find(|l| l.starts_with("- 0"))
+        .expect("a case id");
+    std::fs::write(
+        format!("{dir}/plan.yaml"),
+        plan.replace(first, "- ../../../../tmp/evil"),
+    )
+    .expect("write");
+    let (code, err) = rollbeam(&["sweep", "--plan", &dir, "--shard", "1/1"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("'../../../../tmp/evil'") && err.contains("not a case id"),
+        "{err}"
+    );
+    assert!(std::fs::read_dir(format!("{dir}/done"))
+        .expect("done")
+        .next()
+        .is_none());
+}
+
 /// `tradeoff`: settings a scene cannot take are one sentence and exit 1, before any run; a
 /// good one writes its table, figure and the cheapest settings.
 #[test]

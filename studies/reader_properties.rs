@@ -174,10 +174,23 @@ fn mutated_scenes_are_accepted_finite_or_refused_in_one_sentence() {
             );
         }
         let started = Instant::now();
-        let outcome = SceneSpec::parse(&text, "fuzz.yaml", "fuzz")
-            .and_then(|spec| Planner::default().plan(&spec));
+        let spec = SceneSpec::parse(&text, "fuzz.yaml", "fuzz");
+        let outcome = spec
+            .as_ref()
+            .map_err(|e| rollbeam::error::Error::Input(e.to_string()))
+            .and_then(|spec| Planner::default().plan(spec));
         match outcome {
             Ok(scene) => {
+                // Written back as a scene file (a planned sweep's case, a pickled Python
+                // scene), it reads back to the same scene.
+                let spec = spec.as_ref().expect("planned, so read");
+                let written = spec.to_yaml().expect("an accepted scene writes");
+                let again = SceneSpec::parse(&written, "again.yaml", "fuzz");
+                prop_assert!(again.is_ok(), "{:?}\n{}", again.err(), written);
+                let again = again.expect("checked above");
+                prop_assert_eq!(again.to_yaml().expect("writes"), written.clone());
+                let described = |s: &SceneSpec| s.check().map(|c| Described(&c.scene).to_string());
+                prop_assert_eq!(described(&again).ok(), described(spec).ok(), "{}", written);
                 let numbers = derived_numbers(&scene);
                 prop_assert!(numbers.iter().all(|x| x.is_finite()), "{numbers:?}\n{text}");
                 let printed = Described(&scene).to_string();

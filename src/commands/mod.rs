@@ -41,17 +41,24 @@ impl SolverFlags {
 
     /// The flags checked against the scene, as overrides of its own settings.
     fn overrides(&self, scene: &Scene) -> Result<Overrides, Error> {
-        Ok(Overrides {
-            method: self
-                .method
-                .as_deref()
-                .map(|m| parse_method(m, scene))
-                .transpose()?,
-            rtol: rtol_flag(self.rtol, "--rtol")?,
-            atol: positive(self.atol, "--atol")?,
-            ..Default::default()
-        })
+        solver_overrides(scene, self.method.as_deref(), self.rtol, self.atol)
     }
+}
+
+/// A method, rtol and atol as a user names them (the command line's flags, the Python
+/// package's arguments), checked against the scene, as overrides of its own settings.
+pub fn solver_overrides(
+    scene: &Scene,
+    method: Option<&str>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+) -> Result<Overrides, Error> {
+    Ok(Overrides {
+        method: method.map(|m| parse_method(m, scene)).transpose()?,
+        rtol: rtol_flag(rtol, "--rtol")?,
+        atol: positive(atol, "--atol")?,
+        ..Default::default()
+    })
 }
 
 /// The integrator settings of the command line written into a scene, so that the scene

@@ -35,7 +35,7 @@ pub fn history_csv(run: &Run) -> String {
     }
 }
 
-pub(crate) fn yaml(value: &impl serde::Serialize) -> Result<String, Error> {
+pub fn yaml(value: &impl serde::Serialize) -> Result<String, Error> {
     serde_saphyr::to_string(value)
         .map_err(|e| Error::Output(format!("cannot format YAML output: {e}")))
 }
