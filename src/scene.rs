@@ -23,7 +23,7 @@ use crate::curve::Curve;
 use crate::disk::Disk;
 use crate::error::{quote, Error};
 use crate::ode::Method;
-use crate::rolling::Rolling;
+use crate::rolling::{ContactLoss, Rolling};
 
 #[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -205,6 +205,10 @@ struct DiskFile {
     mu: Option<Spanned<f64>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     patch: Option<Spanned<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    contact_loss: Option<Spanned<String>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    restitution: Option<Spanned<f64>>,
 }
 
 #[derive(Clone, Default, Deserialize, Serialize)]
@@ -663,6 +667,7 @@ impl SceneSpec {
                     "omega0" => option(&mut d.omega0),
                     "mu" => option(&mut d.mu),
                     "patch" => option(&mut d.patch),
+                    "restitution" => option(&mut d.restitution),
                     _ => return Err(not_a_number(key)),
                 }
             }
@@ -737,7 +742,7 @@ impl SceneSpec {
                 }
             }
             "disk.s0" | "disk.omega0" | "disk.mu" | "disk.patch" | "disk.coupling"
-            | "disk.formulation" => {
+            | "disk.formulation" | "disk.contact_loss" | "disk.restitution" => {
                 let Some(d) = f.disk.as_mut() else {
                     return no("disk");
                 };
@@ -748,6 +753,8 @@ impl SceneSpec {
                     "disk.mu" => d.mu = None,
                     "disk.patch" => d.patch = None,
                     "disk.coupling" => d.coupling = None,
+                    "disk.contact_loss" => d.contact_loss = None,
+                    "disk.restitution" => d.restitution = None,
                     _ => d.formulation = None,
                 }
             }
@@ -797,16 +804,16 @@ impl SceneSpec {
         };
         match key {
             "name" => text(&mut f.name),
-            "disk.coupling" | "disk.formulation" => {
+            "disk.coupling" | "disk.formulation" | "disk.contact_loss" => {
                 let Some(d) = f.disk.as_mut() else {
                     return Err(Error::Input(format!(
                         "`{key}` cannot be set: the scene has no disk"
                     )));
                 };
-                if key == "disk.coupling" {
-                    text(&mut d.value.coupling)
-                } else {
-                    text(&mut d.value.formulation)
+                match key {
+                    "disk.coupling" => text(&mut d.value.coupling),
+                    "disk.formulation" => text(&mut d.value.formulation),
+                    _ => text(&mut d.value.contact_loss),
                 }
             }
             "solver.method" => text(&mut f.solver.get_or_insert_with(SolverFile::default).method),
@@ -856,7 +863,7 @@ impl SceneSpec {
             }
             _ => {
                 return Err(Error::Input(format!(
-                    "`{key}` is not a name the scene format holds; names are name, disk.coupling, disk.formulation, solver.method, train.hslm, train.model, track.beam.model, track.beam.quadrature, track.beam.initial and track.beam.self_weight"
+                    "`{key}` is not a name the scene format holds; names are name, disk.coupling, disk.formulation, disk.contact_loss, solver.method, train.hslm, train.model, track.beam.model, track.beam.quadrature, track.beam.initial and track.beam.self_weight"
                 )))
             }
         }
@@ -1031,6 +1038,46 @@ fn scene_name(c: &Checker, given: Option<&Spanned<String>>, stem: &str) -> Resul
     }
 }
 
+/// `disk.contact_loss` and `disk.restitution`, checked; `None` where the scene gives neither.
+fn contact_loss(c: &Checker, d: &DiskFile) -> Result<Option<ContactLoss>, Error> {
+    let restitution = match &d.restitution {
+        Some(e) => {
+            let v = c.finite(e, "disk.restitution")?;
+            if !(0.0..=1.0).contains(&v) {
+                return c.err(
+                    e.referenced.line(),
+                    "disk.restitution",
+                    format!("= {v} is outside [0, 1]: the share of the normal speed a landing gives back (0 plastic, 1 elastic)"),
+                );
+            }
+            Some((v, e.referenced.line()))
+        }
+        None => None,
+    };
+    match (&d.contact_loss, restitution) {
+        (None, None) => Ok(None),
+        (None, Some((e, _))) => Ok(Some(ContactLoss::Fly { restitution: e })),
+        (Some(k), e) => match k.value.as_str() {
+            "fly" => Ok(Some(ContactLoss::Fly {
+                restitution: e.map_or(0.0, |e| e.0),
+            })),
+            "stop" => match e {
+                Some((_, line)) => c.err(
+                    line,
+                    "disk.restitution",
+                    "acts at a landing, and with `contact_loss: stop` the disk never lands; leave it out or fly",
+                ),
+                None => Ok(Some(ContactLoss::Stop)),
+            },
+            other => c.err(
+                k.referenced.line(),
+                "disk.contact_loss",
+                format!("is {}; use fly or stop", quote(other)),
+            ),
+        },
+    }
+}
+
 fn rolling_scene(
     c: &Checker,
     raw: &SceneFile,
@@ -1104,7 +1151,8 @@ fn rolling_scene(
             );
         }
     }
-    let rolling = Rolling::new(curve, disk, gravity, s0, omega0, mu);
+    let mut rolling = Rolling::new(curve, disk, gravity, s0, omega0, mu);
+    rolling.contact_loss = contact_loss(c, d)?.unwrap_or(ContactLoss::Fly { restitution: 0.0 });
     if let Some(s) = rolling.first_unfit_point() {
         let kappa = rolling.curve.at(s).curvature();
         if !kappa.is_finite() {
@@ -1999,6 +2047,31 @@ fn disk_on_beam(
             Ok,
         )?,
     };
+    if let Some(loss) = contact_loss(c, d)? {
+        let line = d
+            .contact_loss
+            .as_ref()
+            .map(|k| k.referenced.line())
+            .or(d.restitution.as_ref().map(|e| e.referenced.line()))
+            .unwrap_or(file.referenced.line());
+        if matches!(coupling, Coupling::MovingForce | Coupling::MovingMass) {
+            return c.err(
+                line,
+                if d.contact_loss.is_some() { "disk.contact_loss" } else { "disk.restitution" },
+                format!(
+                    "applies to a disk that can leave the beam; the {} coupling's load is held to the beam and never leaves it",
+                    coupling.name()
+                ),
+            );
+        }
+        if loss != ContactLoss::Stop {
+            return c.err(
+                line,
+                if d.contact_loss.is_some() { "disk.contact_loss" } else { "disk.restitution" },
+                "asks the disk to fly off a beam, which is not built yet (flight and landing work on rigid curves); on a beam write `contact_loss: stop`, which is what a beam run does today",
+            );
+        }
+    }
     let s0_line =
         d.s0.as_ref()
             .map_or(file.referenced.line(), |s| s.referenced.line());

@@ -490,6 +490,48 @@ fn bad_disks_on_beams() {
     );
 }
 
+/// Lift-off and landing: an unknown `contact_loss`, a restitution outside [0, 1] or not
+/// finite, a restitution with nothing to land, and either key on a coupling whose load
+/// cannot leave the beam.
+#[test]
+fn bad_contact_loss_and_restitution() {
+    let curve = |extra: &str| format!("duration: 1\n{PARABOLA}{GOOD_DISK}{extra}");
+    rejected(
+        "contact-loss-unknown",
+        &curve("  contact_loss: bounce\n"),
+        &["disk.contact_loss", "'bounce'", "fly or stop"],
+    );
+    for (name, e) in [("above-one", "1.5"), ("negative", "-0.1"), ("nan", ".nan")] {
+        rejected(
+            &format!("restitution-{name}"),
+            &curve(&format!("  restitution: {e}\n")),
+            &["disk.restitution"],
+        );
+    }
+    rejected(
+        "restitution-outside",
+        &curve("  restitution: 2\n"),
+        &["disk.restitution", "outside [0, 1]"],
+    );
+    rejected(
+        "restitution-with-stop",
+        &curve("  contact_loss: stop\n  restitution: 0.5\n"),
+        &["disk.restitution", "never lands"],
+    );
+    for coupling in ["moving-force", "moving-mass"] {
+        for key in ["contact_loss: stop", "restitution: 0.2"] {
+            rejected(
+                &format!("{coupling}-{}", &key[..4]),
+                &beam_scene(
+                    &[],
+                    &format!("disk:\n  mass: 10\n  radius: 0.1\n  s0: 1\n  omega0: -10\n  coupling: {coupling}\n  {key}\n"),
+                ),
+                &[key.split(':').next().unwrap_or(key), coupling, "never leaves it"],
+            );
+        }
+    }
+}
+
 /// The beam model: an unknown name, a mode count below 1 or past the mesh's unknowns, a mode
 /// count on a model that keeps every unknown, and the thesis' 3n + 6 system on a reduced beam.
 #[test]

@@ -233,7 +233,7 @@ fn contact_lost_over_a_hump_where_the_closed_form_says() {
         for f in [Formulation::Minimal, Formulation::Thesis] {
             let scene = with_formulation(
                 parse(&format!(
-                    "duration: 10\ntrack:\n  curve:\n    expr: {{x: \"{radius}*sin(s/{radius})\", y: \"{radius}*cos(s/{radius})\"}}\ndisk:\n  mass: 1.0\n  radius: {a}\n  s0: 0\n  omega0: {}\n",
+                    "duration: 10\ntrack:\n  curve:\n    expr: {{x: \"{radius}*sin(s/{radius})\", y: \"{radius}*cos(s/{radius})\"}}\ndisk:\n  mass: 1.0\n  radius: {a}\n  s0: 0\n  omega0: {}\n  contact_loss: stop\n",
                     -v0 / a
                 )),
                 f,

@@ -20,7 +20,7 @@ const CASES: u32 = 3000;
 /// mesh choice at the finest accuracy) takes about three seconds.
 const BOUND: Duration = Duration::from_secs(8);
 
-const SEEDS: [&str; 11] = [
+const SEEDS: [&str; 12] = [
     include_str!("parabola-p1.yaml"),
     include_str!("parabola-p3.yaml"),
     include_str!("beam-b1.yaml"),
@@ -32,6 +32,7 @@ const SEEDS: [&str; 11] = [
     include_str!("zipline.yaml"),
     include_str!("parabola-p4.yaml"),
     include_str!("hslm-15m.yaml"),
+    include_str!("jump.yaml"),
 ];
 
 /// Values a hostile user types where a number or a name belongs.

@@ -98,6 +98,8 @@ fn disk_summary(r: &BeamRun) -> Option<BeamDiskSummary> {
             rt_max,
             mu_needed_max,
             left_track_t: r.left_track_t,
+            // A disk on a beam does not fly yet: its runs end at the lift-off.
+            flights: Vec::new(),
         },
         w_under_min,
         w_under_min_t,

@@ -4,7 +4,7 @@ use std::fmt::Write;
 
 use crate::run::RunResult;
 
-pub const COLUMNS: [&str; 16] = [
+pub const COLUMNS: [&str; 18] = [
     "t",
     "disk.s",
     "disk.x",
@@ -16,10 +16,12 @@ pub const COLUMNS: [&str; 16] = [
     "disk.rn",
     "disk.phi",
     "disk.mu_needed",
+    "disk.gap",
     "energy.kinetic",
     "energy.strain",
     "energy.potential",
     "energy.work",
+    "energy.impact",
     "energy.total",
 ];
 
@@ -41,11 +43,13 @@ pub fn csv(r: &RunResult) -> String {
             d.rn,
             d.phi,
             d.mu_needed().unwrap_or(f64::NAN),
+            row.gap,
             d.kinetic,
             0.0,
             d.potential,
             0.0,
-            d.kinetic + d.potential,
+            row.impact,
+            row.energy(),
         ];
         let line: Vec<String> = values.iter().map(|&v| super::cell(v)).collect();
         let _ = writeln!(out, "{}", line.join(","));

@@ -45,29 +45,48 @@ pub fn line_chart(
     y_desc: &str,
     series: &[Series],
 ) -> Result<(), Error> {
+    stacked_chart(path, x_desc, &[(title, y_desc, series)])
+}
+
+/// Charts one above the other over a shared x quantity: (title, y description, lines) each.
+pub fn stacked_chart(
+    path: &Path,
+    x_desc: &str,
+    panels: &[(&str, &str, &[Series])],
+) -> Result<(), Error> {
     let err = |e: &dyn std::fmt::Display| plot_error(path, e);
-    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
+    let root = SVGBackend::new(path, (900, 520 * panels.len() as u32)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
+    for (area, (title, y_desc, series)) in root.split_evenly((panels.len(), 1)).iter().zip(panels) {
+        panel(area, title, x_desc, y_desc, series).map_err(|e| err(&e))?;
+    }
+    root.present().map_err(|e| err(&e))
+}
+
+fn panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    series: &[Series],
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let (x0, x1) = range(series.iter().flat_map(|s| s.1.iter().map(|p| p.0)));
     let (y0, y1) = range(series.iter().flat_map(|s| s.1.iter().map(|p| p.1)));
-    let mut chart = ChartBuilder::on(&root)
+    let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 22))
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(75)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| err(&e))?;
+        .build_cartesian_2d(x0..x1, y0..y1)?;
     chart
         .configure_mesh()
         .x_desc(x_desc)
         .y_desc(y_desc)
-        .draw()
-        .map_err(|e| err(&e))?;
+        .draw()?;
     for (i, (name, pts)) in series.iter().enumerate() {
         let color = PALETTE[i % PALETTE.len()];
         chart
-            .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))
-            .map_err(|e| err(&e))?
+            .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))?
             .label(*name)
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
@@ -79,10 +98,9 @@ pub fn line_chart(
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(|e| err(&e))?;
+            .draw()?;
     }
-    root.present().map_err(|e| err(&e))
+    Ok(())
 }
 
 fn series<'a>(rows: &[Row], name: &'a str, f: impl Fn(&Row) -> f64) -> Series<'a> {
@@ -155,6 +173,15 @@ pub fn track_figure(r: &RunResult, path: &Path, count: usize) -> Result<(), Erro
     chart
         .draw_series(LineSeries::new(track, BLACK.stroke_width(2)))
         .map_err(|e| err(&e))?;
+    if !r.flights.is_empty() {
+        // The centre's path, so that a flight's parabola stands out from the rolling.
+        chart
+            .draw_series(LineSeries::new(
+                r.rows.iter().map(|row| (row.disk.x, row.disk.y)),
+                RGBColor(150, 150, 150).stroke_width(1),
+            ))
+            .map_err(|e| err(&e))?;
+    }
     for (k, row) in picks.iter().enumerate() {
         let color = PALETTE[k % PALETTE.len()];
         let d = &row.disk;
@@ -207,16 +234,18 @@ pub fn all(r: &RunResult, dir: &Path) -> Result<(), Error> {
         "Ω (1/s)",
         &[series(rows, "Ω", |r| r.disk.omega)],
     )?;
-    line_chart(
-        &dir.join("reactions.svg"),
-        &format!("{name}: contact force on the disk"),
-        "t (s)",
-        "R (N)",
-        &[
-            series(rows, "R_t (tangential)", |r| r.disk.rt),
-            series(rows, "R_n (normal)", |r| r.disk.rn),
-        ],
-    )?;
+    let forces = [
+        series(rows, "R_t (tangential)", |r| r.disk.rt),
+        series(rows, "R_n (normal)", |r| r.disk.rn),
+    ];
+    let title = format!("{name}: contact force on the disk");
+    let gap = [series(rows, "gap", |r| r.gap)];
+    let gap_title = format!("{name}: gap between the disk and the track (0 while it rolls)");
+    let mut panels: Vec<(&str, &str, &[Series])> = vec![(&title, "R (N)", &forces)];
+    if !r.flights.is_empty() {
+        panels.push((&gap_title, "gap (m)", &gap));
+    }
+    stacked_chart(&dir.join("reactions.svg"), "t (s)", &panels)?;
     let e0 = r.header.energy.initial;
     let scale = r.header.energy.scale.max(f64::MIN_POSITIVE);
     line_chart(

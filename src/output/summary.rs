@@ -66,6 +66,9 @@ pub struct DiskSummary {
     /// pressed on the track; null if it never did.
     pub mu_needed_max: Option<f64>,
     pub left_track_t: Option<f64>,
+    /// One entry per flight: lift-off, landing (null if it never landed), largest gap and the
+    /// energy the landing took.
+    pub flights: Vec<crate::run::rolling::FlightRecord>,
 }
 
 impl Stopped {
@@ -150,6 +153,7 @@ impl Summary {
                 rt_max,
                 mu_needed_max,
                 left_track_t: left.then_some(r.last.t),
+                flights: r.flights.clone(),
             },
         }
     }

@@ -55,7 +55,11 @@ impl Problem for Minimal {
 
 impl RollingModel for Minimal {
     fn initial_state(&self) -> Vec<f64> {
-        vec![self.rolling.s0, self.rolling.v0(), 0.0]
+        self.state_at(self.rolling.s0, self.rolling.v0(), 0.0)
+    }
+
+    fn state_at(&self, s: f64, v: f64, phi: f64) -> Vec<f64> {
+        vec![s, v, phi]
     }
 
     fn observe(&self, _t: f64, y: &[f64]) -> DiskObservation {

@@ -3,6 +3,7 @@
 //! freedom s with the centre on the offset curve. Both report the same [`DiskObservation`] and
 //! watch the same physical events.
 
+pub mod flight;
 pub mod minimal;
 pub mod thesis;
 
@@ -43,6 +44,9 @@ impl DiskObservation {
 /// what its state means.
 pub trait RollingModel: Problem<Event = StopReason> {
     fn initial_state(&self) -> Vec<f64>;
+    /// The state of the disk rolling at contact parameter `s` with centre speed `v` along the
+    /// tangent and rotation `phi` relative to the tangent frame (a landing's restart).
+    fn state_at(&self, s: f64, v: f64, phi: f64) -> Vec<f64>;
     fn observe(&self, t: f64, y: &[f64]) -> DiskObservation;
     fn formulation(&self) -> &'static str;
 }
@@ -67,6 +71,16 @@ impl StopReason {
     }
 }
 
+/// What happens where the normal force falls to zero.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ContactLoss {
+    /// The disk leaves the track, flies, and lands by an impact that gives back `restitution`
+    /// of the normal speed.
+    Fly { restitution: f64 },
+    /// The run ends there (`contact-lost`), as the thesis' program did.
+    Stop,
+}
+
 /// The disk is taken not to fit once 1 − aκ falls below this: the offset curve is about to
 /// turn singular and ṡ = v / (|r'| (1 − aκ)) to blow up.
 pub const FIT_MARGIN: f64 = 1e-6;
@@ -80,6 +94,7 @@ pub struct Rolling {
     pub s0: f64,
     pub omega0: f64,
     pub mu: Option<f64>,
+    pub contact_loss: ContactLoss,
     specs: Vec<EventSpec<StopReason>>,
     reasons: Vec<StopReason>,
 }
@@ -114,6 +129,7 @@ impl Rolling {
             s0,
             omega0,
             mu,
+            contact_loss: ContactLoss::Fly { restitution: 0.0 },
             specs,
             reasons,
         }

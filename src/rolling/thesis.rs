@@ -85,8 +85,13 @@ impl RollingModel for Thesis {
     /// Table 2: the centre from the contact point, v_x from the no-slip condition.
     fn initial_state(&self) -> Vec<f64> {
         let r = &self.rolling;
-        let c = r.centre(&r.curve.at(r.s0));
-        vec![c[0], c[1], r.v0(), r.s0, 0.0, r.omega0]
+        self.state_at(r.s0, r.v0(), 0.0)
+    }
+
+    fn state_at(&self, s: f64, v: f64, phi: f64) -> Vec<f64> {
+        let r = &self.rolling;
+        let c = r.centre(&r.curve.at(s));
+        vec![c[0], c[1], v, s, phi, -v / r.disk.radius]
     }
 
     fn observe(&self, _t: f64, y: &[f64]) -> DiskObservation {

@@ -1,23 +1,43 @@
-//! A run of a disk on a rigid curve.
+//! A run of a disk on a rigid curve: rolling phases integrated, and between them, where the
+//! normal force falls to zero and the scene lets the disk fly, flights in closed form and the
+//! landings that end them (`rolling/flight.rs`).
 
 use super::{EnergyCheck, Overrides, Progress, RunHeader, Stop};
 use crate::error::Error;
 use crate::ode::{self, Observer};
+use crate::rolling::flight::{self, Flight, FlightEnd};
 use crate::rolling::minimal::Minimal;
 use crate::rolling::thesis::Thesis;
-use crate::rolling::{DiskObservation, RollingModel};
+use crate::rolling::{ContactLoss, DiskObservation, RollingModel, StopReason};
 use crate::scene::{Formulation, RollingScene, Scene};
 
 #[derive(Clone, Copy, Debug)]
 pub struct Row {
     pub t: f64,
     pub disk: DiskObservation,
+    /// Distance from the centre to the track minus the radius: 0 while the disk rolls.
+    pub gap: f64,
+    /// Kinetic energy the landings so far have taken (J).
+    pub impact: f64,
 }
 
 impl Row {
+    /// The energy that stays constant: the disk's, plus what the landings took.
     pub fn energy(&self) -> f64 {
-        self.disk.kinetic + self.disk.potential
+        self.disk.kinetic + self.disk.potential + self.impact
     }
+}
+
+/// One flight of the disk, from lift-off to landing (`summary.yaml`, `disk.flights`).
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct FlightRecord {
+    pub lift_off_t: f64,
+    pub lift_off_s: f64,
+    pub land_t: Option<f64>,
+    pub land_s: Option<f64>,
+    pub max_gap: f64,
+    /// Kinetic energy the landing took (J); null without a landing.
+    pub energy_lost: Option<f64>,
 }
 
 pub struct RunResult {
@@ -25,6 +45,7 @@ pub struct RunResult {
     pub setup: RollingScene,
     pub rows: Vec<Row>,
     pub last: Row,
+    pub flights: Vec<FlightRecord>,
 }
 
 pub fn model(setup: &RollingScene) -> Box<dyn RollingModel> {
@@ -38,33 +59,69 @@ pub fn model(setup: &RollingScene) -> Box<dyn RollingModel> {
     }
 }
 
-fn energy_of(d: &DiskObservation) -> (f64, f64) {
-    (d.kinetic + d.potential, d.kinetic.abs() + d.potential.abs())
+fn energy_of(d: &DiskObservation, impact: f64) -> (f64, f64) {
+    (
+        d.kinetic + d.potential + impact,
+        d.kinetic.abs() + d.potential.abs() + impact,
+    )
 }
 
+/// The run's observer: rows at the output times and the energy check at every step, with
+/// what the landings took added, whether the disk rolls or flies.
 struct Recorder<'a> {
     model: &'a dyn RollingModel,
     rows: Vec<Row>,
     energy: EnergyCheck,
     progress: Option<Progress>,
+    impact: f64,
+}
+
+impl Recorder<'_> {
+    fn record(&mut self, row: Row) {
+        let (total, scale) = energy_of(&row.disk, row.impact);
+        self.energy.record(total, scale);
+        self.rows.push(row);
+    }
 }
 
 impl Observer for Recorder<'_> {
     fn output(&mut self, t: f64, y: &[f64]) {
         let disk = self.model.observe(t, y);
-        let (total, scale) = energy_of(&disk);
-        self.energy.record(total, scale);
-        self.rows.push(Row { t, disk });
+        let impact = self.impact;
+        self.record(Row {
+            t,
+            disk,
+            gap: 0.0,
+            impact,
+        });
     }
 
     fn step(&mut self, t: f64, y: &[f64]) {
         let disk = self.model.observe(t, y);
-        let (total, scale) = energy_of(&disk);
+        let (total, scale) = energy_of(&disk, self.impact);
         self.energy.record(total, scale);
         if let Some(p) = &mut self.progress {
             p.update(t);
         }
     }
+}
+
+/// Most flights one run may take: a disk that lands and lifts off again without end (rolling
+/// over a crest it cannot hold at a speed it keeps) is stopped with that reason.
+pub const MAX_FLIGHTS: usize = 100_000;
+
+/// A bounce lower than this share of the radius is not flown: the gap is resolved to about
+/// 1e-10 of the radius, so such a flight could not be told from rolling. The bounces left
+/// (heights e² times smaller each) are summed in closed form instead, as on a flat track under
+/// the normal gravity there: they last τ / (1 − e) in all, τ = 2 vₙ / gₙ the first's flight
+/// time, the disk sliding along at its speed in the meantime, and the normal speed they carry
+/// is what they take.
+const RESOLVED_BOUNCE: f64 = 1e-8;
+
+/// How one phase of the run ended.
+enum Phase {
+    Rolls { t: f64, y: Vec<f64> },
+    Stops { t: f64, stop: Stop, last: Row },
 }
 
 pub fn run(
@@ -73,6 +130,7 @@ pub fn run(
     over: &Overrides,
     show_progress: bool,
 ) -> Result<RunResult, Error> {
+    let clock = std::time::Instant::now();
     let model = model(setup);
     let y0 = model.initial_state();
     let opts = over.options(scene);
@@ -82,7 +140,7 @@ pub fn run(
         model: model.as_ref(),
         rows: Vec::with_capacity(outputs.len() + 1),
         energy: {
-            let (total, scale) = energy_of(&first);
+            let (total, scale) = energy_of(&first, 0.0);
             EnergyCheck::new(total, scale)
         },
         progress: if show_progress {
@@ -90,31 +148,103 @@ pub fn run(
         } else {
             None
         },
+        impact: 0.0,
     };
-    let out = ode::solve(
-        model.as_ref(),
-        0.0,
-        &y0,
-        scene.duration,
-        &outputs,
-        &opts,
-        &mut rec,
-    )
-    .map_err(|e| Error::Solver(format!("scene {}: the solver failed: {e}", scene.name)))?;
+    let mut stats = ode::Stats::default();
+    let mut flights = Vec::new();
+    let (mut t, mut y) = (0.0, y0.clone());
+    // A disk launched faster than the track can hold it (the normal force negative from the
+    // start) leaves the track at once.
+    let launched = (first.rn < 0.0).then(|| Row {
+        t: 0.0,
+        disk: first,
+        gap: 0.0,
+        impact: 0.0,
+    });
+    if let Some(start) = launched {
+        rec.record(start);
+    }
+    let (t_end, stop, last) = loop {
+        if let Some(start) = launched.filter(|_| t == 0.0 && flights.is_empty()) {
+            let ContactLoss::Fly { restitution } = setup.rolling.contact_loss else {
+                break (0.0, Stop::Event(StopReason::ContactLost), start);
+            };
+            match fly_and_land(
+                scene,
+                setup,
+                model.as_ref(),
+                &mut rec,
+                &mut flights,
+                &outputs,
+                start,
+                restitution,
+            )? {
+                Phase::Rolls {
+                    t: t_land,
+                    y: y_land,
+                } => {
+                    (t, y) = (t_land, y_land);
+                    continue;
+                }
+                Phase::Stops { t, stop, last } => break (t, stop, last),
+            }
+        }
+        // Rows at the output times after this phase's start (and at t = 0 for the first).
+        let ahead: Vec<f64> = outputs
+            .iter()
+            .copied()
+            .filter(|&o| o > t || (t == 0.0 && o == 0.0))
+            .collect();
+        let out = ode::solve(
+            model.as_ref(),
+            t,
+            &y,
+            scene.duration,
+            &ahead,
+            &opts,
+            &mut rec,
+        )
+        .map_err(|e| Error::Solver(format!("scene {}: the solver failed: {e}", scene.name)))?;
+        add(&mut stats, &out.stats);
+        let last = Row {
+            t: out.t,
+            disk: model.observe(out.t, &out.y),
+            gap: 0.0,
+            impact: rec.impact,
+        };
+        let fly = match (&out.stopped_by, setup.rolling.contact_loss) {
+            (None, _) => break (out.t, Stop::End, last),
+            (Some(hit), ContactLoss::Fly { restitution })
+                if hit.reason == StopReason::ContactLost =>
+            {
+                restitution
+            }
+            (Some(hit), _) => break (out.t, Stop::Event(hit.reason), last),
+        };
+        match fly_and_land(
+            scene,
+            setup,
+            model.as_ref(),
+            &mut rec,
+            &mut flights,
+            &outputs,
+            last,
+            fly,
+        )? {
+            Phase::Rolls {
+                t: t_land,
+                y: y_land,
+            } => (t, y) = (t_land, y_land),
+            Phase::Stops { t, stop, last } => break (t, stop, last),
+        }
+    };
     if let Some(p) = &rec.progress {
         p.finish();
     }
-    let last = Row {
-        t: out.t,
-        disk: model.observe(out.t, &out.y),
-    };
-    if rec.rows.last().is_none_or(|r| r.t < out.t) {
-        rec.rows.push(last);
+    if rec.rows.last().is_none_or(|r| r.t < t_end) {
+        rec.record(last);
     }
-    let stop = match &out.stopped_by {
-        Some(hit) => Stop::Event(hit.reason),
-        None => Stop::End,
-    };
+    stats.wall_s = clock.elapsed().as_secs_f64();
     Ok(RunResult {
         header: RunHeader {
             scene: scene.clone(),
@@ -123,12 +253,242 @@ pub fn run(
             atol: opts.atol,
             unknowns: y0.len(),
             stop,
-            t_end: out.t,
-            stats: out.stats,
+            t_end,
+            stats,
             energy: rec.energy,
         },
         setup: setup.clone(),
         rows: rec.rows,
         last,
+        flights,
     })
+}
+
+fn add(total: &mut ode::Stats, s: &ode::Stats) {
+    total.steps += s.steps;
+    total.rejected += s.rejected;
+    total.rhs_evals += s.rhs_evals;
+    total.jacobians += s.jacobians;
+    total.factorizations += s.factorizations;
+    total.newton_iterations += s.newton_iterations;
+}
+
+/// From a lift-off (`lift`, the row where the normal force fell to zero): the flight, its
+/// landing, and the bounces after it, until the disk rolls again or the run stops.
+#[allow(clippy::too_many_arguments)]
+fn fly_and_land(
+    scene: &Scene,
+    setup: &RollingScene,
+    model: &dyn RollingModel,
+    rec: &mut Recorder,
+    flights: &mut Vec<FlightRecord>,
+    outputs: &[f64],
+    lift: Row,
+    restitution: f64,
+) -> Result<Phase, Error> {
+    let r = &setup.rolling;
+    let d = lift.disk;
+    let mut flight = Flight {
+        t0: lift.t,
+        centre: [d.x, d.y],
+        velocity: [d.vx, d.vy],
+        omega: d.omega,
+        gravity: r.gravity,
+    };
+    let mut from = (lift.disk.s, lift.disk.phi, tangent_angle(r, lift.disk.s));
+    loop {
+        if flights.len() >= MAX_FLIGHTS {
+            return Err(Error::Solver(format!(
+                "scene {}: the disk lifted off {MAX_FLIGHTS} times by t = {:.6} s; it cannot stay on this track at this speed, and the run stops rather than count more flights",
+                scene.name, flight.t0
+            )));
+        }
+        let (end, max_gap) = flight::land(r, &flight, from.0, scene.duration);
+        flights.push(FlightRecord {
+            lift_off_t: flight.t0,
+            lift_off_s: from.0,
+            land_t: None,
+            land_s: None,
+            max_gap,
+            energy_lost: None,
+        });
+        let t_stop = match end {
+            FlightEnd::Lands { t, .. } | FlightEnd::LeavesTrack { t, .. } => t,
+            FlightEnd::Airborne => scene.duration,
+        };
+        let observe =
+            |t: f64, s_guess: f64, impact: f64| flying(r, &flight, from, t, s_guess, impact);
+        let mut s_guess = from.0;
+        for &o in outputs.iter().filter(|&&o| o > flight.t0 && o <= t_stop) {
+            let row = observe(o, s_guess, rec.impact);
+            s_guess = row.disk.s;
+            rec.record(row);
+        }
+        let (t, s) = match end {
+            FlightEnd::Airborne => {
+                let last = observe(t_stop, s_guess, rec.impact);
+                return Ok(Phase::Stops {
+                    t: t_stop,
+                    stop: Stop::End,
+                    last,
+                });
+            }
+            FlightEnd::LeavesTrack { t, .. } => {
+                let last = observe(t, s_guess, rec.impact);
+                return Ok(Phase::Stops {
+                    t,
+                    stop: Stop::Event(StopReason::LeftTrack),
+                    last,
+                });
+            }
+            FlightEnd::Lands { t, s } => (t, s),
+        };
+        let before = observe(t, s, rec.impact);
+        let p = r.curve.at(s);
+        let hit = flight::impact(
+            &r.disk,
+            &p,
+            [before.disk.vx, before.disk.vy],
+            flight.omega,
+            restitution,
+        );
+        let record = flights.last_mut().expect("pushed above");
+        record.land_t = Some(t);
+        record.land_s = Some(s);
+        if let Some(mu) = r.mu {
+            if hit.jt.abs() > mu * hit.jn {
+                return Ok(Phase::Stops {
+                    t,
+                    stop: Stop::Event(StopReason::Slip),
+                    last: before,
+                });
+            }
+        }
+        record.energy_lost = Some(hit.energy_lost);
+        rec.impact += hit.energy_lost;
+        let n = p.normal();
+        // What of gravity presses the disk onto the track there.
+        let gravity_n = r.gravity * n[1];
+        let height = if gravity_n > 0.0 {
+            hit.vn * hit.vn / (2.0 * gravity_n)
+        } else {
+            f64::INFINITY
+        };
+        let t_dir = p.tangent();
+        let vt = hit.velocity[0] * t_dir[0] + hit.velocity[1] * t_dir[1];
+        from = (s, before.disk.phi, tangent_angle(r, s));
+        if hit.vn > 0.0 && height >= RESOLVED_BOUNCE * r.disk.radius {
+            flight = Flight {
+                t0: t,
+                centre: [before.disk.x, before.disk.y],
+                velocity: hit.velocity,
+                omega: hit.omega,
+                gravity: r.gravity,
+            };
+            continue;
+        }
+        let (mut t, mut s, mut phi) = (t, s, before.disk.phi);
+        if hit.vn > 0.0 && restitution < 1.0 {
+            // The bounces too low to fly, summed (see RESOLVED_BOUNCE).
+            let settled = t + 2.0 * hit.vn / gravity_n / (1.0 - restitution);
+            let glide = Flight {
+                t0: t,
+                centre: [before.disk.x, before.disk.y],
+                velocity: [vt * t_dir[0], vt * t_dir[1]],
+                omega: hit.omega,
+                gravity: 0.0,
+            };
+            let lost = 0.5 * r.disk.mass * hit.vn * hit.vn;
+            let mut s_guess = s;
+            for &o in outputs.iter().filter(|&&o| o > t && o <= settled) {
+                let row = flying(r, &glide, from, o, s_guess, rec.impact + lost);
+                s_guess = row.disk.s;
+                rec.record(row);
+            }
+            rec.impact += lost;
+            let end = flying(
+                r,
+                &glide,
+                from,
+                settled.min(scene.duration),
+                s_guess,
+                rec.impact,
+            );
+            flights.push(FlightRecord {
+                lift_off_t: t,
+                lift_off_s: s,
+                land_t: (settled <= scene.duration).then_some(settled),
+                land_s: (settled <= scene.duration).then_some(end.disk.s),
+                max_gap: height,
+                energy_lost: Some(lost),
+            });
+            if settled > scene.duration {
+                return Ok(Phase::Stops {
+                    t: scene.duration,
+                    stop: Stop::End,
+                    last: end,
+                });
+            }
+            (t, s, phi) = (settled, end.disk.s, end.disk.phi);
+        }
+        // The disk rolls on from the landing, unless the track falls away faster than it
+        // can follow there, in which case it lifts off at once.
+        let y = model.state_at(s, vt, phi);
+        let rolling = model.observe(t, &y);
+        if rolling.rn > 0.0 {
+            return Ok(Phase::Rolls { t, y });
+        }
+        flight = Flight {
+            t0: t,
+            centre: [rolling.x, rolling.y],
+            velocity: [rolling.vx, rolling.vy],
+            omega: rolling.omega,
+            gravity: r.gravity,
+        };
+        from = (s, phi, tangent_angle(r, s));
+    }
+}
+
+fn tangent_angle(r: &crate::rolling::Rolling, s: f64) -> f64 {
+    let t = r.curve.at(s).tangent();
+    t[1].atan2(t[0])
+}
+
+/// The row of a flying disk at `t`: no contact force, the gap to the nearest track point, and
+/// the rotation relative to that point's tangent, continued from the lift-off at `from`
+/// (s, φ, tangent angle).
+fn flying(
+    r: &crate::rolling::Rolling,
+    flight: &Flight,
+    from: (f64, f64, f64),
+    t: f64,
+    s_guess: f64,
+    impact: f64,
+) -> Row {
+    let c = flight.centre(t);
+    let v = flight.velocity(t);
+    let near = flight::gap(r, c, s_guess);
+    let turned = tangent_angle(r, near.s) - from.2;
+    let turned = turned.sin().atan2(turned.cos());
+    let m = r.disk.mass;
+    let kinetic = 0.5 * m * (v[0] * v[0] + v[1] * v[1])
+        + 0.5 * r.disk.inertia() * flight.omega * flight.omega;
+    Row {
+        t,
+        disk: DiskObservation {
+            s: near.s,
+            x: c[0],
+            y: c[1],
+            vx: v[0],
+            vy: v[1],
+            omega: flight.omega,
+            phi: from.1 + flight.omega * (t - flight.t0) - turned,
+            rt: 0.0,
+            rn: 0.0,
+            kinetic,
+            potential: m * r.gravity * c[1],
+        },
+        gap: near.gap.max(0.0),
+        impact,
+    }
 }
