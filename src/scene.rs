@@ -2047,31 +2047,46 @@ fn disk_on_beam(
             Ok,
         )?,
     };
-    if let Some(loss) = contact_loss(c, d)? {
-        let line = d
-            .contact_loss
-            .as_ref()
-            .map(|k| k.referenced.line())
-            .or(d.restitution.as_ref().map(|e| e.referenced.line()))
-            .unwrap_or(file.referenced.line());
-        if matches!(coupling, Coupling::MovingForce | Coupling::MovingMass) {
+    let line = d
+        .contact_loss
+        .as_ref()
+        .map(|k| k.referenced.line())
+        .or(d.restitution.as_ref().map(|e| e.referenced.line()))
+        .unwrap_or(file.referenced.line());
+    let key = if d.contact_loss.is_some() {
+        "disk.contact_loss"
+    } else {
+        "disk.restitution"
+    };
+    let contact_loss = match (contact_loss(c, d)?, coupling) {
+        (Some(_), Coupling::MovingForce | Coupling::MovingMass) => {
             return c.err(
                 line,
-                if d.contact_loss.is_some() { "disk.contact_loss" } else { "disk.restitution" },
+                key,
                 format!(
                     "applies to a disk that can leave the beam; the {} coupling's load is held to the beam and never leaves it",
                     coupling.name()
                 ),
             );
         }
-        if loss != ContactLoss::Stop {
+        (Some(ContactLoss::Fly { .. }), Coupling::Thesis) => {
             return c.err(
                 line,
-                if d.contact_loss.is_some() { "disk.contact_loss" } else { "disk.restitution" },
-                "asks the disk to fly off a beam, which is not built yet (flight and landing work on rigid curves); on a beam write `contact_loss: stop`, which is what a beam run does today",
+                key,
+                "asks the disk to fly off the beam, which only the consistent coupling does: the thesis coupling rolls the disk on the axis as if it were frozen, which gives a landing no meaning; write `contact_loss: stop` or use `coupling: consistent`",
             );
         }
-    }
+        (Some(ContactLoss::Fly { restitution }), _) if restitution > 0.0 => {
+            return c.err(
+                line,
+                "disk.restitution",
+                format!("= {restitution} makes the disk bounce off the beam, which is not built yet (on a beam the landing is plastic, restitution 0; bounces work on rigid curves)"),
+            );
+        }
+        (Some(loss), _) => loss,
+        (None, Coupling::Consistent) => ContactLoss::Fly { restitution: 0.0 },
+        (None, _) => ContactLoss::Stop,
+    };
     let s0_line =
         d.s0.as_ref()
             .map_or(file.referenced.line(), |s| s.referenced.line());
@@ -2149,6 +2164,7 @@ fn disk_on_beam(
         mu,
         gravity,
         patch,
+        contact_loss,
     })
 }
 

@@ -491,8 +491,9 @@ fn bad_disks_on_beams() {
 }
 
 /// Lift-off and landing: an unknown `contact_loss`, a restitution outside [0, 1] or not
-/// finite, a restitution with nothing to land, and either key on a coupling whose load
-/// cannot leave the beam.
+/// finite, a restitution with nothing to land, either key on a coupling whose load cannot
+/// leave the beam, and what is not built on a beam (a bounce; flight with the thesis
+/// coupling).
 #[test]
 fn bad_contact_loss_and_restitution() {
     let curve = |extra: &str| format!("duration: 1\n{PARABOLA}{GOOD_DISK}{extra}");
@@ -517,6 +518,27 @@ fn bad_contact_loss_and_restitution() {
         "restitution-with-stop",
         &curve("  contact_loss: stop\n  restitution: 0.5\n"),
         &["disk.restitution", "never lands"],
+    );
+    let on_beam = |extra: &str| {
+        beam_scene(
+            &[],
+            &format!("disk:\n  mass: 10\n  radius: 0.1\n  s0: 1\n  omega0: -10\n{extra}"),
+        )
+    };
+    rejected(
+        "bounce-on-beam",
+        &on_beam("  restitution: 0.3\n"),
+        &[
+            "disk.restitution",
+            "= 0.3",
+            "bounce off the beam",
+            "not built yet",
+        ],
+    );
+    rejected(
+        "thesis-flies",
+        &on_beam("  coupling: thesis\n  contact_loss: fly\n"),
+        &["disk.contact_loss", "only the consistent coupling"],
     );
     for coupling in ["moving-force", "moving-mass"] {
         for key in ["contact_loss: stop", "restitution: 0.2"] {

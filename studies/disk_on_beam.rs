@@ -386,7 +386,8 @@ fn thesis_system_as_published_equals_its_reduced_form() {
 }
 
 /// Headline numbers of the rubber beam and the zip-line for every coupling: how the run ended
-/// (and when, to 2 significant digits), and the lowest deflection under the disk to 2
+/// (and when, to 2 significant digits; on rubber the consistent coupling's disk lifts off near
+/// the far clamp and flies past it, so it leaves at an end), and the lowest deflection under the disk to 2
 /// significant digits, which rtol 10⁻⁵ → 10⁻⁶ and a mesh twice as fine leave unchanged. The
 /// one exception is the thesis coupling on rubber, whose deflection moves by 1.7 % with the
 /// mesh (0.495 → 0.503 m): 1 digit there.

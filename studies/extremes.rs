@@ -340,7 +340,7 @@ track:
     elements: 8
     order: 4
     initial: static
-disk: {{mass: 0.01, radius: {a}, s0: 1.0, omega0: {}}}
+disk: {{mass: 0.01, radius: {a}, s0: 1.0, omega0: {}, contact_loss: stop}}
 loads:
   - {{x: {}, fy: {}}}
   - {{x: {}, fy: {}}}

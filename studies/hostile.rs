@@ -154,15 +154,35 @@ fn item_1_panics() {
         &["`disk.patch` = 1e300", "wider than the beam"],
     );
     // A beam of near-zero density cannot hold the disk: under dopri5 (whose contact block
-    // once went missing from the mass pattern) the run stops at t = 0 with contact lost.
+    // once went missing from the mass pattern) the run stops at t = 0 with contact lost. (A
+    // disk let fly there would leave the massless beam to an integrator that cannot follow
+    // it: a solver failure with its sentence, which is the other half of this test's point.)
     let s = scene(
         "massless-beam",
-        &beam("", DISK).replace("rho: 7850", "rho: 1e-30"),
+        &beam("", DISK)
+            .replace("rho: 7850", "rho: 1e-30")
+            .replace("omega0: -44}", "omega0: -44, contact_loss: stop}"),
     );
     let o = out("massless-beam");
     runs_finite(&["run", &s, "--out", &o, "--method", "dopri5"], &o);
     let summary = std::fs::read_to_string(format!("{o}/summary.yaml")).expect("summary");
     assert!(summary.contains("reason: contact-lost"), "{summary}");
+    let s = scene(
+        "massless-beam-flies",
+        &beam("", DISK).replace("rho: 7850", "rho: 1e-30"),
+    );
+    fails(
+        &[
+            "run",
+            &s,
+            "--out",
+            &out("massless-flies"),
+            "--method",
+            "dopri5",
+        ],
+        2,
+        &["the solver failed"],
+    );
 }
 
 /// 2. The formula parser's recursion and size are bounded: nesting, sign chains, power

@@ -94,6 +94,7 @@ fn rolling(f: &mut fmt::Formatter<'_>, setup: &RollingScene) -> fmt::Result {
         r.omega0,
         r.mu.map_or(String::new(), |m| format!(", mu = {m}"))
     )?;
+    writeln!(f, "  {}", contact_loss(r.contact_loss))?;
     writeln!(
         f,
         "  model: {} formulation, {} unknowns (no beam)",
@@ -188,6 +189,9 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
         )?,
     }
     if let Some(d) = &setup.disk {
+        if d.coupling.rolls() {
+            writeln!(f, "  {}", contact_loss(d.contact_loss))?;
+        }
         patch(f, setup, d)?;
     }
     writeln!(
@@ -270,4 +274,17 @@ fn patch(f: &mut fmt::Formatter<'_>, setup: &BeamScene, d: &DiskOnBeamSpec) -> f
         writeln!(f, "  warning: {w}")?;
     }
     Ok(())
+}
+
+/// Where the normal force falls to zero, in one line.
+fn contact_loss(loss: crate::rolling::ContactLoss) -> String {
+    match loss {
+        crate::rolling::ContactLoss::Stop => {
+            "at a loss of contact: the run stops (contact-lost)".into()
+        }
+        crate::rolling::ContactLoss::Fly { restitution } => format!(
+            "at a loss of contact: the disk flies and lands (restitution {restitution}{})",
+            if restitution == 0.0 { ", plastic" } else { "" }
+        ),
+    }
 }

@@ -24,6 +24,7 @@
 
 mod consistent;
 pub mod contact;
+pub mod landing;
 pub(crate) mod law;
 mod moving_force;
 mod moving_mass;
@@ -93,6 +94,8 @@ pub struct DiskOnBeamSpec {
     pub gravity: f64,
     /// Half-width of the contact patch over which the disk touches the axis.
     pub patch: f64,
+    /// What happens where the normal force falls to zero.
+    pub contact_loss: crate::rolling::ContactLoss,
 }
 
 impl DiskOnBeamSpec {

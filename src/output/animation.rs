@@ -129,8 +129,8 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
     write(path, &svg)
 }
 
-/// The magnified axis in each frame, and the disk's centre and turned angle on it while it is
-/// on the beam.
+/// The magnified axis in each frame, and the disk's centre and turned angle on it (or over
+/// it, in flight) while it is on or over the beam.
 #[allow(clippy::type_complexity)]
 fn frame_geometry(r: &BeamRun) -> (Vec<Vec<[f64; 2]>>, Vec<Option<([f64; 2], f64)>>) {
     let frames = &r.frames;
@@ -152,14 +152,16 @@ fn frame_geometry(r: &BeamRun) -> (Vec<Vec<[f64; 2]>>, Vec<Option<([f64; 2], f64
         .iter()
         .zip(&shapes)
         .map(|(f, pts)| {
-            f.disk.map(|(s, turned)| {
+            f.disk.map(|(s, turned, gap)| {
                 let k = xs.partition_point(|&x| x < s).clamp(1, xs.len() - 1);
                 let g = ((s - xs[k - 1]) / (xs[k] - xs[k - 1])).clamp(0.0, 1.0);
                 let p = [
                     pts[k - 1][0] + g * (pts[k][0] - pts[k - 1][0]),
                     pts[k - 1][1] + g * (pts[k][1] - pts[k - 1][1]),
                 ];
-                ([p[0] - radius * sn, p[1] + radius * cs], turned)
+                // A flying disk's gap is a displacement from the track: magnified with it.
+                let lift = radius + mag * gap;
+                ([p[0] - lift * sn, p[1] + lift * cs], turned)
             })
         })
         .collect();

@@ -8,7 +8,7 @@ use std::path::Path;
 use plotters::prelude::*;
 use serde::Serialize;
 
-use super::plots::{line_chart, PALETTE};
+use super::plots::{line_chart, stacked_chart, PALETTE};
 use super::{write, yaml};
 use crate::error::Error;
 use crate::plan::{atol_for, rtol_for};
@@ -98,8 +98,7 @@ fn disk_summary(r: &BeamRun) -> Option<BeamDiskSummary> {
             rt_max,
             mu_needed_max,
             left_track_t: r.left_track_t,
-            // A disk on a beam does not fly yet: its runs end at the lift-off.
-            flights: Vec::new(),
+            flights: r.flights.clone(),
         },
         w_under_min,
         w_under_min_t,
@@ -333,6 +332,7 @@ pub fn csv(r: &BeamRun) -> String {
     let disk = r.setup.disk.is_some();
     if disk {
         head.extend(DISK_COLUMNS.iter().map(|c| format!("disk.{c}")));
+        head.push("disk.gap".into());
     }
     for p in &r.setup.probes {
         head.extend(["u", "w", "phi", "a"].map(|c| format!("{}.{c}", p.name)));
@@ -344,6 +344,7 @@ pub fn csv(r: &BeamRun) -> String {
             "energy.potential",
             "energy.work",
             "energy.dissipated",
+            "energy.impact",
             "energy.total",
         ]
         .map(String::from),
@@ -370,6 +371,11 @@ pub fn csv(r: &BeamRun) -> String {
                     d.mu_needed().unwrap_or(f64::NAN),
                 ]
             }));
+            v.push(if row.disk.is_some() {
+                row.gap
+            } else {
+                f64::NAN
+            });
         }
         for (d, a) in row.probes.iter().zip(&row.accelerations) {
             v.extend([d.u, d.w, d.phi, *a]);
@@ -382,6 +388,7 @@ pub fn csv(r: &BeamRun) -> String {
             row.potential,
             row.work,
             row.dissipated,
+            row.impact,
             row.total(),
         ]);
         v.extend(row.reactions.iter().flatten());
@@ -525,22 +532,33 @@ fn disk_figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
         "Ω (1/s)",
         &[("Ω", series(|d| d.omega))],
     )?;
-    line_chart(
-        &dir.join("disk-forces.svg"),
-        &format!("{name}: contact force on the disk"),
-        "t (s)",
-        "R (N)",
-        &[
-            ("R_n (normal)", series(|d| d.rn)),
-            ("R_t (tangential)", series(|d| d.rt)),
-        ],
-    )
+    let forces = [
+        ("R_n (normal)", series(|d| d.rn)),
+        ("R_t (tangential)", series(|d| d.rt)),
+    ];
+    let gap = [(
+        "gap",
+        r.rows
+            .iter()
+            .filter(|row| row.disk.is_some())
+            .map(|row| (row.t, row.gap))
+            .collect::<Vec<_>>(),
+    )];
+    let title = format!("{name}: contact force on the disk");
+    let gap_title = format!("{name}: gap between the disk and the beam (0 while it rolls)");
+    let mut panels: Vec<(&str, &str, &[(&str, Vec<(f64, f64)>)])> =
+        vec![(&title, "R (N)", &forces)];
+    if !r.flights.is_empty() {
+        panels.push((&gap_title, "gap (m)", &gap));
+    }
+    stacked_chart(&dir.join("disk-forces.svg"), "t (s)", &panels)
 }
 
 /// Where the disk stood on the magnified axis at time t: its centre in plot coordinates.
 fn disk_in_plot(r: &BeamRun, t: f64, along: &[crate::beam::PointDisplacement]) -> Option<[f64; 2]> {
     let row = r.rows.iter().find(|row| (row.t - t).abs() < 1e-9)?;
     let s = row.disk?.s;
+    let gap = row.gap;
     let xs = &r.envelope.x;
     let k = xs.partition_point(|&x| x < s).clamp(1, xs.len() - 1);
     let f = ((s - xs[k - 1]) / (xs[k] - xs[k - 1])).clamp(0.0, 1.0);
@@ -552,7 +570,9 @@ fn disk_in_plot(r: &BeamRun, t: f64, along: &[crate::beam::PointDisplacement]) -
     let mag = r.setup.magnify;
     let a = r.setup.disk.as_ref()?.disk.radius;
     let (sn, cs) = r.beam.angle.sin_cos();
-    Some([p[0] + mag * u - a * sn, p[1] + mag * w + a * cs])
+    // A flying disk's gap is a displacement from the track: magnified with it.
+    let lift = a + mag * gap;
+    Some([p[0] + mag * u - lift * sn, p[1] + mag * w + lift * cs])
 }
 
 /// The deformed axis at the requested times, displacements magnified, over the undeformed axis.

@@ -68,7 +68,7 @@ pub struct DiskSummary {
     pub left_track_t: Option<f64>,
     /// One entry per flight: lift-off, landing (null if it never landed), largest gap and the
     /// energy the landing took.
-    pub flights: Vec<crate::run::rolling::FlightRecord>,
+    pub flights: Vec<crate::run::FlightRecord>,
 }
 
 impl Stopped {

@@ -133,6 +133,22 @@ impl Overrides {
 }
 
 /// The output grid: every `interval` from 0 to the duration.
+/// One flight of the disk, from lift-off to landing (`summary.yaml`, `disk.flights`).
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct FlightRecord {
+    pub lift_off_t: f64,
+    pub lift_off_s: f64,
+    pub land_t: Option<f64>,
+    pub land_s: Option<f64>,
+    pub max_gap: f64,
+    /// Kinetic energy the landing took (J); null without a landing.
+    pub energy_lost: Option<f64>,
+}
+
+/// Most flights one run may take: a disk that lands and lifts off again without end (rolling
+/// over a crest it cannot hold at a speed it keeps) is stopped with that reason.
+pub const MAX_FLIGHTS: usize = 100_000;
+
 pub(crate) fn output_times(scene: &Scene) -> Vec<f64> {
     let count = (scene.duration / scene.interval + 1e-9).floor() as usize;
     (0..=count).map(|i| i as f64 * scene.interval).collect()

@@ -2,7 +2,7 @@
 //! normal force falls to zero and the scene lets the disk fly, flights in closed form and the
 //! landings that end them (`rolling/flight.rs`).
 
-use super::{EnergyCheck, Overrides, Progress, RunHeader, Stop};
+use super::{EnergyCheck, FlightRecord, Overrides, Progress, RunHeader, Stop, MAX_FLIGHTS};
 use crate::error::Error;
 use crate::ode::{self, Observer};
 use crate::rolling::flight::{self, Flight, FlightEnd};
@@ -26,18 +26,6 @@ impl Row {
     pub fn energy(&self) -> f64 {
         self.disk.kinetic + self.disk.potential + self.impact
     }
-}
-
-/// One flight of the disk, from lift-off to landing (`summary.yaml`, `disk.flights`).
-#[derive(Clone, Copy, Debug, serde::Serialize)]
-pub struct FlightRecord {
-    pub lift_off_t: f64,
-    pub lift_off_s: f64,
-    pub land_t: Option<f64>,
-    pub land_s: Option<f64>,
-    pub max_gap: f64,
-    /// Kinetic energy the landing took (J); null without a landing.
-    pub energy_lost: Option<f64>,
 }
 
 pub struct RunResult {
@@ -105,10 +93,6 @@ impl Observer for Recorder<'_> {
         }
     }
 }
-
-/// Most flights one run may take: a disk that lands and lifts off again without end (rolling
-/// over a crest it cannot hold at a speed it keeps) is stopped with that reason.
-pub const MAX_FLIGHTS: usize = 100_000;
 
 /// A bounce lower than this share of the radius is not flown: the gap is resolved to about
 /// 1e-10 of the radius, so such a flight could not be told from rolling. The bounces left

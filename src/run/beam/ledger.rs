@@ -5,7 +5,8 @@
 //! displacement since the start); the work of a prescribed moving load is its power on the
 //! beam, and the energy damping takes is its power vᵀCv, both by the trapezoidal rule over the
 //! steps. A disk that leaves the beam takes its energy with it, which the budget keeps from
-//! then on.
+//! then on; so does a disk that flies over it, whose flight keeps it constant, until it lands,
+//! and what a landing takes is booked as `impact`.
 
 use super::phase::Phase;
 use crate::beam::load::PointLoad;
@@ -21,6 +22,8 @@ pub(super) struct Energy {
     pub potential: f64,
     pub work: f64,
     pub dissipated: f64,
+    /// What the landings have taken.
+    pub impact: f64,
 }
 
 pub(super) struct Ledger<'a> {
@@ -38,6 +41,8 @@ pub(super) struct Ledger<'a> {
     weight0: f64,
     /// Energy taken by damping, by the trapezoidal rule over the steps: (t, power, energy).
     damped: (f64, f64, f64),
+    /// Kinetic energy the landings took.
+    impact: f64,
     pub check: EnergyCheck,
 }
 
@@ -92,6 +97,7 @@ impl<'a> Ledger<'a> {
             left_with: (0.0, 0.0),
             weight0: phase.loaded.weight_dot(&z0[..n]),
             damped: (0.0, phase.loaded.dissipation(&zd0[..n]), 0.0),
+            impact: 0.0,
             check,
         };
         ledger.at_loads = ledger.at_loads(phase, y0);
@@ -178,7 +184,7 @@ impl<'a> Ledger<'a> {
             + self.weight_work(phase, y);
         let dissipated = self.dissipated(phase, t, y).0;
         self.check.record(
-            kinetic + strain + potential - work + dissipated,
+            kinetic + strain + potential - work + dissipated + self.impact,
             kinetic + strain + potential.abs(),
         );
         Energy {
@@ -187,6 +193,7 @@ impl<'a> Ledger<'a> {
             potential,
             work,
             dissipated,
+            impact: self.impact,
         }
     }
 
@@ -216,7 +223,8 @@ impl<'a> Ledger<'a> {
         self.damped = (t, power, dissipated);
         self.check.record(
             kinetic + strain + potential - self.done - self.moving.2 - self.weight_work(phase, y)
-                + dissipated,
+                + dissipated
+                + self.impact,
             kinetic + strain + potential.abs(),
         );
     }
@@ -235,5 +243,12 @@ impl<'a> Ledger<'a> {
         }
         self.done += self.moving.2;
         self.moving = (t, 0.0, 0.0);
+    }
+
+    /// The disk lands on the beam at t and rides on it again, the landing having taken
+    /// `lost` of the kinetic energy: its energy is the system's again, observed live.
+    pub fn disk_lands(&mut self, lost: f64) {
+        self.left_with = (0.0, 0.0);
+        self.impact += lost;
     }
 }

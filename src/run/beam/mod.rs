@@ -8,17 +8,19 @@
 //! `sensors.rs`, which observe and compute nothing. [`run`] names the phases of a run.
 
 mod acceleration;
+mod flight;
 mod ledger;
 mod phase;
 mod sensors;
 
 use acceleration::AccelerationFilter;
 pub use acceleration::CutoffReport;
+use flight::{BeneathFlight, FlightEvent, FlyingDisk};
 use ledger::Ledger;
 use phase::Phase;
 use sensors::{History, Pictures, Sample};
 
-use super::{Overrides, Progress, RunHeader, Stop};
+use super::{FlightRecord, Overrides, Progress, RunHeader, Stop, MAX_FLIGHTS};
 use crate::analysis::modes::modes;
 use crate::analysis::statics;
 use crate::beam::damping::Rayleigh;
@@ -33,7 +35,8 @@ use crate::linalg::SparseLu;
 use crate::ode::second_order::FirstOrder;
 use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::{self, Method, Observer, Stats};
-use crate::rolling::{DiskObservation, StopReason};
+use crate::rolling::flight::Flight;
+use crate::rolling::{ContactLoss, DiskObservation, StopReason};
 use crate::scene::{BeamScene, Scene};
 
 /// Points along the beam where envelopes and shapes are sampled.
@@ -45,8 +48,9 @@ pub const FRAMES: usize = 240;
 pub struct Frame {
     pub t: f64,
     pub along: Vec<PointDisplacement>,
-    /// Contact point s and the angle the disk has turned through, while it is on the beam.
-    pub disk: Option<(f64, f64)>,
+    /// Contact point s (in flight, the nearest point), the angle the disk has turned through,
+    /// and its gap to the beam (0 while it rolls), while it is on or over the beam.
+    pub disk: Option<(f64, f64, f64)>,
 }
 
 #[derive(Clone, Debug)]
@@ -65,6 +69,10 @@ pub struct BeamRow {
     pub work: f64,
     /// What damping has taken since the start.
     pub dissipated: f64,
+    /// What the disk's landings have taken since the start.
+    pub impact: f64,
+    /// The flying disk's gap to the beam (0 while it rolls).
+    pub gap: f64,
     /// One per probe: the vertical (global Y) acceleration, with the modes above the cutoff
     /// left out (see [`AccelerationFilter`]).
     pub accelerations: Vec<f64>,
@@ -74,7 +82,7 @@ pub struct BeamRow {
 
 impl BeamRow {
     pub fn total(&self) -> f64 {
-        self.kinetic + self.strain + self.potential - self.work + self.dissipated
+        self.kinetic + self.strain + self.potential - self.work + self.dissipated + self.impact
     }
 }
 
@@ -104,6 +112,8 @@ pub struct BeamRun {
     pub frames: Vec<Frame>,
     /// When the disk left the beam, if it did.
     pub left_track_t: Option<f64>,
+    /// The disk's flights over the beam.
+    pub flights: Vec<FlightRecord>,
     /// (q, v) at the end of the run.
     pub y_end: Vec<f64>,
     /// What the recorded accelerations count.
@@ -170,6 +180,7 @@ impl Observer for Recorder<'_> {
             along_a: &along_a,
             along: &along,
             disk,
+            gap: phase.gap(t, y),
             energy,
             reactions,
         };
@@ -328,12 +339,15 @@ enum CoupledEnd {
 }
 
 /// Integrate the disk on the beam until it leaves it, stops, or the run ends.
+/// `from`: a restart (t, z, ż) after a landing; `None` for the run's start, the beam at rest
+/// in `start`.
 #[allow(clippy::too_many_arguments)]
 fn integrate_coupled(
     scene: &Scene,
     c: &DiskOnBeam,
     literal: bool,
     start: &[f64],
+    from: Option<(f64, Vec<f64>, Vec<f64>)>,
     outputs: &[f64],
     opts: &ode::Options,
     rec: &mut Recorder,
@@ -342,6 +356,13 @@ fn integrate_coupled(
     let until = c
         .exit_time()
         .map_or(scene.duration, |te| te.min(scene.duration));
+    if let Some((t0, z0, zd0)) = from {
+        let ahead: Vec<f64> = outputs.iter().copied().filter(|&o| o > t0).collect();
+        let out = integrate(c, t0, &z0, &zd0, until, &ahead, opts, rec)
+            .map_err(|e| solver_error(scene, e))?;
+        add_stats(stats, &out.stats);
+        return Ok(coupled_end(scene, out.t, out.stopped_by, out.y));
+    }
     let (z0, zd0) = c.initial_state(start);
     let (t, stopped_by, y) = if literal {
         // The thesis coupling with a first-order integrator is the published 3n + 6 system.
@@ -365,16 +386,173 @@ fn integrate_coupled(
         add_stats(stats, &out.stats);
         (out.t, out.stopped_by, out.y)
     };
+    Ok(coupled_end(scene, t, stopped_by, y))
+}
+
+fn coupled_end(
+    scene: &Scene,
+    t: f64,
+    stopped_by: Option<ode::EventHit<StopReason>>,
+    y: Vec<f64>,
+) -> CoupledEnd {
     let stop = match stopped_by {
         None if t < scene.duration => None,
         None => Some(Stop::End),
         Some(hit) if hit.reason == StopReason::LeftTrack => None,
         Some(hit) => Some(Stop::Event(hit.reason)),
     };
-    Ok(match stop {
+    match stop {
         None => CoupledEnd::Left { t, y },
         Some(stop) => CoupledEnd::Stopped { t, y, stop },
-    })
+    }
+}
+
+/// How a flight over the beam ended.
+enum Flown {
+    /// The disk landed and rolls on from the coupled state (t, z, ż).
+    Lands { t: f64, z: Vec<f64>, zd: Vec<f64> },
+    /// The run ends in the air, or stops at the landing: y is the phase's state then.
+    Stops { t: f64, y: Vec<f64>, stop: Stop },
+    /// The disk flew beyond an end of the beam; the beam goes on alone from (q, v).
+    Leaves { t: f64, q: Vec<f64>, v: Vec<f64> },
+}
+
+/// From a lift-off at (t, y) of the coupled phase: the beam integrated alone under the disk's
+/// flight until the disk lands (or passes an end, or the run ends), and the landing.
+#[allow(clippy::too_many_arguments)]
+fn fly<'a>(
+    scene: &Scene,
+    c: &'a DiskOnBeam<'a>,
+    loaded: &'a LoadedBeam<'a>,
+    t: f64,
+    y: &[f64],
+    outputs: &[f64],
+    opts: &ode::Options,
+    rec: &mut Recorder<'a>,
+    stats: &mut Stats,
+    flights: &mut Vec<FlightRecord>,
+) -> Result<Flown, Error> {
+    let n = loaded.dim();
+    let (mut t, mut y) = (t, y.to_vec());
+    loop {
+        if flights.len() >= MAX_FLIGHTS {
+            return Err(Error::Solver(format!(
+                "scene {}: the disk lifted off the beam {MAX_FLIGHTS} times by t = {t:.6} s; the run stops rather than count more flights",
+                scene.name
+            )));
+        }
+        let (z, zd) = rec.phase.split(&y);
+        let lift = c.observe(t, z, zd);
+        let lifted = t;
+        let (q, v) = (z[..n].to_vec(), zd[..n].to_vec());
+        rec.ledger.disk_leaves(&rec.phase, t, &y);
+        let disk = FlyingDisk {
+            coupled: c,
+            flight: Flight {
+                t0: t,
+                centre: [lift.x, lift.y],
+                velocity: [lift.vx, lift.vy],
+                omega: lift.omega,
+                gravity: c.spec.gravity,
+            },
+            s: std::cell::Cell::new(lift.s),
+        };
+        rec.phase.free();
+        rec.phase.flying = Some(disk.clone());
+        flights.push(FlightRecord {
+            lift_off_t: t,
+            lift_off_s: lift.s,
+            land_t: None,
+            land_s: None,
+            max_gap: 0.0,
+            energy_lost: None,
+        });
+        let rows_before = rec.history.rows.len();
+        let beneath = BeneathFlight { loaded, disk };
+        let ahead: Vec<f64> = outputs.iter().copied().filter(|&o| o > t).collect();
+        let out = integrate(&beneath, t, &q, &v, scene.duration, &ahead, opts, rec)
+            .map_err(|e| solver_error(scene, e))?;
+        add_stats(stats, &out.stats);
+        let record = flights.last_mut().expect("pushed above");
+        // The highest gap on the output grid (the flight is watched there, not searched).
+        record.max_gap = rec.history.rows[rows_before..]
+            .iter()
+            .map(|r| r.gap)
+            .fold(0.0, f64::max);
+        let hit = match out.stopped_by {
+            None => {
+                return Ok(Flown::Stops {
+                    t: out.t,
+                    y: out.y,
+                    stop: Stop::End,
+                })
+            }
+            Some(hit) => hit.reason,
+        };
+        let (q, v) = out.y.split_at(n);
+        if hit == FlightEvent::PassesEnd {
+            rec.phase.flying = None;
+            return Ok(Flown::Leaves {
+                t: out.t,
+                q: q.to_vec(),
+                v: v.to_vec(),
+            });
+        }
+        t = out.t;
+        let flight = beneath.disk.flight;
+        let near = c.gap(q, flight.centre(t), beneath.disk.s.get());
+        let before = flight.velocity(t);
+        let landing = c
+            .land(t, q, v, near.s, before, flight.omega)
+            .ok_or_else(|| {
+                Error::Solver(format!(
+                    "scene {}: the disk's landing on the beam at t = {t:.6} s could not be solved (the coupled mass matrix is singular there)",
+                    scene.name
+                ))
+            })?;
+        record.land_t = Some(t);
+        record.land_s = Some(near.s);
+        record.energy_lost = Some(landing.energy_lost);
+        rec.ledger.disk_lands(landing.energy_lost);
+        rec.phase.couple(c);
+        let after = c.observe(t, &landing.z, &landing.zd);
+        y = landing.z.iter().chain(&landing.zd).copied().collect();
+        if let Some(mu) = c.spec.mu {
+            // The impulse on the disk, in the track's frame at the landing.
+            let [tg, nm] = c.contact_frame(t, &landing.z, &landing.zd);
+            let m = c.spec.disk.mass;
+            let dv = [after.vx - before[0], after.vy - before[1]];
+            let (jt, jn) = (
+                m * (dv[0] * tg[0] + dv[1] * tg[1]),
+                m * (dv[0] * nm[0] + dv[1] * nm[1]),
+            );
+            if jt.abs() > mu * jn {
+                return Ok(Flown::Stops {
+                    t,
+                    y,
+                    stop: Stop::Event(StopReason::Slip),
+                });
+            }
+        }
+        // The disk rolls on from the landing, unless the beam falls away faster than it can
+        // follow there, in which case it lifts off at once; but a disk that touches again the
+        // instant it left, and then would have to be pulled to stay on, can neither roll nor
+        // fly there, and the run stops at that contact loss.
+        if after.rn > 0.0 {
+            return Ok(Flown::Lands {
+                t,
+                z: landing.z,
+                zd: landing.zd,
+            });
+        }
+        if t <= lifted + 1e-12 * (1.0 + t.abs()) {
+            return Ok(Flown::Stops {
+                t,
+                y,
+                stop: Stop::Event(StopReason::ContactLost),
+            });
+        }
+    }
 }
 
 pub fn run(
@@ -439,6 +617,7 @@ pub fn run(
         nz: coupled.as_ref().map_or(n, |c| c.dim()),
         mass_lu: &mass_lu,
         correct: !over.uncorrected_modes,
+        flying: None,
     };
     let y0: Vec<f64> = match &coupled {
         Some(c) => {
@@ -485,24 +664,68 @@ pub fn run(
     let mut left_track_t = None;
     let (mut t0, mut q0, mut v0) = (0.0, loaded.from_mesh(&start), vec![0.0; n]);
     let mut ended = None;
+    let mut flights = Vec::new();
     if let Some(c) = &coupled {
-        match integrate_coupled(
-            scene, c, literal, &start, &outputs, &opts, &mut rec, &mut stats,
-        )? {
-            CoupledEnd::Stopped { t, y, stop: why } => {
-                // The run stops between output times: its last row is the stop itself.
-                if rec.history.rows.last().is_none_or(|r| r.t < t) {
-                    rec.output(t, &y);
+        let mut from = None;
+        loop {
+            let end = integrate_coupled(
+                scene,
+                c,
+                literal,
+                &start,
+                from.take(),
+                &outputs,
+                &opts,
+                &mut rec,
+                &mut stats,
+            )?;
+            let flies = matches!(c.spec.contact_loss, ContactLoss::Fly { .. });
+            let (t, y, why) = match end {
+                CoupledEnd::Stopped {
+                    t,
+                    y,
+                    stop: Stop::Event(StopReason::ContactLost),
+                } if flies => {
+                    match fly(
+                        scene,
+                        c,
+                        &loaded,
+                        t,
+                        &y,
+                        &outputs,
+                        &opts,
+                        &mut rec,
+                        &mut stats,
+                        &mut flights,
+                    )? {
+                        Flown::Lands { t, z, zd } => {
+                            from = Some((t, z, zd));
+                            continue;
+                        }
+                        Flown::Leaves { t, q, v } => {
+                            (t0, q0, v0) = (t, q, v);
+                            left_track_t = Some(t);
+                            break;
+                        }
+                        Flown::Stops { t, y, stop } => (t, y, stop),
+                    }
                 }
-                stop = why;
-                ended = Some((t, y));
+                CoupledEnd::Stopped { t, y, stop } => (t, y, stop),
+                CoupledEnd::Left { t, y } => {
+                    rec.ledger.disk_leaves(&rec.phase, t, &y);
+                    let (z, zd) = rec.phase.split(&y);
+                    (t0, q0, v0) = (t, z[..n].to_vec(), zd[..n].to_vec());
+                    left_track_t = Some(t);
+                    break;
+                }
+            };
+            // The run stops between output times: its last row is the stop itself.
+            if rec.history.rows.last().is_none_or(|r| r.t < t) {
+                rec.output(t, &y);
             }
-            CoupledEnd::Left { t, y } => {
-                rec.ledger.disk_leaves(&rec.phase, t, &y);
-                let (z, zd) = rec.phase.split(&y);
-                (t0, q0, v0) = (t, z[..n].to_vec(), zd[..n].to_vec());
-                left_track_t = Some(t);
-            }
+            stop = why;
+            ended = Some((t, y));
+            break;
         }
     }
     let (t_end, y_end) = match ended {
@@ -549,6 +772,7 @@ pub fn run(
         shapes: rec.pictures.shapes,
         frames: rec.pictures.frames,
         left_track_t,
+        flights,
         y_end,
         acceleration: rec.filter.as_ref().map(|f| f.report()),
         damping,

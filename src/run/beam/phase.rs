@@ -25,9 +25,11 @@ pub(super) struct Phase<'a> {
     pub mass_lu: &'a SparseLu,
     /// Add the static correction of the modes a modal beam leaves out to its displacements.
     pub correct: bool,
+    /// The disk while it flies over the beam.
+    pub flying: Option<super::flight::FlyingDisk<'a>>,
 }
 
-impl Phase<'_> {
+impl<'a> Phase<'a> {
     /// (z, ż).
     pub fn split<'y>(&self, y: &'y [f64]) -> (&'y [f64], &'y [f64]) {
         y.split_at(self.nz)
@@ -68,16 +70,33 @@ impl Phase<'_> {
         Cow::Owned(q)
     }
 
-    /// The beam alone, vibrating freely from here on.
+    /// The beam alone: vibrating freely from here on, or under the disk flying over it.
     pub fn free(&mut self) {
         self.coupled = None;
         self.nz = self.loaded.dim();
     }
 
-    /// The disk as it is at (t, y), while it is on the beam.
+    /// The disk as it is at (t, y), while it is on the beam or flies over it.
     pub fn disk(&self, t: f64, y: &[f64]) -> Option<DiskObservation> {
+        if let Some(f) = &self.flying {
+            return Some(f.observe(t, &y[..self.loaded.dim()]).0);
+        }
         let (z, zd) = self.split(y);
         self.coupled.map(|c| c.observe(t, z, zd))
+    }
+
+    /// The flying disk's gap to the beam at (t, y); 0 while it rolls or has left.
+    pub fn gap(&self, t: f64, y: &[f64]) -> f64 {
+        self.flying
+            .as_ref()
+            .map_or(0.0, |f| f.observe(t, &y[..self.loaded.dim()]).1)
+    }
+
+    /// The disk rides on the beam again.
+    pub fn couple(&mut self, c: &'a DiskOnBeam<'a>) {
+        self.flying = None;
+        self.coupled = Some(c);
+        self.nz = c.dim();
     }
 
     /// The model's accelerations at (t, y): with the disk on the beam, the coupled system's

@@ -20,6 +20,8 @@ pub(super) struct Sample<'s> {
     /// Vertical accelerations at the beam's sample points.
     pub along_a: &'s [f64],
     pub disk: Option<DiskObservation>,
+    /// The flying disk's gap to the beam (0 while it rolls).
+    pub gap: f64,
     pub energy: Energy,
     pub reactions: [[f64; 3]; 2],
 }
@@ -50,6 +52,8 @@ impl History<'_> {
             potential: s.energy.potential,
             work: s.energy.work,
             dissipated: s.energy.dissipated,
+            impact: s.energy.impact,
+            gap: s.gap,
             accelerations: self
                 .probes
                 .iter()
@@ -138,7 +142,7 @@ impl Pictures<'_> {
             self.frames.push(Frame {
                 t,
                 along: s.along.to_vec(),
-                disk: s.disk.map(|d| (d.s, self.turned.2)),
+                disk: s.disk.map(|d| (d.s, self.turned.2, s.gap)),
             });
         }
         if self.shape_times.iter().any(|&st| (st - t).abs() < 1e-9) {
