@@ -2076,13 +2076,6 @@ fn disk_on_beam(
                 "asks the disk to fly off the beam, which only the consistent coupling does: the thesis coupling rolls the disk on the axis as if it were frozen, which gives a landing no meaning; write `contact_loss: stop` or use `coupling: consistent`",
             );
         }
-        (Some(ContactLoss::Fly { restitution }), _) if restitution > 0.0 => {
-            return c.err(
-                line,
-                "disk.restitution",
-                format!("= {restitution} makes the disk bounce off the beam, which is not built yet (on a beam the landing is plastic, restitution 0; bounces work on rigid curves)"),
-            );
-        }
         (Some(loss), _) => loss,
         (None, Coupling::Consistent) => ContactLoss::Fly { restitution: 0.0 },
         (None, _) => ContactLoss::Stop,

@@ -136,3 +136,143 @@ impl DiskOnBeam<'_> {
         })
     }
 }
+
+/// What a bounce leaves: the disk free again, the beam moving on.
+pub struct Bounce {
+    /// The disk's centre velocity (global) and spin.
+    pub velocity: [f64; 2],
+    pub omega: f64,
+    /// The beam's velocities, the model's unknowns.
+    pub beam: Vec<f64>,
+    /// The disk's speed away from the track, relative to it (m/s).
+    pub leaving: f64,
+    /// Kinetic energy the whole impact took, the plastic part included (J).
+    pub energy_lost: f64,
+}
+
+impl DiskOnBeam<'_> {
+    /// The contact point's velocity relative to the beam's averaged track at s, in the
+    /// track's (tangent, normal) components, local axes: the disk's centre `velocity` (local)
+    /// and spin against the beam's velocities `v` (the model's unknowns).
+    pub fn relative(
+        &self,
+        q: &[f64],
+        v: &[f64],
+        s: f64,
+        velocity: [f64; 2],
+        omega: f64,
+    ) -> [f64; 2] {
+        let a = self.spec.disk.radius;
+        let (q, v) = (self.loaded.to_mesh(q), self.loaded.to_mesh(v));
+        let at = AxisPoint::at(self.beam(), &q, &v, s, 0.0, self.spec.patch);
+        let (t, n) = (at.tangent(), at.normal());
+        let track = at.material_velocity();
+        let rel = [
+            velocity[0] + a * omega * t[0] - track[0],
+            velocity[1] + a * omega * t[1] - track[1],
+        ];
+        [rel[0] * t[0] + rel[1] * t[1], rel[0] * n[0] + rel[1] * n[1]]
+    }
+
+    /// The beam's velocity change (the model's unknowns) under an impulse `j` (local axes) the
+    /// disk puts on it at s, spread over the contact patch.
+    fn beam_kick(&self, q: &[f64], s: f64, j: [f64; 2], mass: &SparseLu) -> Vec<f64> {
+        let mesh = self.loaded.to_mesh(q);
+        let still = vec![0.0; mesh.len()];
+        let at = AxisPoint::at(self.beam(), &mesh, &still, s, 0.0, self.spec.patch);
+        let mut f = vec![0.0; mesh.len()];
+        at.spread(j, &mut f);
+        let mut dv = match self.loaded.modal {
+            Some(m) => {
+                let mut out = vec![0.0; m.dim()];
+                m.project(&f, &mut out);
+                out
+            }
+            None => f,
+        };
+        mass.solve_in_place(&mut dv);
+        dv
+    }
+
+    /// A landing with restitution e > 0 (Newton's law at the contact, sticking): after the
+    /// plastic `landing`, a second impulse J between disk and beam at the contact, found from
+    /// the 2 × 2 Delassus matrix W of the contact (the contact point's relative velocity per
+    /// unit impulse: the disk's 1/m + a²/C tangentially and 1/m normally, plus the beam's
+    /// track velocity under the impulse spread over the patch), such that the disk leaves
+    /// with −e times the normal relative speed it came with and the contact still sticks
+    /// tangentially. J is internal to disk and beam, so the momenta stay as the plastic
+    /// landing left them.
+    #[allow(clippy::too_many_arguments)]
+    pub fn bounce(
+        &self,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        s: f64,
+        velocity: [f64; 2],
+        omega: f64,
+        restitution: f64,
+        landing: &Landing,
+    ) -> Option<Bounce> {
+        let n = self.n;
+        let beam = self.beam();
+        let (m, a, c) = (
+            self.spec.disk.mass,
+            self.spec.disk.radius,
+            self.spec.disk.inertia(),
+        );
+        let came = self.relative(q, v, s, beam.to_local(velocity), omega)[1];
+        let plastic = self.observe(t, &landing.z, &landing.zd);
+        let v_plastic = &landing.zd[..n];
+        let disk_plastic = beam.to_local([plastic.vx, plastic.vy]);
+        let rel = self.relative(q, v_plastic, s, disk_plastic, plastic.omega);
+        let mass = SparseLu::factor(self.loaded.model_mass(), None)?;
+        let mesh = self.loaded.to_mesh(q);
+        let still = vec![0.0; mesh.len()];
+        let at = AxisPoint::at(beam, &mesh, &still, s, 0.0, self.spec.patch);
+        let (tg, nm) = (at.tangent(), at.normal());
+        // W, column by column: the relative velocity a unit impulse along t, then n, makes.
+        let mut w = [[0.0; 2]; 2];
+        for (k, dir) in [tg, nm].into_iter().enumerate() {
+            let kick = self.beam_kick(q, s, [-dir[0], -dir[1]], &mass);
+            let track = self.relative(q, &kick, s, [0.0, 0.0], 0.0);
+            w[0][k] = track[0];
+            w[1][k] = track[1];
+        }
+        w[0][0] += 1.0 / m + a * a / c;
+        w[1][1] += 1.0 / m;
+        let want = [-rel[0], -restitution * came - rel[1]];
+        let det = w[0][0] * w[1][1] - w[0][1] * w[1][0];
+        if !(det.abs() > 0.0) {
+            return None;
+        }
+        let jt = (want[0] * w[1][1] - w[0][1] * want[1]) / det;
+        let jn = (w[0][0] * want[1] - w[1][0] * want[0]) / det;
+        let j = [jt * tg[0] + jn * nm[0], jt * tg[1] + jn * nm[1]];
+        let disk_after = [disk_plastic[0] + j[0] / m, disk_plastic[1] + j[1] / m];
+        let omega_after = plastic.omega + a * jt / c;
+        let kick = self.beam_kick(q, s, [-j[0], -j[1]], &mass);
+        let beam_after: Vec<f64> = v_plastic.iter().zip(&kick).map(|(a, b)| a + b).collect();
+        let kinetic = |v: &[f64], d: [f64; 2], w: f64| {
+            let mut mv = vec![0.0; n];
+            linalg::mul(self.loaded.model_mass(), v, &mut mv);
+            0.5 * v.iter().zip(&mv).map(|(a, b)| a * b).sum::<f64>()
+                + 0.5 * m * (d[0] * d[0] + d[1] * d[1])
+                + 0.5 * c * w * w
+        };
+        let before = kinetic(v, beam.to_local(velocity), omega);
+        let after = kinetic(&beam_after, disk_after, omega_after);
+        let leaving = self.relative(q, &beam_after, s, disk_after, omega_after)[1];
+        [disk_after[0], disk_after[1], omega_after, leaving]
+            .iter()
+            .chain(&beam_after)
+            .all(|x| x.is_finite())
+            .then(|| Bounce {
+                velocity: beam.to_global(disk_after),
+                omega: omega_after,
+                beam: beam_after,
+                leaving,
+                energy_lost: before - after,
+            })
+    }
+}

@@ -251,4 +251,12 @@ impl<'a> Ledger<'a> {
         self.left_with = (0.0, 0.0);
         self.impact += lost;
     }
+
+    /// The disk bounces off the beam at t: the impact took `lost` of the kinetic energy, and
+    /// the disk flies off again with `disk` (kinetic, potential), which the budget holds
+    /// constant while it flies.
+    pub fn disk_bounces(&mut self, lost: f64, disk: (f64, f64)) {
+        self.left_with = disk;
+        self.impact += lost;
+    }
 }

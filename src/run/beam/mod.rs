@@ -28,6 +28,7 @@ use crate::beam::dynamics::LoadedBeam;
 use crate::beam::load::BeamStart;
 use crate::beam::modal::ModalBasis;
 use crate::beam::{Beam, BeamModel, PointDisplacement, Stations};
+use crate::coupling::landing::Landing;
 use crate::coupling::thesis_system::ThesisSystem;
 use crate::coupling::{Coupling, DiskOnBeam};
 use crate::error::Error;
@@ -417,8 +418,45 @@ enum Flown {
     Leaves { t: f64, q: Vec<f64>, v: Vec<f64> },
 }
 
+/// A disk leaving the beam: where and how it flies, over the beam's state then.
+struct Launch {
+    t: f64,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    flight: Flight,
+    s: f64,
+}
+
+/// The disk lifts off at (t, y) of the coupled phase: it takes its energy with it into the
+/// air, where the budget holds it constant.
+fn lift_off(c: &DiskOnBeam, rec: &mut Recorder, t: f64, y: &[f64]) -> Launch {
+    let n = c.loaded.dim();
+    let (z, zd) = rec.phase.split(y);
+    let d = c.observe(t, z, zd);
+    let launch = Launch {
+        t,
+        q: z[..n].to_vec(),
+        v: zd[..n].to_vec(),
+        flight: Flight {
+            t0: t,
+            centre: [d.x, d.y],
+            velocity: [d.vx, d.vy],
+            omega: d.omega,
+            gravity: c.spec.gravity,
+        },
+        s: d.s,
+    };
+    rec.ledger.disk_leaves(&rec.phase, t, y);
+    launch
+}
+
+/// A bounce lower than this share of the radius is not flown: it ends as a plastic landing
+/// (see the rigid curve's `RESOLVED_BOUNCE`).
+const RESOLVED_BOUNCE: f64 = 1e-8;
+
 /// From a lift-off at (t, y) of the coupled phase: the beam integrated alone under the disk's
-/// flight until the disk lands (or passes an end, or the run ends), and the landing.
+/// flight until the disk lands (or passes an end, or the run ends), the landing, and the
+/// bounces after it.
 #[allow(clippy::too_many_arguments)]
 fn fly<'a>(
     scene: &Scene,
@@ -433,35 +471,28 @@ fn fly<'a>(
     flights: &mut Vec<FlightRecord>,
 ) -> Result<Flown, Error> {
     let n = loaded.dim();
-    let (mut t, mut y) = (t, y.to_vec());
+    let restitution = match c.spec.contact_loss {
+        ContactLoss::Fly { restitution } => restitution,
+        ContactLoss::Stop => 0.0,
+    };
+    let mut launch = lift_off(c, rec, t, y);
     loop {
         if flights.len() >= MAX_FLIGHTS {
             return Err(Error::Solver(format!(
-                "scene {}: the disk lifted off the beam {MAX_FLIGHTS} times by t = {t:.6} s; the run stops rather than count more flights",
-                scene.name
+                "scene {}: the disk lifted off the beam {MAX_FLIGHTS} times by t = {:.6} s; the run stops rather than count more flights",
+                scene.name, launch.t
             )));
         }
-        let (z, zd) = rec.phase.split(&y);
-        let lift = c.observe(t, z, zd);
-        let lifted = t;
-        let (q, v) = (z[..n].to_vec(), zd[..n].to_vec());
-        rec.ledger.disk_leaves(&rec.phase, t, &y);
         let disk = FlyingDisk {
             coupled: c,
-            flight: Flight {
-                t0: t,
-                centre: [lift.x, lift.y],
-                velocity: [lift.vx, lift.vy],
-                omega: lift.omega,
-                gravity: c.spec.gravity,
-            },
-            s: std::cell::Cell::new(lift.s),
+            flight: launch.flight,
+            s: std::cell::Cell::new(launch.s),
         };
         rec.phase.free();
         rec.phase.flying = Some(disk.clone());
         flights.push(FlightRecord {
-            lift_off_t: t,
-            lift_off_s: lift.s,
+            lift_off_t: launch.t,
+            lift_off_s: launch.s,
             land_t: None,
             land_s: None,
             max_gap: 0.0,
@@ -469,9 +500,18 @@ fn fly<'a>(
         });
         let rows_before = rec.history.rows.len();
         let beneath = BeneathFlight { loaded, disk };
-        let ahead: Vec<f64> = outputs.iter().copied().filter(|&o| o > t).collect();
-        let out = integrate(&beneath, t, &q, &v, scene.duration, &ahead, opts, rec)
-            .map_err(|e| solver_error(scene, e))?;
+        let ahead: Vec<f64> = outputs.iter().copied().filter(|&o| o > launch.t).collect();
+        let out = integrate(
+            &beneath,
+            launch.t,
+            &launch.q,
+            &launch.v,
+            scene.duration,
+            &ahead,
+            opts,
+            rec,
+        )
+        .map_err(|e| solver_error(scene, e))?;
         add_stats(stats, &out.stats);
         let record = flights.last_mut().expect("pushed above");
         // The highest gap on the output grid (the flight is watched there, not searched).
@@ -498,41 +538,73 @@ fn fly<'a>(
                 v: v.to_vec(),
             });
         }
-        t = out.t;
+        let t = out.t;
         let flight = beneath.disk.flight;
         let near = c.gap(q, flight.centre(t), beneath.disk.s.get());
         let before = flight.velocity(t);
+        let unsolved = || {
+            Error::Solver(format!(
+                "scene {}: the disk's landing on the beam at t = {t:.6} s could not be solved (the coupled mass matrix is singular there)",
+                scene.name
+            ))
+        };
         let landing = c
             .land(t, q, v, near.s, before, flight.omega)
-            .ok_or_else(|| {
-                Error::Solver(format!(
-                    "scene {}: the disk's landing on the beam at t = {t:.6} s could not be solved (the coupled mass matrix is singular there)",
-                    scene.name
-                ))
-            })?;
+            .ok_or_else(unsolved)?;
         record.land_t = Some(t);
         record.land_s = Some(near.s);
+        let bounce = if restitution > 0.0 {
+            c.bounce(t, q, v, near.s, before, flight.omega, restitution, &landing)
+        } else {
+            None
+        };
+        let gravity_n = c.spec.gravity * c.contact_frame(t, &landing.z, &landing.zd)[1][1];
+        if let Some(b) = bounce.filter(|b| {
+            gravity_n <= 0.0
+                || b.leaving * b.leaving / (2.0 * gravity_n) >= RESOLVED_BOUNCE * c.spec.disk.radius
+        }) {
+            record.energy_lost = Some(b.energy_lost);
+            let after = c.observe(t, &landing.z, &landing.zd);
+            if slips(c, &landing, t, before, b.velocity) {
+                rec.ledger.disk_lands(landing.energy_lost);
+                rec.phase.couple(c);
+                return Ok(Flown::Stops {
+                    t,
+                    y: landing.z.iter().chain(&landing.zd).copied().collect(),
+                    stop: Stop::Event(StopReason::Slip),
+                });
+            }
+            let m = c.spec.disk.mass;
+            let kinetic = 0.5 * m * (b.velocity[0].powi(2) + b.velocity[1].powi(2))
+                + 0.5 * c.spec.disk.inertia() * b.omega * b.omega;
+            rec.ledger
+                .disk_bounces(b.energy_lost, (kinetic, after.potential));
+            launch = Launch {
+                t,
+                q: q.to_vec(),
+                v: b.beam,
+                flight: Flight {
+                    t0: t,
+                    centre: [after.x, after.y],
+                    velocity: b.velocity,
+                    omega: b.omega,
+                    gravity: c.spec.gravity,
+                },
+                s: near.s,
+            };
+            continue;
+        }
         record.energy_lost = Some(landing.energy_lost);
         rec.ledger.disk_lands(landing.energy_lost);
         rec.phase.couple(c);
         let after = c.observe(t, &landing.z, &landing.zd);
-        y = landing.z.iter().chain(&landing.zd).copied().collect();
-        if let Some(mu) = c.spec.mu {
-            // The impulse on the disk, in the track's frame at the landing.
-            let [tg, nm] = c.contact_frame(t, &landing.z, &landing.zd);
-            let m = c.spec.disk.mass;
-            let dv = [after.vx - before[0], after.vy - before[1]];
-            let (jt, jn) = (
-                m * (dv[0] * tg[0] + dv[1] * tg[1]),
-                m * (dv[0] * nm[0] + dv[1] * nm[1]),
-            );
-            if jt.abs() > mu * jn {
-                return Ok(Flown::Stops {
-                    t,
-                    y,
-                    stop: Stop::Event(StopReason::Slip),
-                });
-            }
+        let y: Vec<f64> = landing.z.iter().chain(&landing.zd).copied().collect();
+        if slips(c, &landing, t, before, [after.vx, after.vy]) {
+            return Ok(Flown::Stops {
+                t,
+                y,
+                stop: Stop::Event(StopReason::Slip),
+            });
         }
         // The disk rolls on from the landing, unless the beam falls away faster than it can
         // follow there, in which case it lifts off at once; but a disk that touches again the
@@ -545,14 +617,29 @@ fn fly<'a>(
                 zd: landing.zd,
             });
         }
-        if t <= lifted + 1e-12 * (1.0 + t.abs()) {
+        if t <= launch.t + 1e-12 * (1.0 + t.abs()) {
             return Ok(Flown::Stops {
                 t,
                 y,
                 stop: Stop::Event(StopReason::ContactLost),
             });
         }
+        launch = lift_off(c, rec, t, &y);
     }
+}
+
+/// Whether the impulse that took the disk from `before` to `after` (centre velocities,
+/// global) needs more friction than the scene's `mu`: |Jₜ| > mu Jₙ in the track's frame.
+fn slips(c: &DiskOnBeam, landing: &Landing, t: f64, before: [f64; 2], after: [f64; 2]) -> bool {
+    let Some(mu) = c.spec.mu else {
+        return false;
+    };
+    let [tg, nm] = c.contact_frame(t, &landing.z, &landing.zd);
+    let m = c.spec.disk.mass;
+    let dv = [after[0] - before[0], after[1] - before[1]];
+    let jt = m * (dv[0] * tg[0] + dv[1] * tg[1]);
+    let jn = m * (dv[0] * nm[0] + dv[1] * nm[1]);
+    jt.abs() > mu * jn
 }
 
 pub fn run(
