@@ -303,6 +303,25 @@ fn a_disk_flies_over_a_bearing_lands_and_the_energy_balance_closes() {
     );
 }
 
+/// A 4 m free–free steel beam (no support takes any impulse) with a 30 kg disk of radius
+/// 0.2 m over it, for landings evaluated directly.
+fn free_free() -> rollbeam::scene::BeamScene {
+    parse(
+        "duration: 0.05\ntrack:\n  beam:\n    from: [0, 0]\n    to: [4, 0]\n    E: 210e9\n    G: 81e9\n    rho: 7850\n    A: 59.8e-4\n    Av: 29.9e-4\n    I: 3620e-8\n    supports: {from: free, to: free}\n    elements: 8\n    order: 3\ndisk: {mass: 30.0, radius: 0.2, s0: 1.0, omega0: -10}\n",
+    )
+    .beam()
+    .expect("a beam scene")
+    .clone()
+}
+
+/// The beam undeformed and moving: a wave of velocities over its n unknowns.
+fn moving(n: usize) -> (Vec<f64>, Vec<f64>) {
+    (
+        vec![0.0; n],
+        (0..n).map(|i| 0.3 * (0.7 * i as f64).sin()).collect(),
+    )
+}
+
 /// A landing on a free–free beam, evaluated directly: the linear and angular momentum of disk
 /// and beam together are the same after it as before (the impulse is internal), to round-off;
 /// the disk rolls after it (the contact point moves with the beam's averaged track); and the
@@ -316,17 +335,12 @@ fn a_landing_on_a_free_beam_keeps_the_momenta() {
     use rollbeam::coupling::DiskOnBeam;
     use rollbeam::ode::second_order::Structure;
 
-    let scene = parse(
-        "duration: 0.05\ntrack:\n  beam:\n    from: [0, 0]\n    to: [4, 0]\n    E: 210e9\n    G: 81e9\n    rho: 7850\n    A: 59.8e-4\n    Av: 29.9e-4\n    I: 3620e-8\n    supports: {from: free, to: free}\n    elements: 8\n    order: 3\ndisk: {mass: 30.0, radius: 0.2, s0: 1.0, omega0: -10}\n",
-    );
-    let setup = scene.beam().expect("a beam scene");
+    let setup = free_free();
     let beam = Beam::new(setup.beam.clone());
     let loaded = LoadedBeam::new(&beam, &setup.loads, None, None, None);
     let c = DiskOnBeam::new(&loaded, setup.disk.clone().expect("a disk"));
     let n = beam.dim();
-    // The beam undeformed and moving: a wave of velocities over its unknowns.
-    let v: Vec<f64> = (0..n).map(|i| 0.3 * (0.7 * i as f64).sin()).collect();
-    let q = vec![0.0; n];
+    let (q, v) = moving(n);
     let (velocity, omega) = ([2.0, -3.0], 5.0);
     let landing = c
         .land(0.0, &q, &v, 1.7, velocity, omega)
@@ -413,16 +427,12 @@ fn a_bounce_on_a_free_beam_reverses_the_normal_speed_and_keeps_the_momentum() {
     use rollbeam::coupling::DiskOnBeam;
     use rollbeam::ode::second_order::Structure;
 
-    let scene = parse(
-        "duration: 0.05\ntrack:\n  beam:\n    from: [0, 0]\n    to: [4, 0]\n    E: 210e9\n    G: 81e9\n    rho: 7850\n    A: 59.8e-4\n    Av: 29.9e-4\n    I: 3620e-8\n    supports: {from: free, to: free}\n    elements: 8\n    order: 3\ndisk: {mass: 30.0, radius: 0.2, s0: 1.0, omega0: -10, restitution: 0.6}\n",
-    );
-    let setup = scene.beam().expect("a beam scene");
+    let setup = free_free();
     let beam = Beam::new(setup.beam.clone());
     let loaded = LoadedBeam::new(&beam, &setup.loads, None, None, None);
     let c = DiskOnBeam::new(&loaded, setup.disk.clone().expect("a disk"));
     let n = beam.dim();
-    let v: Vec<f64> = (0..n).map(|i| 0.3 * (0.7 * i as f64).sin()).collect();
-    let q = vec![0.0; n];
+    let (q, v) = moving(n);
     let (velocity, omega, s, e) = ([2.0, -3.0], 5.0, 1.7, 0.6);
     let landing = c.land(0.0, &q, &v, s, velocity, omega).expect("lands");
     let b = c

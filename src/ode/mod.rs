@@ -206,6 +206,19 @@ pub struct Stats {
     pub wall_s: f64,
 }
 
+impl Stats {
+    /// Add another solve's counts (and wall time) to these: a run of several phases.
+    pub fn add(&mut self, more: &Stats) {
+        self.steps += more.steps;
+        self.rejected += more.rejected;
+        self.rhs_evals += more.rhs_evals;
+        self.jacobians += more.jacobians;
+        self.factorizations += more.factorizations;
+        self.newton_iterations += more.newton_iterations;
+        self.wall_s += more.wall_s;
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct EventHit<E> {
     pub reason: E,

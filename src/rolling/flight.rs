@@ -234,27 +234,7 @@ fn max_gap(rolling: &Rolling, flight: &Flight, highest: (f64, f64, f64, f64), s:
         return best.max(0.0);
     }
     let g = |t: f64| gap(rolling, flight.centre(t), s).gap;
-    let r = (5f64.sqrt() - 1.0) / 2.0;
-    let (mut a, mut b) = (lo, hi);
-    let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
-    let (mut gc, mut gd) = (g(c), g(d));
-    for _ in 0..200 {
-        if b - a <= 1e-15 * (1.0 + b.abs()) {
-            break;
-        }
-        if gc > gd {
-            b = d;
-            (d, gd) = (c, gc);
-            c = b - r * (b - a);
-            gc = g(c);
-        } else {
-            a = c;
-            (c, gc) = (d, gd);
-            d = a + r * (b - a);
-            gd = g(d);
-        }
-    }
-    best.max(gc).max(gd)
+    best.max(g(super::golden_max(&g, lo, hi)))
 }
 
 #[cfg(test)]

@@ -148,62 +148,46 @@ pub fn run(
     if let Some(start) = launched {
         rec.record(start);
     }
+    let mut pending = launched;
     let (t_end, stop, last) = loop {
-        if let Some(start) = launched.filter(|_| t == 0.0 && flights.is_empty()) {
-            let ContactLoss::Fly { restitution } = setup.rolling.contact_loss else {
-                break (0.0, Stop::Event(StopReason::ContactLost), start);
-            };
-            match fly_and_land(
-                scene,
-                setup,
-                model.as_ref(),
-                &mut rec,
-                &mut flights,
-                &outputs,
-                start,
-                restitution,
-            )? {
-                Phase::Rolls {
-                    t: t_land,
-                    y: y_land,
-                } => {
-                    (t, y) = (t_land, y_land);
-                    continue;
+        // Roll until the normal force falls to zero, unless the disk is off the track already.
+        let lift = match pending.take() {
+            Some(start) => start,
+            None => {
+                // Rows at the output times after this phase's start (and at t = 0 for the first).
+                let ahead: Vec<f64> = outputs
+                    .iter()
+                    .copied()
+                    .filter(|&o| o > t || (t == 0.0 && o == 0.0))
+                    .collect();
+                let out = ode::solve(
+                    model.as_ref(),
+                    t,
+                    &y,
+                    scene.duration,
+                    &ahead,
+                    &opts,
+                    &mut rec,
+                )
+                .map_err(|e| {
+                    Error::Solver(format!("scene {}: the solver failed: {e}", scene.name))
+                })?;
+                stats.add(&out.stats);
+                let last = Row {
+                    t: out.t,
+                    disk: model.observe(out.t, &out.y),
+                    gap: 0.0,
+                    impact: rec.impact,
+                };
+                match out.stopped_by {
+                    None => break (out.t, Stop::End, last),
+                    Some(hit) if hit.reason == StopReason::ContactLost => last,
+                    Some(hit) => break (out.t, Stop::Event(hit.reason), last),
                 }
-                Phase::Stops { t, stop, last } => break (t, stop, last),
             }
-        }
-        // Rows at the output times after this phase's start (and at t = 0 for the first).
-        let ahead: Vec<f64> = outputs
-            .iter()
-            .copied()
-            .filter(|&o| o > t || (t == 0.0 && o == 0.0))
-            .collect();
-        let out = ode::solve(
-            model.as_ref(),
-            t,
-            &y,
-            scene.duration,
-            &ahead,
-            &opts,
-            &mut rec,
-        )
-        .map_err(|e| Error::Solver(format!("scene {}: the solver failed: {e}", scene.name)))?;
-        add(&mut stats, &out.stats);
-        let last = Row {
-            t: out.t,
-            disk: model.observe(out.t, &out.y),
-            gap: 0.0,
-            impact: rec.impact,
         };
-        let fly = match (&out.stopped_by, setup.rolling.contact_loss) {
-            (None, _) => break (out.t, Stop::End, last),
-            (Some(hit), ContactLoss::Fly { restitution })
-                if hit.reason == StopReason::ContactLost =>
-            {
-                restitution
-            }
-            (Some(hit), _) => break (out.t, Stop::Event(hit.reason), last),
+        let ContactLoss::Fly { restitution } = setup.rolling.contact_loss else {
+            break (lift.t, Stop::Event(StopReason::ContactLost), lift);
         };
         match fly_and_land(
             scene,
@@ -212,8 +196,8 @@ pub fn run(
             &mut rec,
             &mut flights,
             &outputs,
-            last,
-            fly,
+            lift,
+            restitution,
         )? {
             Phase::Rolls {
                 t: t_land,
@@ -246,15 +230,6 @@ pub fn run(
         last,
         flights,
     })
-}
-
-fn add(total: &mut ode::Stats, s: &ode::Stats) {
-    total.steps += s.steps;
-    total.rejected += s.rejected;
-    total.rhs_evals += s.rhs_evals;
-    total.jacobians += s.jacobians;
-    total.factorizations += s.factorizations;
-    total.newton_iterations += s.newton_iterations;
 }
 
 /// From a lift-off (`lift`, the row where the normal force fell to zero): the flight, its

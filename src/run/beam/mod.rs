@@ -321,16 +321,6 @@ fn integrate<E: Copy + std::fmt::Debug>(
     ode::solve(&FirstOrder::new(p), t0, &y0, t_end, outputs, opts, rec)
 }
 
-fn add_stats(total: &mut Stats, more: &Stats) {
-    total.steps += more.steps;
-    total.rejected += more.rejected;
-    total.rhs_evals += more.rhs_evals;
-    total.jacobians += more.jacobians;
-    total.factorizations += more.factorizations;
-    total.newton_iterations += more.newton_iterations;
-    total.wall_s += more.wall_s;
-}
-
 /// How the coupled phase ended.
 enum CoupledEnd {
     /// At the end of the run, or at a physical event: the run ends here.
@@ -361,7 +351,7 @@ fn integrate_coupled(
         let ahead: Vec<f64> = outputs.iter().copied().filter(|&o| o > t0).collect();
         let out = integrate(c, t0, &z0, &zd0, until, &ahead, opts, rec)
             .map_err(|e| solver_error(scene, e))?;
-        add_stats(stats, &out.stats);
+        stats.add(&out.stats);
         return Ok(coupled_end(scene, out.t, out.stopped_by, out.y));
     }
     let (z0, zd0) = c.initial_state(start);
@@ -379,12 +369,12 @@ fn integrate_coupled(
             &mut through,
         )
         .map_err(|e| solver_error(scene, e))?;
-        add_stats(stats, &out.stats);
+        stats.add(&out.stats);
         (out.t, out.stopped_by, sys.reduced(out.t, &out.y))
     } else {
         let out = integrate(c, 0.0, &z0, &zd0, until, outputs, opts, rec)
             .map_err(|e| solver_error(scene, e))?;
-        add_stats(stats, &out.stats);
+        stats.add(&out.stats);
         (out.t, out.stopped_by, out.y)
     };
     Ok(coupled_end(scene, t, stopped_by, y))
@@ -512,7 +502,7 @@ fn fly<'a>(
             rec,
         )
         .map_err(|e| solver_error(scene, e))?;
-        add_stats(stats, &out.stats);
+        stats.add(&out.stats);
         let record = flights.last_mut().expect("pushed above");
         // The highest gap on the output grid (the flight is watched there, not searched).
         record.max_gap = rec.history.rows[rows_before..]
@@ -831,7 +821,7 @@ pub fn run(
                 &mut rec,
             )
             .map_err(|e| solver_error(scene, e))?;
-            add_stats(&mut stats, &out.stats);
+            stats.add(&out.stats);
             (out.t, out.y)
         }
     };
