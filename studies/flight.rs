@@ -435,8 +435,9 @@ fn a_bounce_on_a_free_beam_reverses_the_normal_speed_and_keeps_the_momentum() {
     let (q, v) = moving(n);
     let (velocity, omega, s, e) = ([2.0, -3.0], 5.0, 1.7, 0.6);
     let landing = c.land(0.0, &q, &v, s, velocity, omega).expect("lands");
+    let mass_lu = rollbeam::linalg::SparseLu::factor(loaded.model_mass(), None).expect("a mass");
     let b = c
-        .bounce(0.0, &q, &v, s, velocity, omega, e, &landing)
+        .bounce(0.0, &q, &v, s, velocity, omega, e, &landing, &mass_lu)
         .expect("bounces");
     let came = c.relative(&q, &v, s, velocity, omega);
     let left = c.relative(&q, &b.beam, s, b.velocity, b.omega);

@@ -290,13 +290,19 @@ fn cases_of(cases: Vec<Vec<ValueArg>>) -> Vec<Vec<Value>> {
         .collect()
 }
 
-fn overrides_of(
-    spec: &SceneSpec,
+/// The scene as written, and the integrator settings checked against its plan.
+fn with_overrides(
+    scene: &SceneText,
     method: Option<&str>,
     rtol: Option<f64>,
     atol: Option<f64>,
-) -> Result<Overrides, Error> {
-    solver_overrides(&Planner::default().plan(spec)?, method, rtol, atol)
+) -> PyResult<(SceneSpec, Overrides)> {
+    let spec = scene.spec().map_err(py_err)?;
+    let over = Planner::default()
+        .plan(&spec)
+        .and_then(|planned| solver_overrides(&planned, method, rtol, atol))
+        .map_err(py_err)?;
+    Ok((spec, over))
 }
 
 /// Whether every value can be set at its key (the scene is not planned): a key the scene
@@ -325,8 +331,7 @@ fn sweep_cases(
     rtol: Option<f64>,
     atol: Option<f64>,
 ) -> PyResult<String> {
-    let spec = scene.spec().map_err(py_err)?;
-    let over = overrides_of(&spec, method.as_deref(), rtol, atol).map_err(py_err)?;
+    let (spec, over) = with_overrides(&scene, method.as_deref(), rtol, atol)?;
     let cases = cases_of(cases);
     let rows = py.detach(|| sweep::run_cases(&spec, &keys, &cases, &over, false));
     Ok(sweep::sweep_csv(&rows, &keys))
@@ -344,8 +349,7 @@ fn run_case(
     rtol: Option<f64>,
     atol: Option<f64>,
 ) -> PyResult<String> {
-    let spec = scene.spec().map_err(py_err)?;
-    let over = overrides_of(&spec, method.as_deref(), rtol, atol).map_err(py_err)?;
+    let (spec, over) = with_overrides(&scene, method.as_deref(), rtol, atol)?;
     let values: Vec<Value> = values.into_iter().map(|v| v.0).collect();
     let outcome = py.detach(|| sweep::run_case(&spec, &keys, &values, &over));
     Record::of(&sweep::row((values, outcome)))

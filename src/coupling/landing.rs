@@ -201,7 +201,7 @@ impl DiskOnBeam<'_> {
     /// track velocity under the impulse spread over the patch), such that the disk leaves
     /// with −e times the normal relative speed it came with and the contact still sticks
     /// tangentially. J is internal to disk and beam, so the momenta stay as the plastic
-    /// landing left them.
+    /// landing left them. `mass` is the beam's mass matrix (the model's unknowns), factorised.
     #[allow(clippy::too_many_arguments)]
     pub fn bounce(
         &self,
@@ -213,6 +213,7 @@ impl DiskOnBeam<'_> {
         omega: f64,
         restitution: f64,
         landing: &Landing,
+        mass: &SparseLu,
     ) -> Option<Bounce> {
         let n = self.n;
         let beam = self.beam();
@@ -226,7 +227,6 @@ impl DiskOnBeam<'_> {
         let v_plastic = &landing.zd[..n];
         let disk_plastic = beam.to_local([plastic.vx, plastic.vy]);
         let rel = self.relative(q, v_plastic, s, disk_plastic, plastic.omega);
-        let mass = SparseLu::factor(self.loaded.model_mass(), None)?;
         let mesh = self.loaded.to_mesh(q);
         let still = vec![0.0; mesh.len()];
         let at = AxisPoint::at(beam, &mesh, &still, s, 0.0, self.spec.patch);
@@ -234,7 +234,7 @@ impl DiskOnBeam<'_> {
         // W, column by column: the relative velocity a unit impulse along t, then n, makes.
         let mut w = [[0.0; 2]; 2];
         for (k, dir) in [tg, nm].into_iter().enumerate() {
-            let kick = self.beam_kick(q, s, [-dir[0], -dir[1]], &mass);
+            let kick = self.beam_kick(q, s, [-dir[0], -dir[1]], mass);
             let track = self.relative(q, &kick, s, [0.0, 0.0], 0.0);
             w[0][k] = track[0];
             w[1][k] = track[1];
@@ -251,7 +251,7 @@ impl DiskOnBeam<'_> {
         let j = [jt * tg[0] + jn * nm[0], jt * tg[1] + jn * nm[1]];
         let disk_after = [disk_plastic[0] + j[0] / m, disk_plastic[1] + j[1] / m];
         let omega_after = plastic.omega + a * jt / c;
-        let kick = self.beam_kick(q, s, [-j[0], -j[1]], &mass);
+        let kick = self.beam_kick(q, s, [-j[0], -j[1]], mass);
         let beam_after: Vec<f64> = v_plastic.iter().zip(&kick).map(|(a, b)| a + b).collect();
         let kinetic = |v: &[f64], d: [f64; 2], w: f64| {
             let mut mv = vec![0.0; n];

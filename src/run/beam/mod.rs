@@ -158,7 +158,7 @@ struct Recorder<'a> {
 impl Observer for Recorder<'_> {
     fn output(&mut self, t: f64, y: &[f64]) {
         let phase = &self.phase;
-        let disk = phase.disk(t, y);
+        let (disk, gap) = phase.disk(t, y);
         let energy = self.ledger.at_output(phase, t, y, disk.as_ref());
         let q = phase.displaced(t, y, disk.as_ref());
         let a = phase.acceleration(t, y);
@@ -181,7 +181,7 @@ impl Observer for Recorder<'_> {
             along_a: &along_a,
             along: &along,
             disk,
-            gap: phase.gap(t, y),
+            gap,
             energy,
             reactions,
         };
@@ -544,7 +544,17 @@ fn fly<'a>(
         record.land_t = Some(t);
         record.land_s = Some(near.s);
         let bounce = if restitution > 0.0 {
-            c.bounce(t, q, v, near.s, before, flight.omega, restitution, &landing)
+            c.bounce(
+                t,
+                q,
+                v,
+                near.s,
+                before,
+                flight.omega,
+                restitution,
+                &landing,
+                rec.phase.mass_lu,
+            )
         } else {
             None
         };

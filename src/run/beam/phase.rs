@@ -76,20 +76,15 @@ impl<'a> Phase<'a> {
         self.nz = self.loaded.dim();
     }
 
-    /// The disk as it is at (t, y), while it is on the beam or flies over it.
-    pub fn disk(&self, t: f64, y: &[f64]) -> Option<DiskObservation> {
+    /// The disk as it is at (t, y), while it is on the beam or flies over it, and its gap to
+    /// the beam (0 while it rolls or has left).
+    pub fn disk(&self, t: f64, y: &[f64]) -> (Option<DiskObservation>, f64) {
         if let Some(f) = &self.flying {
-            return Some(f.observe(t, &y[..self.loaded.dim()]).0);
+            let (d, gap) = f.observe(t, &y[..self.loaded.dim()]);
+            return (Some(d), gap);
         }
         let (z, zd) = self.split(y);
-        self.coupled.map(|c| c.observe(t, z, zd))
-    }
-
-    /// The flying disk's gap to the beam at (t, y); 0 while it rolls or has left.
-    pub fn gap(&self, t: f64, y: &[f64]) -> f64 {
-        self.flying
-            .as_ref()
-            .map_or(0.0, |f| f.observe(t, &y[..self.loaded.dim()]).1)
+        (self.coupled.map(|c| c.observe(t, z, zd)), 0.0)
     }
 
     /// The disk rides on the beam again.
