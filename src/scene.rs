@@ -1272,7 +1272,7 @@ fn beam_scene(
     let loads = point_loads(c, raw, length)?;
     let train = match &raw.train {
         None => None,
-        Some(t) => Some(train(c, raw, t)?),
+        Some(t) => Some(train(c, raw, t, &beam, gravity)?),
     };
     // With a train `duration` is the free vibration after its last axle has left.
     let duration = match (&train, &raw.train) {
@@ -1485,7 +1485,13 @@ fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usize, bool), 
 }
 
 /// The train as the file gives it: an HSLM name, or axles and their load; its speed and model.
-fn train(c: &Checker, raw: &SceneFile, file: &Spanned<TrainFile>) -> Result<Train, Error> {
+fn train(
+    c: &Checker,
+    raw: &SceneFile,
+    file: &Spanned<TrainFile>,
+    beam: &BeamSpec,
+    gravity: f64,
+) -> Result<Train, Error> {
     let t = &file.value;
     if let Some(d) = &raw.disk {
         return c.err(
@@ -1498,12 +1504,22 @@ fn train(c: &Checker, raw: &SceneFile, file: &Spanned<TrainFile>) -> Result<Trai
     let model = match &t.model {
         None => TrainModel::MovingForce,
         Some(m) if m.value == "moving-force" => TrainModel::MovingForce,
+        Some(m) if m.value == "moving-mass" => {
+            if !(gravity > 0.0) {
+                return c.err(
+                    m.referenced.line(),
+                    "train.model",
+                    format!("is moving-mass, whose axle masses are their loads over gravity, and gravity is {gravity}: give a positive `gravity`, or use moving-force"),
+                );
+            }
+            TrainModel::MovingMass
+        }
         Some(m) => {
             return c.err(
                 m.referenced.line(),
                 "train.model",
                 format!(
-                    "is {}; a train's axles are moving forces: use moving-force",
+                    "is {}; a train's axles are moving-force or moving-mass",
                     quote(&m.value)
                 ),
             )
@@ -1591,12 +1607,18 @@ fn train(c: &Checker, raw: &SceneFile, file: &Spanned<TrainFile>) -> Result<Trai
                 )
             }
         };
+    let masses = match model {
+        TrainModel::MovingForce => Vec::new(),
+        TrainModel::MovingMass => loads.iter().map(|p| p / gravity).collect(),
+    };
     Ok(Train {
         name,
         axles,
         loads,
         speed,
         model,
+        masses,
+        patch: patch::dispersed_half_width(beam.depth),
     })
 }
 

@@ -641,8 +641,8 @@ fn damping_anchored_past_the_mesh() {
 }
 
 /// A train: an unknown HSLM name, axles not increasing or negative, a load list of the wrong
-/// length, a speed not above zero, a train beside a disk, an HSLM name with axles, and a
-/// train on a rigid curve.
+/// length, a speed not above zero, a train beside a disk, an HSLM name with axles, a train on
+/// a rigid curve, an unknown model, and moving masses without gravity to weigh them.
 #[test]
 fn bad_trains() {
     let train = |body: &str| beam_scene(&[], &format!("train:\n{body}"));
@@ -692,6 +692,28 @@ fn bad_trains() {
         "train-on-curve",
         &format!("duration: 1\n{PARABOLA}{GOOD_DISK}train:\n  hslm: A1\n  speed: 50\n"),
         &["train", "beam tracks only"],
+    );
+    rejected(
+        "train-model",
+        &train(
+            "  hslm: A1
+  speed: 50
+  model: sprung-mass
+",
+        ),
+        &[
+            "train.model",
+            "'sprung-mass'",
+            "moving-force or moving-mass",
+        ],
+    );
+    rejected(
+        "moving-mass-weightless",
+        &format!(
+            "gravity: 0\n{}",
+            train("  hslm: A1\n  speed: 50\n  model: moving-mass\n")
+        ),
+        &["train.model", "gravity is 0", "moving-force"],
     );
 }
 

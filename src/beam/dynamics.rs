@@ -10,9 +10,9 @@ use std::cell::{Cell, RefCell};
 use super::damping::Rayleigh;
 use super::load::PointLoad;
 use super::modal::ModalBasis;
-use super::train::Train;
+use super::train::{RidingAxle, Train, TrainModel};
 use super::Beam;
-use crate::linalg::{Assembly, Sparse};
+use crate::linalg::{Assembly, LowRank, Sparse};
 use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::NoEvent;
 
@@ -27,6 +27,8 @@ pub struct LoadedBeam<'a> {
     pub train: Option<&'a Train>,
     /// Midpoint of the current stretch between breakpoints; NaN outside a run.
     segment: Cell<f64>,
+    /// When a moving force enters or leaves at an end that does not hold w.
+    train_breakpoints: Vec<f64>,
     /// Internal forces, kept so that each force evaluation does not allocate.
     scratch: RefCell<Vec<f64>>,
     /// C v, in the model's unknowns, kept for the same reason.
@@ -66,6 +68,7 @@ impl<'a> LoadedBeam<'a> {
             damping,
             train,
             segment: Cell::new(f64::NAN),
+            train_breakpoints: train_breakpoints(beam, train),
             scratch: RefCell::new(vec![0.0; beam.dim()]),
             damped: RefCell::new(vec![0.0; modal.map_or(beam.dim(), |m| m.dim())]),
         }
@@ -100,18 +103,44 @@ impl<'a> LoadedBeam<'a> {
         for (x, p) in self.axles(t) {
             self.beam.add_point_load(x, [0.0, -p], 0.0, f);
         }
+        for r in self.riding(t) {
+            r.spread(self.beam.to_local([0.0, -r.load]), [0.0; 2], |i, v| {
+                f[i] += v
+            });
+        }
     }
 
-    /// The train's axles on the beam at t, with their forces. Where an end is free an axle
-    /// that enters or leaves there is a jump of the load: which axles are on is then decided
-    /// within the current stretch between breakpoints (an axle enters or leaves only at one).
-    /// Where the ends hold w an axle comes on and goes off at nothing, so it is decided at t.
+    /// Add the riding axles' inertia from the motion of the beam under them, −m (2 v ṙ' +
+    /// v² r''), at the mesh's (q, v) as `q_at` and `v_at` read them, through `add`: the part
+    /// of their force on the beam that is not their weight (which is F_ext) and not their
+    /// mass times the beam's acceleration (which is the mass matrix's).
+    fn add_axle_inertia(
+        &self,
+        t: f64,
+        q_at: impl Fn(usize) -> f64,
+        v_at: impl Fn(usize) -> f64,
+        mut add: impl FnMut(usize, f64),
+    ) {
+        let Some(speed) = self.moving_masses() else {
+            return;
+        };
+        for r in self.riding(t) {
+            let c = r.convective(speed, &q_at, &v_at);
+            r.spread([0.0; 2], c, &mut add);
+        }
+    }
+
+    /// The train's moving forces on the beam at t, with their forces (none for moving masses).
+    /// Where an end is free an axle that enters or leaves there is a jump of the load: which
+    /// axles are on is then decided within the current stretch between breakpoints (an axle
+    /// enters or leaves only at one). Where the ends hold w an axle comes on and goes off at
+    /// nothing, so it is decided at t.
     pub fn axles(&self, t: f64) -> Vec<(f64, f64)> {
-        let Some(train) = self.train else {
+        let Some(train) = self.train.filter(|tr| tr.model == TrainModel::MovingForce) else {
             return Vec::new();
         };
         let length = self.beam.length;
-        let when = if self.segment.get().is_nan() || self.train_breakpoints().is_empty() {
+        let when = if self.segment.get().is_nan() || self.train_breakpoints.is_empty() {
             t
         } else {
             self.segment.get()
@@ -122,31 +151,123 @@ impl<'a> LoadedBeam<'a> {
             .collect()
     }
 
-    /// When an axle enters or leaves at an end that does not hold w.
-    fn train_breakpoints(&self) -> Vec<f64> {
-        let Some(train) = self.train else {
+    /// The train's axles riding on the beam at t as moving masses (none for moving forces):
+    /// each while its patch overlaps the beam, so that it comes on and goes off smoothly.
+    pub fn riding(&self, t: f64) -> Vec<RidingAxle> {
+        let Some(train) = self.train.filter(|tr| tr.model == TrainModel::MovingMass) else {
             return Vec::new();
         };
-        let length = self.beam.length;
-        train
-            .axles
-            .iter()
-            .flat_map(|d| {
-                [
-                    (!self.beam.holds_w_at(false)).then_some(d / train.speed),
-                    (!self.beam.holds_w_at(true)).then_some((d + length) / train.speed),
-                ]
+        let (b, length) = (train.patch, self.beam.length);
+        (0..train.axles.len())
+            .filter_map(|a| {
+                let x = train.position(a, t);
+                (x > -b && x < length + b).then(|| RidingAxle {
+                    x,
+                    mass: train.masses[a],
+                    load: train.loads[a],
+                    basis: self.beam.patch_basis_at(x, b),
+                })
             })
-            .flatten()
             .collect()
     }
 
-    /// The power of the train's axle forces on the beam moving at the mesh's velocities v.
-    pub fn train_power(&self, t: f64, v: &[f64]) -> f64 {
-        self.axles(t)
+    /// The train's speed, and whether its axles are moving masses.
+    fn moving_masses(&self) -> Option<f64> {
+        self.train
+            .filter(|tr| tr.model == TrainModel::MovingMass)
+            .map(|tr| tr.speed)
+    }
+
+    /// The inertia the riding axles add to the mass at t, in the model's unknowns: m g gᵀ for
+    /// each axle and each direction of the beam frame (on a modal beam the rows are Φᵀ g).
+    fn axle_inertia(&self, t: f64) -> LowRank {
+        let mut out = LowRank::new();
+        for r in self.riding(t) {
+            for row in r.rows() {
+                let row = match self.modal {
+                    None => row,
+                    Some(m) => {
+                        let mut dense = vec![0.0; m.dim()];
+                        row.iter().for_each(|&(i, g)| m.add_row(i, g, &mut dense));
+                        dense.into_iter().enumerate().collect()
+                    }
+                };
+                out.push((r.mass, row));
+            }
+        }
+        out
+    }
+
+    /// Unknown i of the mesh from the model's unknowns y: y_i itself, or on a modal beam
+    /// Σ_k Φ_ik y_k, without expanding the whole mesh.
+    fn on_mesh_at(&self, i: usize, y: &[f64]) -> f64 {
+        match self.modal {
+            None => y[i],
+            Some(m) => m.value_at(i, y),
+        }
+    }
+
+    /// The force a riding axle exerts on the beam (beam frame), m (g − d²r/dt²), and the
+    /// velocity ṙ of the point it rides on, at the model's displacements q, velocities v and
+    /// accelerations a.
+    fn riding_force(
+        &self,
+        r: &RidingAxle,
+        speed: f64,
+        q: &[f64],
+        v: &[f64],
+        a: &[f64],
+    ) -> ([f64; 2], [f64; 2]) {
+        let dot = |g: &[(usize, f64)], y: &[f64]| -> f64 {
+            g.iter().map(|&(i, c)| c * self.on_mesh_at(i, y)).sum()
+        };
+        let [gx, gy] = r.rows();
+        let c = r.convective(speed, |i| self.on_mesh_at(i, q), |i| self.on_mesh_at(i, v));
+        let acc = [c[0] + dot(&gx, a), c[1] + dot(&gy, a)];
+        let force = r.spread(self.beam.to_local([0.0, -r.load]), acc, |_, _| ());
+        (force, [dot(&gx, v), dot(&gy, v)])
+    }
+
+    /// The train's axles as point forces on the beam (global) at the model's (q, v, a): a
+    /// moving mass's force taken at its centre, which is exact for the support reactions once
+    /// its patch is clear of the supports.
+    pub fn axle_forces(&self, t: f64, q: &[f64], v: &[f64], a: &[f64]) -> Vec<(f64, [f64; 2])> {
+        let mut out: Vec<(f64, [f64; 2])> = self
+            .axles(t)
             .into_iter()
-            .map(|(x, p)| -p * self.beam.displacement_at(v, x).w)
-            .sum()
+            .map(|(x, p)| (x, [0.0, -p]))
+            .collect();
+        if let Some(speed) = self.moving_masses() {
+            for r in self.riding(t) {
+                let (force, _) = self.riding_force(&r, speed, q, v, a);
+                out.push((r.x.clamp(0.0, self.beam.length), self.beam.to_global(force)));
+            }
+        }
+        out
+    }
+
+    /// The power of the train's axles on the beam at the model's (q, v) and, for moving
+    /// masses, whose force holds the beam's acceleration, a: read at the axles' own unknowns,
+    /// so a modal beam is not expanded over the mesh at every step.
+    pub fn train_power(&self, t: f64, q: &[f64], v: &[f64], a: Option<&[f64]>) -> f64 {
+        let mut forces = 0.0;
+        for (x, p) in self.axles(t) {
+            self.beam.point_load_terms(x, [0.0, -p], 0.0, |i, f| {
+                forces += f * self.on_mesh_at(i, v)
+            });
+        }
+        let masses = match (self.moving_masses(), a) {
+            (Some(speed), Some(a)) => self
+                .riding(t)
+                .iter()
+                .map(|r| {
+                    let (f, rd) = self.riding_force(r, speed, q, v, a);
+                    f[0] * rd[0] + f[1] * rd[1]
+                })
+                .sum(),
+            _ => 0.0,
+        };
+        forces + masses
     }
 
     /// The Rayleigh damping acting, if any.
@@ -221,12 +342,60 @@ impl<'a> LoadedBeam<'a> {
     }
 }
 
+/// When an axle enters or leaves at an end that does not hold w (moving forces only: a
+/// moving mass's patch takes it on and off smoothly).
+fn train_breakpoints(beam: &Beam, train: Option<&Train>) -> Vec<f64> {
+    let Some(train) = train.filter(|tr| tr.model == TrainModel::MovingForce) else {
+        return Vec::new();
+    };
+    let length = beam.length;
+    train
+        .axles
+        .iter()
+        .flat_map(|d| {
+            [
+                (!beam.holds_w_at(false)).then_some(d / train.speed),
+                (!beam.holds_w_at(true)).then_some((d + length) / train.speed),
+            ]
+        })
+        .flatten()
+        .collect()
+}
+
 impl Structure for LoadedBeam<'_> {
     fn dim(&self) -> usize {
         self.modal.map_or(self.beam.dim(), |m| m.dim())
     }
-    fn mass(&self, _t: f64, _q: &[f64]) -> Cow<'_, Sparse> {
-        Cow::Borrowed(self.model_mass())
+    fn mass(&self, t: f64, _q: &[f64]) -> Cow<'_, Sparse> {
+        let added = self.axle_inertia(t);
+        if added.is_empty() {
+            return Cow::Borrowed(self.model_mass());
+        }
+        let mut a = Assembly::new(self.dim());
+        a.add_sparse(self.model_mass(), 1.0, 0, 0);
+        for (w, g) in &added {
+            for &(i, gi) in g {
+                for &(j, gj) in g {
+                    a.add(i, j, w * gi * gj);
+                }
+            }
+        }
+        Cow::Owned(a.build())
+    }
+    /// Moving masses make the mass change as they travel: the beam's plus the axles' m g gᵀ.
+    fn mass_is_constant(&self) -> bool {
+        self.moving_masses().is_none()
+    }
+    fn mass_split(&self, t: f64, _q: &[f64]) -> Option<(&Sparse, LowRank)> {
+        self.moving_masses()
+            .map(|_| (self.model_mass(), self.axle_inertia(t)))
+    }
+    fn mass_mul(&self, t: f64, _q: &[f64], a: &[f64], out: &mut [f64]) {
+        crate::linalg::mul(self.model_mass(), a, out);
+        for (w, g) in self.axle_inertia(t) {
+            let ga = w * g.iter().map(|&(i, c)| c * a[i]).sum::<f64>();
+            g.iter().for_each(|&(i, c)| out[i] += c * ga);
+        }
     }
     fn force(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
         let mut scratch = self.scratch.borrow_mut();
@@ -235,6 +404,7 @@ impl Structure for LoadedBeam<'_> {
                 self.external(t, f);
                 self.beam.internal_force(q, &mut scratch);
                 f.iter_mut().zip(scratch.iter()).for_each(|(a, b)| *a -= b);
+                self.add_axle_inertia(t, |i| q[i], |i| v[i], |i, x| f[i] += x);
             }
             Some(m) => {
                 if let Some(w) = self.beam.weight() {
@@ -250,6 +420,10 @@ impl Structure for LoadedBeam<'_> {
                 for (x, p) in self.axles(t) {
                     self.beam.point_load_terms(x, [0.0, -p], 0.0, &mut add);
                 }
+                for r in self.riding(t) {
+                    r.spread(self.beam.to_local([0.0, -r.load]), [0.0; 2], &mut add);
+                }
+                self.add_axle_inertia(t, |i| m.value_at(i, q), |i| m.value_at(i, v), add);
                 for (k, fk) in f.iter_mut().enumerate() {
                     *fk -= m.omega[k] * m.omega[k] * q[k];
                 }
@@ -276,7 +450,7 @@ impl Structure for LoadedBeam<'_> {
 impl SecondOrderProblem for LoadedBeam<'_> {
     type Event = NoEvent;
     fn breakpoints(&self) -> Vec<f64> {
-        let train = self.train_breakpoints();
+        let train = self.train_breakpoints.iter().copied();
         self.loads
             .iter()
             .flat_map(|l| [l.from, l.until])

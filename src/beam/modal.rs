@@ -96,8 +96,13 @@ impl ModalBasis {
     /// q_i = Σ_k Φ_ik η_k for the unknowns `at` only.
     pub fn expand_at(&self, at: impl Iterator<Item = usize>, eta: &[f64], q: &mut [f64]) {
         for i in at {
-            q[i] = (0..eta.len()).map(|k| self.shapes[(i, k)] * eta[k]).sum();
+            q[i] = self.value_at(i, eta);
         }
+    }
+
+    /// q_i = Σ_k Φ_ik η_k: one unknown of the mesh.
+    pub fn value_at(&self, i: usize, eta: &[f64]) -> f64 {
+        (0..eta.len()).map(|k| self.shapes[(i, k)] * eta[k]).sum()
     }
 
     /// out = Φᵀ f: a force on the mesh's unknowns as the modes feel it.

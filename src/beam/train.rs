@@ -1,7 +1,17 @@
-//! A train of axle loads crossing the beam at constant speed: each axle a vertical force that
-//! enters at x = 0 and leaves at x = L (moving forces, the model of EN 1991-2 §6.4 and of
-//! CALDINTAV). The axles are given as distances behind the first, or as one of EN 1991-2's
-//! High Speed Load Models HSLM-A1…A10 (Annex E, Table E.1, Figure E.2).
+//! A train of axle loads crossing the beam at constant speed: each axle enters at x = 0 and
+//! leaves at x = L, as a vertical force (moving forces, the model of EN 1991-2 §6.4 and of
+//! CALDINTAV) or as a point mass load/g that follows the beam (moving masses). The axles are
+//! given as distances behind the first, or as one of EN 1991-2's High Speed Load Models
+//! HSLM-A1…A10 (Annex E, Table E.1, Figure E.2).
+//!
+//! A moving mass feels the track's curvature under it: its vertical acceleration is
+//! ẅ + 2 v ẇ' + v² w'' at the axle. On C0 elements w'' is a train of Dirac deltas at the nodes,
+//! so the axle rides on the axis averaged over a contact patch (the disk's kernel, see
+//! `Beam::patch_basis_at`) whose half-width comes from the deck's depth: the load dispersed
+//! at one to one down to the axis, as for the disk. A moving force needs no curvature and
+//! stays a point force.
+
+use super::NodeBasis;
 
 /// HSLM-A trains: (intermediate coaches N, coach length D, bogie axle spacing d, axle force P).
 const HSLM_A: [(usize, f64, f64, f64); 10] = [
@@ -48,6 +58,17 @@ pub const HSLM_NAMES: &str = "A1 to A10";
 pub enum TrainModel {
     /// Constant vertical forces.
     MovingForce,
+    /// Point masses load/g carried at the train's speed, following the beam's displacement.
+    MovingMass,
+}
+
+impl TrainModel {
+    pub fn name(self) -> &'static str {
+        match self {
+            TrainModel::MovingForce => "moving-force",
+            TrainModel::MovingMass => "moving-mass",
+        }
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -61,6 +82,10 @@ pub struct Train {
     /// m/s; the first axle is at x = 0 at t = 0.
     pub speed: f64,
     pub model: TrainModel,
+    /// Mass per axle (kg): its load over gravity, for moving masses; empty for moving forces.
+    pub masses: Vec<f64>,
+    /// Half-width of the patch a moving mass rides on (m).
+    pub patch: f64,
 }
 
 impl Train {
@@ -77,6 +102,78 @@ impl Train {
     /// When the last axle leaves a beam of length `length`.
     pub fn gone(&self, length: f64) -> f64 {
         (self.length() + length) / self.speed
+    }
+}
+
+/// An axle riding on the beam as a moving mass, at one instant: its mass, its load, and the
+/// patch-averaged shape functions at its place with their derivatives along the axis.
+pub struct RidingAxle {
+    /// Where it is on the axis (m; past an end while its patch still overlaps the beam).
+    pub x: f64,
+    pub mass: f64,
+    pub load: f64,
+    pub basis: Vec<NodeBasis>,
+}
+
+impl RidingAxle {
+    /// ∂r/∂q of the point the axle rides on, X and Y of the beam frame: the rows through which
+    /// its inertia m g gᵀ adds to the beam's mass.
+    pub fn rows(&self) -> [Vec<(usize, f64)>; 2] {
+        let mut gx = Vec::new();
+        let mut gy = Vec::new();
+        for nb in &self.basis {
+            if let Some(i) = nb.u {
+                gx.push((i, nb.d[0]));
+            }
+            if let Some(i) = nb.w {
+                gy.push((i, nb.d[0]));
+            }
+        }
+        [gx, gy]
+    }
+
+    /// The part of the axle's acceleration (beam frame) that the beam's displacements and
+    /// velocities make as it travels along at `speed`: d²r/dt² = r̈ + 2 v ṙ' + v² r'' at the
+    /// moving point, less r̈. `q` and `v` read the mesh's unknowns.
+    pub fn convective(
+        &self,
+        speed: f64,
+        q: impl Fn(usize) -> f64,
+        v: impl Fn(usize) -> f64,
+    ) -> [f64; 2] {
+        let mut out = [0.0; 2];
+        for nb in &self.basis {
+            for (o, i) in out.iter_mut().zip([nb.u, nb.w]) {
+                if let Some(i) = i {
+                    *o += 2.0 * speed * nb.d[1] * v(i) + speed * speed * nb.d[2] * q(i);
+                }
+            }
+        }
+        out
+    }
+
+    /// The force the axle exerts on the beam (beam frame), m (g − a), spread over its patch
+    /// onto the mesh's unknowns through `add`; `weight` is its load in the beam frame and
+    /// `acceleration` its own.
+    pub fn spread(
+        &self,
+        weight: [f64; 2],
+        acceleration: [f64; 2],
+        mut add: impl FnMut(usize, f64),
+    ) -> [f64; 2] {
+        let force = [
+            weight[0] - self.mass * acceleration[0],
+            weight[1] - self.mass * acceleration[1],
+        ];
+        for nb in &self.basis {
+            if let Some(i) = nb.u {
+                add(i, nb.d[0] * force[0]);
+            }
+            if let Some(i) = nb.w {
+                add(i, nb.d[0] * force[1]);
+            }
+        }
+        force
     }
 }
 

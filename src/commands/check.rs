@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use crate::beam::damping::DampingSpec;
 use crate::beam::load::BeamStart;
 use crate::beam::supports::statically_supported;
+use crate::beam::train::{Train, TrainModel};
 use crate::beam::{Beam, BeamModel};
 use crate::coupling::patch;
 use crate::coupling::DiskOnBeamSpec;
@@ -170,9 +171,10 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
             spec.section.rho_a * g
         )?;
     }
-    match &setup.disk {
-        None => writeln!(f, "  disk: none (no disk unknowns)")?,
-        Some(d) => writeln!(
+    match (&setup.disk, &setup.train) {
+        (None, Some(t)) => train(f, t, b.length)?,
+        (None, None) => writeln!(f, "  disk: none (no disk unknowns)")?,
+        (Some(d), _) => writeln!(
             f,
             "  disk: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}){}",
             d.disk.mass,
@@ -274,6 +276,33 @@ fn patch(f: &mut fmt::Formatter<'_>, setup: &BeamScene, d: &DiskOnBeamSpec) -> f
         writeln!(f, "  warning: {w}")?;
     }
     Ok(())
+}
+
+/// The train: its axles, their loads, its speed and how the axles act.
+fn train(f: &mut std::fmt::Formatter, t: &Train, length: f64) -> std::fmt::Result {
+    let total: f64 = t.loads.iter().sum();
+    writeln!(
+        f,
+        "  train: {} with {} axles over {:.3} m ({:.6e} N in all), at {} m/s: on the beam from t = 0 until the last axle leaves at {:.6} s",
+        t.name,
+        t.axles.len(),
+        t.length(),
+        total,
+        t.speed,
+        t.gone(length)
+    )?;
+    match t.model {
+        TrainModel::MovingForce => writeln!(
+            f,
+            "  axles: moving forces (no inertia, no unknowns), each a point force"
+        ),
+        TrainModel::MovingMass => writeln!(
+            f,
+            "  axles: moving masses load/g (heaviest {:.6e} kg) following the beam, riding on the axis averaged over ±{:.6} m (the load dispersed through half the depth): they add to the mass matrix as they travel, and their convected acceleration 2 v ẇ' + v² w'' to the forces",
+            t.masses.iter().copied().fold(0.0, f64::max),
+            t.patch
+        ),
+    }
 }
 
 /// Where the normal force falls to zero, in one line.

@@ -38,6 +38,13 @@ pub fn physical_half_width(section: &Section, depth: f64, radius: f64, force: f6
     KERNEL_PER_UNIFORM * (0.5 * depth + hertz_half_width(section, depth, radius, force))
 }
 
+/// The half-width of the patch a train's axle rides on as a moving mass: the load dispersed
+/// through half the depth at one to one (a wheel's Hertz contact on a rail is a few
+/// millimetres, nothing beside it).
+pub fn dispersed_half_width(depth: f64) -> f64 {
+    KERNEL_PER_UNIFORM * 0.5 * depth
+}
+
 /// How strongly a disk's results depend on the patch width, from the kink the shear-flexible
 /// axis takes under its weight.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -154,7 +154,10 @@ impl<'a> Ledger<'a> {
             _ => 0.0,
         };
         let train = if phase.loaded.train.is_some() {
-            phase.loaded.train_power(t, &phase.beam_state(y).1)
+            let n = phase.loaded.dim();
+            let (z, zd) = phase.split(y);
+            let a = (!phase.loaded.riding(t).is_empty()).then(|| phase.acceleration(t, y));
+            phase.loaded.train_power(t, &z[..n], &zd[..n], a.as_deref())
         } else {
             0.0
         };

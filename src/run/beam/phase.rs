@@ -9,7 +9,7 @@ use std::borrow::Cow;
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::Beam;
 use crate::coupling::DiskOnBeam;
-use crate::linalg::SparseLu;
+use crate::linalg::{SparseLu, Woodbury};
 use crate::ode::second_order::Structure;
 use crate::rolling::DiskObservation;
 
@@ -110,14 +110,24 @@ impl<'a> Phase<'a> {
                 let mut a = vec![0.0; n];
                 self.loaded
                     .force(t, &y[..n], &y[self.nz..self.nz + n], &mut a);
-                self.mass_lu.solve_in_place(&mut a);
+                // Moving masses add m g gᵀ to the factorised mass: taken in by Woodbury.
+                match self.loaded.mass_split(t, &y[..n]) {
+                    Some((_, added)) if !added.is_empty() => {
+                        match Woodbury::new(self.mass_lu, added) {
+                            Some(w) => w.solve_in_place(self.mass_lu, &mut a),
+                            None => a.fill(f64::NAN),
+                        }
+                    }
+                    _ => self.mass_lu.solve_in_place(&mut a),
+                }
                 a
             }
         }
     }
 
     /// What the supports exert on the beam at (t, y), global (fx, fy, mz) at `from` and at
-    /// `to`: the loads acting then, the disk's contact force, and the beam's inertia. `q` is
+    /// `to`: the loads acting then, a train's axles, the disk's contact force, and the beam's
+    /// inertia. `q` is
     /// the mesh's displacements as [`Phase::displaced`] reads them, `a` the model's
     /// accelerations.
     pub fn reactions(
@@ -133,6 +143,13 @@ impl<'a> Phase<'a> {
             .active(t)
             .map(|l| (l.x, l.force, l.mz))
             .collect();
+        let n = self.loaded.dim();
+        acting.extend(
+            self.loaded
+                .axle_forces(t, &y[..n], &y[self.nz..self.nz + n], a)
+                .into_iter()
+                .map(|(x, f)| (x, f, 0.0)),
+        );
         if let Some(c) = self.coupled {
             let d = disk.expect("observed while coupled");
             let (z, zd) = self.split(y);
