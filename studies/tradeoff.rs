@@ -151,9 +151,12 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
 /// at least as fine as the study's grid asks; and each still reproduces. (A study without one
 /// is computed when `rollbeam studies` needs it, and said so.) The first tenth of its
 /// history is run again with the same method on the same mesh at ten times its rtol, and
-/// must agree to twice what the reference's headlines moved at its own last tenfold cut of
-/// rtol (`settled_to`, at least 10⁻⁷) of the window's largest value: what the reference itself
-/// resolves. A change of the code that moves the physics by more than that makes the stored
+/// must agree to twice the larger of what the reference's headlines moved at its own last
+/// tenfold cut of rtol (`settled_to`, at least 10⁻⁷) and the rerun's own error, ten times its
+/// rtol, of the window's largest value. The second is there because a history carries the
+/// phase error a run accumulates, which its extremes (stationary values) do not: the
+/// zip-line's headlines settled to 7.5·10⁻⁷, while its history rerun at rtol 10⁻⁷ is off by
+/// 1.7·10⁻⁶. A change of the code that moves the physics by more than that makes the stored
 /// references stale: `rollbeam studies --references` makes them again.
 #[test]
 fn stored_references_serve_and_reproduce() {
@@ -220,7 +223,11 @@ fn stored_references_serve_and_reproduce() {
             short.duration,
             stored.rtol * 10.0
         );
-        let resolved = 2.0 * stored.settled_to.max(1e-7);
+        let resolved = 2.0
+            * stored
+                .settled_to
+                .max(1e-7)
+                .max(10.0 * over.rtol.unwrap_or(0.0));
         assert!(
             error <= resolved,
             "{}: {error:.1e} > {resolved:.1e}",

@@ -160,22 +160,35 @@ pub fn history(r: &Run) -> Vec<(f64, Vec<f64>)> {
     }
 }
 
-/// max over the output times both runs reached of |a − b|, relative to the largest |b|; a run
-/// that ended before the reference did counts the missing rows as wholly wrong.
+/// max over the reference's output times of |a − b| at the same time, relative to the largest
+/// |b|; a reference time the run did not reach (it ended before) counts as wholly wrong. Rows
+/// are matched by time, so a reference stored without the start row still compares.
 pub fn history_error(a: &[(f64, Vec<f64>)], reference: &[(f64, Vec<f64>)]) -> f64 {
     let scale = reference
         .iter()
         .flat_map(|(_, v)| v.iter())
         .fold(0.0_f64, |m, v| m.max(v.abs()))
         .max(f64::MIN_POSITIVE);
-    if a.len() < reference.len() {
-        return 1.0;
+    let same_time = |x: f64, y: f64| (x - y).abs() <= 1e-9 * (1.0 + y.abs());
+    let mut rows = a.iter().peekable();
+    let mut worst = 0.0_f64;
+    for (t, r) in reference {
+        while rows
+            .next_if(|(ta, _)| *ta < *t && !same_time(*ta, *t))
+            .is_some()
+        {}
+        match rows.peek() {
+            Some((ta, x)) if same_time(*ta, *t) => {
+                worst = x
+                    .iter()
+                    .zip(r)
+                    .map(|(p, q)| (p - q).abs())
+                    .fold(worst, f64::max);
+            }
+            _ => return 1.0,
+        }
     }
-    a.iter()
-        .zip(reference)
-        .flat_map(|((_, x), (_, r))| x.iter().zip(r).map(|(p, q)| (p - q).abs()))
-        .fold(0.0, f64::max)
-        / scale
+    worst / scale
 }
 
 /// The scene with its beam meshed into `elements` and modelled as `model`.

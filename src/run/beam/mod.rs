@@ -819,7 +819,13 @@ pub fn run(
         Some(end) => end,
         None => {
             rec.phase.free();
-            let rest: Vec<f64> = outputs.iter().copied().filter(|&o| o > t0).collect();
+            // A run without a disk starts here, and records its start; after the disk left,
+            // the time it left was the coupled phase's to record.
+            let rest: Vec<f64> = outputs
+                .iter()
+                .copied()
+                .filter(|&o| o > t0 || (coupled.is_none() && o == t0))
+                .collect();
             let out = integrate(
                 &loaded,
                 t0,
