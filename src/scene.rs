@@ -15,7 +15,7 @@ use crate::beam::element::Section;
 use crate::beam::load::{BeamStart, PointLoad, Probe};
 use crate::beam::supports::{mesh_multiple, statically_supported, Support};
 use crate::beam::train::{hslm, Train, TrainModel, HSLM_NAMES};
-use crate::beam::{BeamModel, BeamSpec, Quadrature};
+use crate::beam::{BeamModel, BeamSpec, Quadrature, MAX_ORDER};
 use crate::coupling::{patch, Coupling, DiskOnBeamSpec};
 use crate::curve::expr::Formula;
 use crate::curve::spline::Spline;
@@ -1862,12 +1862,15 @@ fn mesh(c: &Checker, b: &BeamFile, multiple: usize) -> Result<(usize, usize, Qua
     }
     let order = match &b.order {
         None => DEFAULT_ORDER,
-        Some(n) if (1..=10).contains(&n.value) => n.value as usize,
+        Some(n) if (1..=MAX_ORDER as i64).contains(&n.value) => n.value as usize,
         Some(n) => {
             return c.err(
                 n.referenced.line(),
                 "track.beam.order",
-                format!("must be a Lagrange degree from 1 to 10 (got {})", n.value),
+                format!(
+                    "must be a Lagrange degree from 1 to {MAX_ORDER} (got {})",
+                    n.value
+                ),
             )
         }
     };

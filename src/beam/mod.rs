@@ -120,6 +120,25 @@ pub struct BeamSpec {
 #[derive(Clone, Debug)]
 pub struct Stations(Vec<(usize, Vec<f64>)>);
 
+/// Highest Lagrange degree of an element (the scene reader refuses more): the shape functions
+/// at a point then fit on the stack.
+pub const MAX_ORDER: usize = 10;
+
+/// The shape functions' values at one material point, held on the stack: a moving load reads
+/// them at every force evaluation, for every axle of a train.
+#[derive(Clone, Copy)]
+struct ShapeValues {
+    n: [f64; MAX_ORDER + 1],
+    len: usize,
+}
+
+impl std::ops::Deref for ShapeValues {
+    type Target = [f64];
+    fn deref(&self) -> &[f64] {
+        &self.n[..self.len]
+    }
+}
+
 /// A displacement state at one material point, in global axes.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PointDisplacement {
@@ -170,6 +189,10 @@ pub struct Beam {
 
 impl Beam {
     pub fn new(spec: BeamSpec) -> Beam {
+        assert!(
+            (1..=MAX_ORDER).contains(&spec.order),
+            "the scene reader bounds the degree"
+        );
         let length = (spec.to[0] - spec.from[0]).hypot(spec.to[1] - spec.from[1]);
         let angle = (spec.to[1] - spec.from[1]).atan2(spec.to[0] - spec.from[0]);
         let basis = Lagrange::new(spec.order);
@@ -409,14 +432,14 @@ impl Beam {
     }
 
     /// Element and shape-function values at material point x ∈ [0, L].
-    fn locate(&self, x: f64) -> (usize, Vec<f64>, Vec<f64>) {
+    fn locate(&self, x: f64) -> (usize, ShapeValues) {
         let e = ((x / self.h).floor() as usize).min(self.spec.elements - 1);
         let xi = 2.0 * (x - e as f64 * self.h) / self.h - 1.0;
-        let k = self.spec.order + 1;
-        let mut n = vec![0.0; k];
-        let mut dn = vec![0.0; k];
-        self.basis.eval(xi, &mut n, &mut dn);
-        (e, n, dn)
+        let len = self.spec.order + 1;
+        let mut n = [0.0; MAX_ORDER + 1];
+        let mut dn = [0.0; MAX_ORDER + 1];
+        self.basis.eval(xi, &mut n[..len], &mut dn[..len]);
+        (e, ShapeValues { n, len })
     }
 
     /// Equation number of component c (0 u, 1 w, 2 φ) of a node; `None` where a support holds it.
@@ -524,7 +547,7 @@ impl Beam {
         mut add: impl FnMut(usize, f64),
     ) {
         let local = self.to_local(force);
-        let (e, n, _) = self.locate(x);
+        let (e, n) = self.locate(x);
         let first = e * self.spec.order;
         for (a, na) in n.iter().enumerate() {
             let node = first + a;
@@ -545,7 +568,7 @@ impl Beam {
 
     /// Displacement (global u, w) and rotation at material point x.
     pub fn displacement_at(&self, q: &[f64], x: f64) -> PointDisplacement {
-        let (e, n, _) = self.locate(x);
+        let (e, n) = self.locate(x);
         self.displacement_in(e, &n, q)
     }
 
@@ -555,8 +578,8 @@ impl Beam {
         Stations(
             xs.iter()
                 .map(|&x| {
-                    let (e, n, _) = self.locate(x);
-                    (e, n)
+                    let (e, n) = self.locate(x);
+                    (e, n.to_vec())
                 })
                 .collect(),
         )
@@ -623,7 +646,7 @@ impl Beam {
         }
         for &(x, force, mz) in loads {
             let local = self.to_local(force);
-            let (e, n, _) = self.locate(x);
+            let (e, n) = self.locate(x);
             for (a, na) in n.iter().enumerate() {
                 let node = e * self.spec.order + a;
                 full[3 * node] -= na * local[0];

@@ -86,8 +86,8 @@ impl ModalBasis {
     /// q = Φ η.
     pub fn expand(&self, eta: &[f64], q: &mut [f64]) {
         q.fill(0.0);
-        for (k, e) in eta.iter().enumerate() {
-            for (qi, p) in q.iter_mut().zip(self.shapes.column(k).iter()) {
+        for (e, column) in eta.iter().zip(self.columns()) {
+            for (qi, p) in q.iter_mut().zip(column) {
                 *qi += p * e;
             }
         }
@@ -107,15 +107,17 @@ impl ModalBasis {
 
     /// out = Φᵀ f: a force on the mesh's unknowns as the modes feel it.
     pub fn project(&self, f: &[f64], out: &mut [f64]) {
-        for (k, o) in out.iter_mut().enumerate() {
-            *o = self
-                .shapes
-                .column(k)
-                .iter()
-                .zip(f)
-                .map(|(p, v)| p * v)
-                .sum();
+        for (o, column) in out.iter_mut().zip(self.columns()) {
+            *o = column.iter().zip(f).map(|(p, v)| p * v).sum();
         }
+    }
+
+    /// Φ's columns as contiguous slices (Φ is stored column by column): the expansions and
+    /// projections run at every output row, where nalgebra's strided iterators cost twice.
+    fn columns(&self) -> std::slice::ChunksExact<'_, f64> {
+        self.shapes
+            .as_slice()
+            .chunks_exact(self.shapes.nrows().max(1))
     }
 
     /// Add v Φ_i· (row i of Φ, scaled) to `out`: one term of a sparse row projected.
@@ -147,10 +149,10 @@ impl ModalBasis {
         lu.solve_in_place(&mut full);
         let mut p = vec![0.0; self.dim()];
         self.project(f, &mut p);
-        for (k, pk) in p.iter().enumerate() {
-            let w2 = self.omega[k] * self.omega[k];
+        for ((pk, w), column) in p.iter().zip(&self.omega).zip(self.columns()) {
+            let w2 = w * w;
             if w2 > 0.0 {
-                for (fi, s) in full.iter_mut().zip(self.shapes.column(k).iter()) {
+                for (fi, s) in full.iter_mut().zip(column) {
                     *fi -= s * pk / w2;
                 }
             }

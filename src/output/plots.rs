@@ -10,14 +10,24 @@ use crate::run::{Row, RunResult};
 
 type Series<'a> = (&'a str, Vec<(f64, f64)>);
 
-pub const PALETTE: [RGBColor; 6] = [
+/// Ten distinct colours (matplotlib's tab10, reordered), so that the ten HSLM trains of a
+/// sweep each get their own.
+pub const PALETTE: [RGBColor; 10] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
     RGBColor(148, 103, 189),
     RGBColor(255, 127, 14),
     RGBColor(23, 190, 207),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(188, 189, 34),
+    RGBColor(127, 127, 127),
 ];
+
+/// Pens of the reference lines drawn over a chart's series (an envelope, a code limit): in
+/// black and dark grey and thicker, so they stand apart from any number of series.
+const REFERENCE_PENS: [(RGBColor, u32); 2] = [(RGBColor(0, 0, 0), 3), (RGBColor(90, 90, 90), 2)];
 
 fn plot_error(path: &Path, e: impl std::fmt::Display) -> Error {
     Error::Output(format!("cannot draw {}: {e}", path.display()))
@@ -48,6 +58,23 @@ pub fn line_chart(
     stacked_chart(path, x_desc, &[(title, y_desc, series)])
 }
 
+/// One chart of named series with reference lines drawn over them in their own pens (an
+/// envelope, a limit), against a shared x axis.
+pub fn line_chart_with_references(
+    path: &Path,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    series: &[Series],
+    references: &[Series],
+) -> Result<(), Error> {
+    let err = |e: &dyn std::fmt::Display| plot_error(path, e);
+    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(&e))?;
+    panel(&root, title, x_desc, y_desc, series, references).map_err(|e| err(&e))?;
+    root.present().map_err(|e| err(&e))
+}
+
 /// Charts one above the other over a shared x quantity: (title, y description, lines) each.
 pub fn stacked_chart(
     path: &Path,
@@ -58,7 +85,7 @@ pub fn stacked_chart(
     let root = SVGBackend::new(path, (900, 520 * panels.len() as u32)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
     for (area, (title, y_desc, series)) in root.split_evenly((panels.len(), 1)).iter().zip(panels) {
-        panel(area, title, x_desc, y_desc, series).map_err(|e| err(&e))?;
+        panel(area, title, x_desc, y_desc, series, &[]).map_err(|e| err(&e))?;
     }
     root.present().map_err(|e| err(&e))
 }
@@ -69,9 +96,11 @@ fn panel<DB: DrawingBackend>(
     x_desc: &str,
     y_desc: &str,
     series: &[Series],
+    references: &[Series],
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-    let (x0, x1) = range(series.iter().flat_map(|s| s.1.iter().map(|p| p.0)));
-    let (y0, y1) = range(series.iter().flat_map(|s| s.1.iter().map(|p| p.1)));
+    let all = || series.iter().chain(references);
+    let (x0, x1) = range(all().flat_map(|s| s.1.iter().map(|p| p.0)));
+    let (y0, y1) = range(all().flat_map(|s| s.1.iter().map(|p| p.1)));
     let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 22))
         .margin(12)
@@ -83,24 +112,51 @@ fn panel<DB: DrawingBackend>(
         .x_desc(x_desc)
         .y_desc(y_desc)
         .draw()?;
-    for (i, (name, pts)) in series.iter().enumerate() {
-        let color = PALETTE[i % PALETTE.len()];
+    let pens = (0..series.len())
+        .map(|i| (PALETTE[i % PALETTE.len()], 2))
+        .chain((0..references.len()).map(|j| REFERENCE_PENS[j % REFERENCE_PENS.len()]));
+    for ((name, pts), (color, width)) in all().zip(pens) {
         chart
-            .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))?
+            .draw_series(LineSeries::new(
+                pts.iter().copied(),
+                color.stroke_width(width),
+            ))?
             .label(*name)
             .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(width))
             });
     }
-    if series.len() > 1 {
+    if series.len() + references.len() > 1 {
         chart
             .configure_series_labels()
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperRight)
+            .position(legend_corner(all().flat_map(|s| s.1.iter()), x0, x1))
             .draw()?;
     }
     Ok(())
+}
+
+/// The upper corner whose outer two-fifths of the x range the lines reach least high, so
+/// that the legend hides as little as it can.
+fn legend_corner<'p>(
+    points: impl Iterator<Item = &'p (f64, f64)>,
+    x0: f64,
+    x1: f64,
+) -> SeriesLabelPosition {
+    let (mut left, mut right) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for &(x, y) in points.filter(|p| p.1.is_finite()) {
+        if x < x0 + 0.4 * (x1 - x0) {
+            left = left.max(y);
+        } else if x > x1 - 0.4 * (x1 - x0) {
+            right = right.max(y);
+        }
+    }
+    if right > left {
+        SeriesLabelPosition::UpperLeft
+    } else {
+        SeriesLabelPosition::UpperRight
+    }
 }
 
 fn series<'a>(rows: &[Row], name: &'a str, f: impl Fn(&Row) -> f64) -> Series<'a> {

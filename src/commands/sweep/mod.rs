@@ -14,7 +14,7 @@ pub mod cluster;
 
 use super::SolverFlags;
 use crate::error::{quote, Error};
-use crate::output::plots::line_chart;
+use crate::output::plots::{line_chart, line_chart_with_references};
 use crate::output::write;
 use crate::plan::Planner;
 use crate::run::{self, Overrides, Run};
@@ -502,7 +502,7 @@ fn train_charts(
             };
             r.outcome.as_ref().ok().map(|s| (v, pick(s)))
         };
-        let mut series: Vec<(String, Vec<(f64, f64)>)> = names
+        let series: Vec<(String, Vec<(f64, f64)>)> = names
             .iter()
             .map(|n| {
                 (
@@ -526,25 +526,27 @@ fn train_charts(
                     .map(|a| (v, a))
             })
             .collect();
-        series.push(("envelope".to_string(), envelope));
+        let mut references = vec![("envelope".to_string(), envelope)];
         if file == "sweep.svg" {
             let (lo, hi) = (speed.values()[0], speed.values()[speed.values().len() - 1]);
-            series.push((
+            references.push((
                 "EN 1991-2 limit, ballasted track".to_string(),
                 vec![(lo, BALLASTED_LIMIT), (hi, BALLASTED_LIMIT)],
             ));
         }
-        let series: Vec<(&str, Vec<(f64, f64)>)> = series
-            .iter()
-            .filter(|(_, pts)| !pts.is_empty())
-            .map(|(n, pts)| (n.as_str(), pts.clone()))
-            .collect();
-        line_chart(
+        fn drawn(s: &[(String, Vec<(f64, f64)>)]) -> Vec<(&str, Vec<(f64, f64)>)> {
+            s.iter()
+                .filter(|(_, pts)| !pts.is_empty())
+                .map(|(n, pts)| (n.as_str(), pts.clone()))
+                .collect()
+        }
+        line_chart_with_references(
             &dir.join(file),
             &format!("sweep over {} per train", speed.key),
             &speed.key,
             &what,
-            &series,
+            &drawn(&series),
+            &drawn(&references),
         )?;
     }
     Ok(())

@@ -164,9 +164,11 @@ impl<'a> Ledger<'a> {
         disk + train
     }
 
-    fn moving_work(&self, phase: &Phase, t: f64, y: &[f64]) -> f64 {
+    /// The moving loads' work until t, where their power is `power`: the trapezoidal rule
+    /// over the stretch since the last step.
+    fn moving_work(&self, t: f64, power: f64) -> f64 {
         let (t0, p0, done) = self.moving;
-        done + 0.5 * (p0 + Self::moving_power(phase, t, y)) * (t - t0)
+        done + 0.5 * (p0 + power) * (t - t0)
     }
 
     /// The terms at an output time, with the disk as observed there; recorded in the check.
@@ -183,7 +185,7 @@ impl<'a> Ledger<'a> {
         let now = self.at_loads(phase, y);
         let work = self.done
             + work_since(self.loads, self.t, t, &self.at_loads, &now)
-            + self.moving_work(phase, t, y)
+            + self.moving_work(t, Self::moving_power(phase, t, y))
             + self.weight_work(phase, y);
         let dissipated = self.dissipated(phase, t, y).0;
         self.check.record(
@@ -206,8 +208,8 @@ impl<'a> Ledger<'a> {
         self.done += work_since(self.loads, self.t, t, &self.at_loads, &now);
         self.t = t;
         self.at_loads = now;
-        let w = self.moving_work(phase, t, y);
-        self.moving = (t, Self::moving_power(phase, t, y), w);
+        let power = Self::moving_power(phase, t, y);
+        self.moving = (t, power, self.moving_work(t, power));
         let (kinetic, strain) = Self::beam_energies(phase, y);
         let disk = match phase.coupled {
             Some(c) if c.disk_in_system() => {
