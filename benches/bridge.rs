@@ -12,6 +12,9 @@
 //! Issue 16's targets: the same with the beam model left out too (the automatic choice, a
 //! modal beam of 16 modes), and the exact beam with its defaults at the real shear modulus and
 //! at G × 10⁴ (what an undamped stiff shear costs).
+//!
+//! Issue 17's target: the HSLM study's whole sweep, A1–A10 at 40–120 m/s (810 cases on the
+//! automatic modal beam), on the machine's cores as `rollbeam sweep` runs it; under 10 s.
 
 use std::path::Path;
 
@@ -131,11 +134,30 @@ fn beam_models(c: &mut Criterion) {
     group.finish();
 }
 
+fn hslm_sweep(c: &mut Criterion) {
+    use rollbeam::commands::sweep::{run_grid, Setting};
+    use rollbeam::scene::SceneSpec;
+    let mut group = c.benchmark_group("hslm-15m-sweep");
+    group.sample_size(10);
+    let spec =
+        SceneSpec::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/hslm-15m.yaml"))
+            .expect("the HSLM study is valid");
+    let settings = [
+        Setting::parse("train.speed=40:120:81").expect("a range"),
+        Setting::parse("train.hslm=A1,A2,A3,A4,A5,A6,A7,A8,A9,A10").expect("a list"),
+    ];
+    group.bench_function("810-cases", |b| {
+        b.iter(|| run_grid(&spec, &settings, &Overrides::default(), false).expect("runs"))
+    });
+    group.finish();
+}
+
 criterion_group!(
     benches,
     whole,
     at_a_tenth_of_a_percent,
     with_the_defaults,
-    beam_models
+    beam_models,
+    hslm_sweep
 );
 criterion_main!(benches);
