@@ -364,12 +364,11 @@ pub struct Measured {
     pub rhs_evals: usize,
 }
 
-pub fn trials(
-    scene: &Scene,
-    plan: &Plan,
-    reference: &Reference,
-    show_progress: bool,
-) -> Vec<Trial> {
+/// One point of a work–precision grid: method, mesh (elements), beam model, rtol.
+pub type GridPoint = (Method, Option<usize>, Option<BeamModel>, f64);
+
+/// Every point of the plan's grid, in the order its diagram and tables list them.
+pub fn grid(plan: &Plan) -> Vec<GridPoint> {
     let meshes: Vec<Option<usize>> = if plan.meshes.is_empty() {
         vec![None]
     } else {
@@ -390,30 +389,46 @@ pub fn trials(
             }
         }
     }
-    super::parallel::map(&grid, show_progress, |&(method, elements, model, rtol)| {
-        let scene = with_mesh(scene, elements, model);
-        let over = overrides(method, rtol, plan.max_steps);
-        let outcome = run::run(&scene, &over, false)
-            .and_then(|r| {
-                let wall_s = mean_wall(&scene, &over, r.header().stats.wall_s)?;
-                Ok(Measured {
-                    headline_error: headline_error(&headlines(&r), &reference.headlines),
-                    history_error: history_error(&history(&r), &reference.history),
-                    wall_s,
-                    steps: r.header().stats.steps,
-                    rejected: r.header().stats.rejected,
-                    rhs_evals: r.header().stats.rhs_evals,
-                })
-            })
-            .map_err(|e| e.to_string());
-        Trial {
-            method,
-            rtol,
-            elements,
-            model,
-            outcome,
-        }
+    grid
+}
+
+/// Every run of the plan's grid, on every core.
+pub fn trials(
+    scene: &Scene,
+    plan: &Plan,
+    reference: &Reference,
+    show_progress: bool,
+) -> Vec<Trial> {
+    super::parallel::map(&grid(plan), show_progress, |&point| {
+        trial(scene, plan, reference, point)
     })
+}
+
+/// One run of the grid, scored against the reference.
+pub fn trial(scene: &Scene, plan: &Plan, reference: &Reference, point: GridPoint) -> Trial {
+    let (method, elements, model, rtol) = point;
+    let scene = with_mesh(scene, elements, model);
+    let over = overrides(method, rtol, plan.max_steps);
+    let outcome = run::run(&scene, &over, false)
+        .and_then(|r| {
+            let wall_s = mean_wall(&scene, &over, r.header().stats.wall_s)?;
+            Ok(Measured {
+                headline_error: headline_error(&headlines(&r), &reference.headlines),
+                history_error: history_error(&history(&r), &reference.history),
+                wall_s,
+                steps: r.header().stats.steps,
+                rejected: r.header().stats.rejected,
+                rhs_evals: r.header().stats.rhs_evals,
+            })
+        })
+        .map_err(|e| e.to_string());
+    Trial {
+        method,
+        rtol,
+        elements,
+        model,
+        outcome,
+    }
 }
 
 /// A run shorter than [`TIMING_FLOOR`] is below the clock's resolution and the noise of a
