@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Mutex;
 
-use crate::analysis::discretisation::{choose, jumps, response_size, Discretisation};
+use crate::analysis::discretisation::{choose, jumps, response_size, weight_drops, Discretisation};
 use crate::analysis::model_choice;
 use crate::beam::BeamModel;
 use crate::coupling::Coupling;
@@ -139,7 +139,7 @@ impl Scene {
 ///   of the mesh's highest modes the damping removes; the scene is told so.
 pub fn rtol_for(scene: &BeamScene) -> (f64, &'static str) {
     let accuracy = scene.accuracy;
-    let switched = jumps(&scene.loads, scene.start);
+    let switched = jumps(&scene.loads, scene.start) || weight_drops(&scene.beam, scene.start);
     if scene.rho_inf < 1.0 {
         let why = if switched {
             "a hundredth of the accuracy; with rho_inf < 1 a switched load's peak depends on how much of the mesh's highest modes the damping removes, which tightening rtol does not settle: rho_inf = 1 holds the accuracy"

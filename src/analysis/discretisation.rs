@@ -44,9 +44,22 @@ pub fn jumps(loads: &[PointLoad], start: BeamStart) -> bool {
     loads.iter().any(|l| excites(l, start))
 }
 
+/// Whether the beam's own weight, where the scene puts it on, comes on at t = 0 (a beam that
+/// starts undeformed drops under it) rather than being carried from a static start.
+pub fn weight_drops(spec: &BeamSpec, start: BeamStart) -> bool {
+    spec.self_weight.is_some() && start != BeamStart::Static
+}
+
+/// Add the beam's own weight, if the scene puts it on, to `f` (the beam's free unknowns).
+fn add_own_weight(beam: &Beam, f: &mut [f64]) {
+    if let Some(w) = beam.weight() {
+        f.iter_mut().zip(w).for_each(|(a, b)| *a += b);
+    }
+}
+
 /// The size of the displacements a beam scene's loads cause: the largest static |(u, w)| at a
 /// probe, under the scene's loads together or one at a time, or under the disk's weight
-/// standing on that probe; `None` when the supports leave a rigid-body motion. An automatic
+/// standing on that probe, each with the beam's own weight where the scene puts it on; `None` when the supports leave a rigid-body motion. An automatic
 /// atol is rtol times this, so that a step's error is measured against the response and not
 /// against the current displacement, which a vibration takes through zero twice a period
 /// (where rtol |q| alone asks for steps of round-off size and spends most of a run there).
@@ -69,9 +82,13 @@ pub fn response_size(
     if let Some(weight) = weight {
         cases.extend(probes.iter().map(|&x| vec![[x, 0.0, -weight, 0.0]]));
     }
+    if cases.is_empty() {
+        cases.push(Vec::new());
+    }
     let mut size = 0.0_f64;
     for case in cases {
         let mut q = vec![0.0; n];
+        add_own_weight(&beam, &mut q);
         for l in &case {
             beam.add_point_load(l[0], [l[1], l[2]], l[3], &mut q);
         }
@@ -112,11 +129,13 @@ struct Estimate {
 }
 
 /// `loads` make the static deflection; those flagged `true` change during the run and so
-/// excite the modes (a load carried from a static start excites none).
+/// excite the modes (a load carried from a static start excites none). The beam's own weight,
+/// where the scene puts it on, makes it too, and excites the modes where `weight_drops`.
 fn estimate(
     spec: &BeamSpec,
     elements: usize,
     loads: &[([f64; 4], bool)],
+    weight_drops: bool,
     probes: &[f64],
 ) -> Option<Estimate> {
     let beam = Beam::new(BeamSpec {
@@ -131,6 +150,10 @@ fn estimate(
         if *excites {
             beam.add_point_load(l[0], [l[1], l[2]], l[3], &mut f);
         }
+    }
+    add_own_weight(&beam, &mut all);
+    if weight_drops {
+        add_own_weight(&beam, &mut f);
     }
     let m = modes(&beam, n)?;
     // A rigid-body mode (ω ≈ 0 next to the highest) leaves no static deflection, whatever a
@@ -225,7 +248,8 @@ pub fn choose(
             ),
         };
     }
-    let Some(est) = estimate(&spec, admissible(ESTIMATION_ELEMENTS), &pattern, xs) else {
+    let drops = weight_drops(&spec, start);
+    let Some(est) = estimate(&spec, admissible(ESTIMATION_ELEMENTS), &pattern, drops, xs) else {
         return fallback(no_static);
     };
     let scale = est.static_at_probes.iter().fold(0.0_f64, |m, v| m.max(*v));
@@ -257,7 +281,7 @@ pub fn choose(
         if elements == estimation_elements {
             Some(est.clone())
         } else {
-            estimate(&spec, elements, &pattern, xs)
+            estimate(&spec, elements, &pattern, drops, xs)
         }
     };
     let largest = (MAX_NODES - 1) / order / 2 / multiple * multiple;

@@ -19,7 +19,7 @@
 //!    static correction of the modes left out (`beam/modal.rs`) holds their quasi-static
 //!    part, so what the count must carry is the dynamics.
 
-use crate::analysis::discretisation::MAX_NODES;
+use crate::analysis::discretisation::{weight_drops, MAX_NODES};
 use crate::analysis::modes::modes;
 use crate::analysis::statics;
 use crate::beam::load::{BeamStart, PointLoad};
@@ -66,6 +66,7 @@ fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Option<(f64, 
     let (mut size, mut gap) = (0.0_f64, 0.0_f64);
     for case in cases {
         let mut f = vec![0.0; n];
+        exact.add_weight(&mut f);
         for &(x, force, mz) in case {
             exact.add_point_load(x, force, mz, &mut f);
         }
@@ -85,6 +86,7 @@ fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Option<(f64, 
 fn mode_count(
     spec: &BeamSpec,
     excite: &Pattern,
+    weight_drops: bool,
     xs: &[f64],
     accuracy: f64,
     switched: bool,
@@ -110,6 +112,9 @@ fn mode_count(
     let mut f = vec![0.0; n];
     for &(x, force, mz) in excite {
         beam.add_point_load(x, force, mz, &mut f);
+    }
+    if weight_drops {
+        beam.add_weight(&mut f);
     }
     // The deflection at the probes after the first k modes, for every k.
     let mut partial = vec![0.0; n];
@@ -198,13 +203,14 @@ pub fn choose(
         .iter()
         .filter(|l| !(start == BeamStart::Static && l.active(0.0) && l.until == f64::INFINITY))
         .collect();
-    let switched = !switching.is_empty();
+    let drops = weight_drops(spec, start);
+    let switched = !switching.is_empty() || drops;
     let mut excite: Pattern = switching.iter().map(|l| (l.x, l.force, l.mz)).collect();
     if let Some(weight) = weight {
         excite.extend(xs.iter().map(|&x| (x, [0.0, -weight], 0.0)));
     }
     let modal = |why: String| {
-        let (modes, count_why) = mode_count(spec, &excite, xs, accuracy, switched);
+        let (modes, count_why) = mode_count(spec, &excite, drops, xs, accuracy, switched);
         Choice {
             model: BeamModel::Modal { modes },
             why: format!("{why}{count_why}"),
