@@ -138,6 +138,15 @@ fn damping_ratio_from_the_logarithmic_decrement_of_each_anchor_mode() {
     }
 }
 
+/// D44's bridge (HEB 360, 20 m, simply supported) under its own weight q = ρ A g: the
+/// midspan sag 5qL⁴/(384EI) + qL²/(8 G Av), bending and shear.
+fn sag_of_the_bridge() -> f64 {
+    let (l, e, g, rho, a, av, i): (f64, f64, f64, f64, f64, f64, f64) =
+        (20.0, 210.0e9, 81.0e9, 7850.0, 181.0e-4, 46.8e-4, 43190.0e-8);
+    let q = rho * a * 9.81;
+    5.0 * q * l.powi(4) / (384.0 * e * i) + q * l * l / (8.0 * g * av)
+}
+
 /// The bridge under its own weight, statically: a simply supported beam under q = ρ A g sags
 /// 5qL⁴/(384EI) + qL²/(8 G Av) at midspan (bending and shear). Degree-4 elements hold the
 /// quartic bending line exactly, so the linear beam meets it to round-off (1e-9); the exact
@@ -145,10 +154,7 @@ fn damping_ratio_from_the_logarithmic_decrement_of_each_anchor_mode() {
 /// 1.3e-5, held to 5e-5.
 #[test]
 fn self_weight_sag_matches_the_closed_form() {
-    let (l, e, g, rho, a, av, i): (f64, f64, f64, f64, f64, f64, f64) =
-        (20.0, 210.0e9, 81.0e9, 7850.0, 181.0e-4, 46.8e-4, 43190.0e-8);
-    let q = rho * a * 9.81;
-    let closed = 5.0 * q * l.powi(4) / (384.0 * e * i) + q * l * l / (8.0 * g * av);
+    let closed = sag_of_the_bridge();
     for (model, tolerance) in [("linear", 1e-9), ("exact", 5e-5)] {
         let scene = changed(
             "bridge-d44.yaml",
@@ -182,10 +188,7 @@ fn self_weight_sag_matches_the_closed_form() {
 /// back to its default mesh, with the reason that the loads do not deflect the probes.)
 #[test]
 fn the_plan_counts_the_beams_own_weight() {
-    let (l, e, g, rho, a, av, i): (f64, f64, f64, f64, f64, f64, f64) =
-        (20.0, 210.0e9, 81.0e9, 7850.0, 181.0e-4, 46.8e-4, 43190.0e-8);
-    let q = rho * a * 9.81;
-    let closed = 5.0 * q * l.powi(4) / (384.0 * e * i) + q * l * l / (8.0 * g * av);
+    let closed = sag_of_the_bridge();
     let text = |beam_extra: &str| {
         format!(
             "name: dropped

@@ -157,6 +157,23 @@ pub struct NodeBasis {
     pub d: [f64; 4],
 }
 
+/// ∂r/∂q of the axis point whose node weights are `basis`: the X and the Y component (beam
+/// frame) of its displacement as rows over the free unknowns. What rides on the axis (a
+/// disk's contact, a moving mass) adds its inertia through these.
+pub fn position_rows(basis: &[NodeBasis]) -> [Vec<(usize, f64)>; 2] {
+    let mut gx = Vec::new();
+    let mut gy = Vec::new();
+    for nb in basis {
+        if let Some(i) = nb.u {
+            gx.push((i, nb.d[0]));
+        }
+        if let Some(i) = nb.w {
+            gy.push((i, nb.d[0]));
+        }
+    }
+    [gx, gy]
+}
+
 /// The discretised beam: mesh, equation numbering with supports applied, constant mass matrix.
 #[derive(Clone, Debug)]
 pub struct Beam {

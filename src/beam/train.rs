@@ -119,17 +119,7 @@ impl RidingAxle {
     /// ∂r/∂q of the point the axle rides on, X and Y of the beam frame: the rows through which
     /// its inertia m g gᵀ adds to the beam's mass.
     pub fn rows(&self) -> [Vec<(usize, f64)>; 2] {
-        let mut gx = Vec::new();
-        let mut gy = Vec::new();
-        for nb in &self.basis {
-            if let Some(i) = nb.u {
-                gx.push((i, nb.d[0]));
-            }
-            if let Some(i) = nb.w {
-                gy.push((i, nb.d[0]));
-            }
-        }
-        [gx, gy]
+        super::position_rows(&self.basis)
     }
 
     /// The part of the axle's acceleration (beam frame) that the beam's displacements and

@@ -130,17 +130,7 @@ impl AxisPoint {
 
     /// ∂r/∂q for the X and the Y component of the axis point (beam frame).
     pub fn position_gradient(&self) -> [Row; 2] {
-        let mut gx = Row::new();
-        let mut gy = Row::new();
-        for nb in &self.nodes {
-            if let Some(i) = nb.u {
-                gx.push((i, nb.d[0]));
-            }
-            if let Some(i) = nb.w {
-                gy.push((i, nb.d[0]));
-            }
-        }
-        [gx, gy]
+        crate::beam::position_rows(&self.nodes)
     }
 
     /// Spread the contact force (beam frame) at s onto the beam's unknowns: its virtual work
