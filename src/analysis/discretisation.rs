@@ -50,13 +50,6 @@ pub fn weight_drops(spec: &BeamSpec, start: BeamStart) -> bool {
     spec.self_weight.is_some() && start != BeamStart::Static
 }
 
-/// Add the beam's own weight, if the scene puts it on, to `f` (the beam's free unknowns).
-fn add_own_weight(beam: &Beam, f: &mut [f64]) {
-    if let Some(w) = beam.weight() {
-        f.iter_mut().zip(w).for_each(|(a, b)| *a += b);
-    }
-}
-
 /// The size of the displacements a beam scene's loads cause: the largest static |(u, w)| at a
 /// probe, under the scene's loads together or one at a time, or under the disk's weight
 /// standing on that probe, each with the beam's own weight where the scene puts it on; `None` when the supports leave a rigid-body motion. An automatic
@@ -88,7 +81,7 @@ pub fn response_size(
     let mut size = 0.0_f64;
     for case in cases {
         let mut q = vec![0.0; n];
-        add_own_weight(&beam, &mut q);
+        beam.add_weight(&mut q);
         for l in &case {
             beam.add_point_load(l[0], [l[1], l[2]], l[3], &mut q);
         }
@@ -151,9 +144,9 @@ fn estimate(
             beam.add_point_load(l[0], [l[1], l[2]], l[3], &mut f);
         }
     }
-    add_own_weight(&beam, &mut all);
+    beam.add_weight(&mut all);
     if weight_drops {
-        add_own_weight(&beam, &mut f);
+        beam.add_weight(&mut f);
     }
     let m = modes(&beam, n)?;
     // A rigid-body mode (ω ≈ 0 next to the highest) leaves no static deflection, whatever a

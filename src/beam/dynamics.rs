@@ -6,6 +6,7 @@
 
 use std::borrow::Cow;
 use std::cell::{Cell, RefCell};
+use std::rc::Rc;
 
 use super::damping::Rayleigh;
 use super::load::PointLoad;
@@ -33,6 +34,10 @@ pub struct LoadedBeam<'a> {
     scratch: RefCell<Vec<f64>>,
     /// C v, in the model's unknowns, kept for the same reason.
     damped: RefCell<Vec<f64>>,
+    /// The moving masses riding at the last t asked for: a force evaluation, the mass, its
+    /// update and the ledger all ask at one t, and each axle's patch basis was most of a
+    /// moving-mass run's cost.
+    riding_at: RefCell<Option<(f64, Rc<[RidingAxle]>)>>,
 }
 
 impl<'a> LoadedBeam<'a> {
@@ -71,6 +76,7 @@ impl<'a> LoadedBeam<'a> {
             train_breakpoints: train_breakpoints(beam, train),
             scratch: RefCell::new(vec![0.0; beam.dim()]),
             damped: RefCell::new(vec![0.0; modal.map_or(beam.dim(), |m| m.dim())]),
+            riding_at: RefCell::new(None),
         }
     }
 
@@ -103,7 +109,7 @@ impl<'a> LoadedBeam<'a> {
         for (x, p) in self.axles(t) {
             self.beam.add_point_load(x, [0.0, -p], 0.0, f);
         }
-        for r in self.riding(t) {
+        for r in self.riding(t).iter() {
             r.spread(self.beam.to_local([0.0, -r.load]), [0.0; 2], |i, v| {
                 f[i] += v
             });
@@ -124,7 +130,7 @@ impl<'a> LoadedBeam<'a> {
         let Some(speed) = self.moving_masses() else {
             return;
         };
-        for r in self.riding(t) {
+        for r in self.riding(t).iter() {
             let c = r.convective(speed, &q_at, &v_at);
             r.spread([0.0; 2], c, &mut add);
         }
@@ -153,7 +159,18 @@ impl<'a> LoadedBeam<'a> {
 
     /// The train's axles riding on the beam at t as moving masses (none for moving forces):
     /// each while its patch overlaps the beam, so that it comes on and goes off smoothly.
-    pub fn riding(&self, t: f64) -> Vec<RidingAxle> {
+    pub fn riding(&self, t: f64) -> Rc<[RidingAxle]> {
+        if let Some((at, axles)) = &*self.riding_at.borrow() {
+            if *at == t {
+                return axles.clone();
+            }
+        }
+        let axles: Rc<[RidingAxle]> = self.riding_now(t).into();
+        *self.riding_at.borrow_mut() = Some((t, axles.clone()));
+        axles
+    }
+
+    fn riding_now(&self, t: f64) -> Vec<RidingAxle> {
         let Some(train) = self.train.filter(|tr| tr.model == TrainModel::MovingMass) else {
             return Vec::new();
         };
@@ -182,7 +199,7 @@ impl<'a> LoadedBeam<'a> {
     /// each axle and each direction of the beam frame (on a modal beam the rows are Φᵀ g).
     fn axle_inertia(&self, t: f64) -> LowRank {
         let mut out = LowRank::new();
-        for r in self.riding(t) {
+        for r in self.riding(t).iter() {
             for row in r.rows() {
                 let row = match self.modal {
                     None => row,
@@ -238,8 +255,8 @@ impl<'a> LoadedBeam<'a> {
             .map(|(x, p)| (x, [0.0, -p]))
             .collect();
         if let Some(speed) = self.moving_masses() {
-            for r in self.riding(t) {
-                let (force, _) = self.riding_force(&r, speed, q, v, a);
+            for r in self.riding(t).iter() {
+                let (force, _) = self.riding_force(r, speed, q, v, a);
                 out.push((r.x.clamp(0.0, self.beam.length), self.beam.to_global(force)));
             }
         }
@@ -420,7 +437,7 @@ impl Structure for LoadedBeam<'_> {
                 for (x, p) in self.axles(t) {
                     self.beam.point_load_terms(x, [0.0, -p], 0.0, &mut add);
                 }
-                for r in self.riding(t) {
+                for r in self.riding(t).iter() {
                     r.spread(self.beam.to_local([0.0, -r.load]), [0.0; 2], &mut add);
                 }
                 self.add_axle_inertia(t, |i| m.value_at(i, q), |i| m.value_at(i, v), add);

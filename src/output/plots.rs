@@ -68,11 +68,7 @@ pub fn line_chart_with_references(
     series: &[Series],
     references: &[Series],
 ) -> Result<(), Error> {
-    let err = |e: &dyn std::fmt::Display| plot_error(path, e);
-    let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
-    panel(&root, title, x_desc, y_desc, series, references).map_err(|e| err(&e))?;
-    root.present().map_err(|e| err(&e))
+    draw(path, x_desc, &[(title, y_desc, series, references)])
 }
 
 /// Charts one above the other over a shared x quantity: (title, y description, lines) each.
@@ -81,11 +77,22 @@ pub fn stacked_chart(
     x_desc: &str,
     panels: &[(&str, &str, &[Series])],
 ) -> Result<(), Error> {
+    let plain: Vec<Panel> = panels.iter().map(|&(t, y, s)| (t, y, s, &[][..])).collect();
+    draw(path, x_desc, &plain)
+}
+
+/// A panel: title, y description, its series, and the reference lines drawn over them.
+type Panel<'a, 'b> = (&'a str, &'a str, &'a [Series<'b>], &'a [Series<'b>]);
+
+/// Panels one above the other over a shared x quantity, into one SVG file.
+fn draw(path: &Path, x_desc: &str, panels: &[Panel]) -> Result<(), Error> {
     let err = |e: &dyn std::fmt::Display| plot_error(path, e);
     let root = SVGBackend::new(path, (900, 520 * panels.len() as u32)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
-    for (area, (title, y_desc, series)) in root.split_evenly((panels.len(), 1)).iter().zip(panels) {
-        panel(area, title, x_desc, y_desc, series, &[]).map_err(|e| err(&e))?;
+    for (area, (title, y_desc, series, references)) in
+        root.split_evenly((panels.len(), 1)).iter().zip(panels)
+    {
+        panel(area, title, x_desc, y_desc, series, references).map_err(|e| err(&e))?;
     }
     root.present().map_err(|e| err(&e))
 }

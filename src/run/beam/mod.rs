@@ -819,12 +819,12 @@ pub fn run(
         Some(end) => end,
         None => {
             rec.phase.free();
-            // A run without a disk starts here, and records its start; after the disk left,
-            // the time it left was the coupled phase's to record.
+            // The output times from here on that no phase has recorded yet: a run without a
+            // disk records its start here, after the disk left its leaving time is recorded.
             let rest: Vec<f64> = outputs
                 .iter()
                 .copied()
-                .filter(|&o| o > t0 || (coupled.is_none() && o == t0))
+                .filter(|&o| o >= t0 && rec.history.rows.last().is_none_or(|r| r.t < o))
                 .collect();
             let out = integrate(
                 &loaded,
