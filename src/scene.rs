@@ -290,6 +290,8 @@ pub struct BeamScene {
     pub magnify: f64,
     /// Spectral radius at infinity of generalized-α.
     pub rho_inf: f64,
+    /// Why ρ∞ is what it is, when the plan chose it (`plan::rho_inf_for`).
+    pub rho_inf_chosen: Option<String>,
     /// Relative accuracy asked of the peak deflection: what the mesh and tolerances are
     /// chosen from when the scene leaves them out.
     pub accuracy: f64,
@@ -535,6 +537,8 @@ pub struct Checked {
     pub model_given: bool,
     pub rtol_given: bool,
     pub atol_given: bool,
+    /// The scene gives generalized-α's ρ∞ (the plan chooses it otherwise).
+    pub rho_inf_given: bool,
 }
 
 impl SceneSpec {
@@ -995,6 +999,7 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
         model_given: mesh.model,
         rtol_given,
         atol_given,
+        rho_inf_given: raw.solver.as_ref().is_some_and(|s| s.rho_inf.is_some()),
     })
 }
 
@@ -1341,6 +1346,7 @@ fn beam_scene(
         shapes,
         magnify,
         rho_inf,
+        rho_inf_chosen: None,
         accuracy,
         discretisation: None,
         model_choice: None,

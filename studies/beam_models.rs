@@ -232,3 +232,58 @@ fn automatic_choice_reduces_the_bridge_and_keeps_the_rubber_beam_and_the_rope_ex
         assert!(e > 1e-2, "{file}: linear off by only {e:.2e}");
     }
 }
+
+/// Item 3: stiff modes that carry nothing cost nothing. D44 on the exact beam with everything
+/// else left to the plan, at the real shear modulus and with G × 10⁴ (the Euler–Bernoulli
+/// limit, whose shear modes are a hundred times higher). The plan sees a beam that responds
+/// linearly under moving loads and damps the modes above those the loads excite (ρ∞ = 0.9):
+/// the stiff beam may then take at most 1.5 times the steps of the real one (undamped it took
+/// 2.06 times). Each lands within the accuracy asked of its peak deflection (what the
+/// accuracy is asked of), against its rerun at a tenth of the tolerances on the same mesh (the
+/// damping's share of the error falls with the step, so the rerun shows what it took).
+#[test]
+fn stiff_shear_modes_cost_no_steps_on_the_exact_beam() {
+    let steps: Vec<usize> = [1.0, 1e4]
+        .iter()
+        .map(|&shear| {
+            let s = changed(
+                "bridge-d44.yaml",
+                &[
+                    Set::Number("track.beam.G", 81.0e9 * shear),
+                    Set::LeftOut("track.beam.elements"),
+                    Set::LeftOut("track.beam.order"),
+                    Set::LeftOut("solver.method"),
+                    Set::LeftOut("solver.rho_inf"),
+                    Set::LeftOut("solver.rtol"),
+                    Set::LeftOut("output.shapes"),
+                ],
+            );
+            let b = s.beam().unwrap();
+            assert_eq!(b.beam.model, BeamModel::Exact);
+            assert_eq!(b.rho_inf, rollbeam::plan::PLANNED_RHO_INF);
+            assert!(b
+                .rho_inf_chosen
+                .as_ref()
+                .unwrap()
+                .contains("responds linearly"));
+            let r = run_beam_as_given(&s);
+            let finer = run_beam(
+                &s,
+                Method::GenAlpha,
+                s.solver.rtol / 10.0,
+                s.solver.atol / 10.0,
+            );
+            let peak = |r: &BeamRun| extremes(r).iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            let e = (peak(&r) - peak(&finer)).abs() / peak(&finer);
+            eprintln!(
+                "G x {shear:e}: {} steps, peak off its rerun at rtol/10 by {e:.1e}",
+                r.header.stats.steps
+            );
+            assert!(e <= b.accuracy, "G x {shear:e}: off by {e:.1e}");
+            r.header.stats.steps
+        })
+        .collect();
+    let growth = steps[1] as f64 / steps[0] as f64;
+    eprintln!("steps grow x{growth:.2} with G x 1e4");
+    assert!(growth <= 1.5, "steps grow x{growth:.2}");
+}

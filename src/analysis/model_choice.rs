@@ -174,6 +174,40 @@ fn mode_count(
     )
 }
 
+/// The largest load the scene applies: all its loads together, with what rides on the beam
+/// standing at each probe in turn.
+fn largest_loads(loads: &[PointLoad], weight: Option<f64>, xs: &[f64]) -> Vec<Pattern> {
+    let all: Pattern = loads.iter().map(|l| (l.x, l.force, l.mz)).collect();
+    match weight {
+        None => vec![all],
+        Some(weight) => xs
+            .iter()
+            .map(|&x| {
+                let mut c = all.clone();
+                c.push((x, [0.0, -weight], 0.0));
+                c
+            })
+            .collect(),
+    }
+}
+
+/// How far the beam's static response under the largest load the scene applies is from
+/// linear: the largest difference of the linear and the exact deflection at the probes, over
+/// the largest deflection; `None` where the exact beam cannot be solved statically.
+pub fn nonlinearity_of(
+    spec: &BeamSpec,
+    loads: &[PointLoad],
+    weight: Option<f64>,
+    xs: &[f64],
+) -> Option<f64> {
+    nonlinearity(spec, &largest_loads(loads, weight, xs), xs).map(|(size, gap)| gap / size)
+}
+
+/// Whether a nonlinearity measured by [`nonlinearity_of`] is invisible at the accuracy asked.
+pub fn linear_enough(nonlinearity: f64, accuracy: f64) -> bool {
+    nonlinearity <= SHARE * accuracy
+}
+
 /// Choose what the scene left out of its beam model. `given` is the model the scene names,
 /// if it names one (a modal beam with `modes: 0` has its count chosen).
 #[allow(clippy::too_many_arguments)]
@@ -187,18 +221,7 @@ pub fn choose(
     start: BeamStart,
     thesis_coupling: bool,
 ) -> Choice {
-    let all: Pattern = loads.iter().map(|l| (l.x, l.force, l.mz)).collect();
-    let mut cases: Vec<Pattern> = vec![all.clone()];
-    if let Some(weight) = weight {
-        cases = xs
-            .iter()
-            .map(|&x| {
-                let mut c = all.clone();
-                c.push((x, [0.0, -weight], 0.0));
-                c
-            })
-            .collect();
-    }
+    let cases = largest_loads(loads, weight, xs);
     let switching: Vec<&PointLoad> = loads
         .iter()
         .filter(|l| !(start == BeamStart::Static && l.active(0.0) && l.until == f64::INFINITY))
@@ -231,7 +254,7 @@ pub fn choose(
             model: BeamModel::Exact,
             why: "exact: the beam has no static response to measure its nonlinearity by (the supports leave a mechanism, or it does not carry the load statically)".into(),
         },
-        Some((size, gap)) if gap > tol * size => Choice {
+        Some((size, gap)) if !linear_enough(gap / size, accuracy) => Choice {
             model: BeamModel::Exact,
             why: format!(
                 "exact: under the largest load the scene applies the linear beam's static deflection at the probes is off the exact one by {:.1e} of it, more than {tol:.1e}",

@@ -11,6 +11,7 @@ use crate::beam::{Beam, BeamModel};
 use crate::coupling::patch;
 use crate::coupling::DiskOnBeamSpec;
 use crate::error::Error;
+use crate::ode::Method;
 use crate::output;
 use crate::say;
 use crate::scene::{BeamScene, Model, RollingScene, Scene};
@@ -40,6 +41,11 @@ impl fmt::Display for Described<'_> {
         match &scene.model {
             Model::Rolling(setup) => rolling(f, setup)?,
             Model::Beam(setup) => beam(f, setup)?,
+        }
+        if let (Some(b), Method::GenAlpha) = (scene.beam(), scene.solver.method) {
+            if let Some(why) = &b.rho_inf_chosen {
+                writeln!(f, "  rho_inf chosen for accuracy {:e}: {why}", b.accuracy)?;
+            }
         }
         if scene.solver.rtol_from_accuracy {
             if let Some(b) = scene.beam() {

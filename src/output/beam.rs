@@ -11,6 +11,7 @@ use serde::Serialize;
 use super::plots::{line_chart, stacked_chart, PALETTE};
 use super::{write, yaml};
 use crate::error::Error;
+use crate::ode::Method;
 use crate::plan::{atol_for, rtol_for};
 use crate::run::beam::BeamRun;
 
@@ -215,6 +216,8 @@ struct Chosen {
     rtol: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     atol: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rho_inf: Option<String>,
 }
 
 #[derive(Serialize)]
@@ -705,11 +708,18 @@ fn chosen(r: &BeamRun) -> Option<Chosen> {
         .filter(|(atol, _)| *atol == r.header.atol)
         .map(|(atol, why)| format!("{}, {why}", super::tolerance(atol)));
     let beam = r.setup.model_choice.clone();
-    (beam.is_some() || mesh.is_some() || rtol.is_some() || atol.is_some()).then(|| Chosen {
-        accuracy: r.setup.accuracy,
-        beam,
-        mesh,
-        rtol,
-        atol,
-    })
+    let rho_inf = r
+        .setup
+        .rho_inf_chosen
+        .clone()
+        .filter(|_| r.header.method == Method::GenAlpha);
+    (beam.is_some() || mesh.is_some() || rtol.is_some() || atol.is_some() || rho_inf.is_some())
+        .then(|| Chosen {
+            accuracy: r.setup.accuracy,
+            beam,
+            mesh,
+            rtol,
+            atol,
+            rho_inf,
+        })
 }
