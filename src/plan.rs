@@ -16,12 +16,13 @@ use crate::coupling::Coupling;
 use crate::error::Error;
 use crate::scene::{BeamScene, Checked, Model, Scene, SceneSpec};
 
-/// Plans scenes, keeping the mesh choices made, by everything they depend on: the
-/// eigenproblems behind a choice cost seconds on a fine mesh.
+/// Plans scenes, keeping the choices made (mesh, model, ρ∞) by everything they depend on: the
+/// eigenproblems and static solves behind a choice cost seconds on a fine mesh.
 #[derive(Default)]
 pub struct Planner {
     chosen: Mutex<BTreeMap<String, Discretisation>>,
     models: Mutex<BTreeMap<String, (BeamModel, String)>>,
+    dampings: Mutex<BTreeMap<String, (f64, String)>>,
 }
 
 impl Planner {
@@ -99,7 +100,18 @@ impl Planner {
             b.model_choice = Some(why);
         }
         if !rho_inf_given {
-            let (rho, why) = rho_inf_for(b, weight, &xs);
+            let key = format!(
+                "{:?} {:?} {weight:?} {xs:?} {:?} {:?}",
+                b.beam, b.loads, b.accuracy, b.start
+            );
+            let known = self.dampings.lock().ok().and_then(|c| c.get(&key).cloned());
+            let (rho, why) = known.unwrap_or_else(|| {
+                let chosen = rho_inf_for(b, weight, &xs);
+                if let Ok(mut c) = self.dampings.lock() {
+                    c.insert(key, chosen.clone());
+                }
+                chosen
+            });
             b.rho_inf = rho;
             b.rho_inf_chosen = Some(why);
         }
