@@ -10,9 +10,8 @@
 //! error estimate is filtered through it (Hairer & Wanner IV.8), so that stiff components do
 //! not reject steps whose error they do not carry.
 
-use super::stage_solver::{DirkMethod, DirkState};
+use super::stage_solver::{mass_mul, DirkMethod, DirkState};
 use super::{Ctx, Dynamics, SolveError};
-use crate::linalg;
 
 const STAGES: usize = 6;
 const GAMMA: f64 = 0.25;
@@ -119,10 +118,7 @@ impl DirkMethod for Esdirk4 {
                     .sum::<f64>();
         }
         let mut err = vec![0.0; n];
-        match p.mass(t + h, &s.y_new) {
-            Some(m) => linalg::mul(&m, &self.base, &mut err),
-            None => err.copy_from_slice(&self.base),
-        }
+        mass_mul(p, t + h, &s.y_new, &self.base, &mut err);
         s.newton.back_substitute(&mut err);
         err
     }
