@@ -62,15 +62,10 @@ impl Planner {
                 "{:?} {elements:?} {order:?} {:?} {weight:?} {xs:?} {:?} {multiple} {:?}",
                 b.beam, b.loads, b.accuracy, b.start
             );
-            let known = self.chosen.lock().ok().and_then(|c| c.get(&key).cloned());
-            let d = known.unwrap_or_else(|| {
-                let d = choose(
+            let d = kept(&self.chosen, key, || {
+                choose(
                     &b.beam, elements, order, &b.loads, weight, &xs, b.accuracy, multiple, b.start,
-                );
-                if let Ok(mut c) = self.chosen.lock() {
-                    c.insert(key, d.clone());
-                }
-                d
+                )
             });
             b.beam.elements = d.elements;
             b.beam.order = d.order;
@@ -82,8 +77,7 @@ impl Planner {
                 "model {:?} {given:?} {:?} {weight:?} {xs:?} {:?} {:?}",
                 b.beam, b.loads, b.accuracy, b.start
             );
-            let known = self.models.lock().ok().and_then(|c| c.get(&key).cloned());
-            let (model, why) = known.unwrap_or_else(|| {
+            let (model, why) = kept(&self.models, key, || {
                 let thesis = b
                     .disk
                     .as_ref()
@@ -91,9 +85,6 @@ impl Planner {
                 let c = model_choice::choose(
                     &b.beam, given, &b.loads, weight, &xs, b.accuracy, b.start, thesis,
                 );
-                if let Ok(mut m) = self.models.lock() {
-                    m.insert(key, (c.model, c.why.clone()));
-                }
                 (c.model, c.why)
             });
             b.beam.model = model;
@@ -104,14 +95,7 @@ impl Planner {
                 "{:?} {:?} {weight:?} {xs:?} {:?} {:?}",
                 b.beam, b.loads, b.accuracy, b.start
             );
-            let known = self.dampings.lock().ok().and_then(|c| c.get(&key).cloned());
-            let (rho, why) = known.unwrap_or_else(|| {
-                let chosen = rho_inf_for(b, weight, &xs);
-                if let Ok(mut c) = self.dampings.lock() {
-                    c.insert(key, chosen.clone());
-                }
-                chosen
-            });
+            let (rho, why) = kept(&self.dampings, key, || rho_inf_for(b, weight, &xs));
             b.rho_inf = rho;
             b.rho_inf_chosen = Some(why);
         }
@@ -129,6 +113,28 @@ impl Planner {
         }
         scene
     }
+}
+
+/// The choice kept under `key`, or `choose`'s, kept.
+fn kept<T: Clone>(
+    choices: &Mutex<BTreeMap<String, T>>,
+    key: String,
+    choose: impl FnOnce() -> T,
+) -> T {
+    if let Some(known) = choices.lock().ok().and_then(|c| c.get(&key).cloned()) {
+        return known;
+    }
+    let chosen = choose();
+    if let Ok(mut c) = choices.lock() {
+        c.insert(key, chosen.clone());
+    }
+    chosen
+}
+
+/// Whether a load is switched on or off during the run, the beam's own weight included where
+/// it drops on a beam that starts undeformed.
+fn switched(scene: &BeamScene) -> bool {
+    jumps(&scene.loads, scene.start) || weight_drops(&scene.beam, scene.start)
 }
 
 impl Scene {
@@ -161,12 +167,11 @@ impl Scene {
 /// - A load switched on or off excites every mode of the mesh, and the damped share of them
 ///   rides on the peak (`rtol_for`): there ρ∞ = 1. A modal beam holds no such modes: ρ∞ = 1.
 pub fn rho_inf_for(scene: &BeamScene, weight: Option<f64>, xs: &[f64]) -> (f64, String) {
-    let switched = jumps(&scene.loads, scene.start) || weight_drops(&scene.beam, scene.start);
     let undamped = |why: &str| (1.0, format!("1, no numerical damping: {why}"));
     if matches!(scene.beam.model, BeamModel::Modal { .. }) {
         return undamped("the modal beam holds no modes far above what the loads excite");
     }
-    if switched {
+    if switched(scene) {
         return undamped("a load switched during the run excites every mode of the mesh, and what damping takes of them would ride on the peak");
     }
     match model_choice::nonlinearity_of(&scene.beam, &scene.loads, weight, xs) {
@@ -198,7 +203,7 @@ pub const PLANNED_RHO_INF: f64 = 0.9;
 ///   of the mesh's highest modes the damping removes; the scene is told so.
 pub fn rtol_for(scene: &BeamScene) -> (f64, &'static str) {
     let accuracy = scene.accuracy;
-    let switched = jumps(&scene.loads, scene.start) || weight_drops(&scene.beam, scene.start);
+    let switched = switched(scene);
     if damped_by_the_scene(scene) {
         let why = if switched {
             "a hundredth of the accuracy; with rho_inf < 1 a switched load's peak depends on how much of the mesh's highest modes the damping removes, which tightening rtol does not settle: rho_inf = 1 holds the accuracy"

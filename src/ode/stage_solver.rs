@@ -190,6 +190,8 @@ pub(crate) struct StageSolver {
     eta: f64,
     f: Vec<f64>,
     g: Vec<f64>,
+    /// Scratch for M g and, on a structure, K b₁.
+    scratch: std::cell::RefCell<Vec<f64>>,
 }
 
 impl StageSolver {
@@ -201,6 +203,7 @@ impl StageSolver {
             eta: 1.0,
             f: vec![0.0; n],
             g: vec![0.0; n],
+            scratch: std::cell::RefCell::new(vec![0.0; n]),
         }
     }
 
@@ -287,10 +290,12 @@ impl StageSolver {
             for i in 0..n {
                 self.g[i] = z[i] - base[i];
             }
-            let g = self.g.clone();
-            mass_mul(p, t, z, &g, &mut self.g);
-            for i in 0..n {
-                self.g[i] = -(self.g[i] - dh * self.f[i]);
+            {
+                let mut mg = self.scratch.borrow_mut();
+                mass_mul(p, t, z, &self.g, &mut mg);
+                for i in 0..n {
+                    self.g[i] = -(mg[i] - dh * self.f[i]);
+                }
             }
             let mut g = std::mem::take(&mut self.g);
             self.back_substitute(&mut g);
@@ -329,9 +334,10 @@ impl StageSolver {
             Some(Tangent::Structural(k)) => {
                 let n = k.nrows();
                 let (b1, b2) = x.split_at_mut(n);
-                let mut kb = vec![0.0; n];
-                linalg::mul(k, b1, &mut kb);
-                for (b, kb) in b2.iter_mut().zip(&kb) {
+                let mut scratch = self.scratch.borrow_mut();
+                let kb = &mut scratch[..n];
+                linalg::mul(k, b1, kb);
+                for (b, kb) in b2.iter_mut().zip(kb.iter()) {
                     *b -= dh * kb;
                 }
                 lu.solve_in_place(b2);
