@@ -2,7 +2,6 @@
 //! shapes, envelopes of u, w and φ, the energy budget).
 
 use std::collections::BTreeMap;
-use std::fmt::Write;
 use std::path::Path;
 
 use plotters::prelude::*;
@@ -395,8 +394,7 @@ pub fn csv(r: &BeamRun) -> String {
             row.total(),
         ]);
         v.extend(row.reactions.iter().flatten());
-        let line: Vec<String> = v.iter().map(|&x| super::cell(x)).collect();
-        let _ = writeln!(out, "{}", line.join(","));
+        super::push_row(&mut out, &v);
     }
     out
 }

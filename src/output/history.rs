@@ -1,7 +1,5 @@
 //! `history.csv`: one row per output time, columns as SCENE-FORMAT names them.
 
-use std::fmt::Write;
-
 use crate::run::RunResult;
 
 pub const COLUMNS: [&str; 18] = [
@@ -51,8 +49,7 @@ pub fn csv(r: &RunResult) -> String {
             row.impact,
             row.energy(),
         ];
-        let line: Vec<String> = values.iter().map(|&v| super::cell(v)).collect();
-        let _ = writeln!(out, "{}", line.join(","));
+        super::push_row(&mut out, &values);
     }
     out
 }

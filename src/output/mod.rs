@@ -47,14 +47,20 @@ fn write_rolling(result: &RunResult, dir: &Path) -> Result<(), Error> {
     plots::all(result, dir)
 }
 
-/// A number in a CSV cell; a quantity that is undefined at that time (NaN: a disk's columns
-/// after it left, the friction needed where it does not press) leaves the cell empty.
-pub(crate) fn cell(x: f64) -> String {
-    if x.is_nan() {
-        String::new()
-    } else {
-        format!("{x}")
+/// Append one CSV row of numbers and its newline. A quantity that is undefined at that time
+/// (NaN: a disk's columns after it left, the friction needed where it does not press) leaves
+/// its cell empty.
+pub(crate) fn push_row(out: &mut String, values: &[f64]) {
+    use std::fmt::Write;
+    for (k, &x) in values.iter().enumerate() {
+        if k > 0 {
+            out.push(',');
+        }
+        if !x.is_nan() {
+            let _ = write!(out, "{x}");
+        }
     }
+    out.push('\n');
 }
 
 /// Every output file is written here, and no table or summary leaves with a non-finite number
@@ -78,9 +84,11 @@ pub(crate) fn write(path: &Path, text: &str) -> Result<(), Error> {
 pub(crate) fn non_finite(text: &str) -> Option<(usize, String)> {
     const TOKENS: [&str; 8] = ["inf", "-inf", "NaN", "nan", ".inf", "-.inf", ".nan", ".NaN"];
     text.lines().enumerate().find_map(|(k, line)| {
-        let unquoted: String = line.split('"').step_by(2).collect::<Vec<_>>().join(" ");
-        unquoted
-            .split(|c: char| c.is_whitespace() || ",:[]{}".contains(c))
+        line.split('"')
+            .step_by(2)
+            .flat_map(|unquoted| {
+                unquoted.split(|c: char| c.is_whitespace() || ",:[]{}".contains(c))
+            })
             .find(|t| TOKENS.contains(t))
             .map(|t| (k + 1, t.to_string()))
     })
