@@ -35,6 +35,7 @@ pub mod thesis_system;
 use std::borrow::Cow;
 use std::cell::{OnceCell, RefCell};
 use std::ops::Range;
+use std::rc::Rc;
 
 use contact::{dot, AxisPoint, Row};
 use law::{AddedMass, Law, Rider};
@@ -151,13 +152,16 @@ pub struct DiskOnBeam<'a> {
     basis: RefCell<Option<(f64, Vec<NodeBasis>)>>,
     /// The beam's tangent bordered by the contact coordinate, found at its first assembly.
     stiffness_pattern: OnceCell<AssemblyPattern>,
+    /// The rider's inertia at the last state asked: Newton takes the mass product, and the
+    /// next step its split, at the state its force was evaluated at.
+    inertia: RefCell<Option<KeptInertia>>,
 }
 
-/// The terms of one coupling at the contact.
-struct Terms {
-    added: AddedMass,
-    /// Generalised force of the disk on z (beam rows, and s for the rolling couplings).
-    force: Vec<(usize, f64)>,
+/// The rider's inertia as z feels it, and the state (t, z) it was formed at.
+struct KeptInertia {
+    t: f64,
+    z: Vec<f64>,
+    added: Rc<AddedMass>,
 }
 
 impl<'a> DiskOnBeam<'a> {
@@ -225,6 +229,7 @@ impl<'a> DiskOnBeam<'a> {
             lu: RefCell::new(None),
             stiffness_pattern: OnceCell::new(),
             basis: RefCell::new(None),
+            inertia: RefCell::new(None),
         }
     }
 
@@ -352,14 +357,27 @@ impl<'a> DiskOnBeam<'a> {
         }
     }
 
-    fn terms(&self, t: f64, z: &[f64], zd: &[f64]) -> Terms {
+    /// The generalised force of the disk on z (beam rows, and s for the rolling couplings).
+    fn force_row(&self, t: f64, z: &[f64], zd: &[f64]) -> Row {
         let at = self.contact(t, z, zd);
         let mut force = Vec::new();
         self.law.force(&self.rider, &at, &mut force);
-        Terms {
-            added: self.added_mass(&at),
-            force: self.reduce(force),
+        self.reduce(force)
+    }
+
+    /// The rider's inertia as z feels it at (t, z), which the velocity does not enter.
+    fn inertia_at(&self, t: f64, z: &[f64]) -> Rc<AddedMass> {
+        let mut kept = self.inertia.borrow_mut();
+        if let Some(k) = kept.as_ref().filter(|k| k.t == t && k.z[..] == z[..]) {
+            return k.added.clone();
         }
+        let added = Rc::new(self.added_mass(&self.contact(t, z, &vec![0.0; z.len()])));
+        *kept = Some(KeptInertia {
+            t,
+            z: z.to_vec(),
+            added: added.clone(),
+        });
+        added
     }
 
     /// The rider's inertia as z feels it.
@@ -389,15 +407,16 @@ impl<'a> DiskOnBeam<'a> {
     /// split of M (see [`SecondOrderProblem::mass_split`]) with its constant part factorised
     /// once.
     fn acceleration(&self, t: f64, z: &[f64], zd: &[f64]) -> Option<Vec<f64>> {
-        let terms = self.terms(t, z, zd);
+        let force = self.force_row(t, z, zd);
         let mut y = vec![0.0; self.dim()];
-        self.force_from(t, z, zd, &terms, &mut y);
+        self.force_from(t, z, zd, &force, &mut y);
         if self.lu.borrow().is_none() {
             *self.lu.borrow_mut() = Some(SparseLu::factor(&self.base_mass, None)?);
         }
         let lu = self.lu.borrow();
         let lu = lu.as_ref().expect("factorised above");
-        Woodbury::new(lu, self.low_rank_mass(terms.added))?.solve_in_place(lu, &mut y);
+        let added = (*self.inertia_at(t, z)).clone();
+        Woodbury::new(lu, self.low_rank_mass(added))?.solve_in_place(lu, &mut y);
         y.iter().all(|v| v.is_finite()).then_some(y)
     }
 
@@ -433,20 +452,20 @@ impl<'a> DiskOnBeam<'a> {
 
     /// Add the disk's generalised force on the beam's unknowns (not on s) to f.
     pub fn add_disk_force_on_beam(&self, t: f64, z: &[f64], zd: &[f64], f: &mut [f64]) {
-        for (i, v) in self.terms(t, z, zd).force {
+        for (i, v) in self.force_row(t, z, zd) {
             if i < self.n {
                 f[i] += v;
             }
         }
     }
 
-    fn force_from(&self, t: f64, z: &[f64], zd: &[f64], terms: &Terms, f: &mut [f64]) {
+    fn force_from(&self, t: f64, z: &[f64], zd: &[f64], force: &Row, f: &mut [f64]) {
         self.loaded
             .force(t, &z[..self.n], &zd[..self.n], &mut f[..self.n]);
         if f.len() > self.n {
             f[self.n] = 0.0;
         }
-        for &(i, v) in &terms.force {
+        for &(i, v) in force {
             f[i] += v;
         }
     }
@@ -572,8 +591,7 @@ impl Structure for DiskOnBeam<'_> {
     }
 
     fn mass(&self, t: f64, q: &[f64]) -> Cow<'_, Sparse> {
-        let zero = vec![0.0; q.len()];
-        Cow::Owned(self.mass_matrix(&self.added_mass(&self.contact(t, q, &zero))))
+        Cow::Owned(self.mass_matrix(&self.inertia_at(t, q)))
     }
 
     fn mass_is_constant(&self) -> bool {
@@ -583,8 +601,7 @@ impl Structure for DiskOnBeam<'_> {
     /// The beam's mass, with a unit mass standing in on the contact coordinate that the
     /// low-rank part takes back out, plus the disk's inertia as seen by z.
     fn mass_split(&self, t: f64, q: &[f64]) -> Option<(&Sparse, LowRank)> {
-        let zero = vec![0.0; q.len()];
-        let added = self.added_mass(&self.contact(t, q, &zero));
+        let added = (*self.inertia_at(t, q)).clone();
         Some((&self.base_mass, self.low_rank_mass(added)))
     }
 
@@ -593,18 +610,17 @@ impl Structure for DiskOnBeam<'_> {
         if out.len() > self.n {
             out[self.n] = 0.0;
         }
-        let zero = vec![0.0; q.len()];
-        for (w, row) in self.added_mass(&self.contact(t, q, &zero)) {
-            let ga = w * dot(&row, a);
-            for (i, gi) in row {
+        for (w, row) in self.inertia_at(t, q).iter() {
+            let ga = w * dot(row, a);
+            for &(i, gi) in row {
                 out[i] += gi * ga;
             }
         }
     }
 
     fn force(&self, t: f64, q: &[f64], v: &[f64], f: &mut [f64]) {
-        let terms = self.terms(t, q, v);
-        self.force_from(t, q, v, &terms, f);
+        let force = self.force_row(t, q, v);
+        self.force_from(t, q, v, &force, f);
     }
 
     fn stiffness(&self, t: f64, q: &[f64]) -> Sparse {
