@@ -23,6 +23,9 @@ pub const MAX_MODES: usize = 200;
 pub struct ModalBasis {
     /// Φ, mass-normalised, one column per mode, on the beam's free unknowns.
     shapes: DMatrix<f64>,
+    /// Φ row by row: what one unknown of the mesh reads of every mode, contiguous, for the
+    /// contact's few unknowns that every force evaluation expands and projects.
+    by_unknown: Vec<f64>,
     /// Circular frequencies, ascending.
     pub omega: Vec<f64>,
     /// Φᵀ M: the amplitudes of a displacement, η = Φᵀ M q.
@@ -56,6 +59,7 @@ impl ModalBasis {
         let highest = omega.last().copied().unwrap_or(0.0);
         let rigid = omega.first().is_some_and(|&w| w <= 1e-6 * highest);
         ModalBasis {
+            by_unknown: shapes.transpose().as_slice().to_vec(),
             mass: diagonal(&mut std::iter::repeat_n(1.0, m)),
             stiffness: diagonal(&mut omega.iter().map(|w| w * w)),
             shapes,
@@ -102,7 +106,13 @@ impl ModalBasis {
 
     /// q_i = Σ_k Φ_ik η_k: one unknown of the mesh.
     pub fn value_at(&self, i: usize, eta: &[f64]) -> f64 {
-        (0..eta.len()).map(|k| self.shapes[(i, k)] * eta[k]).sum()
+        self.row(i).iter().zip(eta).map(|(p, e)| p * e).sum()
+    }
+
+    /// Row i of Φ.
+    fn row(&self, i: usize) -> &[f64] {
+        let m = self.omega.len();
+        &self.by_unknown[i * m..(i + 1) * m]
     }
 
     /// out = Φᵀ f: a force on the mesh's unknowns as the modes feel it.
@@ -122,8 +132,8 @@ impl ModalBasis {
 
     /// Add v Φ_i· (row i of Φ, scaled) to `out`: one term of a sparse row projected.
     pub fn add_row(&self, i: usize, v: f64, out: &mut [f64]) {
-        for (k, o) in out.iter_mut().enumerate() {
-            *o += self.shapes[(i, k)] * v;
+        for (o, p) in out.iter_mut().zip(self.row(i)) {
+            *o += p * v;
         }
     }
 
