@@ -623,55 +623,77 @@ impl Beam {
         PointDisplacement { u, w, phi: v[2] }
     }
 
-    /// What holds each unknown, supports included, in equilibrium at q under the point loads
-    /// `loads` (x, global force, moment) and, in motion, with the acceleration `a` of the free
-    /// unknowns: R = F_int + M a − F_ext, in the beam frame. At a held unknown this is the
-    /// support's reaction; at a free one, the residual.
+    /// What holds the unknowns of `nodes`, supports included, in equilibrium at q under the
+    /// point loads `loads` (x, global force, moment) and, in motion, with the acceleration `a`
+    /// of the free unknowns: R = F_int + M a − F_ext, in the beam frame, (u, w, φ) per node.
+    /// At a held unknown this is the support's reaction; at a free one, the residual. Only the
+    /// rows of the nodes asked are formed: K₀ and M are symmetric, so a node's row is its
+    /// column, and on the exact beam only the elements that hold the node add to it.
     fn held_forces(
         &self,
+        nodes: &[usize],
         q: &[f64],
         loads: &[(f64, [f64; 2], f64)],
         a: Option<&[f64]>,
-    ) -> Vec<f64> {
-        let mut full = vec![0.0; 3 * self.nodes()];
-        if let Some((_, k0)) = &self.linear {
-            let q_full: Vec<f64> = self.eq.iter().map(|e| e.map_or(0.0, |i| q[i])).collect();
-            crate::linalg::mul(k0, &q_full, &mut full);
-        } else {
-            let k = 3 * (self.spec.order + 1);
-            let (mut qe, mut fe) = (vec![0.0; k], vec![0.0; k]);
-            let kernels = ElementKernels {
-                section: &self.spec.section,
-                stiff: &self.stiff,
-            };
-            for e in 0..self.spec.elements {
-                self.gather(e, q, &mut qe);
-                kernels.internal_force(&qe, &mut fe);
-                for (kk, dof) in self.element_dofs(e).enumerate() {
-                    full[dof] += fe[kk];
+    ) -> Vec<[f64; 3]> {
+        let p = self.spec.order;
+        let value = |e: Option<usize>, y: &[f64]| e.map_or(0.0, |i| y[i]);
+        let column_dot = |m: &Sparse, dof: usize, y: &[f64]| -> f64 {
+            let (col_ptr, row_idx) = (m.symbolic().col_ptr(), m.symbolic().row_idx());
+            (col_ptr[dof]..col_ptr[dof + 1])
+                .map(|k| m.val()[k] * value(self.eq[row_idx[k]], y))
+                .sum()
+        };
+        let k = 3 * (p + 1);
+        let (mut qe, mut fe) = (vec![0.0; k], vec![0.0; k]);
+        let kernels = ElementKernels {
+            section: &self.spec.section,
+            stiff: &self.stiff,
+        };
+        nodes
+            .iter()
+            .map(|&node| {
+                let mut r = [0.0; 3];
+                match &self.linear {
+                    Some((_, k0)) => {
+                        for (c, rc) in r.iter_mut().enumerate() {
+                            *rc = column_dot(k0, 3 * node + c, q);
+                        }
+                    }
+                    None => {
+                        let last = self.spec.elements - 1;
+                        let holding = (node.saturating_sub(1) / p)..=(node / p).min(last);
+                        for e in holding {
+                            self.gather(e, q, &mut qe);
+                            kernels.internal_force(&qe, &mut fe);
+                            for (c, rc) in r.iter_mut().enumerate() {
+                                *rc += fe[3 * (node - e * p) + c];
+                            }
+                        }
+                    }
                 }
-            }
-        }
-        if let Some((_, weight)) = &self.weight {
-            full.iter_mut().zip(weight).for_each(|(f, w)| *f -= w);
-        }
-        if let Some(a) = a {
-            let a_full: Vec<f64> = self.eq.iter().map(|e| e.map_or(0.0, |i| a[i])).collect();
-            let mut inertia = vec![0.0; full.len()];
-            crate::linalg::mul(&self.full_mass, &a_full, &mut inertia);
-            full.iter_mut().zip(&inertia).for_each(|(f, m)| *f += m);
-        }
-        for &(x, force, mz) in loads {
-            let local = self.to_local(force);
-            let (e, n) = self.locate(x);
-            for (a, na) in n.iter().enumerate() {
-                let node = e * self.spec.order + a;
-                full[3 * node] -= na * local[0];
-                full[3 * node + 1] -= na * local[1];
-                full[3 * node + 2] -= na * mz;
-            }
-        }
-        full
+                if let Some((_, weight)) = &self.weight {
+                    for (c, rc) in r.iter_mut().enumerate() {
+                        *rc -= weight[3 * node + c];
+                    }
+                }
+                if let Some(a) = a {
+                    for (c, rc) in r.iter_mut().enumerate() {
+                        *rc += column_dot(&self.full_mass, 3 * node + c, a);
+                    }
+                }
+                for &(x, force, mz) in loads {
+                    let local = self.to_local(force);
+                    let (e, n) = self.locate(x);
+                    if let Some(na) = node.checked_sub(e * p).and_then(|l| n.get(l)) {
+                        r[0] -= na * local[0];
+                        r[1] -= na * local[1];
+                        r[2] -= na * mz;
+                    }
+                }
+                r
+            })
+            .collect()
     }
 
     /// Forces and moment the supports exert on the beam at each end, global (fx, fy, mz), at q
@@ -683,12 +705,12 @@ impl Beam {
         loads: &[(f64, [f64; 2], f64)],
         a: Option<&[f64]>,
     ) -> [[f64; 3]; 2] {
-        let full = self.held_forces(q, loads, a);
+        let held = self.held_forces(&[0, self.nodes() - 1], q, loads, a);
         let mut out = [[0.0; 3]; 2];
-        for (end, node) in [0, self.nodes() - 1].into_iter().enumerate() {
+        for (end, full) in held.into_iter().enumerate() {
             let mut r = [0.0; 3];
             for &c in self.spec.supports[end].held_components() {
-                r[c] = full[3 * node + c];
+                r[c] = full[c];
             }
             let g = self.to_global([r[0], r[1]]);
             out[end] = [g[0], g[1], r[2]];
@@ -704,14 +726,15 @@ impl Beam {
         loads: &[(f64, [f64; 2], f64)],
         a: Option<&[f64]>,
     ) -> Vec<[f64; 2]> {
-        let full = self.held_forces(q, loads, a);
-        self.spec
+        let nodes: Vec<usize> = self
+            .spec
             .bearings
             .iter()
-            .map(|&x| {
-                let node = (x / self.h).round() as usize * self.spec.order;
-                self.to_global([0.0, full[3 * node + 1]])
-            })
+            .map(|&x| (x / self.h).round() as usize * self.spec.order)
+            .collect();
+        self.held_forces(&nodes, q, loads, a)
+            .into_iter()
+            .map(|r| self.to_global([0.0, r[1]]))
             .collect()
     }
 
