@@ -116,9 +116,17 @@ pub struct BeamSpec {
     pub self_weight: Option<f64>,
 }
 
-/// Material points prepared for repeated reading (see [`Beam::stations`]).
+/// Material points prepared for repeated reading (see [`Beam::stations`]): per point, the
+/// free unknowns it reads with their shape functions' weights, u's terms, then w's, then φ's.
 #[derive(Clone, Debug)]
-pub struct Stations(Vec<(usize, Vec<f64>)>);
+pub struct Stations(Vec<Station>);
+
+#[derive(Clone, Debug)]
+struct Station {
+    terms: Vec<(usize, f64)>,
+    /// Where w's and φ's terms start.
+    starts: [usize; 2],
+}
 
 /// Highest Lagrange degree of an element (the scene reader refuses more): the shape functions
 /// at a point then fit on the stack.
@@ -596,7 +604,20 @@ impl Beam {
             xs.iter()
                 .map(|&x| {
                     let (e, n) = self.locate(x);
-                    (e, n.to_vec())
+                    let first = e * self.spec.order;
+                    let mut terms = Vec::with_capacity(3 * n.len());
+                    let mut starts = [0; 2];
+                    for c in 0..3 {
+                        if c > 0 {
+                            starts[c - 1] = terms.len();
+                        }
+                        for (a, na) in n.iter().enumerate() {
+                            if let Some(i) = self.eq[3 * (first + a) + c] {
+                                terms.push((i, *na));
+                            }
+                        }
+                    }
+                    Station { terms, starts }
                 })
                 .collect(),
         )
@@ -607,7 +628,29 @@ impl Beam {
         stations
             .0
             .iter()
-            .map(|(e, n)| self.displacement_in(*e, n, q))
+            .map(|st| {
+                let sum = |terms: &[(usize, f64)]| terms.iter().map(|&(i, n)| n * q[i]).sum();
+                let [w0, p0] = st.starts;
+                let [u, w] = self.to_global([sum(&st.terms[..w0]), sum(&st.terms[w0..p0])]);
+                PointDisplacement {
+                    u,
+                    w,
+                    phi: sum(&st.terms[p0..]),
+                }
+            })
+            .collect()
+    }
+
+    /// The global w alone at the stations: what an acceleration envelope reads.
+    pub fn deflections(&self, stations: &Stations, q: &[f64]) -> Vec<f64> {
+        stations
+            .0
+            .iter()
+            .map(|st| {
+                let sum = |terms: &[(usize, f64)]| terms.iter().map(|&(i, n)| n * q[i]).sum();
+                let [w0, p0] = st.starts;
+                self.to_global([sum(&st.terms[..w0]), sum(&st.terms[w0..p0])])[1]
+            })
             .collect()
     }
 

@@ -12,6 +12,8 @@
 //! energy budget keep Φ η, for which ½ ηᵀΩ²η + ½ η̇ᵀη̇ is the energy (R F does no work on
 //! the modes: Φᵀ K₀ R F = 0).
 
+use std::cell::RefCell;
+
 use nalgebra::DMatrix;
 
 use crate::linalg::{Assembly, Sparse, SparseLu};
@@ -36,7 +38,19 @@ pub struct ModalBasis {
     /// K₀, factorised: the static part of the modes left out. `None` where the supports leave
     /// a mechanism, whose static response is not defined.
     flexibility: Option<SparseLu>,
+    /// R's columns, each formed the first time a force acts on its unknown (on a mesh of at
+    /// most [`KEPT_COLUMNS_UP_TO`] unknowns): a rider's force acts on the few unknowns under
+    /// it, so R F is a sum of a few columns where a solve with K₀ would cost the whole mesh.
+    columns_of_r: RefCell<Vec<Option<Box<[f64]>>>>,
 }
+
+/// Largest mesh (unknowns) whose residual flexibility is kept column by column: n² doubles
+/// at most, 8 MB.
+const KEPT_COLUMNS_UP_TO: usize = 1000;
+/// Most unknowns a force may act on for R F to be summed from R's columns: a sparse solve
+/// with K₀ costs about as much as this many columns (a beam's factor holds some tens of
+/// entries per unknown); a distributed load (the beam's weight) takes the solve.
+const FEW_FORCES: usize = 32;
 
 impl ModalBasis {
     /// From the lowest modes of the linear beam with stiffness `k0` and mass `mass`.
@@ -70,6 +84,7 @@ impl ModalBasis {
             } else {
                 SparseLu::factor(k0, None)
             },
+            columns_of_r: RefCell::new(Vec::new()),
         }
     }
 
@@ -155,19 +170,46 @@ impl ModalBasis {
     /// Nothing where the beam is a mechanism.
     pub fn add_static_correction(&self, f: &[f64], q: &mut [f64]) {
         let Some(lu) = &self.flexibility else { return };
-        let mut full = f.to_vec();
-        lu.solve_in_place(&mut full);
+        let acting = f.iter().filter(|v| **v != 0.0).count();
+        if f.len() > KEPT_COLUMNS_UP_TO || acting > FEW_FORCES {
+            let mut full = f.to_vec();
+            lu.solve_in_place(&mut full);
+            self.subtract_modal_part(f, &mut full);
+            q.iter_mut().zip(&full).for_each(|(a, b)| *a += b);
+            return;
+        }
+        let mut columns = self.columns_of_r.borrow_mut();
+        columns.resize(f.len(), None);
+        for (j, &fj) in f.iter().enumerate() {
+            if fj == 0.0 {
+                continue;
+            }
+            let column = columns[j].get_or_insert_with(|| {
+                let mut unit = vec![0.0; f.len()];
+                unit[j] = 1.0;
+                let mut r = unit.clone();
+                lu.solve_in_place(&mut r);
+                self.subtract_modal_part(&unit, &mut r);
+                r.into_boxed_slice()
+            });
+            q.iter_mut()
+                .zip(column.iter())
+                .for_each(|(a, r)| *a += r * fj);
+        }
+    }
+
+    /// x −= Φ Ω⁻² Φᵀ f.
+    fn subtract_modal_part(&self, f: &[f64], x: &mut [f64]) {
         let mut p = vec![0.0; self.dim()];
         self.project(f, &mut p);
         for ((pk, w), column) in p.iter().zip(&self.omega).zip(self.columns()) {
             let w2 = w * w;
             if w2 > 0.0 {
-                for (fi, s) in full.iter_mut().zip(column) {
-                    *fi -= s * pk / w2;
+                for (xi, s) in x.iter_mut().zip(column) {
+                    *xi -= s * pk / w2;
                 }
             }
         }
-        q.iter_mut().zip(&full).for_each(|(a, b)| *a += b);
     }
 
     /// The largest displacement (or rotation) of the mesh that a unit amplitude of each mode

@@ -168,12 +168,7 @@ impl Observer for Recorder<'_> {
             Some(f) => f.filtered(phase.loaded, &a),
             None => phase.loaded.to_mesh(&a).into_owned(),
         };
-        let along_a: Vec<f64> = phase
-            .beam
-            .displacements(&self.stations, &a)
-            .iter()
-            .map(|d| d.w)
-            .collect();
+        let along_a = phase.beam.deflections(&self.stations, &a);
         let sample = Sample {
             t,
             q: &q,
