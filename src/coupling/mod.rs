@@ -155,6 +155,9 @@ pub struct DiskOnBeam<'a> {
     /// The rider's inertia at the last state asked: Newton takes the mass product, and the
     /// next step its split, at the state its force was evaluated at.
     inertia: RefCell<Option<KeptInertia>>,
+    /// The contact at the last state observed: an output row reads it for the disk, the
+    /// reactions, the static correction and the energy.
+    observed: RefCell<Option<(f64, Vec<f64>, Rc<AxisPoint>)>>,
 }
 
 /// The rider's inertia as z feels it, and the state (t, z) it was formed at.
@@ -230,6 +233,7 @@ impl<'a> DiskOnBeam<'a> {
             stiffness_pattern: OnceCell::new(),
             basis: RefCell::new(None),
             inertia: RefCell::new(None),
+            observed: RefCell::new(None),
         }
     }
 
@@ -357,11 +361,29 @@ impl<'a> DiskOnBeam<'a> {
         }
     }
 
+    /// [`Self::contact`] at a state that is observed, kept for the next reading of the same
+    /// state.
+    fn observed_contact(&self, t: f64, z: &[f64], zd: &[f64]) -> Rc<AxisPoint> {
+        let mut kept = self.observed.borrow_mut();
+        let same =
+            |y: &[f64]| y.len() == z.len() + zd.len() && y[..z.len()] == *z && y[z.len()..] == *zd;
+        if let Some((_, _, at)) = kept.as_ref().filter(|(kt, y, _)| *kt == t && same(y)) {
+            return at.clone();
+        }
+        let at = Rc::new(self.contact(t, z, zd));
+        *kept = Some((t, z.iter().chain(zd).copied().collect(), at.clone()));
+        at
+    }
+
     /// The generalised force of the disk on z (beam rows, and s for the rolling couplings).
     fn force_row(&self, t: f64, z: &[f64], zd: &[f64]) -> Row {
-        let at = self.contact(t, z, zd);
+        self.force_at(&self.contact(t, z, zd))
+    }
+
+    /// [`Self::force_row`] at the contact `at`.
+    fn force_at(&self, at: &AxisPoint) -> Row {
         let mut force = Vec::new();
-        self.law.force(&self.rider, &at, &mut force);
+        self.law.force(&self.rider, at, &mut force);
         self.reduce(force)
     }
 
@@ -407,7 +429,8 @@ impl<'a> DiskOnBeam<'a> {
     /// split of M (see [`SecondOrderProblem::mass_split`]) with its constant part factorised
     /// once.
     fn acceleration(&self, t: f64, z: &[f64], zd: &[f64]) -> Option<Vec<f64>> {
-        let force = self.force_row(t, z, zd);
+        let at = self.observed_contact(t, z, zd);
+        let force = self.force_at(&at);
         let mut y = vec![0.0; self.dim()];
         self.force_from(t, z, zd, &force, &mut y);
         if self.lu.borrow().is_none() {
@@ -415,8 +438,7 @@ impl<'a> DiskOnBeam<'a> {
         }
         let lu = self.lu.borrow();
         let lu = lu.as_ref().expect("factorised above");
-        let added = (*self.inertia_at(t, z)).clone();
-        Woodbury::new(lu, self.low_rank_mass(added))?.solve_in_place(lu, &mut y);
+        Woodbury::new(lu, self.low_rank_mass(self.added_mass(&at)))?.solve_in_place(lu, &mut y);
         y.iter().all(|v| v.is_finite()).then_some(y)
     }
 
@@ -501,7 +523,7 @@ impl<'a> DiskOnBeam<'a> {
     }
 
     fn observe_with(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> DiskObservation {
-        let at = self.contact(t, z, zd);
+        let at = self.observed_contact(t, z, zd);
         let motion = self.law.motion(
             &self.rider,
             &at,
@@ -546,7 +568,7 @@ impl<'a> DiskOnBeam<'a> {
         d: &DiskObservation,
         f: &mut [f64],
     ) {
-        let at = self.contact(t, z, zd);
+        let at = self.observed_contact(t, z, zd);
         let (tg, nm) = (at.tangent(), at.normal());
         let on_disk = [d.rt * tg[0] + d.rn * nm[0], d.rt * tg[1] + d.rn * nm[1]];
         at.spread([-on_disk[0], -on_disk[1]], f);
@@ -554,7 +576,7 @@ impl<'a> DiskOnBeam<'a> {
 
     /// Tangent and normal of the axis at the contact, global axes.
     pub fn contact_frame(&self, t: f64, z: &[f64], zd: &[f64]) -> [[f64; 2]; 2] {
-        let at = self.contact(t, z, zd);
+        let at = self.observed_contact(t, z, zd);
         [
             self.beam().to_global(at.tangent()),
             self.beam().to_global(at.normal()),
@@ -568,7 +590,7 @@ impl<'a> DiskOnBeam<'a> {
             return 0.0;
         }
         let obs = self.observe(t, z, zd);
-        let at = self.contact(t, z, zd);
+        let at = self.observed_contact(t, z, zd);
         let tg = at.tangent();
         let nm = at.normal();
         let on_disk = [
