@@ -368,15 +368,12 @@ fn subspace(k: &Sparse, m: &Sparse, count: usize) -> Option<(Vec<f64>, DMatrix<f
 mod tests {
     use super::*;
 
-    /// The sparse path against the dense one on the same matrices: a mesh small enough to
-    /// solve both ways, its lowest eigenvalues to 1e-8 (what the iteration settles to) and
-    /// its shapes up to sign.
-    #[test]
-    fn subspace_iteration_finds_the_dense_modes() {
+    /// D44's beam (HEB 360, 20 m, pinned and roller) on `elements` elements of degree 4.
+    fn d44_beam(elements: usize) -> Beam {
         use crate::beam::element::Section;
         use crate::beam::supports::Support;
         use crate::beam::{BeamSpec, Quadrature};
-        let spec = BeamSpec {
+        Beam::new(BeamSpec {
             from: [0.0, 0.0],
             to: [20.0, 0.0],
             section: Section {
@@ -389,14 +386,21 @@ mod tests {
             depth: 0.36,
             supports: [Support::Pinned, Support::Roller],
             bearings: Vec::new(),
-            elements: 40,
+            elements,
             order: 4,
             quadrature: Quadrature::Reduced,
             model: crate::beam::BeamModel::Exact,
             damping: None,
             self_weight: None,
-        };
-        let beam = Beam::new(spec);
+        })
+    }
+
+    /// The sparse path against the dense one on the same matrices: a mesh small enough to
+    /// solve both ways, its lowest eigenvalues to 1e-8 (what the iteration settles to) and
+    /// its shapes up to sign.
+    #[test]
+    fn subspace_iteration_finds_the_dense_modes() {
+        let beam = d44_beam(40);
         let n = beam.dim();
         let k = beam.tangent(&vec![0.0; n]);
         let (dense_l, dense_x) = generalized(&dense(&k), &dense(beam.mass()), 6).unwrap();
@@ -412,6 +416,34 @@ mod tests {
             let dot: f64 = dense_x.column(j).dot(&sparse_x.column(j));
             let scale = dense_x.column(j).norm() * sparse_x.column(j).norm();
             assert!((dot.abs() / scale - 1.0).abs() < 1e-6, "shape {}", j + 1);
+        }
+    }
+
+    /// The blocks solved apart against the whole solved at once: the straight beam splits
+    /// into its axial and its bending unknowns, and every mode of the whole comes out of one
+    /// block, its frequency to 1e-10 (round-off of the inverted form on the lowest modes,
+    /// which both solve) and its shape to 1e-8 up to sign.
+    #[test]
+    fn blocks_solved_apart_give_the_modes_of_the_whole() {
+        let beam = d44_beam(10);
+        let n = beam.dim();
+        let (k, m) = (dense(&beam.tangent(&vec![0.0; n])), dense(beam.mass()));
+        let blocks = coupled_blocks(&k, &m);
+        assert_eq!(blocks.len(), 2, "axial and bending unknowns");
+        assert_eq!(blocks[0].len() + blocks[1].len(), n);
+        let count = 30;
+        let (apart_l, apart_x) = generalized(&k, &m, count).unwrap();
+        let (whole_l, whole_x) = one_block(&k, &m, count).unwrap();
+        for j in 0..count {
+            assert!(
+                (apart_l[j] - whole_l[j]).abs() <= 1e-10 * whole_l[j],
+                "mode {}: {} {}",
+                j + 1,
+                apart_l[j],
+                whole_l[j]
+            );
+            let dot: f64 = apart_x.column(j).dot(&(&m * whole_x.column(j)));
+            assert!((dot.abs() - 1.0).abs() < 1e-8, "shape {}: {dot}", j + 1);
         }
     }
 }
