@@ -128,6 +128,19 @@ struct Station {
     starts: [usize; 2],
 }
 
+impl Station {
+    /// Component c (0 u, 1 w, 2 φ, beam frame) of the field q at the station.
+    fn read(&self, c: usize, q: &[f64]) -> f64 {
+        let [w0, p0] = self.starts;
+        let terms = match c {
+            0 => &self.terms[..w0],
+            1 => &self.terms[w0..p0],
+            _ => &self.terms[p0..],
+        };
+        terms.iter().map(|&(i, n)| n * q[i]).sum()
+    }
+}
+
 /// Highest Lagrange degree of an element (the scene reader refuses more): the shape functions
 /// at a point then fit on the stack.
 pub const MAX_ORDER: usize = 10;
@@ -629,13 +642,11 @@ impl Beam {
             .0
             .iter()
             .map(|st| {
-                let sum = |terms: &[(usize, f64)]| terms.iter().map(|&(i, n)| n * q[i]).sum();
-                let [w0, p0] = st.starts;
-                let [u, w] = self.to_global([sum(&st.terms[..w0]), sum(&st.terms[w0..p0])]);
+                let [u, w] = self.to_global([st.read(0, q), st.read(1, q)]);
                 PointDisplacement {
                     u,
                     w,
-                    phi: sum(&st.terms[p0..]),
+                    phi: st.read(2, q),
                 }
             })
             .collect()
@@ -646,11 +657,7 @@ impl Beam {
         stations
             .0
             .iter()
-            .map(|st| {
-                let sum = |terms: &[(usize, f64)]| terms.iter().map(|&(i, n)| n * q[i]).sum();
-                let [w0, p0] = st.starts;
-                self.to_global([sum(&st.terms[..w0]), sum(&st.terms[w0..p0])])[1]
-            })
+            .map(|st| self.to_global([st.read(0, q), st.read(1, q)])[1])
             .collect()
     }
 
