@@ -166,25 +166,28 @@ fn generalized(
         return one_block(k, m, count);
     }
     let n = k.nrows();
-    let mut found: Vec<(f64, Vec<f64>)> = Vec::with_capacity(n);
+    let mut solved = Vec::with_capacity(blocks.len());
     for rows in &blocks {
         let part = |a: &DMatrix<f64>| {
             DMatrix::from_fn(rows.len(), rows.len(), |i, j| a[(rows[i], rows[j])])
         };
-        let (lambda, shapes) = one_block(&part(k), &part(m), rows.len())?;
-        for (c, l) in lambda.into_iter().enumerate() {
-            let mut shape = vec![0.0; n];
-            for (i, &r) in rows.iter().enumerate() {
-                shape[r] = shapes[(i, c)];
-            }
-            found.push((l, shape));
+        solved.push(one_block(&part(k), &part(m), rows.len())?);
+    }
+    // Every block's modes, (λ, block, column), merged in ascending λ.
+    let mut order: Vec<(f64, usize, usize)> = solved
+        .iter()
+        .enumerate()
+        .flat_map(|(b, (lambda, _))| lambda.iter().enumerate().map(move |(c, &l)| (l, b, c)))
+        .collect();
+    order.sort_by(|x, y| x.0.total_cmp(&y.0));
+    order.truncate(count.min(n));
+    let mut shapes = DMatrix::zeros(n, order.len());
+    for (j, &(_, b, c)) in order.iter().enumerate() {
+        for (i, &r) in blocks[b].iter().enumerate() {
+            shapes[(r, j)] = solved[b].1[(i, c)];
         }
     }
-    found.sort_by(|a, b| a.0.total_cmp(&b.0));
-    found.truncate(count.min(n));
-    let lambda = found.iter().map(|(l, _)| *l).collect();
-    let shapes = DMatrix::from_fn(n, found.len(), |i, j| found[j].1[i]);
-    Some((lambda, shapes))
+    Some((order.iter().map(|o| o.0).collect(), shapes))
 }
 
 /// The unknowns in the groups that K and M couple (an entry that is exactly zero couples

@@ -154,17 +154,34 @@ pub struct DiskOnBeam<'a> {
     stiffness_pattern: OnceCell<AssemblyPattern>,
     /// The rider's inertia at the last state asked: Newton takes the mass product, and the
     /// next step its split, at the state its force was evaluated at.
-    inertia: RefCell<Option<KeptInertia>>,
+    inertia: KeptAt<AddedMass>,
     /// The contact at the last state observed: an output row reads it for the disk, the
     /// reactions, the static correction and the energy.
-    observed: RefCell<Option<(f64, Vec<f64>, Rc<AxisPoint>)>>,
+    observed: KeptAt<AxisPoint>,
 }
 
-/// The rider's inertia as z feels it, and the state (t, z) it was formed at.
-struct KeptInertia {
-    t: f64,
-    z: Vec<f64>,
-    added: Rc<AddedMass>,
+/// A value kept with the time and state (t, y) it was formed at, until another is asked.
+struct KeptAt<T>(RefCell<Option<(f64, Vec<f64>, Rc<T>)>>);
+
+impl<T> KeptAt<T> {
+    fn new() -> Self {
+        KeptAt(RefCell::new(None))
+    }
+
+    /// The value at (t, the parts of y in order), formed by `form` unless it is the one kept.
+    fn at(&self, t: f64, y: &[&[f64]], form: impl FnOnce() -> T) -> Rc<T> {
+        let mut kept = self.0.borrow_mut();
+        let same = |k: &[f64]| {
+            k.len() == y.iter().map(|p| p.len()).sum::<usize>()
+                && y.iter().flat_map(|p| p.iter()).zip(k).all(|(a, b)| a == b)
+        };
+        if let Some((_, _, v)) = kept.as_ref().filter(|(kt, k, _)| *kt == t && same(k)) {
+            return v.clone();
+        }
+        let v = Rc::new(form());
+        *kept = Some((t, y.concat(), v.clone()));
+        v
+    }
 }
 
 impl<'a> DiskOnBeam<'a> {
@@ -232,8 +249,8 @@ impl<'a> DiskOnBeam<'a> {
             lu: RefCell::new(None),
             stiffness_pattern: OnceCell::new(),
             basis: RefCell::new(None),
-            inertia: RefCell::new(None),
-            observed: RefCell::new(None),
+            inertia: KeptAt::new(),
+            observed: KeptAt::new(),
         }
     }
 
@@ -364,15 +381,7 @@ impl<'a> DiskOnBeam<'a> {
     /// [`Self::contact`] at a state that is observed, kept for the next reading of the same
     /// state.
     fn observed_contact(&self, t: f64, z: &[f64], zd: &[f64]) -> Rc<AxisPoint> {
-        let mut kept = self.observed.borrow_mut();
-        let same =
-            |y: &[f64]| y.len() == z.len() + zd.len() && y[..z.len()] == *z && y[z.len()..] == *zd;
-        if let Some((_, _, at)) = kept.as_ref().filter(|(kt, y, _)| *kt == t && same(y)) {
-            return at.clone();
-        }
-        let at = Rc::new(self.contact(t, z, zd));
-        *kept = Some((t, z.iter().chain(zd).copied().collect(), at.clone()));
-        at
+        self.observed.at(t, &[z, zd], || self.contact(t, z, zd))
     }
 
     /// The generalised force of the disk on z (beam rows, and s for the rolling couplings).
@@ -389,17 +398,9 @@ impl<'a> DiskOnBeam<'a> {
 
     /// The rider's inertia as z feels it at (t, z), which the velocity does not enter.
     fn inertia_at(&self, t: f64, z: &[f64]) -> Rc<AddedMass> {
-        let mut kept = self.inertia.borrow_mut();
-        if let Some(k) = kept.as_ref().filter(|k| k.t == t && k.z[..] == z[..]) {
-            return k.added.clone();
-        }
-        let added = Rc::new(self.added_mass(&self.contact(t, z, &vec![0.0; z.len()])));
-        *kept = Some(KeptInertia {
-            t,
-            z: z.to_vec(),
-            added: added.clone(),
-        });
-        added
+        self.inertia.at(t, &[z], || {
+            self.added_mass(&self.contact(t, z, &vec![0.0; z.len()]))
+        })
     }
 
     /// The rider's inertia as z feels it.
