@@ -43,6 +43,8 @@ pub fn solve(beam: &Beam, f_ext: &[f64]) -> Result<StaticSolution, StaticError> 
     let mut step: f64 = 1.0;
     let mut iterations = 0;
     let mut load_steps = 0;
+    // The tangent's pattern stays: its ordering is found once.
+    let mut factored: Option<SparseLu> = None;
     while lambda < 1.0 {
         let target = (lambda + step).min(1.0);
         let mut trial = q.clone();
@@ -53,13 +55,14 @@ pub fn solve(beam: &Beam, f_ext: &[f64]) -> Result<StaticSolution, StaticError> 
             beam.internal_force(&trial, &mut f_int);
             let mut r: Vec<f64> = (0..n).map(|i| target * f_ext[i] - f_int[i]).collect();
             let k = beam.tangent(&trial);
-            let Some(lu) = SparseLu::factor(&k, None) else {
+            let Some(lu) = SparseLu::factor(&k, factored.take()) else {
                 if lambda == 0.0 {
                     return Err(StaticError::Singular);
                 }
                 break;
             };
             lu.solve_in_place(&mut r);
+            factored = Some(lu);
             let dq = r.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             if !dq.is_finite() {
                 break;
