@@ -653,6 +653,7 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
         .map_err(|e| err(&e))?;
     chart
         .configure_mesh()
+        .light_line_style(TRANSPARENT)
         .x_desc("X (m)")
         .y_desc("Y (m)")
         .draw()

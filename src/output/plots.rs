@@ -116,6 +116,9 @@ fn panel<DB: DrawingBackend>(
         .build_cartesian_2d(x0..x1, y0..y1)?;
     chart
         .configure_mesh()
+        // Only the labelled grid lines: the light ones between them were nine in ten of a
+        // figure's elements and a quarter of the time it took to draw.
+        .light_line_style(TRANSPARENT)
         .x_desc(x_desc)
         .y_desc(y_desc)
         .draw()?;
@@ -229,6 +232,7 @@ pub fn track_figure(r: &RunResult, path: &Path, count: usize) -> Result<(), Erro
         .map_err(|e| err(&e))?;
     chart
         .configure_mesh()
+        .light_line_style(TRANSPARENT)
         .x_desc("X (m)")
         .y_desc("Y (m)")
         .draw()
