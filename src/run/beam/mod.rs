@@ -181,7 +181,7 @@ impl Observer for Recorder<'_> {
             reactions,
         };
         self.history.record(&sample);
-        self.envelope.record(&sample, phase.beam.length);
+        self.envelope.record(&sample);
         self.pictures.record(&sample);
     }
 

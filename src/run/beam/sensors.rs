@@ -91,14 +91,21 @@ impl Envelope {
         }
     }
 
-    pub(super) fn record(&mut self, s: &Sample, length: f64) {
-        let stretched: f64 = self
+    pub(super) fn record(&mut self, s: &Sample) {
+        // Each chord's growth, ((h + Δu)² + Δw² − h²) / (|chord| + h): the length minus h
+        // would cancel all but a few digits of a stretch 10⁻⁷ of the span, and the samples
+        // span the axis, so their h add up to its length.
+        let stretch: f64 = self
             .x
             .windows(2)
             .zip(s.along.windows(2))
-            .map(|(x, d)| (x[1] + d[1].u - x[0] - d[0].u).hypot(d[1].w - d[0].w))
+            .map(|(x, d)| {
+                let (h, du, dw) = (x[1] - x[0], d[1].u - d[0].u, d[1].w - d[0].w);
+                let chord = ((h + du) * (h + du) + dw * dw).sqrt();
+                (du * (2.0 * h + du) + dw * dw) / (chord + h)
+            })
             .sum();
-        self.stretch_max = self.stretch_max.max(stretched - length);
+        self.stretch_max = self.stretch_max.max(stretch);
         for (k, a) in s.along_a.iter().enumerate() {
             if a.abs() > self.a_max.0 {
                 self.a_max = (a.abs(), self.x[k], s.t);
