@@ -37,7 +37,9 @@ pub(crate) trait Law {
     /// Unknowns the rider adds to the beam's: its contact coordinate s where its path is an
     /// unknown, none where it is prescribed.
     fn unknowns(&self) -> usize;
-    /// The rider's inertia as z feels it.
+    /// The rider's inertia as z feels it. It reads the contact's position only (the values
+    /// of its jets, not their rates): the inertia at z is formed from whichever contact at z
+    /// comes first, whatever its velocity.
     fn added_mass(&self, r: &Rider, at: &AxisPoint) -> AddedMass;
     /// The rider's generalised force on z, appended to `force` as (index, value).
     fn force(&self, r: &Rider, at: &AxisPoint, force: &mut Vec<(usize, f64)>);

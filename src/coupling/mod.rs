@@ -386,7 +386,11 @@ impl<'a> DiskOnBeam<'a> {
 
     /// The generalised force of the disk on z (beam rows, and s for the rolling couplings).
     fn force_row(&self, t: f64, z: &[f64], zd: &[f64]) -> Row {
-        self.force_at(&self.contact(t, z, zd))
+        let at = self.contact(t, z, zd);
+        // Newton's next mass product is at this z: its inertia is formed from this contact
+        // rather than from a second one at zero velocity.
+        self.inertia.at(t, &[z], || self.added_mass(&at));
+        self.force_at(&at)
     }
 
     /// [`Self::force_row`] at the contact `at`.
