@@ -7,13 +7,23 @@ use super::quadrature::lobatto;
 pub struct Lagrange {
     /// Nodes on [−1, 1], ascending, both ends included.
     pub nodes: Vec<f64>,
+    /// 1 / Π_{b≠a} (ξ_a − ξ_b) for every node a: the basis is evaluated at every contact and
+    /// output row, where a division per factor was its cost.
+    scale: Vec<f64>,
 }
 
 impl Lagrange {
     pub fn new(degree: usize) -> Self {
-        Lagrange {
-            nodes: lobatto(degree + 1).points,
-        }
+        let nodes = lobatto(degree + 1).points;
+        let scale = (0..nodes.len())
+            .map(|a| {
+                1.0 / (0..nodes.len())
+                    .filter(|&b| b != a)
+                    .map(|b| nodes[a] - nodes[b])
+                    .product::<f64>()
+            })
+            .collect();
+        Lagrange { nodes, scale }
     }
 
     pub fn count(&self) -> usize {
@@ -24,16 +34,15 @@ impl Lagrange {
     pub fn eval(&self, xi: f64, n: &mut [f64], dn: &mut [f64]) {
         let k = self.nodes.len();
         for a in 0..k {
-            let mut value = 1.0;
+            let mut value = self.scale[a];
             let mut deriv = 0.0;
             for b in 0..k {
                 if b == a {
                     continue;
                 }
-                let denom = self.nodes[a] - self.nodes[b];
                 // Product rule: the derivative of a product of linear factors.
-                deriv = deriv * (xi - self.nodes[b]) / denom + value / denom;
-                value *= (xi - self.nodes[b]) / denom;
+                deriv = deriv * (xi - self.nodes[b]) + value;
+                value *= xi - self.nodes[b];
             }
             n[a] = value;
             dn[a] = deriv;
@@ -45,16 +54,15 @@ impl Lagrange {
     pub fn eval_derivatives(&self, xi: f64, out: &mut [[f64; 4]]) {
         let k = self.nodes.len();
         for a in 0..k {
-            let mut d = [1.0, 0.0, 0.0, 0.0];
+            let mut d = [self.scale[a], 0.0, 0.0, 0.0];
             for b in 0..k {
                 if b == a {
                     continue;
                 }
-                let denom = self.nodes[a] - self.nodes[b];
                 // (P·ℓ)^(j) = P^(j) ℓ + j P^(j−1) ℓ' for the linear factor ℓ.
                 for j in (0..4).rev() {
                     let lower = if j > 0 { j as f64 * d[j - 1] } else { 0.0 };
-                    d[j] = (d[j] * (xi - self.nodes[b]) + lower) / denom;
+                    d[j] = d[j] * (xi - self.nodes[b]) + lower;
                 }
             }
             out[a] = d;
