@@ -527,14 +527,36 @@ impl<'a> DiskOnBeam<'a> {
         (obs, zdd)
     }
 
+    /// The disk's kinetic and potential energy at (t, z, ż). The energy ledger reads them
+    /// at every step; unlike the observation's forces they need no acceleration, whose solve
+    /// would cost the step as much again.
+    pub fn energies(&self, t: f64, z: &[f64], zd: &[f64]) -> (f64, f64) {
+        let at = self.observed_contact(t, z, zd);
+        let unknown = vec![f64::NAN; self.dim()];
+        let motion = self.motion(&at, zd, &unknown);
+        (motion.kinetic, self.potential(&motion))
+    }
+
+    fn motion(&self, at: &AxisPoint, zd: &[f64], zdd: &[f64]) -> law::Motion {
+        self.law.motion(
+            &self.rider,
+            at,
+            &self.on_mesh(at, zd),
+            &self.on_mesh(at, zdd),
+        )
+    }
+
+    /// The disk's potential energy in gravity, unless its law keeps its own.
+    fn potential(&self, motion: &law::Motion) -> f64 {
+        let height = self.beam().spec.from[1] + self.beam().to_global(motion.centre)[1];
+        motion
+            .potential
+            .unwrap_or(self.spec.disk.mass * self.spec.gravity * height)
+    }
+
     fn observe_with(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> DiskObservation {
         let at = self.observed_contact(t, z, zd);
-        let motion = self.law.motion(
-            &self.rider,
-            &at,
-            &self.on_mesh(&at, zd),
-            &self.on_mesh(&at, zdd),
-        );
+        let motion = self.motion(&at, zd, zdd);
         let tg = at.tangent();
         let nm = at.normal();
         let beam = self.beam();
@@ -557,9 +579,7 @@ impl<'a> DiskOnBeam<'a> {
             rt: contact[0] * tg[0] + contact[1] * tg[1],
             rn: contact[0] * nm[0] + contact[1] * nm[1],
             kinetic: motion.kinetic,
-            potential: motion
-                .potential
-                .unwrap_or(self.spec.disk.mass * self.spec.gravity * (origin[1] + cg[1])),
+            potential: self.potential(&motion),
         }
     }
 

@@ -211,16 +211,12 @@ impl<'a> Ledger<'a> {
         let power = Self::moving_power(phase, t, y);
         self.moving = (t, power, self.moving_work(t, power));
         let (kinetic, strain) = Self::beam_energies(phase, y);
-        let disk = match phase.coupled {
+        let (disk_kinetic, potential) = match phase.coupled {
             Some(c) if c.disk_in_system() => {
                 let (z, zd) = phase.split(y);
-                Some(c.observe(t, z, zd))
+                c.energies(t, z, zd)
             }
-            _ => None,
-        };
-        let (disk_kinetic, potential) = match disk {
-            Some(d) => (d.kinetic, d.potential),
-            None if phase.coupled.is_some() => (0.0, 0.0),
+            Some(_) => (0.0, 0.0),
             None => self.left_with,
         };
         let kinetic = kinetic + disk_kinetic;
