@@ -528,8 +528,8 @@ impl<'a> DiskOnBeam<'a> {
     }
 
     /// The disk's kinetic and potential energy at (t, z, ż). The energy ledger reads them
-    /// at every step; unlike the observation's forces they need no acceleration, whose solve
-    /// would cost the step as much again.
+    /// at every step; unlike the observation's forces they need no acceleration, so the
+    /// solve for it is left out.
     pub fn energies(&self, t: f64, z: &[f64], zd: &[f64]) -> (f64, f64) {
         let at = self.observed_contact(t, z, zd);
         let unknown = vec![f64::NAN; self.dim()];

@@ -64,8 +64,8 @@ pub(crate) fn push_row(out: &mut String, values: &[f64]) {
 }
 
 /// `x` as `{x}` prints it (the shortest digits that read back as x, never an exponent, no
-/// ".0" on a whole number), with the digits found by zmij, a third of the time std takes over
-/// a bridge run's rows. The two differ only where the shortest digits end in a tie, which std
+/// ".0" on a whole number), with the digits found by zmij: D44's history.csv is built in 0.83
+/// ms instead of 1.2. The two differ only where the shortest digits end in a tie, which std
 /// rounds up and zmij to even: both read back as x, in as many digits. Among 8 million doubles
 /// of every size the smallest such was 8.6·10⁸.
 fn push_number(out: &mut String, x: f64, digits: &mut zmij::Buffer) {
