@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use super::SolverFlags;
 use crate::error::Error;
 use crate::output;
-use crate::run::{self, Run};
+use crate::run::{self, Overrides, Run};
 use crate::say;
 use crate::scene::Scene;
 
@@ -50,7 +50,10 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
             "--animate draws a beam scene; a rigid curve's positions are drawn in track.svg".into(),
         ));
     }
-    let over = solver.overrides(&scene)?;
+    let over = Overrides {
+        animate,
+        ..solver.overrides(&scene)?
+    };
     let result = run::run(&scene, &over, true)?;
     let dir = out.unwrap_or_else(|| match &case {
         Some((plan, id)) => plan.join("runs").join(id),

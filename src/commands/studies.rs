@@ -46,7 +46,11 @@ pub fn run_all(
         .collect::<Result<Vec<Scene>, Error>>()?;
     // The studies are independent: they share the cores, and are reported in their order.
     let done = super::parallel::map(&scenes, true, |scene| -> Result<Run, Error> {
-        let result = run::run(scene, &Overrides::default(), false)?;
+        let animate = Overrides {
+            animate: true,
+            ..Default::default()
+        };
+        let result = run::run(scene, &animate, false)?;
         let dir = out.join(&scene.name);
         output::write_all(&result, &dir)?;
         if let Run::Beam(b) = &result {

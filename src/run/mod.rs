@@ -108,6 +108,9 @@ pub struct Overrides {
     /// Read a modal beam's displacements without the static correction of the modes left
     /// out: what the correction does, measured.
     pub uncorrected_modes: bool,
+    /// Keep the animation's frames (`--animate`, and the studies): up to [`beam::FRAMES`]
+    /// copies of the beam's displaced samples, which a run that draws no animation never reads.
+    pub animate: bool,
 }
 
 impl Overrides {

@@ -110,6 +110,7 @@ pub struct BeamRun {
     pub shapes: Vec<(f64, Vec<PointDisplacement>)>,
     /// Displacements at the sample points on a coarse grid of times (at most [`FRAMES`]),
     /// with the disk's contact point and turned angle while it is on the beam: the animation.
+    /// Empty unless [`Overrides::animate`] asked for them.
     pub frames: Vec<Frame>,
     /// When the disk left the beam, if it did.
     pub left_track_t: Option<f64>,
@@ -728,7 +729,9 @@ pub fn run(
         envelope: Envelope::new(xs),
         pictures: Pictures {
             shape_times: &setup.shapes,
-            frame_every: scene.duration / (FRAMES - 1) as f64,
+            frame_every: over
+                .animate
+                .then(|| scene.duration / (FRAMES - 1) as f64),
             shapes: Vec::new(),
             frames: Vec::new(),
             turned: (0.0, setup.disk.as_ref().map_or(0.0, |d| d.omega0), 0.0),

@@ -127,7 +127,8 @@ impl Envelope {
 /// the angle the disk has turned through (the trapezoidal rule on Ω over the output rows).
 pub(super) struct Pictures<'a> {
     pub shape_times: &'a [f64],
-    pub frame_every: f64,
+    /// The frames' spacing in time; `None` records no frames.
+    pub frame_every: Option<f64>,
     pub shapes: Vec<(f64, Vec<PointDisplacement>)>,
     pub frames: Vec<Frame>,
     /// (t, Ω, angle) at the last row with the disk on the beam.
@@ -141,11 +142,11 @@ impl Pictures<'_> {
             let (t0, w0, angle) = self.turned;
             self.turned = (t, d.omega, angle + 0.5 * (w0 + d.omega) * (t - t0));
         }
-        if self
-            .frames
-            .last()
-            .is_none_or(|f| t >= f.t + self.frame_every - 1e-9)
-        {
+        if self.frame_every.is_some_and(|every| {
+            self.frames
+                .last()
+                .is_none_or(|f| t >= f.t + every - 1e-9)
+        }) {
             self.frames.push(Frame {
                 t,
                 along: s.along.to_vec(),
