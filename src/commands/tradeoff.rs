@@ -574,53 +574,53 @@ fn diagram(scene: &Scene, trials: &[Trial], path: &Path) -> Result<(), Error> {
     if !x0.is_finite() {
         return Ok(());
     }
-    let root = SVGBackend::new(path, (900, 600)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            format!("{}: work–precision", scene.name),
-            ("sans-serif", 22),
-        )
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(75)
-        .build_cartesian_2d(
-            (x0 / 1.5..x1 * 1.5).log_scale(),
-            (y0 / 3.0..y1 * 3.0).log_scale(),
-        )
-        .map_err(|e| err(&e))?;
-    chart
-        .configure_mesh()
-        .x_desc("wall time (s)")
-        .y_desc("headline error (relative)")
-        .y_label_formatter(&|v| format!("{v:.0e}"))
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .draw()
-        .map_err(|e| err(&e))?;
-    for (i, (name, pts)) in lines.iter().enumerate() {
-        let color = PALETTE[i % PALETTE.len()];
-        let style = if i < PALETTE.len() {
-            color.stroke_width(2)
-        } else {
-            color.stroke_width(1)
-        };
-        chart
-            .draw_series(LineSeries::new(pts.iter().copied(), style))
-            .map_err(|e| err(&e))?
-            .label(name.as_str())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
-        chart
-            .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+    crate::output::plots::svg(path, (900, 600), |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                format!("{}: work–precision", scene.name),
+                ("sans-serif", 22),
+            )
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(75)
+            .build_cartesian_2d(
+                (x0 / 1.5..x1 * 1.5).log_scale(),
+                (y0 / 3.0..y1 * 3.0).log_scale(),
+            )
             .map_err(|e| err(&e))?;
-    }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()
-        .map_err(|e| err(&e))?;
-    root.present().map_err(|e| err(&e))
+        chart
+            .configure_mesh()
+            .x_desc("wall time (s)")
+            .y_desc("headline error (relative)")
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .x_label_formatter(&|v| format!("{v:.0e}"))
+            .draw()
+            .map_err(|e| err(&e))?;
+        for (i, (name, pts)) in lines.iter().enumerate() {
+            let color = PALETTE[i % PALETTE.len()];
+            let style = if i < PALETTE.len() {
+                color.stroke_width(2)
+            } else {
+                color.stroke_width(1)
+            };
+            chart
+                .draw_series(LineSeries::new(pts.iter().copied(), style))
+                .map_err(|e| err(&e))?
+                .label(name.as_str())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+            chart
+                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                .map_err(|e| err(&e))?;
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| err(&e))?;
+        Ok(())
+    })
 }
 
 #[derive(clap::Args)]

@@ -633,61 +633,61 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
     );
     let scale = (((x1 - x0) + 2.0 * pad) / w).max(((y1 - y0) + 2.0 * pad) / h);
     let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
-    let root = SVGBackend::new(path, (w as u32 + 90, h as u32 + 80)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            format!(
-                "{}: deformed shapes, displacements × {mag}",
-                r.header.scene.name
-            ),
-            ("sans-serif", 22),
-        )
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(
-            cx - scale * w / 2.0..cx + scale * w / 2.0,
-            cy - scale * h / 2.0..cy + scale * h / 2.0,
-        )
-        .map_err(|e| err(&e))?;
-    chart
-        .configure_mesh()
-        .light_line_style(TRANSPARENT)
-        .x_desc("X (m)")
-        .y_desc("Y (m)")
-        .draw()
-        .map_err(|e| err(&e))?;
-    chart
-        .draw_series(LineSeries::new(
-            axis.iter().map(|p| (p[0], p[1])),
-            BLACK.mix(0.5).stroke_width(1),
-        ))
-        .map_err(|e| err(&e))?
-        .label("undeformed")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
-    for (i, (label, pts)) in lines.iter().enumerate() {
-        let color = PALETTE[i % PALETTE.len()];
+    super::plots::svg(path, (w as u32 + 90, h as u32 + 80), |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                format!(
+                    "{}: deformed shapes, displacements × {mag}",
+                    r.header.scene.name
+                ),
+                ("sans-serif", 22),
+            )
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(
+                cx - scale * w / 2.0..cx + scale * w / 2.0,
+                cy - scale * h / 2.0..cy + scale * h / 2.0,
+            )
+            .map_err(|e| err(&e))?;
         chart
-            .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))
+            .configure_mesh()
+            .light_line_style(TRANSPARENT)
+            .x_desc("X (m)")
+            .y_desc("Y (m)")
+            .draw()
+            .map_err(|e| err(&e))?;
+        chart
+            .draw_series(LineSeries::new(
+                axis.iter().map(|p| (p[0], p[1])),
+                BLACK.mix(0.5).stroke_width(1),
+            ))
             .map_err(|e| err(&e))?
-            .label(label.as_str())
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-            });
-        if let Some(c) = disks[i] {
+            .label("undeformed")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
+        for (i, (label, pts)) in lines.iter().enumerate() {
+            let color = PALETTE[i % PALETTE.len()];
             chart
-                .draw_series(LineSeries::new(circle(c), color.stroke_width(2)))
-                .map_err(|e| err(&e))?;
+                .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))
+                .map_err(|e| err(&e))?
+                .label(label.as_str())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+            if let Some(c) = disks[i] {
+                chart
+                    .draw_series(LineSeries::new(circle(c), color.stroke_width(2)))
+                    .map_err(|e| err(&e))?;
+            }
         }
-    }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .draw()
-        .map_err(|e| err(&e))?;
-    root.present().map_err(|e| err(&e))
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| err(&e))?;
+        Ok(())
+    })
 }
 
 fn chosen(r: &BeamRun) -> Option<Chosen> {

@@ -33,6 +33,23 @@ fn plot_error(path: &Path, e: impl std::fmt::Display) -> Error {
     Error::Output(format!("cannot draw {}: {e}", path.display()))
 }
 
+/// An SVG figure of `size` pixels drawn by `draw` in memory, then written as every output file
+/// is ([`super::write`]).
+pub(crate) fn svg(
+    path: &Path,
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<SVGBackend<'_>, plotters::coord::Shift>) -> Result<(), Error>,
+) -> Result<(), Error> {
+    let mut text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
+        draw(&root)?;
+        root.present().map_err(|e| plot_error(path, e))?;
+    }
+    super::write(path, &text)
+}
+
 /// Padded range of all y values of the series.
 fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
@@ -87,14 +104,14 @@ type Panel<'a, 'b> = (&'a str, &'a str, &'a [Series<'b>], &'a [Series<'b>]);
 /// Panels one above the other over a shared x quantity, into one SVG file.
 fn draw(path: &Path, x_desc: &str, panels: &[Panel]) -> Result<(), Error> {
     let err = |e: &dyn std::fmt::Display| plot_error(path, e);
-    let root = SVGBackend::new(path, (900, 520 * panels.len() as u32)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
-    for (area, (title, y_desc, series, references)) in
-        root.split_evenly((panels.len(), 1)).iter().zip(panels)
-    {
-        panel(area, title, x_desc, y_desc, series, references).map_err(|e| err(&e))?;
-    }
-    root.present().map_err(|e| err(&e))
+    svg(path, (900, 520 * panels.len() as u32), |root| {
+        for (area, (title, y_desc, series, references)) in
+            root.split_evenly((panels.len(), 1)).iter().zip(panels)
+        {
+            panel(area, title, x_desc, y_desc, series, references).map_err(|e| err(&e))?;
+        }
+        Ok(())
+    })
 }
 
 fn panel<DB: DrawingBackend>(
@@ -218,65 +235,65 @@ pub fn track_figure(r: &RunResult, path: &Path, count: usize) -> Result<(), Erro
     (x0, x1) = (cx - scale * w / 2.0, cx + scale * w / 2.0);
     (y0, y1) = (cy - scale * h / 2.0, cy + scale * h / 2.0);
 
-    let root = SVGBackend::new(path, (900 + 90, 620 + 80)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            format!("{}: the disk at {count} times", r.header.scene.name),
-            ("sans-serif", 22),
-        )
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(50)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| err(&e))?;
-    chart
-        .configure_mesh()
-        .light_line_style(TRANSPARENT)
-        .x_desc("X (m)")
-        .y_desc("Y (m)")
-        .draw()
-        .map_err(|e| err(&e))?;
-    chart
-        .draw_series(LineSeries::new(track, BLACK.stroke_width(2)))
-        .map_err(|e| err(&e))?;
-    if !r.flights.is_empty() {
-        // The centre's path, so that a flight's parabola stands out from the rolling.
-        chart
-            .draw_series(LineSeries::new(
-                r.rows.iter().map(|row| (row.disk.x, row.disk.y)),
-                RGBColor(150, 150, 150).stroke_width(1),
-            ))
-            .map_err(|e| err(&e))?;
-    }
-    for (k, row) in picks.iter().enumerate() {
-        let color = PALETTE[k % PALETTE.len()];
-        let d = &row.disk;
-        let rim: Vec<(f64, f64)> = (0..=72)
-            .map(|i| {
-                let th = i as f64 * std::f64::consts::TAU / 72.0;
-                (d.x + a * th.cos(), d.y + a * th.sin())
-            })
-            .collect();
-        chart
-            .draw_series(LineSeries::new(rim, color.stroke_width(2)))
-            .map_err(|e| err(&e))?;
-        // A spoke fixed in the disk: at φ = 0 it points to the contact point.
-        let tangent = rolling.curve.at(d.s).tangent();
-        let angle = tangent[1].atan2(tangent[0]) - std::f64::consts::FRAC_PI_2 + d.phi;
-        let spoke = vec![(d.x, d.y), (d.x + a * angle.cos(), d.y + a * angle.sin())];
-        chart
-            .draw_series(LineSeries::new(spoke, color.stroke_width(2)))
+    svg(path, (900 + 90, 620 + 80), |root| {
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                format!("{}: the disk at {count} times", r.header.scene.name),
+                ("sans-serif", 22),
+            )
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(50)
+            .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(|e| err(&e))?;
         chart
-            .draw_series(std::iter::once(Text::new(
-                format!("{:.2} s", row.t),
-                (d.x, d.y + 1.25 * a),
-                ("sans-serif", 14).into_font().color(&color),
-            )))
+            .configure_mesh()
+            .light_line_style(TRANSPARENT)
+            .x_desc("X (m)")
+            .y_desc("Y (m)")
+            .draw()
             .map_err(|e| err(&e))?;
-    }
-    root.present().map_err(|e| err(&e))
+        chart
+            .draw_series(LineSeries::new(track, BLACK.stroke_width(2)))
+            .map_err(|e| err(&e))?;
+        if !r.flights.is_empty() {
+            // The centre's path, so that a flight's parabola stands out from the rolling.
+            chart
+                .draw_series(LineSeries::new(
+                    r.rows.iter().map(|row| (row.disk.x, row.disk.y)),
+                    RGBColor(150, 150, 150).stroke_width(1),
+                ))
+                .map_err(|e| err(&e))?;
+        }
+        for (k, row) in picks.iter().enumerate() {
+            let color = PALETTE[k % PALETTE.len()];
+            let d = &row.disk;
+            let rim: Vec<(f64, f64)> = (0..=72)
+                .map(|i| {
+                    let th = i as f64 * std::f64::consts::TAU / 72.0;
+                    (d.x + a * th.cos(), d.y + a * th.sin())
+                })
+                .collect();
+            chart
+                .draw_series(LineSeries::new(rim, color.stroke_width(2)))
+                .map_err(|e| err(&e))?;
+            // A spoke fixed in the disk: at φ = 0 it points to the contact point.
+            let tangent = rolling.curve.at(d.s).tangent();
+            let angle = tangent[1].atan2(tangent[0]) - std::f64::consts::FRAC_PI_2 + d.phi;
+            let spoke = vec![(d.x, d.y), (d.x + a * angle.cos(), d.y + a * angle.sin())];
+            chart
+                .draw_series(LineSeries::new(spoke, color.stroke_width(2)))
+                .map_err(|e| err(&e))?;
+            chart
+                .draw_series(std::iter::once(Text::new(
+                    format!("{:.2} s", row.t),
+                    (d.x, d.y + 1.25 * a),
+                    ("sans-serif", 14).into_font().color(&color),
+                )))
+                .map_err(|e| err(&e))?;
+        }
+        Ok(())
+    })
 }
 
 /// Every figure of a rigid-track run.

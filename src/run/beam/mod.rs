@@ -729,9 +729,7 @@ pub fn run(
         envelope: Envelope::new(xs),
         pictures: Pictures {
             shape_times: &setup.shapes,
-            frame_every: over
-                .animate
-                .then(|| scene.duration / (FRAMES - 1) as f64),
+            frame_every: over.animate.then(|| scene.duration / (FRAMES - 1) as f64),
             shapes: Vec::new(),
             frames: Vec::new(),
             turned: (0.0, setup.disk.as_ref().map_or(0.0, |d| d.omega0), 0.0),

@@ -142,11 +142,10 @@ impl Pictures<'_> {
             let (t0, w0, angle) = self.turned;
             self.turned = (t, d.omega, angle + 0.5 * (w0 + d.omega) * (t - t0));
         }
-        if self.frame_every.is_some_and(|every| {
-            self.frames
-                .last()
-                .is_none_or(|f| t >= f.t + every - 1e-9)
-        }) {
+        if self
+            .frame_every
+            .is_some_and(|every| self.frames.last().is_none_or(|f| t >= f.t + every - 1e-9))
+        {
             self.frames.push(Frame {
                 t,
                 along: s.along.to_vec(),
