@@ -30,12 +30,48 @@ pub struct Modes {
     pub shapes: DMatrix<f64>,
 }
 
-fn dense(m: &Sparse) -> DMatrix<f64> {
-    let mut d = DMatrix::zeros(m.nrows(), m.ncols());
-    for (j, (i, v)) in linalg::entries(m) {
-        d[(i, j)] += v;
+/// A square matrix read entry by entry, (row, column, value): the mesh's sparse K and M, or
+/// the dense ones a subspace iteration reduces them to. Entries that are exactly zero may be
+/// left out; a repeated entry adds.
+trait Entries {
+    fn dim(&self) -> usize;
+    fn for_each_entry(&self, f: impl FnMut(usize, usize, f64));
+}
+
+impl Entries for Sparse {
+    fn dim(&self) -> usize {
+        self.nrows()
     }
-    d
+    fn for_each_entry(&self, mut f: impl FnMut(usize, usize, f64)) {
+        for (j, (i, v)) in linalg::entries(self) {
+            f(i, j, v);
+        }
+    }
+}
+
+impl Entries for DMatrix<f64> {
+    fn dim(&self) -> usize {
+        self.nrows()
+    }
+    fn for_each_entry(&self, mut f: impl FnMut(usize, usize, f64)) {
+        for j in 0..self.ncols() {
+            for i in 0..self.nrows() {
+                f(i, j, self[(i, j)]);
+            }
+        }
+    }
+}
+
+/// The dense block of `a` on the unknowns `rows` (ascending); `at[i]` is unknown i's place in
+/// the block, or `usize::MAX` outside it.
+fn block(a: &impl Entries, rows: &[usize], at: &[usize]) -> faer::Mat<f64> {
+    let mut b = faer::Mat::zeros(rows.len(), rows.len());
+    a.for_each_entry(|i, j, v| {
+        if at[i] != usize::MAX && at[j] != usize::MAX {
+            b[(at[i], at[j])] += v;
+        }
+    });
+    b
 }
 
 /// Dense eigensolutions kept for the meshes last solved: planning a scene (the mesh and the
@@ -107,7 +143,7 @@ fn dense_all(beam: &Beam) -> Option<Eigen> {
         return Some(hit);
     }
     let k = beam.tangent(&vec![0.0; n]);
-    let solved: Eigen = std::sync::Arc::new(generalized(&dense(&k), &dense(beam.mass()), n)?);
+    let solved: Eigen = std::sync::Arc::new(generalized(&k, beam.mass(), n)?);
     if n <= KEPT_LIMIT {
         if let Ok(mut k) = kept().lock() {
             if k.len() == KEPT {
@@ -156,22 +192,23 @@ pub fn modes(beam: &Beam, count: usize) -> Option<Modes> {
 /// coupled to its bending ones only through the deformation, so about its undeformed state
 /// they form their own block): the dense work falls from n³ to the sum of the blocks' cubes.
 /// Each block's modes are modes of the whole.
-fn generalized(
-    k: &DMatrix<f64>,
-    m: &DMatrix<f64>,
-    count: usize,
-) -> Option<(Vec<f64>, DMatrix<f64>)> {
+fn generalized<A: Entries>(k: &A, m: &A, count: usize) -> Option<(Vec<f64>, DMatrix<f64>)> {
     let blocks = coupled_blocks(k, m);
-    if blocks.len() == 1 {
-        return one_block(k, m, count);
-    }
-    let n = k.nrows();
+    let n = k.dim();
+    let mut at = vec![usize::MAX; n];
     let mut solved = Vec::with_capacity(blocks.len());
     for rows in &blocks {
-        let part = |a: &DMatrix<f64>| {
-            DMatrix::from_fn(rows.len(), rows.len(), |i, j| a[(rows[i], rows[j])])
-        };
-        solved.push(one_block(&part(k), &part(m), rows.len())?);
+        for (p, &r) in rows.iter().enumerate() {
+            at[r] = p;
+        }
+        let wanted = if blocks.len() == 1 { count } else { rows.len() };
+        solved.push(one_block(block(k, rows, &at), block(m, rows, &at), wanted)?);
+        for &r in rows {
+            at[r] = usize::MAX;
+        }
+    }
+    if blocks.len() == 1 {
+        return solved.pop();
     }
     // Every block's modes, (λ, block, column), merged in ascending λ.
     let mut order: Vec<(f64, usize, usize)> = solved
@@ -192,7 +229,7 @@ fn generalized(
 
 /// The unknowns in the groups that K and M couple (an entry that is exactly zero couples
 /// nothing), each group ascending, the groups in the order of their first unknown.
-fn coupled_blocks(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Vec<Vec<usize>> {
+fn coupled_blocks(k: &impl Entries, m: &impl Entries) -> Vec<Vec<usize>> {
     fn root_of(root: &mut [usize], mut i: usize) -> usize {
         while root[i] != i {
             root[i] = root[root[i]];
@@ -200,16 +237,16 @@ fn coupled_blocks(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Vec<Vec<usize>> {
         }
         i
     }
-    let n = k.nrows();
+    let n = k.dim();
     let mut root: Vec<usize> = (0..n).collect();
-    for j in 0..n {
-        for i in 0..j {
-            if k[(i, j)] != 0.0 || k[(j, i)] != 0.0 || m[(i, j)] != 0.0 || m[(j, i)] != 0.0 {
-                let (a, b) = (root_of(&mut root, i), root_of(&mut root, j));
-                root[a.max(b)] = a.min(b);
-            }
+    let mut join = |i: usize, j: usize, v: f64| {
+        if v != 0.0 && i != j {
+            let (a, b) = (root_of(&mut root, i), root_of(&mut root, j));
+            root[a.max(b)] = a.min(b);
         }
-    }
+    };
+    k.for_each_entry(&mut join);
+    m.for_each_entry(&mut join);
     let mut blocks: Vec<Vec<usize>> = Vec::new();
     let mut block_of = vec![usize::MAX; n];
     for i in 0..n {
@@ -224,32 +261,58 @@ fn coupled_blocks(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Vec<Vec<usize>> {
 }
 
 /// [`generalized`] for one coupled block.
-fn one_block(k: &DMatrix<f64>, m: &DMatrix<f64>, count: usize) -> Option<(Vec<f64>, DMatrix<f64>)> {
-    inverted(k, m, count).or_else(|| direct(k, m, count))
+fn one_block(
+    k: faer::Mat<f64>,
+    m: faer::Mat<f64>,
+    count: usize,
+) -> Option<(Vec<f64>, DMatrix<f64>)> {
+    match inverted(&k, m, count) {
+        Ok(solved) => solved,
+        Err(m) => direct(&k, &m, count),
+    }
 }
 
-/// [`generalized`] through B = L⁻¹ M L⁻ᵀ, K = L Lᵀ; `None` where K is not positive definite.
-fn inverted(k: &DMatrix<f64>, m: &DMatrix<f64>, count: usize) -> Option<(Vec<f64>, DMatrix<f64>)> {
+/// [`generalized`] through B = L⁻¹ M L⁻ᵀ, K = L Lᵀ, formed in M's place; M handed back where
+/// K is not positive definite (a mechanism, for [`direct`]), `None` where B is not.
+fn inverted(
+    k: &faer::Mat<f64>,
+    mut b: faer::Mat<f64>,
+    count: usize,
+) -> Result<Option<(Vec<f64>, DMatrix<f64>)>, faer::Mat<f64>> {
     use faer::linalg::triangular_solve::{
         solve_lower_triangular_in_place, solve_upper_triangular_in_place,
     };
     use faer::{Mat, Par, Side};
     let n = k.nrows();
-    let faer_of = |a: &DMatrix<f64>| Mat::from_fn(n, n, |i, j| a[(i, j)]);
-    let kf = faer_of(k);
-    let llt = kf.llt(Side::Lower).ok()?;
+    let Ok(llt) = k.llt(Side::Lower) else {
+        return Err(b);
+    };
     let l = llt.L();
     // A mechanism can pass the factorisation in floating point, with a pivot at round-off of
     // its diagonal entry.
-    if (0..n).any(|i| !(l[(i, i)] * l[(i, i)] > 1e-10 * kf[(i, i)].abs())) {
-        return None;
+    if (0..n).any(|i| !(l[(i, i)] * l[(i, i)] > 1e-10 * k[(i, i)].abs())) {
+        return Err(b);
     }
-    let mut b = faer_of(m);
+    // B = L⁻¹ M L⁻ᵀ: L⁻¹ M, transposed in place, L⁻¹ again, then symmetrised in place.
     solve_lower_triangular_in_place(l, b.as_mut(), Par::Seq);
-    let mut b = b.transpose().to_owned();
+    for j in 0..n {
+        for i in 0..j {
+            let (x, y) = (b[(i, j)], b[(j, i)]);
+            b[(i, j)] = y;
+            b[(j, i)] = x;
+        }
+    }
     solve_lower_triangular_in_place(l, b.as_mut(), Par::Seq);
-    let b = Mat::from_fn(n, n, |i, j| 0.5 * (b[(i, j)] + b[(j, i)]));
-    let eig = b.self_adjoint_eigen(Side::Lower).ok()?;
+    for j in 0..n {
+        for i in 0..j {
+            let mean = 0.5 * (b[(i, j)] + b[(j, i)]);
+            b[(i, j)] = mean;
+            b[(j, i)] = mean;
+        }
+    }
+    let Ok(eig) = b.self_adjoint_eigen(Side::Lower) else {
+        return Ok(None);
+    };
     let (mu, y) = (eig.S(), eig.U());
     let count = count.min(n);
     let mut lambda = Vec::with_capacity(count);
@@ -259,7 +322,7 @@ fn inverted(k: &DMatrix<f64>, m: &DMatrix<f64>, count: usize) -> Option<(Vec<f64
         let i = n - 1 - c;
         let mu = mu[i];
         if !(mu > 0.0) {
-            return None;
+            return Ok(None);
         }
         lambda.push(1.0 / mu);
         let scale = 1.0 / mu.sqrt();
@@ -279,15 +342,19 @@ fn inverted(k: &DMatrix<f64>, m: &DMatrix<f64>, count: usize) -> Option<(Vec<f64
             column.neg_mut();
         }
     }
-    Some((lambda, out))
+    Ok(Some((lambda, out)))
 }
 
 /// [`generalized`] directly: with M = L Lᵀ, C = L⁻¹ K L⁻ᵀ is symmetric, found by two
 /// triangular solves, and φ = L⁻ᵀ y.
-fn direct(k: &DMatrix<f64>, m: &DMatrix<f64>, count: usize) -> Option<(Vec<f64>, DMatrix<f64>)> {
+fn direct(
+    k: &faer::Mat<f64>,
+    m: &faer::Mat<f64>,
+    count: usize,
+) -> Option<(Vec<f64>, DMatrix<f64>)> {
     let n = k.nrows();
-    let l = m.clone().cholesky()?.l();
-    let mut c = k.clone();
+    let l = DMatrix::from_fn(n, n, |i, j| m[(i, j)]).cholesky()?.l();
+    let mut c = DMatrix::from_fn(n, n, |i, j| k[(i, j)]);
     if !l.solve_lower_triangular_mut(&mut c) {
         return None;
     }
@@ -406,7 +473,7 @@ mod tests {
         let beam = d44_beam(40);
         let n = beam.dim();
         let k = beam.tangent(&vec![0.0; n]);
-        let (dense_l, dense_x) = generalized(&dense(&k), &dense(beam.mass()), 6).unwrap();
+        let (dense_l, dense_x) = generalized(&k, beam.mass(), 6).unwrap();
         let (sparse_l, sparse_x) = subspace(&k, beam.mass(), 6).unwrap();
         for j in 0..6 {
             assert!(
@@ -430,13 +497,16 @@ mod tests {
     fn blocks_solved_apart_give_the_modes_of_the_whole() {
         let beam = d44_beam(10);
         let n = beam.dim();
-        let (k, m) = (dense(&beam.tangent(&vec![0.0; n])), dense(beam.mass()));
-        let blocks = coupled_blocks(&k, &m);
+        let (k, m) = (beam.tangent(&vec![0.0; n]), beam.mass());
+        let blocks = coupled_blocks(&k, m);
         assert_eq!(blocks.len(), 2, "axial and bending unknowns");
         assert_eq!(blocks[0].len() + blocks[1].len(), n);
         let count = 30;
-        let (apart_l, apart_x) = generalized(&k, &m, count).unwrap();
-        let (whole_l, whole_x) = one_block(&k, &m, count).unwrap();
+        let (apart_l, apart_x) = generalized(&k, m, count).unwrap();
+        let all: Vec<usize> = (0..n).collect();
+        let (whole_k, whole_m) = (block(&k, &all, &all), block(m, &all, &all));
+        let m = DMatrix::from_fn(n, n, |i, j| whole_m[(i, j)]);
+        let (whole_l, whole_x) = one_block(whole_k, whole_m, count).unwrap();
         for j in 0..count {
             assert!(
                 (apart_l[j] - whole_l[j]).abs() <= 1e-10 * whole_l[j],
