@@ -650,13 +650,7 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
                 cy - scale * h / 2.0..cy + scale * h / 2.0,
             )
             .map_err(|e| err(&e))?;
-        chart
-            .configure_mesh()
-            .light_line_style(TRANSPARENT)
-            .x_desc("X (m)")
-            .y_desc("Y (m)")
-            .draw()
-            .map_err(|e| err(&e))?;
+        super::plots::plane_mesh(&mut chart).map_err(|e| err(&e))?;
         chart
             .draw_series(LineSeries::new(
                 axis.iter().map(|p| (p[0], p[1])),
