@@ -44,13 +44,14 @@ pub fn run_all(
         .iter()
         .map(|file| Scene::load(file))
         .collect::<Result<Vec<Scene>, Error>>()?;
+    // Every beam study with a disk is animated: its frames are kept.
+    let over = Overrides {
+        animate: true,
+        ..Default::default()
+    };
     // The studies are independent: they share the cores, and are reported in their order.
     let done = super::parallel::map(&scenes, true, |scene| -> Result<Run, Error> {
-        let animate = Overrides {
-            animate: true,
-            ..Default::default()
-        };
-        let result = run::run(scene, &animate, false)?;
+        let result = run::run(scene, &over, false)?;
         let dir = out.join(&scene.name);
         output::write_all(&result, &dir)?;
         if let Run::Beam(b) = &result {
