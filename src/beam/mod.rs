@@ -117,27 +117,31 @@ pub struct BeamSpec {
 }
 
 /// Material points prepared for repeated reading (see [`Beam::stations`]): per point, the
-/// free unknowns it reads with their shape functions' weights, u's terms, then w's, then φ's.
+/// first node of the element that holds it and the element's shape functions there. A reading
+/// spreads q over the nodes once ([`Beam::nodal`]), so each point sums contiguous nodes.
 #[derive(Clone, Debug)]
-pub struct Stations(Vec<Station>);
-
-#[derive(Clone, Debug)]
-struct Station {
-    terms: Vec<(usize, f64)>,
-    /// Where w's and φ's terms start.
-    starts: [usize; 2],
+pub struct Stations {
+    first: Vec<usize>,
+    /// The shape values of every point, `per` each, point after point.
+    shape: Vec<f64>,
+    per: usize,
 }
 
-impl Station {
-    /// Component c (0 u, 1 w, 2 φ, beam frame) of the field q at the station.
-    fn read(&self, c: usize, q: &[f64]) -> f64 {
-        let [w0, p0] = self.starts;
-        let terms = match c {
-            0 => &self.terms[..w0],
-            1 => &self.terms[w0..p0],
-            _ => &self.terms[p0..],
-        };
-        terms.iter().map(|&(i, n)| n * q[i]).sum()
+impl Stations {
+    /// (u, w, φ) in the beam frame at each point, from the nodal field.
+    fn read<'a>(&'a self, nodal: &'a [[f64; 3]]) -> impl Iterator<Item = [f64; 3]> + 'a {
+        self.first
+            .iter()
+            .zip(self.shape.chunks_exact(self.per))
+            .map(move |(&first, n)| {
+                let mut v = [0.0; 3];
+                for (na, d) in n.iter().zip(&nodal[first..first + self.per]) {
+                    v[0] += na * d[0];
+                    v[1] += na * d[1];
+                    v[2] += na * d[2];
+                }
+                v
+            })
     }
 }
 
@@ -613,51 +617,44 @@ impl Beam {
     /// Material points whose displacements are read at every output row (the sampled axis):
     /// their elements and shape-function values, evaluated once for the run.
     pub fn stations(&self, xs: &[f64]) -> Stations {
-        Stations(
-            xs.iter()
-                .map(|&x| {
-                    let (e, n) = self.locate(x);
-                    let first = e * self.spec.order;
-                    let mut terms = Vec::with_capacity(3 * n.len());
-                    let mut starts = [0; 2];
-                    for c in 0..3 {
-                        if c > 0 {
-                            starts[c - 1] = terms.len();
-                        }
-                        for (a, na) in n.iter().enumerate() {
-                            if let Some(i) = self.eq[3 * (first + a) + c] {
-                                terms.push((i, *na));
-                            }
-                        }
-                    }
-                    Station { terms, starts }
-                })
-                .collect(),
-        )
+        let per = self.spec.order + 1;
+        let mut first = Vec::with_capacity(xs.len());
+        let mut shape = Vec::with_capacity(xs.len() * per);
+        for &x in xs {
+            let (e, n) = self.locate(x);
+            first.push(e * self.spec.order);
+            shape.extend_from_slice(&n);
+        }
+        Stations { first, shape, per }
+    }
+
+    /// The field q spread over the nodes, (u, w, φ) each in the beam frame, zero where a
+    /// support holds it.
+    fn nodal(&self, q: &[f64]) -> Vec<[f64; 3]> {
+        self.eq
+            .chunks_exact(3)
+            .map(|node| [0, 1, 2].map(|c| node[c].map_or(0.0, |i| q[i])))
+            .collect()
     }
 
     /// Displacements at the stations, in their order.
     pub fn displacements(&self, stations: &Stations, q: &[f64]) -> Vec<PointDisplacement> {
+        let nodal = self.nodal(q);
         stations
-            .0
-            .iter()
-            .map(|st| {
-                let [u, w] = self.to_global([st.read(0, q), st.read(1, q)]);
-                PointDisplacement {
-                    u,
-                    w,
-                    phi: st.read(2, q),
-                }
+            .read(&nodal)
+            .map(|[u, w, phi]| {
+                let [u, w] = self.to_global([u, w]);
+                PointDisplacement { u, w, phi }
             })
             .collect()
     }
 
     /// The global w alone at the stations: what an acceleration envelope reads.
     pub fn deflections(&self, stations: &Stations, q: &[f64]) -> Vec<f64> {
+        let nodal = self.nodal(q);
         stations
-            .0
-            .iter()
-            .map(|st| self.to_global([st.read(0, q), st.read(1, q)])[1])
+            .read(&nodal)
+            .map(|[u, w, _]| self.to_global([u, w])[1])
             .collect()
     }
 
