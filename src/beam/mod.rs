@@ -512,7 +512,8 @@ impl Beam {
         let rule = &self.patch_rule;
         let mut n = vec![0.0; p + 1];
         let mut dn = vec![0.0; p + 1];
-        let c = 315.0 / 256.0;
+        // K^(k) = 315/256 · b^−(k+1) · f_k(u), u = (s − x)/b.
+        let scale: [f64; 4] = std::array::from_fn(|k| 315.0 / 256.0 / half.powi(k as i32 + 1));
         for e in e_lo..=e_hi {
             let a = if e == e_lo { lo } else { e as f64 * self.h };
             let b = if e == e_hi {
@@ -539,10 +540,10 @@ impl Beam {
                     &mut n,
                     &mut dn,
                 );
-                for (k, fk) in f.iter().enumerate() {
-                    let kernel = c * fk / half.powi(k as i32 + 1);
-                    for (a_local, na) in n.iter().enumerate() {
-                        weights[e * p + a_local - first][k] += kernel * na * jw;
+                let kernel: [f64; 4] = std::array::from_fn(|k| f[k] * scale[k] * jw);
+                for (weight, na) in weights[e * p - first..].iter_mut().zip(&n) {
+                    for (wk, kk) in weight.iter_mut().zip(&kernel) {
+                        *wk += kk * na;
                     }
                 }
             }
