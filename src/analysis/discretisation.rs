@@ -16,7 +16,7 @@
 
 use serde::Serialize;
 
-use crate::analysis::modes::modes;
+use crate::analysis::modes::{modes, projected};
 use crate::beam::load::{BeamStart, PointLoad};
 use crate::beam::{Beam, BeamSpec};
 use crate::linalg::SparseLu;
@@ -148,40 +148,67 @@ fn estimate(
     if weight_drops {
         beam.add_weight(&mut f);
     }
-    let m = modes(&beam, n)?;
+    // Each mode's share of the static deflection at a probe needs only the projections of
+    // the loads and of the probe's u and w rows on its shape.
+    let mut vectors = vec![f];
+    for &x in probes {
+        for direction in [[1.0, 0.0], [0.0, 1.0]] {
+            let mut row = vec![0.0; n];
+            beam.add_point_load(x, direction, 0.0, &mut row);
+            vectors.push(row);
+        }
+    }
+    let (omega, shares) = match projected(&beam, &vectors) {
+        Some((lambda, p)) => {
+            let omega: Vec<f64> = lambda.iter().map(|l| l.sqrt()).collect();
+            (omega, p)
+        }
+        None => {
+            let m = modes(&beam, n)?;
+            let p = vectors
+                .iter()
+                .map(|v| {
+                    (0..m.omega.len())
+                        .map(|k| m.shapes.column(k).iter().zip(v).map(|(a, b)| a * b).sum())
+                        .collect()
+                })
+                .collect();
+            (m.omega, p)
+        }
+    };
     // A rigid-body mode (ω ≈ 0 next to the highest) leaves no static deflection, whatever a
     // factorisation of the near-singular stiffness returns.
-    let highest = m.omega.last().copied().unwrap_or(0.0);
-    if !(m.omega.first().copied().unwrap_or(0.0) > 1e-6 * highest) {
+    let highest = omega.last().copied().unwrap_or(0.0);
+    if !(omega.first().copied().unwrap_or(0.0) > 1e-6 * highest) {
         return None;
     }
     let mut q = all;
     SparseLu::factor(&beam.tangent(&vec![0.0; n]), None)?.solve_in_place(&mut q);
-    let at = |q: &[f64]| -> Vec<f64> {
-        probes
-            .iter()
-            .map(|&x| {
-                let d = beam.displacement_at(q, x);
-                d.u.hypot(d.w)
-            })
+    let at_probes = |u_w: &dyn Fn(usize) -> f64| -> Vec<f64> {
+        (0..probes.len())
+            .map(|j| u_w(1 + 2 * j).hypot(u_w(2 + 2 * j)))
             .collect()
     };
-    let mut partial = vec![0.0; n];
-    let mut truncated = Vec::with_capacity(n);
-    for k in 0..m.omega.len() {
-        let shape = m.shapes.column(k);
-        let participation: f64 = shape.iter().zip(&f).map(|(a, b)| a * b).sum();
-        let w2 = m.omega[k] * m.omega[k];
+    let mut partial = vec![0.0; vectors.len()];
+    let mut truncated = Vec::with_capacity(omega.len());
+    for k in 0..omega.len() {
+        let w2 = omega[k] * omega[k];
         if w2 > 0.0 {
-            for (p, s) in partial.iter_mut().zip(shape.iter()) {
-                *p += s * participation / w2;
+            for (p, share) in partial.iter_mut().zip(&shares).skip(1) {
+                *p += share[k] * shares[0][k] / w2;
             }
         }
-        truncated.push(at(&partial));
+        truncated.push(at_probes(&|i| partial[i]));
     }
     Some(Estimate {
-        static_at_probes: at(&q),
-        omega: m.omega,
+        static_at_probes: probes
+            .iter()
+            .map(|&x| {
+                let d = beam.displacement_at(&q, x);
+                d.u.hypot(d.w)
+            })
+            .collect(),
+        omega,
         truncated,
     })
 }
