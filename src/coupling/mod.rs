@@ -532,8 +532,12 @@ impl<'a> DiskOnBeam<'a> {
     /// solve for it is left out.
     pub fn energies(&self, t: f64, z: &[f64], zd: &[f64]) -> (f64, f64) {
         let at = self.observed_contact(t, z, zd);
-        let unknown = vec![f64::NAN; self.dim()];
-        let motion = self.motion(&at, zd, &unknown);
+        // An unknown acceleration, given on the mesh as the law reads it: on a modal beam
+        // not expanded from the modes under the patch at every step.
+        let unknown = vec![f64::NAN; self.rider.n + zd.len() - self.n];
+        let motion = self
+            .law
+            .motion(&self.rider, &at, &self.on_mesh(&at, zd), &unknown);
         (motion.kinetic, self.potential(&motion))
     }
 
