@@ -538,7 +538,8 @@ impl<'a> DiskOnBeam<'a> {
         let motion = self
             .law
             .motion(&self.rider, &at, &self.on_mesh(&at, zd), &unknown);
-        (motion.kinetic, self.potential(&motion))
+        let centre = self.beam().to_global(motion.centre);
+        (motion.kinetic, self.potential(&motion, centre))
     }
 
     fn motion(&self, at: &AxisPoint, zd: &[f64], zdd: &[f64]) -> law::Motion {
@@ -550,9 +551,10 @@ impl<'a> DiskOnBeam<'a> {
         )
     }
 
-    /// The disk's potential energy in gravity, unless its law keeps its own.
-    fn potential(&self, motion: &law::Motion) -> f64 {
-        let height = self.beam().spec.from[1] + self.beam().to_global(motion.centre)[1];
+    /// The disk's potential energy in gravity, unless its law keeps its own; `centre` is the
+    /// motion's centre turned to global axes.
+    fn potential(&self, motion: &law::Motion, centre: [f64; 2]) -> f64 {
+        let height = self.beam().spec.from[1] + centre[1];
         motion
             .potential
             .unwrap_or(self.spec.disk.mass * self.spec.gravity * height)
@@ -583,7 +585,7 @@ impl<'a> DiskOnBeam<'a> {
             rt: contact[0] * tg[0] + contact[1] * tg[1],
             rn: contact[0] * nm[0] + contact[1] * nm[1],
             kinetic: motion.kinetic,
-            potential: self.potential(&motion),
+            potential: self.potential(&motion, cg),
         }
     }
 
