@@ -454,8 +454,8 @@ fn one_block(
     m: faer::Mat<f64>,
     count: usize,
 ) -> Option<(Vec<f64>, DMatrix<f64>)> {
-    match inverted(&k, m, count) {
-        Ok(solved) => solved,
+    match inverted_form(&k, m) {
+        Ok((llt, b)) => inverted(&llt, b, count),
         Err(m) => direct(&k, &m, count),
     }
 }
@@ -498,21 +498,18 @@ fn inverted_form(
     Ok((llt, b))
 }
 
-/// [`generalized`] through B = L⁻¹ M L⁻ᵀ ([`inverted_form`]); M handed back where K is not
-/// positive definite (a mechanism, for [`direct`]), `None` where B is not.
+/// [`generalized`] from K = L Lᵀ and B = L⁻¹ M L⁻ᵀ ([`inverted_form`]); `None` where B is
+/// not positive definite.
 fn inverted(
-    k: &faer::Mat<f64>,
+    llt: &faer::linalg::solvers::Llt<f64>,
     b: faer::Mat<f64>,
     count: usize,
-) -> Result<Option<(Vec<f64>, DMatrix<f64>)>, faer::Mat<f64>> {
+) -> Option<(Vec<f64>, DMatrix<f64>)> {
     use faer::linalg::triangular_solve::solve_upper_triangular_in_place;
     use faer::{Mat, Par, Side};
-    let n = k.nrows();
-    let (llt, b) = inverted_form(k, b)?;
+    let n = b.nrows();
     let l = llt.L();
-    let Ok(eig) = b.self_adjoint_eigen(Side::Lower) else {
-        return Ok(None);
-    };
+    let eig = b.self_adjoint_eigen(Side::Lower).ok()?;
     let (mu, y) = (eig.S(), eig.U());
     let count = count.min(n);
     let mut lambda = Vec::with_capacity(count);
@@ -522,7 +519,7 @@ fn inverted(
         let i = n - 1 - c;
         let mu = mu[i];
         if !(mu > 0.0) {
-            return Ok(None);
+            return None;
         }
         lambda.push(1.0 / mu);
         let scale = 1.0 / mu.sqrt();
@@ -542,7 +539,7 @@ fn inverted(
             column.neg_mut();
         }
     }
-    Ok(Some((lambda, out)))
+    Some((lambda, out))
 }
 
 /// [`generalized`] directly: with M = L Lᵀ, C = L⁻¹ K L⁻ᵀ is symmetric, found by two
