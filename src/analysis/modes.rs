@@ -231,14 +231,14 @@ fn generalized<A: Entries>(k: &A, m: &A, count: usize) -> Option<(Vec<f64>, DMat
 /// and, per mode, the projections vᵀφ of `vectors` on its mass-normalised shape, without the
 /// shapes. In the inverted form (K = L Lᵀ, B = L⁻¹ M L⁻ᵀ = Q T Qᵀ, T tridiagonal, φ = L⁻ᵀ Q z
 /// / √μ) the projections are (Qᵀ L⁻¹ v)ᵀ z / √μ, so T's rotations are applied to the few rows
-/// (Qᵀ L⁻¹ v)ᵀ instead of accumulated into n eigenvectors: D44's 16-element estimate takes
-/// a third less. `None` where K or B is not positive definite (a mechanism: see [`modes`]) or
+/// (Qᵀ L⁻¹ v)ᵀ instead of accumulated into n eigenvectors, which D44's mesh choice spent
+/// most of its time on. `None` where K or B is not positive definite (a mechanism: see [`modes`]) or
 /// the tridiagonal iteration does not settle.
 pub fn projected(beam: &Beam, vectors: &[Vec<f64>]) -> Option<(Vec<f64>, Vec<Vec<f64>>)> {
     let n = beam.dim();
     let k = beam.tangent(&vec![0.0; n]);
     let m = beam.mass();
-    let mut modes: Vec<(f64, Vec<f64>)> = Vec::with_capacity(n);
+    let mut solved: Vec<(f64, Vec<f64>)> = Vec::with_capacity(n);
     let mut at = vec![usize::MAX; n];
     for rows in coupled_blocks(&k, m) {
         for (p, &r) in rows.iter().enumerate() {
@@ -255,16 +255,16 @@ pub fn projected(beam: &Beam, vectors: &[Vec<f64>]) -> Option<(Vec<f64>, Vec<Vec
                 return None;
             }
             let scale = 1.0 / mu.sqrt();
-            modes.push((1.0 / mu, projections.iter().map(|p| p[j] * scale).collect()));
+            solved.push((1.0 / mu, projections.iter().map(|p| p[j] * scale).collect()));
         }
         for &r in &rows {
             at[r] = usize::MAX;
         }
     }
-    modes.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let lambda = modes.iter().map(|m| m.0).collect();
+    solved.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let lambda = solved.iter().map(|m| m.0).collect();
     let projections = (0..vectors.len())
-        .map(|p| modes.iter().map(|m| m.1[p]).collect())
+        .map(|p| solved.iter().map(|m| m.1[p]).collect())
         .collect();
     Some((lambda, projections))
 }
