@@ -690,14 +690,12 @@ mod tests {
                 .sum()
         };
         let mu_max = 1.0 / lambda[0];
-        for j in 0..n {
-            let w2 = full.omega[j] * full.omega[j];
+        for (j, (l, w)) in lambda.iter().zip(&full.omega).enumerate() {
             assert!(
-                (1.0 / lambda[j] - 1.0 / w2).abs() <= 1e-12 * mu_max,
-                "mode {}: λ {} against {}",
+                (1.0 / l - 1.0 / (w * w)).abs() <= 1e-12 * mu_max,
+                "mode {}: λ {l} against {}",
                 j + 1,
-                lambda[j],
-                w2
+                w * w
             );
         }
         for (v, row) in [(&w_mid, &p[1]), (&u_quarter, &p[2])] {
