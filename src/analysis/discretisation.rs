@@ -158,7 +158,8 @@ fn estimate(
             vectors.push(row);
         }
     }
-    let (omega, shares) = match projected(&beam, &vectors) {
+    let k = beam.tangent(&vec![0.0; n]);
+    let (omega, shares) = match projected(&k, beam.mass(), &vectors) {
         Some((lambda, p)) => {
             let omega: Vec<f64> = lambda.iter().map(|l| l.sqrt()).collect();
             (omega, p)
@@ -183,7 +184,7 @@ fn estimate(
         return None;
     }
     let mut q = all;
-    SparseLu::factor(&beam.tangent(&vec![0.0; n]), None)?.solve_in_place(&mut q);
+    SparseLu::factor(&k, None)?.solve_in_place(&mut q);
     let at_probes = |u_w: &dyn Fn(usize) -> f64| -> Vec<f64> {
         (0..probes.len())
             .map(|j| u_w(1 + 2 * j).hypot(u_w(2 + 2 * j)))

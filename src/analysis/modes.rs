@@ -227,20 +227,22 @@ fn generalized<A: Entries>(k: &A, m: &A, count: usize) -> Option<(Vec<f64>, DMat
     Some((order.iter().map(|o| o.0).collect(), shapes))
 }
 
-/// Every mode of K₀ φ = λ M φ as a truncation estimate reads it: the eigenvalues λ ascending
+/// Every mode of K φ = λ M φ (a beam's K₀ and M) as a truncation estimate reads it: the eigenvalues λ ascending
 /// and, per mode, the projections vᵀφ of `vectors` on its mass-normalised shape, without the
 /// shapes. In the inverted form (K = L Lᵀ, B = L⁻¹ M L⁻ᵀ = Q T Qᵀ, T tridiagonal, φ = L⁻ᵀ Q z
 /// / √μ) the projections are (Qᵀ L⁻¹ v)ᵀ z / √μ, so T's rotations are applied to the few rows
 /// (Qᵀ L⁻¹ v)ᵀ instead of accumulated into n eigenvectors, which D44's mesh choice spent
 /// most of its time on. `None` where K or B is not positive definite (a mechanism: see [`modes`]) or
 /// the tridiagonal iteration does not settle.
-pub fn projected(beam: &Beam, vectors: &[Vec<f64>]) -> Option<(Vec<f64>, Vec<Vec<f64>>)> {
-    let n = beam.dim();
-    let k = beam.tangent(&vec![0.0; n]);
-    let m = beam.mass();
+pub fn projected(
+    k: &Sparse,
+    m: &Sparse,
+    vectors: &[Vec<f64>],
+) -> Option<(Vec<f64>, Vec<Vec<f64>>)> {
+    let n = k.nrows();
     let mut solved: Vec<(f64, Vec<f64>)> = Vec::with_capacity(n);
     let mut at = vec![usize::MAX; n];
-    for rows in coupled_blocks(&k, m) {
+    for rows in coupled_blocks(k, m) {
         for (p, &r) in rows.iter().enumerate() {
             at[r] = p;
         }
@@ -249,7 +251,7 @@ pub fn projected(beam: &Beam, vectors: &[Vec<f64>]) -> Option<(Vec<f64>, Vec<Vec
             .map(|v| rows.iter().map(|&r| v[r]).collect())
             .collect();
         let (mu, projections) =
-            projected_block(&block(&k, &rows, &at), block(m, &rows, &at), on_block)?;
+            projected_block(&block(k, &rows, &at), block(m, &rows, &at), on_block)?;
         for (j, mu) in mu.into_iter().enumerate() {
             if !(mu > 0.0) {
                 return None;
@@ -679,8 +681,13 @@ mod tests {
         beam.add_point_load(10.0, [0.0, 1.0], 0.0, &mut w_mid);
         let mut u_quarter = vec![0.0; n];
         beam.add_point_load(5.0, [1.0, 0.0], 0.0, &mut u_quarter);
-        let (lambda, p) = projected(&beam, &[f.clone(), w_mid.clone(), u_quarter.clone()])
-            .expect("a supported beam");
+        let k = beam.tangent(&vec![0.0; n]);
+        let (lambda, p) = projected(
+            &k,
+            beam.mass(),
+            &[f.clone(), w_mid.clone(), u_quarter.clone()],
+        )
+        .expect("a supported beam");
         let full = modes(&beam, n).unwrap();
         assert_eq!(lambda.len(), n);
         let dot = |a: &[f64], j: usize| -> f64 {
