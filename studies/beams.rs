@@ -215,7 +215,8 @@ fn mesh_convergence_of_the_cantilevers_mean_deflection() {
 /// settings (ρ∞ 0.8, rtol 1e-4) and a ten times tighter tolerance. Only two or three digits
 /// survive: the largest deflection over 3 s of undamped motion is where several modes happen
 /// to line up, and a small phase error moves it (when it occurs is not converged at all, so it
-/// is not kept).
+/// is not kept). A fourth agreeing digit is kept as three: where it occurs (C3) the two runs
+/// peak at different times, so it agrees by chance and a change at round-off can take it away.
 #[test]
 fn snapshots_of_headline_numbers() {
     #[derive(serde::Serialize)]
@@ -238,7 +239,7 @@ fn snapshots_of_headline_numbers() {
         };
         let (wa, ta) = at(&a);
         let (wb, tb) = at(&b);
-        let digits = (2..=5)
+        let digits = (2..=3)
             .rev()
             .find(|&d| round(wa, d) == round(wb, d))
             .expect("two runs agree to two digits");
