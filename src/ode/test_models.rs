@@ -106,8 +106,9 @@ impl SecondOrderProblem for Oscillator {
 }
 
 /// m(t) q'' = −m(t) q with m = 1 + sin(3t)/2: q = sin t from q = 0, v = 1. The mass changes by
-/// half its mean within a period, as a structure's does when a heavy body crosses it; Newton is
-/// exact here (M does not depend on q), so only the time discretisation is measured.
+/// half its mean within a period, as a structure's does when a heavy body crosses it. M does
+/// not depend on q, so Newton converges to round-off without the mass's derivative and only
+/// the time discretisation is measured.
 struct TimeVaryingMass;
 
 impl TimeVaryingMass {
