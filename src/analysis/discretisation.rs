@@ -185,9 +185,11 @@ fn estimate(
     }
     let mut q = all;
     SparseLu::factor(&k, None)?.solve_in_place(&mut q);
-    let at_probes = |u_w: &dyn Fn(usize) -> f64| -> Vec<f64> {
-        (0..probes.len())
-            .map(|j| u_w(1 + 2 * j).hypot(u_w(2 + 2 * j)))
+    // `partial` holds the load's entry first, then each probe's u and w.
+    let at_probes = |partial: &[f64]| -> Vec<f64> {
+        partial[1..]
+            .chunks_exact(2)
+            .map(|u_w| u_w[0].hypot(u_w[1]))
             .collect()
     };
     let mut partial = vec![0.0; vectors.len()];
@@ -199,7 +201,7 @@ fn estimate(
                 *p += share[k] * shares[0][k] / w2;
             }
         }
-        truncated.push(at_probes(&|i| partial[i]));
+        truncated.push(at_probes(&partial));
     }
     Some(Estimate {
         static_at_probes: probes

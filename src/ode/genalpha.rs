@@ -64,6 +64,30 @@ impl State {
     }
 }
 
+/// The vectors one step works in, kept from step to step: the pseudo-acceleration's carried
+/// part, f(t₁, q₁, v₁), M q''₁, the residual (then the error), and the displacement
+/// correction (then the raw error).
+#[derive(Default)]
+struct Work {
+    carried: Vec<f64>,
+    f: Vec<f64>,
+    ma: Vec<f64>,
+    r: Vec<f64>,
+    dq: Vec<f64>,
+}
+
+impl Work {
+    fn zeros(n: usize) -> Self {
+        Work {
+            carried: vec![0.0; n],
+            f: vec![0.0; n],
+            ma: vec![0.0; n],
+            r: vec![0.0; n],
+            dq: vec![0.0; n],
+        }
+    }
+}
+
 pub(crate) struct GenAlphaStepper {
     c: GenAlpha,
     /// The structure's norm groups: the error is a displacement error, measured per group
@@ -87,6 +111,7 @@ pub(crate) struct GenAlphaStepper {
     /// The step start and the candidate of the last attempt.
     now: State,
     next: State,
+    work: Work,
     /// (q, v) of the candidate, and the dense output of the last accepted step: y = (q, v)
     /// with y' = (v, a), so its cubic Hermite is the one every one-step method here uses.
     y_new: Vec<f64>,
@@ -116,6 +141,7 @@ impl GenAlphaStepper {
             k_fresh: false,
             now: State::zeros(nq),
             next: State::zeros(nq),
+            work: Work::zeros(nq),
             y_new: vec![0.0; n],
             yp_new: vec![0.0; n],
             ends: StepEnds::new(n),
@@ -269,18 +295,27 @@ impl GenAlphaStepper {
         let factored = self.factor(p, t, &q0, h, ctx);
         self.now.q = q0;
         factored?;
-        // The start is read while a full Newton refactorises: taken out of `self` meanwhile.
+        // The start, the candidate and the work vectors are used while a full Newton
+        // refactorises: taken out of `self` meanwhile.
         let start = std::mem::take(&mut self.now);
-        let out = self.step_from(p, &start, t, h, full, ctx);
+        let mut next = std::mem::take(&mut self.next);
+        let mut work = std::mem::take(&mut self.work);
+        let out = self.step_from(p, &start, &mut next, &mut work, t, h, full, ctx);
         self.now = start;
+        self.next = next;
+        self.work = work;
         out
     }
 
-    /// [`Self::step`] from the state `s` at t, with the iteration matrix factorised.
+    /// [`Self::step`] from the state `s` at t into `next`, with the iteration matrix
+    /// factorised.
+    #[allow(clippy::too_many_arguments)]
     fn step_from(
         &mut self,
         p: &dyn Structure,
         s: &State,
+        next: &mut State,
+        work: &mut Work,
         t: f64,
         h: f64,
         full: bool,
@@ -291,31 +326,28 @@ impl GenAlphaStepper {
         let t1 = t + h;
         // a₁ = (1 − α_f)/(1 − α_m) q''₁ + (α_f q''₀ − α_m a₀)/(1 − α_m).
         let ratio = (1.0 - c.alpha_f) / (1.0 - c.alpha_m);
-        let carried: Vec<f64> = (0..n)
-            .map(|i| (c.alpha_f * s.acc[i] - c.alpha_m * s.a[i]) / (1.0 - c.alpha_m))
-            .collect();
-        let mut acc1 = s.acc.clone();
-        let mut a1 = vec![0.0; n];
-        let mut q1 = vec![0.0; n];
-        let mut v1 = vec![0.0; n];
-        let mut f1 = vec![0.0; n];
-        let mut r = vec![0.0; n];
-        let mut ma = vec![0.0; n];
-        let advance = |acc1: &[f64], a1: &mut [f64], q1: &mut [f64], v1: &mut [f64]| {
+        for i in 0..n {
+            work.carried[i] = (c.alpha_f * s.acc[i] - c.alpha_m * s.a[i]) / (1.0 - c.alpha_m);
+        }
+        next.acc.copy_from_slice(&s.acc);
+        let carried = &work.carried;
+        let advance = |next: &mut State| {
             for i in 0..n {
-                a1[i] = ratio * acc1[i] + carried[i];
-                q1[i] = s.q[i] + h * s.v[i] + h * h * ((0.5 - c.beta) * s.a[i] + c.beta * a1[i]);
-                v1[i] = s.v[i] + h * ((1.0 - c.gamma) * s.a[i] + c.gamma * a1[i]);
+                let a1 = ratio * next.acc[i] + carried[i];
+                next.a[i] = a1;
+                next.q[i] = s.q[i] + h * s.v[i] + h * h * ((0.5 - c.beta) * s.a[i] + c.beta * a1);
+                next.v[i] = s.v[i] + h * ((1.0 - c.gamma) * s.a[i] + c.gamma * a1);
             }
         };
+        let (f1, r, ma, dq) = (&mut work.f, &mut work.r, &mut work.ma, &mut work.dq);
         let mut prev: Option<f64> = None;
         let mut converged = false;
         for _ in 0..MAX_NEWTON {
             ctx.stats.newton_iterations += 1;
-            advance(&acc1, &mut a1, &mut q1, &mut v1);
+            advance(next);
             ctx.stats.rhs_evals += 1;
-            p.force(t1, &q1, &v1, &mut f1);
-            p.mass_mul(t1, &q1, &acc1, &mut ma);
+            p.force(t1, &next.q, &next.v, f1);
+            p.mass_mul(t1, &next.q, &next.acc, ma);
             // The residual's derivative in q''₁ is M + (1 − α_f)/(1 − α_m)(β h² K + γ h C),
             // the iteration matrix over (1 − α_m): scaled so that one factorisation serves.
             for i in 0..n {
@@ -323,14 +355,14 @@ impl GenAlphaStepper {
             }
             if full {
                 self.k = None;
-                self.factor(p, t1, &q1, h, ctx)?;
+                self.factor(p, t1, &next.q, h, ctx)?;
             }
-            self.solve(&mut r);
+            self.solve(r);
             for i in 0..n {
-                acc1[i] += r[i];
+                next.acc[i] += r[i];
+                dq[i] = ratio * c.beta * h * h * r[i];
             }
-            let dq: Vec<f64> = r.iter().map(|d| ratio * c.beta * h * h * d).collect();
-            let norm = self.norm(ctx, &dq, &q1);
+            let norm = self.norm(ctx, dq, &next.q);
             if !norm.is_finite() {
                 break;
             }
@@ -348,25 +380,18 @@ impl GenAlphaStepper {
         if !converged {
             return Ok(None);
         }
-        advance(&acc1, &mut a1, &mut q1, &mut v1);
+        advance(next);
         // Local error of the displacement (Zienkiewicz & Xie 1991): h² (β − 1/6)(a_{n+1} − a_n),
         // filtered through the iteration matrix as Hairer & Wanner filter stiff estimates: a mode
         // with ωh ≫ 1 is divided by about β(ωh)², which brings its estimate down to its own
         // (tiny) amplitude, while resolved modes pass unchanged.
-        let raw: Vec<f64> = (0..n)
-            .map(|i| (1.0 - c.alpha_m) * h * h * (c.beta - 1.0 / 6.0) * (a1[i] - s.a[i]))
-            .collect();
-        let mut e = vec![0.0; n];
-        p.mass_mul(t1, &q1, &raw, &mut e);
-        self.solve(&mut e);
-        let err = self.norm(ctx, &e, &q1);
-        self.next = State {
-            q: q1,
-            v: v1,
-            a: a1,
-            acc: acc1,
-        };
-        Ok(Some(err))
+        let (raw, e) = (&mut work.dq, &mut work.r);
+        for i in 0..n {
+            raw[i] = (1.0 - c.alpha_m) * h * h * (c.beta - 1.0 / 6.0) * (next.a[i] - s.a[i]);
+        }
+        p.mass_mul(t1, &next.q, raw, e);
+        self.solve(e);
+        Ok(Some(self.norm(ctx, e, &next.q)))
     }
 }
 
