@@ -146,6 +146,18 @@ pub fn load(path: &Path, hash: &str, plan: &Plan, method: Method) -> Stored {
             _ => return bad(format!("its history has a malformed row: {line:.80}")),
         }
     }
+    // Every run records its start, and the extremes a run is scored on include it (a sudden
+    // load's highest point is the rest it starts from); a reference without that row scores
+    // every run by what happens at t = 0.
+    match history.first() {
+        Some((t, _)) if *t == 0.0 => {}
+        first => {
+            return bad(format!(
+                "its history starts at t = {}, not at the run's start, t = 0 (made by an older rollbeam that left the start row out)",
+                first.map_or(f64::NAN, |(t, _)| *t)
+            ))
+        }
+    }
     Stored::Usable(Reference {
         method,
         rtol: file.rtol,

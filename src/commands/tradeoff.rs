@@ -162,7 +162,7 @@ pub fn history(r: &Run) -> Vec<(f64, Vec<f64>)> {
 
 /// max over the reference's output times of |a − b| at the same time, relative to the largest
 /// |b|; a reference time the run did not reach (it ended before) counts as wholly wrong. Rows
-/// are matched by time, so a reference stored without the start row still compares.
+/// are matched by time: a run also records the times of its scene's shapes.
 pub fn history_error(a: &[(f64, Vec<f64>)], reference: &[(f64, Vec<f64>)]) -> f64 {
     let scale = reference
         .iter()
