@@ -278,7 +278,11 @@ fn tradeoff(
         max_steps,
         recompute: false,
     };
-    let made_by = format!("rollbeam.tradeoff({})", scene.source);
+    // The command that stores a reference for `file`; the package never stores one.
+    let made_by = match &file {
+        Some(f) => format!("rollbeam tradeoff {} --reference", f.display()),
+        None => format!("rollbeam.tradeoff({})", scene.source),
+    };
     py.detach(|| run_tradeoff(&s, file.as_deref(), &options, &dir, &made_by, false).map(|(_, l)| l))
         .map_err(py_err)
 }

@@ -151,12 +151,12 @@ pub fn load(path: &Path, hash: &str, plan: &Plan, method: Method) -> Stored {
     // every run by what happens at t = 0.
     match history.first() {
         Some((t, _)) if *t == 0.0 => {}
-        first => {
+        Some((t, _)) => {
             return bad(format!(
-                "its history starts at t = {}, not at the run's start, t = 0 (made by an older rollbeam that left the start row out)",
-                first.map_or(f64::NAN, |(t, _)| *t)
+                "its history starts at t = {t}, not at the run's start, t = 0 (made by an older rollbeam that left the start row out)"
             ))
         }
+        None => return bad("its history is empty".into()),
     }
     Stored::Usable(Reference {
         method,

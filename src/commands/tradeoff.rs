@@ -760,10 +760,14 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
         max_steps,
         recompute,
     };
-    let made_by = std::iter::once("rollbeam".to_string())
+    // The command that stores the reference: this one, asked to compute it again.
+    let mut made_by = std::iter::once("rollbeam".to_string())
         .chain(std::env::args().skip(1))
         .collect::<Vec<_>>()
         .join(" ");
+    if !recompute {
+        made_by.push_str(" --reference");
+    }
     let dir = out.unwrap_or_else(|| Path::new("out").join(format!("{}-tradeoff", scene.name)));
     let (_, lines) = run_tradeoff(&scene, Some(&path), &options, &dir, &made_by, true)?;
     for line in lines {
