@@ -14,10 +14,10 @@ use rollbeam::ode::Method;
 fn errors(trials: &[Trial], method: Method) -> Vec<(f64, f64, usize)> {
     trials
         .iter()
-        .filter(|t| t.method == method)
+        .filter(|t| t.point.method == method)
         .map(|t| {
             let m = t.outcome.as_ref().expect("every parabola run completes");
-            (t.rtol, m.headline_error, m.rhs_evals)
+            (t.point.rtol, m.headline_error, m.rhs_evals)
         })
         .collect()
 }
@@ -101,6 +101,7 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
         methods: vec![Method::GenAlpha, Method::Dopri5],
         rtols: vec![1e-3, 1e-5],
         meshes: vec![2, 4],
+        orders: Vec::new(),
         models: Vec::new(),
         max_steps: 20_000,
     };
@@ -111,7 +112,10 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
         let error = |n: usize, rtol: f64| {
             trials
                 .iter()
-                .find(|t| t.method == method && t.elements == Some(n) && t.rtol == rtol)
+                .find(|t| {
+                    let p = &t.point;
+                    p.method == method && p.elements == Some(n) && p.rtol == rtol
+                })
                 .and_then(|t| t.outcome.as_ref().ok())
                 .expect("every run completes")
                 .headline_error
@@ -133,6 +137,7 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
         methods: vec![Method::Dopri5],
         rtols: vec![1e-5],
         meshes: vec![4],
+        orders: Vec::new(),
         models: Vec::new(),
         max_steps: 100,
     };
@@ -144,6 +149,39 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
         "{:?}",
         t[0].outcome
     );
+}
+
+/// The same beam on 2 elements with the degree swept instead of the mesh: the reference takes
+/// the highest degree tried (on twice the finest mesh), and degree 3 more than halves degree 2's
+/// error at an rtol that leaves the mesh's error dominant (the test above), as p-refinement must
+/// on a displacement that is smooth between the load and the clamp.
+#[test]
+fn work_precision_sweeps_the_element_degree() {
+    let scene = changed(
+        "cantilever-c1.yaml",
+        &[Set::Number("duration", 0.1), Set::LeftOut("output.shapes")],
+    );
+    let plan = Plan {
+        methods: vec![Method::GenAlpha],
+        rtols: vec![1e-5],
+        meshes: vec![2],
+        orders: vec![2, 3],
+        models: Vec::new(),
+        max_steps: 20_000,
+    };
+    let reference = tradeoff::reference(&scene, &plan, "test").expect("the reference runs");
+    assert_eq!((reference.elements, reference.order), (Some(4), Some(3)));
+    let trials = tradeoff::trials(&scene, &plan, &reference, false);
+    let error = |k: usize| {
+        trials
+            .iter()
+            .find(|t| t.point.order == Some(k))
+            .and_then(|t| t.outcome.as_ref().ok())
+            .expect("every run completes")
+            .headline_error
+    };
+    eprintln!("degree 2: {:.2e}; degree 3: {:.2e}", error(2), error(3));
+    assert!(error(3) <= 0.5 * error(2), "degree 3 is no better");
 }
 
 /// Every stored work–precision reference of a study (`studies/references/`, what
@@ -178,7 +216,8 @@ fn stored_references_serve_and_reproduce() {
         let path = reference::stored_path(&file, &scene.name);
         let hash = reference::scene_hash(&file).expect("a readable scene");
         let method = tradeoff::reference_method(&scene);
-        let stored = match reference::load(&path, &hash, &plan, method) {
+        let scene_order = scene.beam().map(|b| b.beam.order);
+        let stored = match reference::load(&path, &hash, &plan, method, scene_order) {
             Stored::Usable(r) => r,
             Stored::Missing => {
                 eprintln!("{}: no stored reference at {}", scene.name, path.display());
@@ -194,6 +233,7 @@ fn stored_references_serve_and_reproduce() {
         short.duration = window[rows].0 + 0.5 * short.interval;
         if let (Model::Beam(b), Some(n)) = (&mut short.model, stored.elements) {
             b.beam.elements = n;
+            b.beam.order = stored.order.unwrap_or(b.beam.order);
             let end = short.duration;
             b.shapes.retain(|&t| t <= end);
         }

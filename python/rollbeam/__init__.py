@@ -300,6 +300,7 @@ def tradeoff(
     methods: Iterable[str] = (),
     rtols: Iterable[float] = (),
     elements: Iterable[int] = (),
+    orders: Iterable[int] = (),
     models: Iterable[str] = (),
     max_steps: Optional[int] = None,
 ) -> Tuple[Table, List[str]]:
@@ -317,6 +318,7 @@ def tradeoff(
         list(methods),
         [float(r) for r in rtols],
         [int(n) for n in elements],
+        [int(k) for k in orders],
         list(models),
         max_steps,
     )

@@ -256,7 +256,7 @@ fn modes<'py>(
 /// Work–precision into `dir` (tradeoff.csv, .svg, .txt); the lines `rollbeam tradeoff`
 /// prints. `file` is the scene file a stored reference sits beside, if any.
 #[pyfunction]
-#[pyo3(signature = (scene, dir, file=None, methods=vec![], rtols=vec![], elements=vec![], models=vec![], max_steps=None))]
+#[pyo3(signature = (scene, dir, file=None, methods=vec![], rtols=vec![], elements=vec![], orders=vec![], models=vec![], max_steps=None))]
 #[allow(clippy::too_many_arguments)]
 fn tradeoff(
     py: Python<'_>,
@@ -266,6 +266,7 @@ fn tradeoff(
     methods: Vec<String>,
     rtols: Vec<f64>,
     elements: Vec<usize>,
+    orders: Vec<usize>,
     models: Vec<String>,
     max_steps: Option<usize>,
 ) -> PyResult<Vec<String>> {
@@ -274,6 +275,7 @@ fn tradeoff(
         methods,
         rtols,
         elements,
+        orders,
         models,
         max_steps,
         recompute: false,

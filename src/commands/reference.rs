@@ -53,6 +53,9 @@ struct StoredFile {
     method: String,
     rtol: f64,
     elements: Option<usize>,
+    /// Absent where the reference kept the scene's degree.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    order: Option<usize>,
     settled_to: f64,
     wall_s: f64,
     headlines: Vec<Headline>,
@@ -70,6 +73,7 @@ pub fn store(reference: &Reference, name: &str, hash: &str, path: &Path) -> Resu
         method: reference.method.name().to_string(),
         rtol: reference.rtol,
         elements: reference.elements,
+        order: reference.order,
         settled_to: reference.settled_to,
         wall_s: reference.wall_s,
         headlines: reference.headlines.clone(),
@@ -99,8 +103,15 @@ pub enum Stored {
 }
 
 /// The reference stored at `path`, if it was made from the scene text hashed `hash` and is at
-/// least as fine as `plan` asks (a mesh twice its finest, an rtol a decade below its tightest).
-pub fn load(path: &Path, hash: &str, plan: &Plan, method: Method) -> Stored {
+/// least as fine as `plan` asks (a mesh twice its finest at its highest degree, an rtol a decade
+/// below its tightest). `scene_order` is the degree of the scene's own elements.
+pub fn load(
+    path: &Path,
+    hash: &str,
+    plan: &Plan,
+    method: Method,
+    scene_order: Option<usize>,
+) -> Stored {
     let Ok(text) = std::fs::read_to_string(path) else {
         return Stored::Missing;
     };
@@ -133,6 +144,21 @@ pub fn load(path: &Path, hash: &str, plan: &Plan, method: Method) -> Stored {
             ));
         }
     }
+    if let Some(highest) = plan.reference_order() {
+        match file.order.or(scene_order) {
+            Some(made) if made >= highest => {}
+            Some(made) => {
+                return bad(format!(
+                    "made with elements of degree {made}, below the highest tried, {highest}"
+                ))
+            }
+            None => {
+                return bad(format!(
+                    "made without a beam, and degree {highest} is tried"
+                ))
+            }
+        }
+    }
     let Ok(csv) = std::fs::read_to_string(history_path(path)) else {
         return bad("its history file is missing".into());
     };
@@ -162,6 +188,7 @@ pub fn load(path: &Path, hash: &str, plan: &Plan, method: Method) -> Stored {
         method,
         rtol: file.rtol,
         elements: file.elements,
+        order: file.order,
         settled_to: file.settled_to,
         headlines: file.headlines,
         history,

@@ -130,7 +130,7 @@ fn work_precision(studies: &Path, out: &Path, figures: &Path) -> Result<(), Erro
                 .map(move |(i, point)| (k, i, point))
         })
         .collect();
-    runs.sort_by(|a, b| a.2 .3.total_cmp(&b.2 .3));
+    runs.sort_by(|a, b| a.2.rtol.total_cmp(&b.2.rtol));
     let done = super::parallel::map(&runs, true, |&(k, _, point)| {
         let (scene, plan, reference) = &diagrams[k];
         tradeoff::trial(scene, plan, reference, point)

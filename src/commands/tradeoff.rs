@@ -1,11 +1,13 @@
 //! `rollbeam tradeoff SCENE.yaml`: the speed–accuracy trade of a scene, measured.
 //!
 //! 1. A reference: the most accurate method for the kind of scene (Dormand–Prince on a rigid
-//!    curve, generalized-α on a beam), on a mesh twice as fine as the finest tried, its rtol
-//!    cut tenfold until its headline quantities move by less than [`REFERENCE_SETTLED`]; how
-//!    far they moved at the last cut is reported, since errors below it mean nothing.
-//! 2. A grid: every method × every rtol × every mesh, run on every core, each run capped at a
-//!    number of steps (a method that needs more "gives up", which is itself the answer).
+//!    curve, generalized-α on a beam), on a mesh twice as fine as the finest tried, of the
+//!    highest degree tried, its rtol cut tenfold until its headline quantities move by less
+//!    than [`REFERENCE_SETTLED`]; how far they moved at the last cut is reported, since errors
+//!    below it mean nothing.
+//! 2. A grid: every method × every rtol × every mesh and degree (and beam model, where asked),
+//!    run on every core, each run capped at a number of steps (a method that needs more "gives
+//!    up", which is itself the answer).
 //! 3. For every run the largest relative error of the headline quantities (the probes' extreme
 //!    deflections on a beam; the disk's final position and extreme normal reaction on a rigid
 //!    curve) and of the whole history (probe deflections or disk centre, on the output grid),
@@ -13,8 +15,8 @@
 //!    The disk's largest contact force on a beam is not a headline: it carries the beam's
 //!    high-frequency content, and on D44 its peak moved by 2 % between rtol 1e-8 and 1e-9
 //!    while the deflections had settled.
-//! 4. tradeoff.csv, tradeoff.svg (headline error against wall time, log–log, a line per method
-//!    and mesh), and the cheapest settings that reach 1e-2, 1e-4 and 1e-6.
+//! 4. tradeoff.csv, tradeoff.svg (headline error against wall time, log–log, a line per method,
+//!    mesh and degree), and the cheapest settings that reach 1e-2, 1e-4 and 1e-6.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -22,7 +24,7 @@ use std::path::{Path, PathBuf};
 use plotters::prelude::*;
 
 use super::{parse_method, rtol_flag};
-use crate::beam::BeamModel;
+use crate::beam::{BeamModel, MAX_ORDER};
 use crate::error::Error;
 use crate::ode::Method;
 use crate::output::plots::PALETTE;
@@ -49,12 +51,19 @@ pub struct Plan {
     pub rtols: Vec<f64>,
     /// Element counts (beam scenes; empty on a rigid curve).
     pub meshes: Vec<usize>,
+    /// Lagrange degrees of the elements (beam scenes; empty: the scene's own).
+    pub orders: Vec<usize>,
     /// Beam models (beam scenes; empty: the scene's own).
     pub models: Vec<BeamModel>,
     pub max_steps: usize,
 }
 
 impl Plan {
+    /// The degree the reference is computed with: the highest tried (`None`: the scene's).
+    pub fn reference_order(&self) -> Option<usize> {
+        self.orders.iter().copied().max()
+    }
+
     /// Every method that can integrate the scene, rtol from 1e-2 to 1e-8 (1e-6 on a beam), and
     /// on a beam the scene's mesh and one half as fine. Dormand–Prince is left out on a beam:
     /// explicit, it is held to the stability limit of the stiffest mode (its steps grow as √E,
@@ -66,6 +75,7 @@ impl Plan {
                 methods: vec![Method::Dopri5, Method::TrBdf2, Method::Esdirk4],
                 rtols: (2..=8).map(|k| 10f64.powi(-k)).collect(),
                 meshes: Vec::new(),
+                orders: Vec::new(),
                 models: Vec::new(),
                 max_steps: 200_000,
             },
@@ -73,6 +83,7 @@ impl Plan {
                 methods: vec![Method::GenAlpha, Method::Esdirk4, Method::TrBdf2],
                 rtols: (2..=6).map(|k| 10f64.powi(-k)).collect(),
                 meshes: vec![b.beam.elements.div_ceil(2), b.beam.elements],
+                orders: Vec::new(),
                 models: Vec::new(),
                 max_steps: 20_000,
             },
@@ -191,12 +202,20 @@ pub fn history_error(a: &[(f64, Vec<f64>)], reference: &[(f64, Vec<f64>)]) -> f6
     worst / scale
 }
 
-/// The scene with its beam meshed into `elements` and modelled as `model`.
-fn with_mesh(scene: &Scene, elements: Option<usize>, model: Option<BeamModel>) -> Scene {
+/// The scene with its beam meshed into `elements` of degree `order` and modelled as `model`.
+fn with_mesh(
+    scene: &Scene,
+    elements: Option<usize>,
+    order: Option<usize>,
+    model: Option<BeamModel>,
+) -> Scene {
     let mut s = scene.clone();
     if let Model::Beam(b) = &mut s.model {
         if let Some(n) = elements {
             b.beam.elements = n;
+        }
+        if let Some(p) = order {
+            b.beam.order = p;
         }
         if let Some(m) = model {
             b.beam.model = m;
@@ -251,6 +270,8 @@ pub struct Reference {
     pub method: Method,
     pub rtol: f64,
     pub elements: Option<usize>,
+    /// The elements' degree, where the plan sweeps it (otherwise the scene's).
+    pub order: Option<usize>,
     /// Largest relative headline change at the last tenfold cut of rtol.
     pub settled_to: f64,
     pub headlines: Vec<Headline>,
@@ -275,7 +296,8 @@ pub fn reference(scene: &Scene, plan: &Plan, made_by: &str) -> Result<Reference,
         Model::Rolling(_) => None,
         Model::Beam(_) => Some(2 * plan.meshes.iter().copied().max().unwrap_or(1)),
     };
-    let fine = with_mesh(scene, elements, None);
+    let order = plan.reference_order();
+    let fine = with_mesh(scene, elements, order, None);
     let tightest = plan.rtols.iter().copied().fold(1.0, f64::min);
     let mut rtol = tightest / 10.0;
     let run_at = |rtol: f64| run::run(&fine, &overrides(method, rtol, usize::MAX), false);
@@ -296,6 +318,7 @@ pub fn reference(scene: &Scene, plan: &Plan, made_by: &str) -> Result<Reference,
         method,
         rtol,
         elements,
+        order,
         settled_to,
         headlines: headlines(&last),
         history: history(&last),
@@ -319,7 +342,8 @@ pub fn reference_for(
     let why = if store {
         "asked to compute it again".to_string()
     } else {
-        match super::reference::load(&path, &hash, plan, reference_method(scene)) {
+        let scene_order = scene.beam().map(|b| b.beam.order);
+        match super::reference::load(&path, &hash, plan, reference_method(scene), scene_order) {
             super::reference::Stored::Usable(r) => {
                 let line = format!("stored reference {} ({hash})", path.display());
                 return Ok((r, line));
@@ -343,14 +367,10 @@ pub fn reference_for(
     Ok((r, line))
 }
 
-/// One run of the grid.
+/// One run of the grid and what it measured.
 #[derive(Clone, Debug)]
 pub struct Trial {
-    pub method: Method,
-    pub rtol: f64,
-    pub elements: Option<usize>,
-    /// The beam model, where the plan sweeps it.
-    pub model: Option<BeamModel>,
+    pub point: GridPoint,
     pub outcome: Result<Measured, String>,
 }
 
@@ -364,27 +384,39 @@ pub struct Measured {
     pub rhs_evals: usize,
 }
 
-/// One point of a work–precision grid: method, mesh (elements), beam model, rtol.
-pub type GridPoint = (Method, Option<usize>, Option<BeamModel>, f64);
+/// One point of a work–precision grid; `None` keeps the scene's own.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridPoint {
+    pub method: Method,
+    pub rtol: f64,
+    pub elements: Option<usize>,
+    pub order: Option<usize>,
+    pub model: Option<BeamModel>,
+}
 
 /// Every point of the plan's grid, in the order its diagram and tables list them.
 pub fn grid(plan: &Plan) -> Vec<GridPoint> {
-    let meshes: Vec<Option<usize>> = if plan.meshes.is_empty() {
-        vec![None]
-    } else {
-        plan.meshes.iter().map(|&n| Some(n)).collect()
-    };
-    let models: Vec<Option<BeamModel>> = if plan.models.is_empty() {
-        vec![None]
-    } else {
-        plan.models.iter().map(|&m| Some(m)).collect()
-    };
+    fn each<T: Copy>(values: &[T]) -> Vec<Option<T>> {
+        if values.is_empty() {
+            vec![None]
+        } else {
+            values.iter().map(|&v| Some(v)).collect()
+        }
+    }
     let mut grid = Vec::new();
     for &method in &plan.methods {
-        for &model in &models {
-            for &elements in &meshes {
-                for &rtol in &plan.rtols {
-                    grid.push((method, elements, model, rtol));
+        for model in each(&plan.models) {
+            for order in each(&plan.orders) {
+                for elements in each(&plan.meshes) {
+                    for &rtol in &plan.rtols {
+                        grid.push(GridPoint {
+                            method,
+                            rtol,
+                            elements,
+                            order,
+                            model,
+                        });
+                    }
                 }
             }
         }
@@ -406,9 +438,8 @@ pub fn trials(
 
 /// One run of the grid, scored against the reference.
 pub fn trial(scene: &Scene, plan: &Plan, reference: &Reference, point: GridPoint) -> Trial {
-    let (method, elements, model, rtol) = point;
-    let scene = with_mesh(scene, elements, model);
-    let over = overrides(method, rtol, plan.max_steps);
+    let scene = with_mesh(scene, point.elements, point.order, point.model);
+    let over = overrides(point.method, point.rtol, plan.max_steps);
     let outcome = run::run(&scene, &over, false)
         .and_then(|r| {
             let wall_s = mean_wall(&scene, &over, r.header().stats.wall_s)?;
@@ -422,13 +453,7 @@ pub fn trial(scene: &Scene, plan: &Plan, reference: &Reference, point: GridPoint
             })
         })
         .map_err(|e| e.to_string());
-    Trial {
-        method,
-        rtol,
-        elements,
-        model,
-        outcome,
-    }
+    Trial { point, outcome }
 }
 
 /// A run shorter than [`TIMING_FLOOR`] is below the clock's resolution and the noise of a
@@ -454,15 +479,17 @@ pub fn cheapest(trials: &[Trial], target: f64) -> Option<&Trial> {
 }
 
 impl Trial {
-    /// "genalpha, rtol 1e-4, 10 elements, modal:16".
+    /// "genalpha, rtol 1e-4, 10 elements, degree 8, modal:16".
     pub fn settings(&self) -> String {
-        let mesh = self
+        let p = &self.point;
+        let mesh = p
             .elements
             .map_or(String::new(), |n| format!(", {n} elements"));
-        let model = self
+        let order = p.order.map_or(String::new(), |k| format!(", degree {k}"));
+        let model = p
             .model
             .map_or(String::new(), |m| format!(", {}", model_label(m)));
-        format!("{}, rtol {:e}{mesh}{model}", self.method.name(), self.rtol)
+        format!("{}, rtol {:e}{mesh}{order}{model}", p.method.name(), p.rtol)
     }
 }
 
@@ -475,17 +502,19 @@ pub fn write_tradeoff(
 ) -> Result<Vec<String>, Error> {
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
     let mut csv = String::from(
-        "method,rtol,elements,model,status,headline_error,history_error,wall_s,steps,rejected,rhs_evals\n",
+        "method,rtol,elements,order,model,status,headline_error,history_error,wall_s,steps,rejected,rhs_evals\n",
     );
     for t in trials {
-        let mesh = t.elements.map_or(String::new(), |n| n.to_string());
-        let model = t.model.map_or(String::new(), model_label);
+        let p = &t.point;
+        let mesh = p.elements.map_or(String::new(), |n| n.to_string());
+        let order = p.order.map_or(String::new(), |k| k.to_string());
+        let model = p.model.map_or(String::new(), model_label);
         let _ = match &t.outcome {
             Ok(m) => writeln!(
                 csv,
-                "{},{:e},{mesh},{model},ok,{:e},{:e},{},{},{},{}",
-                t.method.name(),
-                t.rtol,
+                "{},{:e},{mesh},{order},{model},ok,{:e},{:e},{},{},{},{}",
+                p.method.name(),
+                p.rtol,
                 m.headline_error,
                 m.history_error,
                 m.wall_s,
@@ -495,9 +524,9 @@ pub fn write_tradeoff(
             ),
             Err(e) => writeln!(
                 csv,
-                "{},{:e},{mesh},{model},\"failed: {}\",,,,,,",
-                t.method.name(),
-                t.rtol,
+                "{},{:e},{mesh},{order},{model},\"failed: {}\",,,,,,",
+                p.method.name(),
+                p.rtol,
                 e.replace('"', "'")
             ),
         };
@@ -505,12 +534,15 @@ pub fn write_tradeoff(
     write(&dir.join("tradeoff.csv"), &csv)?;
     diagram(scene, trials, &dir.join("tradeoff.svg"))?;
     let mut lines = vec![format!(
-        "reference: {}, rtol {:.0e}{}: headlines settled to {:.1e} at the last tenfold cut of rtol ({:.2} s)",
+        "reference: {}, rtol {:.0e}{}{}: headlines settled to {:.1e} at the last tenfold cut of rtol ({:.2} s)",
         reference.method.name(),
         reference.rtol,
         reference
             .elements
             .map_or(String::new(), |n| format!(", {n} elements")),
+        reference
+            .order
+            .map_or(String::new(), |k| format!(", degree {k}")),
         reference.settled_to,
         reference.wall_s
     )];
@@ -541,18 +573,20 @@ pub fn write_tradeoff(
     Ok(lines)
 }
 
-/// Headline error against wall time, log–log, a line per method and mesh.
+/// Headline error against wall time, log–log, a line per method, mesh, degree and model.
 fn diagram(scene: &Scene, trials: &[Trial], path: &Path) -> Result<(), Error> {
     let err =
         |e: &dyn std::fmt::Display| Error::Output(format!("cannot draw {}: {e}", path.display()));
     let mut lines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
     for t in trials {
         let Ok(m) = &t.outcome else { continue };
-        let mut name = match t.elements {
-            Some(n) => format!("{} ({n} el.)", t.method.name()),
-            None => t.method.name().to_string(),
+        let p = &t.point;
+        let mut name = match (p.elements, p.order) {
+            (Some(n), Some(k)) => format!("{} ({n} el. p{k})", p.method.name()),
+            (Some(n), None) => format!("{} ({n} el.)", p.method.name()),
+            (None, _) => p.method.name().to_string(),
         };
-        if let Some(m) = t.model {
+        if let Some(m) = p.model {
             name = format!("{name} {}", model_label(m));
         }
         let point = (m.wall_s.max(1e-5), m.headline_error.max(1e-12));
@@ -639,6 +673,9 @@ pub struct TradeoffArgs {
     /// Element counts to try on a beam, comma-separated (default: the scene's and half of it).
     #[arg(long, value_delimiter = ',')]
     elements: Vec<usize>,
+    /// Element degrees to try on a beam, comma-separated (default: the scene's).
+    #[arg(long, value_delimiter = ',')]
+    orders: Vec<usize>,
     /// Beam models to try, comma-separated: exact, linear, modal:N (default: the scene's).
     #[arg(long, value_delimiter = ',')]
     models: Vec<String>,
@@ -657,6 +694,7 @@ pub struct TradeoffOptions {
     pub methods: Vec<String>,
     pub rtols: Vec<f64>,
     pub elements: Vec<usize>,
+    pub orders: Vec<usize>,
     pub models: Vec<String>,
     pub max_steps: Option<usize>,
     /// Compute the reference again and store it beside the scene file.
@@ -692,6 +730,20 @@ impl TradeoffOptions {
                 )));
             }
             plan.meshes = self.elements.clone();
+        }
+        if !self.orders.is_empty() {
+            if scene.beam().is_none() {
+                return Err(Error::Input(
+                    "--orders sets the degree of a beam's elements; this scene has a rigid curve"
+                        .into(),
+                ));
+            }
+            if let Some(&bad) = self.orders.iter().find(|&&k| k == 0 || k > MAX_ORDER) {
+                return Err(Error::Input(format!(
+                    "--orders {bad}: an element's degree is from 1 to {MAX_ORDER}"
+                )));
+            }
+            plan.orders = self.orders.clone();
         }
         if !self.models.is_empty() {
             if scene.beam().is_none() {
@@ -747,6 +799,7 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
         methods,
         rtols,
         elements,
+        orders,
         models,
         max_steps,
         reference: recompute,
@@ -756,6 +809,7 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
         methods,
         rtols,
         elements,
+        orders,
         models,
         max_steps,
         recompute,
