@@ -238,6 +238,9 @@ def test_tradeoff_writes_the_table_and_names_the_cheapest(tmp_path):
         v for k, v in table.items() if "error" in k and v.dtype.kind == "f"
     )
     assert errors[1] <= errors[0]
+    # A rigid curve has no elements whose degree could be swept: one sentence, no table.
+    with pytest.raises(rollbeam.SceneError, match="--orders"):
+        rollbeam.tradeoff(scene, tmp_path / "p", methods=["dopri5"], orders=[4])
 
 
 # --- sweeps ---------------------------------------------------------------------------------

@@ -18,6 +18,17 @@ pub enum DampingSpec {
     },
 }
 
+impl DampingSpec {
+    /// Whether the stiffness-proportional part is there, which damps a mode the more the higher
+    /// it is (ζ grows as βω/2); the mass-proportional part alone leaves the high modes free.
+    pub fn damps_high_modes(&self) -> bool {
+        match *self {
+            DampingSpec::Ratio { zeta, .. } => zeta > 0.0,
+            DampingSpec::Rayleigh { beta, .. } => beta > 0.0,
+        }
+    }
+}
+
 /// C = α M + β K₀.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Rayleigh {
