@@ -958,6 +958,8 @@ fn tradeoff_settings() {
     let path = scene_path("tradeoff", &format!("duration: 0.5\n{PARABOLA}{GOOD_DISK}"));
     let p = path.to_str().expect("utf-8 path");
     let out = format!("{p}.tradeoff");
+    let beam_path = scene_path("tradeoff-beam", &beam_scene(&[], ""));
+    let beam = beam_path.to_str().expect("utf-8 path").to_string();
     for (args, needles) in [
         (
             vec!["--methods", "genalpha"],
@@ -966,9 +968,23 @@ fn tradeoff_settings() {
         (vec!["--methods", "euler"], vec!["'euler' is unknown"]),
         (vec!["--rtols", "1e-3,-1"], vec!["--rtols", "positive"]),
         (vec!["--elements", "4"], vec!["--elements", "rigid curve"]),
+        (vec!["--orders", "4"], vec!["--orders", "rigid curve"]),
         (vec!["--max-steps", "0"], vec!["--max-steps", "at least 1"]),
+        (
+            vec!["beam", "--orders", "0"],
+            vec!["--orders 0", "from 1 to 10"],
+        ),
+        (
+            vec!["beam", "--orders", "2,11"],
+            vec!["--orders 11", "from 1 to 10"],
+        ),
     ] {
-        let mut all = vec!["tradeoff", p, "--out", &out];
+        // "beam" asks for the same flags on a beam scene.
+        let (scene, args) = match args.split_first() {
+            Some((&"beam", rest)) => (beam.as_str(), rest.to_vec()),
+            _ => (p, args),
+        };
+        let mut all = vec!["tradeoff", scene, "--out", &out];
         all.extend(&args);
         let (code, err) = rollbeam(&all);
         assert_eq!(code, 1, "{args:?}: exit {code}, {err}");
