@@ -57,6 +57,9 @@ struct StoredFile {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     order: Option<usize>,
     settled_to: f64,
+    /// Absent in a reference stored before the mesh was checked.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    mesh_gap: Option<f64>,
     wall_s: f64,
     headlines: Vec<Headline>,
     history_columns: usize,
@@ -75,6 +78,7 @@ pub fn store(reference: &Reference, name: &str, hash: &str, path: &Path) -> Resu
         elements: reference.elements,
         order: reference.order,
         settled_to: reference.settled_to,
+        mesh_gap: reference.mesh_gap,
         wall_s: reference.wall_s,
         headlines: reference.headlines.clone(),
         history_columns: reference.history.first().map_or(0, |(_, v)| v.len()),
@@ -125,6 +129,10 @@ pub fn load(
             "made from another version of the scene ({}, the scene is now {hash})",
             file.scene_hash
         ));
+    }
+    let measure = |x: f64| x.is_finite() && x >= 0.0;
+    if !measure(file.settled_to) || !file.mesh_gap.is_none_or(measure) {
+        return bad("its settling or mesh gap is not a finite, non-negative number".into());
     }
     if file.method != method.name() {
         return bad(format!("made with {}, not {}", file.method, method.name()));
@@ -190,6 +198,7 @@ pub fn load(
         elements: file.elements,
         order: file.order,
         settled_to: file.settled_to,
+        mesh_gap: file.mesh_gap,
         headlines: file.headlines,
         history,
         wall_s: file.wall_s,
