@@ -173,8 +173,8 @@ pub fn study_plan(scene: &Scene) -> tradeoff::Plan {
     let mut plan = tradeoff::Plan::default_for(scene);
     // The grid of a beam whose damping takes the high modes runs on to rtol 1e-8, past the
     // default on a beam: nothing of the modes a load excites high up rides on the headline, so
-    // its reference settles below 10⁻⁶ in seconds (HSLM: rtol 1e-11 and a mesh check, 2.6 s) and its diagram
-    // can show what 10⁻⁶ costs.
+    // its reference settles below 10⁻⁶ in seconds (HSLM: rtol 1e-11 and a mesh check, 2.6 s)
+    // and its diagram can show what 10⁻⁶ costs.
     let damped = scene
         .beam()
         .and_then(|b| b.beam.damping)
