@@ -337,7 +337,7 @@ fn item_4_no_hangs() {
     fails(
         &["run", &s, "--out", &out("rho-budget")],
         2,
-        &["gave up after 2000 steps", "budget of 10000000"],
+        &["gave up after 4000 steps", "budget of 10000000"],
     );
     let s = scene("load", &beam("", "loads: [{x: 10, fy: -1e300}]\n"));
     fails(&["run", &s, "--out", &out("load")], 2, &["solver failed"]);
