@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Mutex;
 
-use crate::analysis::discretisation::{choose, jumps, response_size, weight_drops, Discretisation};
+use crate::analysis::discretisation::{choose, response_size, Discretisation};
 use crate::analysis::model_choice;
 use crate::beam::BeamModel;
 use crate::coupling::Coupling;
@@ -131,12 +131,6 @@ fn kept<T: Clone>(
     chosen
 }
 
-/// Whether a load is switched on or off during the run, the beam's own weight included where
-/// it drops on a beam that starts undeformed.
-fn switched(scene: &BeamScene) -> bool {
-    jumps(&scene.loads, scene.start) || weight_drops(&scene.beam, scene.start)
-}
-
 impl Scene {
     /// Read, check and plan a scene file.
     pub fn load(path: &Path) -> Result<Scene, Error> {
@@ -171,7 +165,7 @@ pub fn rho_inf_for(scene: &BeamScene, weight: Option<f64>, xs: &[f64]) -> (f64, 
     if matches!(scene.beam.model, BeamModel::Modal { .. }) {
         return undamped("the modal beam holds no modes far above what the loads excite");
     }
-    if switched(scene) {
+    if scene.load_switched() {
         return undamped("a load switched during the run excites every mode of the mesh, and what damping takes of them would ride on the peak");
     }
     match model_choice::nonlinearity_of(&scene.beam, &scene.loads, weight, xs) {
@@ -203,7 +197,7 @@ pub const PLANNED_RHO_INF: f64 = 0.9;
 ///   of the mesh's highest modes the damping removes; the scene is told so.
 pub fn rtol_for(scene: &BeamScene) -> (f64, &'static str) {
     let accuracy = scene.accuracy;
-    let switched = switched(scene);
+    let switched = scene.load_switched();
     if damped_by_the_scene(scene) {
         let why = if switched {
             "a hundredth of the accuracy; with rho_inf < 1 a switched load's peak depends on how much of the mesh's highest modes the damping removes, which tightening rtol does not settle: rho_inf = 1 holds the accuracy"

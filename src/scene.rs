@@ -9,7 +9,9 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 use serde_saphyr::{Location, Spanned};
 
-use crate::analysis::discretisation::{Discretisation, DEFAULT_ACCURACY, DEFAULT_ORDER};
+use crate::analysis::discretisation::{
+    jumps, weight_drops, Discretisation, DEFAULT_ACCURACY, DEFAULT_ORDER,
+};
 use crate::beam::damping::DampingSpec;
 use crate::beam::element::Section;
 use crate::beam::load::{BeamStart, PointLoad, Probe};
@@ -305,6 +307,15 @@ pub struct BeamScene {
     /// The size of the displacements its loads cause (m), when the supports allow a static
     /// estimate: see `analysis::discretisation::response_size`. Set by the plan.
     pub response: Option<f64>,
+}
+
+impl BeamScene {
+    /// Whether a load is switched on or off during the run, the beam's own weight included
+    /// where it drops on a beam that starts undeformed: it then excites every mode the mesh
+    /// holds.
+    pub fn load_switched(&self) -> bool {
+        jumps(&self.loads, self.start) || weight_drops(&self.beam, self.start)
+    }
 }
 
 /// The shortest contact patch, and section depth, against the beam's length: below it the

@@ -236,7 +236,7 @@ fn stored_references_serve_and_reproduce() {
     let files = studies::scene_files(&common::studies_dir()).expect("the studies folder");
     for file in files {
         let scene = Scene::load(&file).expect("a valid study");
-        let plan = studies::study_plan(&scene);
+        let plan = studies::reference_plan(&scene);
         let path = reference::stored_path(&file, &scene.name);
         let hash = reference::scene_hash(&file).expect("a readable scene");
         let method = tradeoff::reference_method(&scene);
