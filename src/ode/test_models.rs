@@ -378,3 +378,59 @@ fn every_method_stops_on_a_breakpoint_and_restarts_there() {
         );
     }
 }
+
+/// y' = −y over [0, 10] with steps held to 10⁻⁴ before `dense_until`: a run whose first steps
+/// are its densest (a load that comes on at the start), or, held throughout, one whose time
+/// scale a scene made tiny.
+struct HeldDecay {
+    dense_until: f64,
+}
+
+impl Dynamics for HeldDecay {
+    fn dim(&self) -> usize {
+        1
+    }
+    fn rhs(&self, _t: f64, y: &[f64], f: &mut [f64]) {
+        f[0] = -y[0];
+    }
+}
+
+impl Problem for HeldDecay {
+    type Event = NoEvent;
+    fn max_step(&self, t: f64, _y: &[f64]) -> f64 {
+        if t < self.dense_until {
+            1e-4
+        } else {
+            f64::INFINITY
+        }
+    }
+}
+
+/// The step budget's early give-up, at a budget of 10 000 steps. Held dense until t = 0.3,
+/// the run's first 2000 steps reach t = 0.2 and project 10⁵ steps, past four times the
+/// budget, yet the run needs about 3000: it must finish (one window running gave it up).
+/// Held dense throughout, every window projects 10⁵: it must give up after two windows,
+/// 4000 steps, well before its budget is spent.
+#[test]
+fn a_run_gives_up_early_only_on_a_pace_that_lasts() {
+    let opts = Options {
+        max_steps: 10_000,
+        ..Default::default()
+    };
+    let quickening = run(&HeldDecay { dense_until: 0.3 }, &[1.0], 10.0, &opts)
+        .expect("a run that fits its budget finishes");
+    assert!(
+        (quickening.y[0] - (-10.0f64).exp()).abs() < 1e-8,
+        "{}",
+        quickening.y[0]
+    );
+    match run(&HeldDecay { dense_until: 10.0 }, &[1.0], 10.0, &opts) {
+        Err(SolveError::TooManySteps {
+            steps, projected, ..
+        }) => {
+            assert_eq!(steps, 4000);
+            assert!(projected > 40_000, "projected {projected}");
+        }
+        other => panic!("expected an early give-up, got {other:?}"),
+    }
+}
