@@ -651,7 +651,9 @@ fn diagram(scene: &Scene, trials: &[Trial], path: &Path) -> Result<(), Error> {
             .y_label_area_size(75)
             .build_cartesian_2d(
                 (x0 / 1.5..x1 * 1.5).log_scale(),
-                (y0 / 3.0..y1 * 3.0).log_scale(),
+                // From just below a whole decade: plotters labels a log axis from the first
+                // decade inside its range upwards, so errors below that would go unlabelled.
+                (0.99 * 10f64.powf((y0 / 3.0).log10().floor())..y1 * 3.0).log_scale(),
             )
             .map_err(|e| err(&e))?;
         chart
