@@ -416,7 +416,7 @@ pub struct StudiesArgs {
     #[arg(long)]
     no_work_precision: bool,
     /// First compute every study's work–precision reference again and store it under
-    /// studies/references/ (about 40 minutes on two cores); otherwise the stored ones serve.
+    /// studies/references/ (about an hour on two cores); otherwise the stored ones serve.
     #[arg(long)]
     references: bool,
 }
