@@ -208,8 +208,8 @@ pub fn study_plan(scene: &Scene) -> tradeoff::Plan {
         plan.rtols = (2..=8).map(|k| 10f64.powi(-k)).collect();
     } else if switched {
         // A load switched on or off excites every mode the mesh holds, and undamped they all
-        // stay: every method needs 40 000–100 000 steps at rtol 1e-4 (ESDIRK4, B1–C3), where
-        // it reaches 10⁻⁴–10⁻³, and 10⁵–10⁶ at 1e-5, where the runs would only spend their
+        // stay: ESDIRK4 takes 41 000–103 000 steps at rtol 1e-4 on B1–C3, where it reaches
+        // 10⁻⁴–10⁻³, and more than 200 000 at 1e-5, where the runs would only spend their
         // budget and give up (REPORT.md, "A deeper budget for the sudden loads").
         plan.rtols.retain(|&r| r >= 1e-4);
         plan.max_steps = SWITCHED_LOAD_STEPS;

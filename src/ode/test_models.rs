@@ -408,7 +408,7 @@ impl Problem for HeldDecay {
 
 /// The step budget's early give-up, at a budget of 10 000 steps. Held dense until t = 0.3,
 /// the run's first 2000 steps reach t = 0.2 and project 10⁵ steps, past four times the
-/// budget, yet the run needs about 3000: it must finish (one window running gave it up).
+/// budget, yet the run needs about 3000: it must finish (a rule of one window gave it up).
 /// Held dense throughout, every window projects 10⁵: it must give up after two windows,
 /// 4000 steps, well before its budget is spent.
 #[test]
