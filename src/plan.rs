@@ -45,17 +45,7 @@ impl Planner {
         let Model::Beam(b) = &mut scene.model else {
             return scene;
         };
-        // What rides on the beam, as the static load the mesh and model are chosen for: the
-        // disk's weight, or a train's heaviest axle, standing at each probe.
-        let weight = b
-            .disk
-            .as_ref()
-            .map(|d| d.disk.mass * d.gravity)
-            .or_else(|| {
-                b.train
-                    .as_ref()
-                    .map(|t| t.loads.iter().fold(0.0_f64, |m, p| m.max(p.abs())))
-            });
+        let weight = riding_weight(b);
         let xs: Vec<f64> = b.probes.iter().map(|p| p.x).collect();
         if elements.is_none() || order.is_none() {
             let key = format!(
@@ -113,6 +103,28 @@ impl Planner {
         }
         scene
     }
+}
+
+/// What rides on the beam, as the static load the mesh and model are chosen for: the disk's
+/// weight, or a train's heaviest axle, standing at each probe.
+fn riding_weight(b: &BeamScene) -> Option<f64> {
+    b.disk
+        .as_ref()
+        .map(|d| d.disk.mass * d.gravity)
+        .or_else(|| {
+            b.train
+                .as_ref()
+                .map(|t| t.loads.iter().fold(0.0_f64, |m, p| m.max(p.abs())))
+        })
+}
+
+/// Whether the beam's static response to what rides on it and its loads is visibly nonlinear
+/// at the scene's accuracy (`model_choice`'s measure, which also decides ρ∞): a large
+/// deflection, as on the rubber beam and the zip-line.
+pub fn responds_nonlinearly(b: &BeamScene) -> bool {
+    let xs: Vec<f64> = b.probes.iter().map(|p| p.x).collect();
+    model_choice::nonlinearity_of(&b.beam, &b.loads, riding_weight(b), &xs)
+        .is_some_and(|g| !model_choice::linear_enough(g, b.accuracy))
 }
 
 /// The choice kept under `key`, or `choose`'s, kept.

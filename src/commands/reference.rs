@@ -107,8 +107,9 @@ pub enum Stored {
 }
 
 /// The reference stored at `path`, if it was made from the scene text hashed `hash` and is at
-/// least as fine as `plan` asks (a mesh twice its finest at its highest degree, an rtol a decade
-/// below its tightest). `scene_order` is the degree of the scene's own elements.
+/// least as fine as `plan` asks (a mesh twice its finest at its highest degree, an rtol at or
+/// below the one its reference starts at, `Plan::reference_rtol`). `scene_order` is the
+/// degree of the scene's own elements.
 pub fn load(
     path: &Path,
     hash: &str,
@@ -137,10 +138,10 @@ pub fn load(
     if file.method != method.name() {
         return bad(format!("made with {}, not {}", file.method, method.name()));
     }
-    let tightest = plan.rtols.iter().copied().fold(1.0, f64::min);
-    if file.rtol > tightest / 10.0 * (1.0 + 1e-9) {
+    let start = plan.reference_rtol();
+    if file.rtol > start * (1.0 + 1e-9) {
         return bad(format!(
-            "made at rtol {:e}, not a decade below the tightest tried, {tightest:e}",
+            "made at rtol {:e}, not at or below {start:e}, a decade below the tightest tried",
             file.rtol
         ));
     }
