@@ -17,7 +17,16 @@ use super::{
 };
 use crate::linalg::{Assembly, Sparse};
 
-struct Decay;
+/// y' = −y, its steps held to 10⁻⁴ before `dense_until`: a run whose first steps are its
+/// densest (a load that comes on at the start), or, held throughout, one whose time scale a
+/// scene made tiny. [`FREE`] holds none.
+struct Decay {
+    dense_until: f64,
+}
+
+const FREE: Decay = Decay {
+    dense_until: f64::NEG_INFINITY,
+};
 
 /// The oscillator's one event: q passing through zero downwards.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -34,6 +43,13 @@ impl Dynamics for Decay {
 
 impl Problem for Decay {
     type Event = NoEvent;
+    fn max_step(&self, t: f64, _y: &[f64]) -> f64 {
+        if t < self.dense_until {
+            1e-4
+        } else {
+            f64::INFINITY
+        }
+    }
 }
 
 fn scalar(v: f64) -> Sparse {
@@ -214,7 +230,7 @@ fn measured_order(error_at: impl Fn(f64) -> f64, h: f64) -> f64 {
 fn every_first_order_method_reaches_its_order_on_decay() {
     for method in Method::FIRST_ORDER {
         let error_at = |h: f64| {
-            let out = run(&Decay, &[1.0], 1.0, &fixed(method, h)).expect("runs");
+            let out = run(&FREE, &[1.0], 1.0, &fixed(method, h)).expect("runs");
             (out.y[0] - (-1.0f64).exp()).abs()
         };
         let p = measured_order(error_at, 0.1);
@@ -229,7 +245,7 @@ fn every_first_order_method_reaches_its_order_on_decay() {
 
 #[test]
 fn generalized_alpha_refuses_a_first_order_problem() {
-    let err = run(&Decay, &[1.0], 1.0, &fixed(Method::GenAlpha, 0.1)).unwrap_err();
+    let err = run(&FREE, &[1.0], 1.0, &fixed(Method::GenAlpha, 0.1)).unwrap_err();
     assert_eq!(err, SolveError::NeedsSecondOrder);
 }
 
@@ -379,33 +395,6 @@ fn every_method_stops_on_a_breakpoint_and_restarts_there() {
     }
 }
 
-/// y' = −y over [0, 10] with steps held to 10⁻⁴ before `dense_until`: a run whose first steps
-/// are its densest (a load that comes on at the start), or, held throughout, one whose time
-/// scale a scene made tiny.
-struct HeldDecay {
-    dense_until: f64,
-}
-
-impl Dynamics for HeldDecay {
-    fn dim(&self) -> usize {
-        1
-    }
-    fn rhs(&self, _t: f64, y: &[f64], f: &mut [f64]) {
-        f[0] = -y[0];
-    }
-}
-
-impl Problem for HeldDecay {
-    type Event = NoEvent;
-    fn max_step(&self, t: f64, _y: &[f64]) -> f64 {
-        if t < self.dense_until {
-            1e-4
-        } else {
-            f64::INFINITY
-        }
-    }
-}
-
 /// The step budget's early give-up, at a budget of 10 000 steps. Held dense until t = 0.3,
 /// the run's first 2000 steps reach t = 0.2 and project 10⁵ steps, past four times the
 /// budget, yet the run needs about 3000: it must finish (a rule of one window gave it up).
@@ -417,14 +406,14 @@ fn a_run_gives_up_early_only_on_a_pace_that_lasts() {
         max_steps: 10_000,
         ..Default::default()
     };
-    let quickening = run(&HeldDecay { dense_until: 0.3 }, &[1.0], 10.0, &opts)
+    let quickening = run(&Decay { dense_until: 0.3 }, &[1.0], 10.0, &opts)
         .expect("a run that fits its budget finishes");
     assert!(
         (quickening.y[0] - (-10.0f64).exp()).abs() < 1e-8,
         "{}",
         quickening.y[0]
     );
-    match run(&HeldDecay { dense_until: 10.0 }, &[1.0], 10.0, &opts) {
+    match run(&Decay { dense_until: 10.0 }, &[1.0], 10.0, &opts) {
         Err(SolveError::TooManySteps {
             steps, projected, ..
         }) => {
