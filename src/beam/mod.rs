@@ -133,16 +133,24 @@ impl Stations {
         self.first
             .iter()
             .zip(self.shape.chunks_exact(self.per))
-            .map(move |(&first, n)| {
-                let mut v = [0.0; 3];
-                for (na, d) in n.iter().zip(&nodal[first..first + self.per]) {
-                    v[0] += na * d[0];
-                    v[1] += na * d[1];
-                    v[2] += na * d[2];
-                }
-                v
-            })
+            .map(move |(&first, n)| interpolate(n, nodal[first..first + self.per].iter().copied()))
     }
+}
+
+/// A node's (u, w, φ) in q; a held unknown is zero.
+fn node_value(eq: &[Option<usize>], q: &[f64]) -> [f64; 3] {
+    [0, 1, 2].map(|c| eq[c].map_or(0.0, |i| q[i]))
+}
+
+/// Σ_a N_a d_a: the (u, w, φ) that shape values `n` make of their element's nodal values.
+fn interpolate(n: &[f64], nodes: impl Iterator<Item = [f64; 3]>) -> [f64; 3] {
+    let mut v = [0.0; 3];
+    for (na, d) in n.iter().zip(nodes) {
+        v[0] += na * d[0];
+        v[1] += na * d[1];
+        v[2] += na * d[2];
+    }
+    v
 }
 
 /// Highest Lagrange degree of an element (the scene reader refuses more): the shape functions
@@ -634,7 +642,7 @@ impl Beam {
     fn nodal(&self, q: &[f64]) -> Vec<[f64; 3]> {
         self.eq
             .chunks_exact(3)
-            .map(|node| [0, 1, 2].map(|c| node[c].map_or(0.0, |i| q[i])))
+            .map(|node| node_value(node, q))
             .collect()
     }
 
@@ -661,12 +669,10 @@ impl Beam {
 
     fn displacement_in(&self, e: usize, n: &[f64], q: &[f64]) -> PointDisplacement {
         let first = e * self.spec.order;
-        let mut v = [0.0; 3];
-        for (a, na) in n.iter().enumerate() {
-            for (c, vc) in v.iter_mut().enumerate() {
-                *vc += na * self.eq[3 * (first + a) + c].map_or(0.0, |i| q[i]);
-            }
-        }
+        let nodes = self.eq[3 * first..]
+            .chunks_exact(3)
+            .map(|node| node_value(node, q));
+        let v = interpolate(n, nodes);
         let [u, w] = self.to_global([v[0], v[1]]);
         PointDisplacement { u, w, phi: v[2] }
     }
