@@ -46,7 +46,7 @@ impl Planner {
             return scene;
         };
         let weight = riding_weight(b);
-        let xs: Vec<f64> = b.probes.iter().map(|p| p.x).collect();
+        let xs = probe_xs(b);
         if elements.is_none() || order.is_none() {
             let key = format!(
                 "{:?} {elements:?} {order:?} {:?} {weight:?} {xs:?} {:?} {multiple} {:?}",
@@ -85,7 +85,7 @@ impl Planner {
                 "{:?} {:?} {weight:?} {xs:?} {:?} {:?}",
                 b.beam, b.loads, b.accuracy, b.start
             );
-            let (rho, why) = kept(&self.dampings, key, || rho_inf_for(b, weight, &xs));
+            let (rho, why) = kept(&self.dampings, key, || rho_inf_for(b));
             b.rho_inf = rho;
             b.rho_inf_chosen = Some(why);
         }
@@ -118,13 +118,21 @@ fn riding_weight(b: &BeamScene) -> Option<f64> {
         })
 }
 
-/// Whether the beam's static response to what rides on it and its loads is visibly nonlinear
-/// at the scene's accuracy (`model_choice`'s measure, which also decides ρ∞): a large
-/// deflection, as on the rubber beam and the zip-line.
+/// Where the probes are along the beam: where the mesh, the model and ρ∞ are judged.
+fn probe_xs(b: &BeamScene) -> Vec<f64> {
+    b.probes.iter().map(|p| p.x).collect()
+}
+
+/// How far the beam's static response to what rides on it and its loads is from linear
+/// (`model_choice::nonlinearity_of`).
+fn nonlinearity(b: &BeamScene) -> Option<f64> {
+    model_choice::nonlinearity_of(&b.beam, &b.loads, riding_weight(b), &probe_xs(b))
+}
+
+/// Whether that nonlinearity is visible at the scene's accuracy, the test that also decides
+/// ρ∞ ([`rho_inf_for`]): a large deflection, as on the rubber beam and the zip-line.
 pub fn responds_nonlinearly(b: &BeamScene) -> bool {
-    let xs: Vec<f64> = b.probes.iter().map(|p| p.x).collect();
-    model_choice::nonlinearity_of(&b.beam, &b.loads, riding_weight(b), &xs)
-        .is_some_and(|g| !model_choice::linear_enough(g, b.accuracy))
+    nonlinearity(b).is_some_and(|g| !model_choice::linear_enough(g, b.accuracy))
 }
 
 /// The choice kept under `key`, or `choose`'s, kept.
@@ -172,7 +180,7 @@ impl Scene {
 ///   ρ∞ = 0.9.
 /// - A load switched on or off excites every mode of the mesh, and the damped share of them
 ///   rides on the peak (`rtol_for`): there ρ∞ = 1. A modal beam holds no such modes: ρ∞ = 1.
-pub fn rho_inf_for(scene: &BeamScene, weight: Option<f64>, xs: &[f64]) -> (f64, String) {
+pub fn rho_inf_for(scene: &BeamScene) -> (f64, String) {
     let undamped = |why: &str| (1.0, format!("1, no numerical damping: {why}"));
     if matches!(scene.beam.model, BeamModel::Modal { .. }) {
         return undamped("the modal beam holds no modes far above what the loads excite");
@@ -180,7 +188,7 @@ pub fn rho_inf_for(scene: &BeamScene, weight: Option<f64>, xs: &[f64]) -> (f64, 
     if scene.load_switched() {
         return undamped("a load switched during the run excites every mode of the mesh, and what damping takes of them would ride on the peak");
     }
-    match model_choice::nonlinearity_of(&scene.beam, &scene.loads, weight, xs) {
+    match nonlinearity(scene) {
         Some(g) if model_choice::linear_enough(g, scene.accuracy) => (
             PLANNED_RHO_INF,
             format!("{PLANNED_RHO_INF}: the beam responds linearly (the exact static deflection at the probes is {g:.1e} off the linear one), so the mesh's modes above those the moving loads excite carry nothing, and undamped they keep what the rolling contact puts into them and cost steps"),
