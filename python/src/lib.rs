@@ -279,6 +279,7 @@ fn tradeoff(
         models,
         max_steps,
         recompute: false,
+        recompute_means: false,
     };
     // The command that stores a reference for `file`; the package never stores one.
     let made_by = match &file {

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::tradeoff::{Headline, Plan, Reference};
+use super::tradeoff::{Headline, MeansReference, Plan, Reference};
 use crate::error::Error;
 use crate::ode::Method;
 use crate::output::{io_error, write, yaml};
@@ -63,6 +63,60 @@ struct StoredFile {
     wall_s: f64,
     headlines: Vec<Headline>,
     history_columns: usize,
+    /// The windowed means' own reference, where one was made (`tradeoff --reference-means`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    means: Option<StoredMeans>,
+}
+
+#[derive(Serialize, Deserialize)]
+struct StoredMeans {
+    made_by: String,
+    method: String,
+    rtol: f64,
+    elements: Option<usize>,
+    resolves: f64,
+    scale: f64,
+    wall_s: f64,
+    values: Vec<f64>,
+}
+
+impl StoredMeans {
+    fn from(m: &MeansReference) -> Self {
+        StoredMeans {
+            made_by: m.made_by.clone(),
+            method: m.method.name().to_string(),
+            rtol: m.rtol,
+            elements: m.elements,
+            resolves: m.resolves,
+            scale: m.scale,
+            wall_s: m.wall_s,
+            values: m.values.clone(),
+        }
+    }
+
+    fn read(self) -> Result<MeansReference, String> {
+        let method = Method::from_name(&self.method)
+            .ok_or_else(|| format!("its windowed means name an unknown method, {}", self.method))?;
+        let finite = [self.rtol, self.resolves, self.scale, self.wall_s]
+            .iter()
+            .chain(&self.values)
+            .all(|x| x.is_finite());
+        if !finite || self.scale <= 0.0 || self.resolves < 0.0 {
+            return Err(
+                "its windowed means hold a number that is not finite or out of range".into(),
+            );
+        }
+        Ok(MeansReference {
+            method,
+            rtol: self.rtol,
+            elements: self.elements,
+            values: self.values,
+            scale: self.scale,
+            resolves: self.resolves,
+            wall_s: self.wall_s,
+            made_by: self.made_by,
+        })
+    }
 }
 
 /// Write `reference` for the scene `name` (file hash `hash`) to `path` and its history beside it.
@@ -82,6 +136,7 @@ pub fn store(reference: &Reference, name: &str, hash: &str, path: &Path) -> Resu
         wall_s: reference.wall_s,
         headlines: reference.headlines.clone(),
         history_columns: reference.history.first().map_or(0, |(_, v)| v.len()),
+        means: reference.means.as_ref().map(StoredMeans::from),
     };
     write(path, &yaml(&file)?)?;
     let mut csv = String::new();
@@ -101,7 +156,7 @@ fn history_path(path: &Path) -> PathBuf {
 
 /// Why a stored reference cannot serve, or the reference itself.
 pub enum Stored {
-    Usable(Reference),
+    Usable(Box<Reference>),
     Missing,
     Stale(String),
 }
@@ -193,7 +248,11 @@ pub fn load(
         }
         None => return bad("its history is empty".into()),
     }
-    Stored::Usable(Reference {
+    let means = match file.means.map(StoredMeans::read).transpose() {
+        Ok(m) => m,
+        Err(why) => return bad(why),
+    };
+    Stored::Usable(Box::new(Reference {
         method,
         rtol: file.rtol,
         elements: file.elements,
@@ -204,7 +263,35 @@ pub fn load(
         history,
         wall_s: file.wall_s,
         made_by: file.made_by,
-    })
+        means,
+    }))
+}
+
+/// The windowed means' reference stored at `path` for the scene text hashed `hash`, if there
+/// is one: it outlives a recomputed reference of the headlines, which does not touch it.
+pub fn stored_means(path: &Path, hash: &str) -> Option<MeansReference> {
+    let file: StoredFile = serde_saphyr::from_str(&std::fs::read_to_string(path).ok()?).ok()?;
+    (file.scene_hash == hash)
+        .then_some(file.means)
+        .flatten()
+        .and_then(|m| m.read().ok())
+}
+
+/// Put `means` into the reference stored at `path`, made from the scene text hashed `hash`.
+pub fn store_means(means: &MeansReference, hash: &str, path: &Path) -> Result<(), Error> {
+    let missing = || {
+        Error::Input(format!(
+            "{} holds no reference of this scene to add windowed means to; make it first with `rollbeam tradeoff SCENE --reference`",
+            path.display()
+        ))
+    };
+    let text = std::fs::read_to_string(path).map_err(|_| missing())?;
+    let mut file: StoredFile = serde_saphyr::from_str(&text).map_err(|_| missing())?;
+    if file.scene_hash != hash {
+        return Err(missing());
+    }
+    file.means = Some(StoredMeans::from(means));
+    write(path, &yaml(&file)?)
 }
 
 #[cfg(test)]

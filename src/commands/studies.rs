@@ -144,8 +144,13 @@ fn work_precision(studies: &Path, out: &Path, figures: &Path) -> Result<(), Erro
         for line in tradeoff::write_tradeoff(scene, reference, &trials, &dir)? {
             say!("{:<14} {line}", format!("tradeoff {name}"));
         }
-        let to = figures.join(format!("{name}-tradeoff.svg"));
-        std::fs::copy(dir.join("tradeoff.svg"), &to).map_err(|e| io_error(&to, e))?;
+        for figure in ["tradeoff", "tradeoff-means"] {
+            let from = dir.join(format!("{figure}.svg"));
+            if figure == "tradeoff" || from.exists() {
+                let to = figures.join(format!("{name}-{figure}.svg"));
+                std::fs::copy(&from, &to).map_err(|e| io_error(&to, e))?;
+            }
+        }
     }
     say!(
         "{:<14} {} runs for {} diagrams in {:.1} s",

@@ -278,6 +278,14 @@ fn overrides(method: Method, rtol: f64, max_steps: usize) -> Overrides {
     }
 }
 
+/// The same, recording the probes' windowed means.
+fn with_means(over: Overrides) -> Overrides {
+    Overrides {
+        windowed_means: true,
+        ..over
+    }
+}
+
 /// The reference run and how settled it is.
 pub struct Reference {
     pub method: Method,
@@ -296,6 +304,98 @@ pub struct Reference {
     pub wall_s: f64,
     /// The command that computes it again.
     pub made_by: String,
+    /// The probes' windowed means, where a reference for them was made.
+    pub means: Option<MeansReference>,
+}
+
+/// The reference for the probes' Hann-windowed means (`BeamRun::windowed_means`): a headline
+/// the fast modes' phase leaves alone, so it converges where the extremes cannot (REPORT.md,
+/// "A windowed mean reaches 10⁻⁶ on the sudden loads"). It has its own run, since the means
+/// need a fourth-order method, not the extremes' reference's tenfold cuts of rtol.
+#[derive(Clone, Debug)]
+pub struct MeansReference {
+    pub method: Method,
+    pub rtol: f64,
+    pub elements: Option<usize>,
+    pub values: Vec<f64>,
+    /// The largest |w| of that run's probes: what an error in the means is relative to.
+    pub scale: f64,
+    /// The larger of how far the means move at a tenfold cut of rtol and on a mesh half as
+    /// fine.
+    pub resolves: f64,
+    pub wall_s: f64,
+    pub made_by: String,
+}
+
+/// The means' reference is ESDIRK4 at this rtol: on the sudden loads it settles the means to
+/// 10⁻⁹, mesh and time together (REPORT.md), in a minute or two.
+pub const MEANS_RTOL: f64 = 1e-5;
+
+/// max |a − b| / scale over the windows; a run that did not cover the reference's windows
+/// counts as wholly wrong.
+pub fn mean_error(a: &[f64], reference: &MeansReference) -> f64 {
+    if a.len() != reference.values.len() {
+        return 1.0;
+    }
+    a.iter()
+        .zip(&reference.values)
+        .map(|(x, r)| (x - r).abs() / reference.scale)
+        .fold(0.0, |m, e| if e.is_nan() { f64::NAN } else { m.max(e) })
+}
+
+/// The windowed means of a beam run (none on a rigid curve).
+pub fn windowed_means(r: &Run) -> Option<&[f64]> {
+    match r {
+        Run::Beam(b) => Some(&b.windowed_means),
+        Run::Rolling(_) => None,
+    }
+}
+
+/// The means' reference for a beam scene: ESDIRK4 at [`MEANS_RTOL`] on twice the plan's finest
+/// mesh, checked at a tenfold rtol and on the finest mesh.
+pub fn means_reference(scene: &Scene, plan: &Plan, made_by: &str) -> Result<MeansReference, Error> {
+    let finest = plan
+        .meshes
+        .iter()
+        .copied()
+        .max()
+        .or(scene.beam().map(|b| b.beam.elements));
+    let Some(finest) = finest.filter(|_| scene.beam().is_some()) else {
+        return Err(Error::Input(format!(
+            "{}: windowed means are a beam's headline; the scene has no beam",
+            scene.name
+        )));
+    };
+    let method = Method::Esdirk4;
+    let run_on = |elements: usize, rtol: f64| {
+        let s = with_mesh(scene, Some(elements), plan.reference_order(), None);
+        run::run(&s, &with_means(overrides(method, rtol, usize::MAX)), false)
+    };
+    let fine = run_on(2 * finest, MEANS_RTOL)?;
+    let looser = run_on(2 * finest, 10.0 * MEANS_RTOL)?;
+    let coarser = run_on(finest, MEANS_RTOL)?;
+    let means = |r: &Run| windowed_means(r).unwrap_or_default().to_vec();
+    let scale = headlines(&fine)
+        .iter()
+        .filter(|h| h.family == "w")
+        .fold(0.0_f64, |m, h| m.max(h.value.abs()))
+        .max(f64::MIN_POSITIVE);
+    let mut reference = MeansReference {
+        method,
+        rtol: MEANS_RTOL,
+        elements: Some(2 * finest),
+        values: means(&fine),
+        scale,
+        resolves: 0.0,
+        wall_s: [&fine, &looser, &coarser]
+            .iter()
+            .map(|r| r.header().stats.wall_s)
+            .sum(),
+        made_by: made_by.to_string(),
+    };
+    reference.resolves =
+        mean_error(&means(&looser), &reference).max(mean_error(&means(&coarser), &reference));
+    Ok(reference)
 }
 
 impl Reference {
@@ -360,6 +460,7 @@ pub fn reference(scene: &Scene, plan: &Plan, made_by: &str) -> Result<Reference,
         history: history(&last),
         wall_s: wall,
         made_by: made_by.to_string(),
+        means: None,
     })
 }
 
@@ -382,7 +483,7 @@ pub fn reference_for(
         match super::reference::load(&path, &hash, plan, reference_method(scene), scene_order) {
             super::reference::Stored::Usable(r) => {
                 let line = format!("stored reference {} ({hash})", path.display());
-                return Ok((r, line));
+                return Ok((*r, line));
             }
             super::reference::Stored::Missing => {
                 format!("no stored reference at {}", path.display())
@@ -393,8 +494,9 @@ pub fn reference_for(
         }
     };
     say!("{}: computing the reference ({why})…", scene.name);
-    let r = reference(scene, plan, made_by)?;
+    let mut r = reference(scene, plan, made_by)?;
     let line = if store {
+        r.means = super::reference::stored_means(&path, &hash);
         super::reference::store(&r, &scene.name, &hash, &path)?;
         format!("computed and stored the reference in {}", path.display())
     } else {
@@ -413,6 +515,8 @@ pub struct Trial {
 #[derive(Clone, Debug)]
 pub struct Measured {
     pub headline_error: f64,
+    /// Against the reference's windowed means, where it has them.
+    pub mean_error: Option<f64>,
     pub history_error: f64,
     pub wall_s: f64,
     pub steps: usize,
@@ -475,12 +579,20 @@ pub fn trials(
 /// One run of the grid, scored against the reference.
 pub fn trial(scene: &Scene, plan: &Plan, reference: &Reference, point: GridPoint) -> Trial {
     let scene = with_mesh(scene, point.elements, point.order, point.model);
-    let over = overrides(point.method, point.rtol, plan.max_steps);
+    let mut over = overrides(point.method, point.rtol, plan.max_steps);
+    if reference.means.is_some() {
+        over = with_means(over);
+    }
     let outcome = run::run(&scene, &over, false)
         .and_then(|r| {
             let wall_s = mean_wall(&scene, &over, r.header().stats.wall_s)?;
             Ok(Measured {
                 headline_error: headline_error(&headlines(&r), &reference.headlines),
+                mean_error: reference
+                    .means
+                    .as_ref()
+                    .zip(windowed_means(&r))
+                    .map(|(m, values)| mean_error(values, m)),
                 history_error: history_error(&history(&r), &reference.history),
                 wall_s,
                 steps: r.header().stats.steps,
@@ -503,11 +615,38 @@ fn mean_wall(scene: &Scene, over: &Overrides, first: f64) -> Result<f64, Error> 
     Ok(total / count as f64)
 }
 
+/// What a diagram scores a run by.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Score {
+    /// The headlines: the probes' extremes on a beam, the disk's end and contact on a curve.
+    Headlines,
+    /// The probes' windowed means, where the reference has them.
+    Means,
+}
+
+impl Score {
+    pub fn of(self, m: &Measured) -> Option<f64> {
+        match self {
+            Score::Headlines => Some(m.headline_error),
+            Score::Means => m.mean_error,
+        }
+    }
+}
+
 /// The fastest trial whose headline error is within `target`.
 pub fn cheapest(trials: &[Trial], target: f64) -> Option<&Trial> {
+    cheapest_in(trials, target, Score::Headlines)
+}
+
+/// The fastest trial whose error in `score` is within `target`.
+pub fn cheapest_in(trials: &[Trial], target: f64, score: Score) -> Option<&Trial> {
     trials
         .iter()
-        .filter(|t| t.outcome.as_ref().is_ok_and(|m| m.headline_error <= target))
+        .filter(|t| {
+            t.outcome
+                .as_ref()
+                .is_ok_and(|m| score.of(m).is_some_and(|e| e <= target))
+        })
         .min_by(|a, b| {
             let wall = |t: &Trial| t.outcome.as_ref().map_or(f64::INFINITY, |m| m.wall_s);
             wall(a).total_cmp(&wall(b))
@@ -538,7 +677,7 @@ pub fn write_tradeoff(
 ) -> Result<Vec<String>, Error> {
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
     let mut csv = String::from(
-        "method,rtol,elements,order,model,status,headline_error,history_error,wall_s,steps,rejected,rhs_evals\n",
+        "method,rtol,elements,order,model,status,headline_error,history_error,wall_s,steps,rejected,rhs_evals,mean_error\n",
     );
     for t in trials {
         let p = &t.point;
@@ -548,7 +687,7 @@ pub fn write_tradeoff(
         let _ = match &t.outcome {
             Ok(m) => writeln!(
                 csv,
-                "{},{:e},{mesh},{order},{model},ok,{:e},{:e},{},{},{},{}",
+                "{},{:e},{mesh},{order},{model},ok,{:e},{:e},{},{},{},{},{}",
                 p.method.name(),
                 p.rtol,
                 m.headline_error,
@@ -556,11 +695,12 @@ pub fn write_tradeoff(
                 m.wall_s,
                 m.steps,
                 m.rejected,
-                m.rhs_evals
+                m.rhs_evals,
+                m.mean_error.map_or(String::new(), |e| format!("{e:e}"))
             ),
             Err(e) => writeln!(
                 csv,
-                "{},{:e},{mesh},{order},{model},\"failed: {}\",,,,,,",
+                "{},{:e},{mesh},{order},{model},\"failed: {}\",,,,,,,",
                 p.method.name(),
                 p.rtol,
                 e.replace('"', "'")
@@ -568,7 +708,7 @@ pub fn write_tradeoff(
         };
     }
     write(&dir.join("tradeoff.csv"), &csv)?;
-    diagram(scene, trials, &dir.join("tradeoff.svg"))?;
+    diagram(scene, trials, Score::Headlines, &dir.join("tradeoff.svg"))?;
     let mesh = match (reference.elements, reference.mesh_gap) {
         (None, _) => String::new(),
         (Some(_), Some(gap)) => format!(", and lie {gap:.1e} from a mesh twice as fine"),
@@ -589,24 +729,33 @@ pub fn write_tradeoff(
         reference.wall_s,
         reference.settled_to,
     )];
-    for target in TARGETS {
-        lines.push(match cheapest(trials, target) {
-            _ if target < reference.resolves() => format!(
-                "{target:.0e}: below what the reference resolves ({:.1e})",
-                reference.resolves()
-            ),
-            Some(t) => {
-                let m = t.outcome.as_ref().expect("cheapest is a finished run");
-                format!(
-                    "{target:.0e}: {} — error {:.1e}, {:.2e} s, {} steps",
-                    t.settings(),
-                    m.headline_error,
-                    m.wall_s,
-                    m.steps
-                )
-            }
-            None => format!("{target:.0e}: no setting tried reaches it"),
-        });
+    lines.extend(cheapest_lines(
+        trials,
+        Score::Headlines,
+        reference.resolves(),
+        "",
+    ));
+    if let Some(means) = &reference.means {
+        lines.push(format!(
+            "windowed means' reference: {}, rtol {:.0e}{} ({:.2} s): resolves {:.1e} (a tenfold cut of rtol, and a mesh half as fine)",
+            means.method.name(),
+            means.rtol,
+            means
+                .elements
+                .map_or(String::new(), |n| format!(", {n} elements")),
+            means.wall_s,
+            means.resolves,
+        ));
+        lines.extend(cheapest_lines(
+            trials,
+            Score::Means,
+            means.resolves,
+            "in the windowed means ",
+        ));
+        diagram(scene, trials, Score::Means, &dir.join("tradeoff-means.svg"))?;
+    } else {
+        // A means diagram from an earlier run would otherwise pass for this one's.
+        let _ = std::fs::remove_file(dir.join("tradeoff-means.svg"));
     }
     let mut summary = String::new();
     for l in &lines {
@@ -616,13 +765,37 @@ pub fn write_tradeoff(
     Ok(lines)
 }
 
-/// Headline error against wall time, log–log, a line per method, mesh, degree and model.
-fn diagram(scene: &Scene, trials: &[Trial], path: &Path) -> Result<(), Error> {
+/// The cheapest setting for each of [`TARGETS`] in `score`, a line each.
+fn cheapest_lines(trials: &[Trial], score: Score, resolves: f64, what: &str) -> Vec<String> {
+    TARGETS
+        .iter()
+        .map(|&target| match cheapest_in(trials, target, score) {
+            _ if target < resolves => {
+                format!("{what}{target:.0e}: below what the reference resolves ({resolves:.1e})")
+            }
+            Some(t) => {
+                let m = t.outcome.as_ref().expect("cheapest is a finished run");
+                format!(
+                    "{what}{target:.0e}: {} — error {:.1e}, {:.2e} s, {} steps",
+                    t.settings(),
+                    score.of(m).expect("cheapest has the score"),
+                    m.wall_s,
+                    m.steps
+                )
+            }
+            None => format!("{what}{target:.0e}: no setting tried reaches it"),
+        })
+        .collect()
+}
+
+/// Error in `score` against wall time, log–log, a line per method, mesh, degree and model.
+fn diagram(scene: &Scene, trials: &[Trial], score: Score, path: &Path) -> Result<(), Error> {
     let err =
         |e: &dyn std::fmt::Display| Error::Output(format!("cannot draw {}: {e}", path.display()));
     let mut lines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
     for t in trials {
         let Ok(m) = &t.outcome else { continue };
+        let Some(error) = score.of(m) else { continue };
         let p = &t.point;
         let mut name = match (p.elements, p.order) {
             (Some(n), Some(k)) => format!("{} ({n} el. p{k})", p.method.name()),
@@ -632,7 +805,7 @@ fn diagram(scene: &Scene, trials: &[Trial], path: &Path) -> Result<(), Error> {
         if let Some(m) = p.model {
             name = format!("{name} {}", model_label(m));
         }
-        let point = (m.wall_s.max(1e-5), m.headline_error.max(1e-12));
+        let point = (m.wall_s.max(1e-5), error.max(1e-12));
         match lines.iter_mut().find(|(n, _)| *n == name) {
             Some((_, pts)) => pts.push(point),
             None => lines.push((name, vec![point])),
@@ -654,7 +827,10 @@ fn diagram(scene: &Scene, trials: &[Trial], path: &Path) -> Result<(), Error> {
     crate::output::plots::svg(path, (900, 600), |root| {
         let mut chart = ChartBuilder::on(root)
             .caption(
-                format!("{}: work–precision", scene.name),
+                match score {
+                    Score::Headlines => format!("{}: work–precision", scene.name),
+                    Score::Means => format!("{}: work–precision in the windowed means", scene.name),
+                },
                 ("sans-serif", 22),
             )
             .margin(12)
@@ -670,7 +846,10 @@ fn diagram(scene: &Scene, trials: &[Trial], path: &Path) -> Result<(), Error> {
         chart
             .configure_mesh()
             .x_desc("wall time (s)")
-            .y_desc("headline error (relative)")
+            .y_desc(match score {
+                Score::Headlines => "headline error (relative)",
+                Score::Means => "error in the windowed means (relative)",
+            })
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .x_label_formatter(&|v| format!("{v:.0e}"))
             .draw()
@@ -731,6 +910,11 @@ pub struct TradeoffArgs {
     /// `references/` beside the scene file.
     #[arg(long)]
     reference: bool,
+    /// Make the probes' windowed means a reference (ESDIRK4 at rtol 1e-5 on twice the finest
+    /// mesh, checked at 1e-4 and on the finest) and store it with the scene's reference; the
+    /// diagram is then also drawn in the means (tradeoff-means.svg).
+    #[arg(long)]
+    reference_means: bool,
 }
 
 /// What a work–precision run may be told, beside the scene: empty lists keep the defaults.
@@ -744,6 +928,8 @@ pub struct TradeoffOptions {
     pub max_steps: Option<usize>,
     /// Compute the reference again and store it beside the scene file.
     pub recompute: bool,
+    /// Make the windowed means' reference and store it with the scene's reference.
+    pub recompute_means: bool,
 }
 
 impl TradeoffOptions {
@@ -823,15 +1009,35 @@ pub fn run_tradeoff(
     show_progress: bool,
 ) -> Result<(Vec<Trial>, Vec<String>), Error> {
     let plan = options.plan(scene)?;
-    let (reference, origin) = match file {
+    let (mut reference, origin) = match file {
         Some(file) => reference_for(scene, file, &plan, options.recompute, made_by)?,
         None => (
             reference(scene, &plan, made_by)?,
             "computed the reference (a scene without a file has no stored one)".to_string(),
         ),
     };
-    let trials = trials(scene, &plan, &reference, show_progress);
     let mut lines = vec![origin];
+    if options.recompute_means {
+        let Some(file) = file else {
+            return Err(Error::Input(
+                "windowed means' references are stored beside a scene file; this scene has none"
+                    .into(),
+            ));
+        };
+        say!("{}: computing the windowed means' reference…", scene.name);
+        // `made_by` is the command that makes the headlines' reference; the means' is the
+        // same command asking for them instead.
+        let means_by = made_by.replacen(" --reference", " --reference-means", 1);
+        let means = means_reference(scene, &plan, &means_by)?;
+        let path = super::reference::stored_path(file, &scene.name);
+        super::reference::store_means(&means, &super::reference::scene_hash(file)?, &path)?;
+        lines.push(format!(
+            "computed and stored the windowed means' reference in {}",
+            path.display()
+        ));
+        reference.means = Some(means);
+    }
+    let trials = trials(scene, &plan, &reference, show_progress);
     lines.extend(write_tradeoff(scene, &reference, &trials, dir)?);
     Ok((trials, lines))
 }
@@ -848,6 +1054,7 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
         models,
         max_steps,
         reference: recompute,
+        reference_means: recompute_means,
     } = args;
     let scene = Scene::load(&path)?;
     let options = TradeoffOptions {
@@ -858,12 +1065,14 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
         models,
         max_steps,
         recompute,
+        recompute_means,
     };
     // The command that stores the reference: this one, asked to compute it again.
     let mut made_by = std::iter::once("rollbeam".to_string())
         .chain(std::env::args().skip(1))
         .collect::<Vec<_>>()
         .join(" ");
+    made_by = made_by.replace(" --reference-means", "");
     if !recompute {
         made_by.push_str(" --reference");
     }

@@ -295,6 +295,11 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             },
         );
         let t_stop = first.map_or(t_new, |(_, te)| te);
+        observer.span(self.t, t_stop, &|t| {
+            let mut y = vec![0.0; p.dim()];
+            stepper.interpolate(t, &mut y);
+            y
+        });
         while self.next_out < self.outputs.len() && self.outputs[self.next_out] <= t_stop {
             let to = self.outputs[self.next_out];
             stepper.interpolate(to, y_tmp);

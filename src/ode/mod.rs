@@ -308,6 +308,9 @@ impl std::error::Error for SolveError {}
 pub trait Observer {
     fn output(&mut self, t: f64, y: &[f64]);
     fn step(&mut self, _t: f64, _y: &[f64]) {}
+    /// The accepted step from t0 to t1 as its dense output, y(t) for t in [t0, t1]: for what
+    /// integrates over time, which the output grid would alias.
+    fn span(&mut self, _t0: f64, _t1: f64, _dense: &dyn Fn(f64) -> Vec<f64>) {}
 }
 
 /// Step outcome of one attempt by a stepper.

@@ -111,6 +111,10 @@ pub struct Overrides {
     /// Keep the animation's frames (`--animate`, and the studies): up to [`beam::FRAMES`]
     /// copies of the beam's displaced samples, which a run that draws no animation never reads.
     pub animate: bool,
+    /// Record the probes' windowed means (`BeamRun::windowed_means`), for `tradeoff` where its
+    /// reference has them: three dense-output evaluations a step that a run scored otherwise
+    /// would pay for nothing (a third more time on the bridge, more with a train).
+    pub windowed_means: bool,
 }
 
 impl Overrides {

@@ -18,7 +18,8 @@ pub use acceleration::CutoffReport;
 use flight::{BeneathFlight, FlightEvent, FlyingDisk};
 use ledger::Ledger;
 use phase::Phase;
-use sensors::{History, Pictures, Sample};
+pub use sensors::MEAN_WINDOWS;
+use sensors::{History, Pictures, Sample, WindowedMeans};
 
 use super::{FlightRecord, Overrides, Progress, RunHeader, Stop, MAX_FLIGHTS};
 use crate::analysis::modes::modes;
@@ -112,6 +113,10 @@ pub struct BeamRun {
     /// with the disk's contact point and turned angle while it is on the beam: the animation.
     /// Empty unless [`Overrides::animate`] asked for them.
     pub frames: Vec<Frame>,
+    /// Each probe's Hann-windowed mean deflection over [`MEAN_WINDOWS`] equal windows of the
+    /// run, probe-major, for the windows the run covered whole: a headline the fast modes'
+    /// phase leaves alone. Empty unless [`Overrides::windowed_means`] asked for them.
+    pub windowed_means: Vec<f64>,
     /// When the disk left the beam, if it did.
     pub left_track_t: Option<f64>,
     /// The disk's flights over the beam.
@@ -153,6 +158,7 @@ struct Recorder<'a> {
     history: History<'a>,
     envelope: Envelope,
     pictures: Pictures<'a>,
+    means: Option<WindowedMeans>,
     progress: Option<Progress>,
 }
 
@@ -192,6 +198,23 @@ impl Observer for Recorder<'_> {
             p.update(t);
         }
     }
+
+    fn span(&mut self, t0: f64, t1: f64, dense: &dyn Fn(f64) -> Vec<f64>) {
+        let (phase, history) = (&self.phase, &self.history);
+        let Some(means) = &mut self.means else {
+            return;
+        };
+        means.record_span(t0, t1, |t| {
+            let y = dense(t);
+            let (disk, _) = phase.disk(t, &y);
+            let q = phase.displaced(t, &y, disk.as_ref());
+            history
+                .probes
+                .iter()
+                .map(|p| history.beam.displacement_at(&q, p.x).w)
+                .collect()
+        });
+    }
 }
 
 /// Hands the recorder the reduced state (q, s; v, ṡ) of the literal thesis system.
@@ -208,6 +231,10 @@ impl Observer for Literal<'_, '_> {
     fn step(&mut self, t: f64, y: &[f64]) {
         let r = self.sys.reduced(t, y);
         self.rec.step(t, &r);
+    }
+    fn span(&mut self, t0: f64, t1: f64, dense: &dyn Fn(f64) -> Vec<f64>) {
+        let sys = self.sys;
+        self.rec.span(t0, t1, &|t| sys.reduced(t, &dense(t)));
     }
 }
 
@@ -734,6 +761,9 @@ pub fn run(
             frames: Vec::new(),
             turned: (0.0, setup.disk.as_ref().map_or(0.0, |d| d.omega0), 0.0),
         },
+        means: over
+            .windowed_means
+            .then(|| WindowedMeans::new(scene.duration, setup.probes.len())),
         progress: if show_progress {
             Progress::new(scene.duration)
         } else {
@@ -865,6 +895,7 @@ pub fn run(
         envelope: rec.envelope,
         shapes: rec.pictures.shapes,
         frames: rec.pictures.frames,
+        windowed_means: rec.means.map_or_else(Vec::new, |m| m.means()),
         left_track_t,
         flights,
         y_end,
