@@ -8,8 +8,11 @@
 mod common;
 
 use common::{changed, load, Set};
+use rollbeam::commands::reference::{self, Stored};
 use rollbeam::commands::tradeoff::{self, Plan, Trial, REFERENCE_SETTLED};
 use rollbeam::ode::Method;
+use rollbeam::run::{self, Overrides};
+use rollbeam::scene::{Model, Scene};
 
 fn errors(trials: &[Trial], method: Method) -> Vec<(f64, f64, usize)> {
     trials
@@ -218,7 +221,6 @@ fn work_precision_sweeps_the_element_degree() {
 #[test]
 fn a_grid_cut_for_time_keeps_its_reference_tight() {
     use rollbeam::commands::studies;
-    use rollbeam::scene::Scene;
 
     for file in studies::scene_files(&common::studies_dir()).expect("the studies folder") {
         let scene = Scene::load(&file).expect("a valid study");
@@ -232,6 +234,26 @@ fn a_grid_cut_for_time_keeps_its_reference_tight() {
         assert!(start <= tightest / 10.0 * (1.0 + 1e-9), "{}", scene.name);
         assert!(start <= 1e-6 * (1.0 + 1e-9), "{}", scene.name);
     }
+}
+
+/// Each study, its grid's plan, and what loading its stored reference found: the reference
+/// `rollbeam studies` scores its diagram against.
+fn stored_references() -> Vec<(Scene, Plan, Stored)> {
+    use rollbeam::commands::studies;
+    let files = studies::scene_files(&common::studies_dir()).expect("the studies folder");
+    files
+        .into_iter()
+        .map(|file| {
+            let scene = Scene::load(&file).expect("a valid study");
+            let plan = studies::study_plan(&scene);
+            let path = reference::stored_path(&file, &scene.name);
+            let hash = reference::scene_hash(&file).expect("a readable scene");
+            let method = tradeoff::reference_method(&scene);
+            let order = scene.beam().map(|b| b.beam.order);
+            let stored = reference::load(&path, &hash, &plan, method, order);
+            (scene, plan, stored)
+        })
+        .collect()
 }
 
 /// Every stored work–precision reference of a study (`studies/references/`, what
@@ -254,23 +276,12 @@ fn a_grid_cut_for_time_keeps_its_reference_tight() {
 /// stale: `rollbeam studies --references` makes them again.
 #[test]
 fn stored_references_serve_and_reproduce() {
-    use rollbeam::commands::reference::{self, Stored};
-    use rollbeam::commands::studies;
-    use rollbeam::run::{self, Overrides};
-    use rollbeam::scene::{Model, Scene};
-
-    let files = studies::scene_files(&common::studies_dir()).expect("the studies folder");
-    for file in files {
-        let scene = Scene::load(&file).expect("a valid study");
-        let plan = studies::study_plan(&scene);
-        let path = reference::stored_path(&file, &scene.name);
-        let hash = reference::scene_hash(&file).expect("a readable scene");
+    for (scene, _, stored) in stored_references() {
         let method = tradeoff::reference_method(&scene);
-        let scene_order = scene.beam().map(|b| b.beam.order);
-        let stored = match reference::load(&path, &hash, &plan, method, scene_order) {
+        let stored = match stored {
             Stored::Usable(r) => r,
             Stored::Missing => {
-                eprintln!("{}: no stored reference at {}", scene.name, path.display());
+                eprintln!("{}: no stored reference", scene.name);
                 continue;
             }
             Stored::Stale(why) => panic!("{}: {why}", scene.name),
@@ -365,20 +376,9 @@ fn stored_references_serve_and_reproduce() {
 /// makes the target reachable, not the runs.
 #[test]
 fn stored_windowed_means_are_reached_within_1e_6() {
-    use rollbeam::commands::reference::{self, Stored};
-    use rollbeam::commands::studies;
-    use rollbeam::run::{self, Overrides};
-    use rollbeam::scene::{Model, Scene};
-
     let mut scored = 0;
-    for file in studies::scene_files(&common::studies_dir()).expect("the studies folder") {
-        let scene = Scene::load(&file).expect("a valid study");
-        let plan = studies::study_plan(&scene);
-        let path = reference::stored_path(&file, &scene.name);
-        let hash = reference::scene_hash(&file).expect("a readable scene");
-        let method = tradeoff::reference_method(&scene);
-        let order = scene.beam().map(|b| b.beam.order);
-        let Stored::Usable(stored) = reference::load(&path, &hash, &plan, method, order) else {
+    for (scene, plan, stored) in stored_references() {
+        let Stored::Usable(stored) = stored else {
             continue;
         };
         let Some(means) = stored.means else { continue };

@@ -354,18 +354,18 @@ pub fn windowed_means(r: &Run) -> Option<&[f64]> {
 /// The means' reference for a beam scene: ESDIRK4 at [`MEANS_RTOL`] on twice the plan's finest
 /// mesh, checked at a tenfold rtol and on the finest mesh.
 pub fn means_reference(scene: &Scene, plan: &Plan, made_by: &str) -> Result<MeansReference, Error> {
-    let finest = plan
-        .meshes
-        .iter()
-        .copied()
-        .max()
-        .or(scene.beam().map(|b| b.beam.elements));
-    let Some(finest) = finest.filter(|_| scene.beam().is_some()) else {
+    let Some(beam) = scene.beam() else {
         return Err(Error::Input(format!(
             "{}: windowed means are a beam's headline; the scene has no beam",
             scene.name
         )));
     };
+    let finest = plan
+        .meshes
+        .iter()
+        .copied()
+        .max()
+        .unwrap_or(beam.beam.elements);
     let method = Method::Esdirk4;
     let run_on = |elements: usize, rtol: f64| {
         let s = with_mesh(scene, Some(elements), plan.reference_order(), None);
