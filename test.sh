@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 # Built without the release profile's whole-program optimisation, which gives every test
 # binary and the Python extension a link-time pass of the whole program: on a slow day
-# (2026-11-26) the build took 4.5–5 minutes instead of 10, the tests 845–876 s instead of 673.
+# (2026-11-26) the build took 4.5–6 minutes instead of 10, the tests 845–899 s instead of 673.
 export CARGO_PROFILE_RELEASE_LTO=false
 cargo test --release
 venv=target/python-venv
