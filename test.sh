@@ -7,7 +7,7 @@ cd "$(dirname "$0")"
 # binary and the Python extension a link-time pass of the whole program: on a slow day
 # (2026-11-26) the build took 4.5–6 minutes instead of 10, the tests 845–899 s instead of 673.
 export CARGO_PROFILE_RELEASE_LTO=false
-cargo test --release
+cargo test --release --workspace
 venv=target/python-venv
 rm -rf "$venv"
 python3 -m venv "$venv"
