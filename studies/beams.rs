@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{changed, load, parse, run_beam, Set};
+use common::{changed, hann_mean, load, parse, run_beam, Set};
 use rollbeam::ode::Method;
 use rollbeam::run::beam::BeamRun;
 use rollbeam::scene::Scene;
@@ -51,29 +51,34 @@ fn peak(r: &BeamRun) -> f64 {
 
 /// Kinetic + strain − work of the loads is constant for the undamped beam. With ρ∞ = 1 the
 /// scheme conserves the energy of a linear system exactly, so what drifts comes from the
-/// geometric nonlinearity and the Newton tolerance, both of which shrink with the step: ≤ 1e-6
-/// at rtol 1e-8, and falling with rtol (measured slopes 1.3–1.6 per decade, faster than the
-/// tol^{2/3} of the displacement error itself).
+/// geometric nonlinearity and the Newton tolerance, both of which shrink with the step: the
+/// drift stays below the tolerance itself at rtol 1e-7, and falls with rtol (measured slopes
+/// 1.3–1.6 per decade, faster than the tol^{2/3} of the displacement error itself; C2, the
+/// largest, drifts 1.6·10⁻⁵ at 1e-5 and 1.3·10⁻⁸ at 1e-7).
 /// The sudden load excites the beam's thickness-shear motion (√(GAv/ρI) ≈ 9·10⁵ rad/s), which a
 /// tolerance this tight must follow, so each study is checked over a window that keeps CI
 /// short: the first 0.2 s of B1–B3 (three periods of the first mode) and 0.9–1.1 s beyond the
-/// removal of the load for C1–C3 (full runs in REPORT.md).
+/// removal of the load for C1–C3 (full runs in REPORT.md). The pair of tolerances was 1e-6 and
+/// 1e-8 (drifts 3·10⁻¹¹–3·10⁻¹⁰ at 1e-8); a decade looser halves the test's three minutes.
 #[test]
 fn energy_balance_every_study() {
     for name in STUDIES {
         let duration = if name.starts_with("beam") { 0.2 } else { 1.1 };
         let scene = modified(name, duration, 1.0, None, None);
-        let tight = run_beam(&scene, Method::GenAlpha, 1e-8, 1e-12)
+        let (tight_rtol, loose_rtol) = (1e-7, 1e-5);
+        let tight = run_beam(&scene, Method::GenAlpha, tight_rtol, tight_rtol * 1e-4)
             .header
             .energy
             .max_rel_drift();
-        let loose = run_beam(&scene, Method::GenAlpha, 1e-6, 1e-10)
+        let loose = run_beam(&scene, Method::GenAlpha, loose_rtol, loose_rtol * 1e-4)
             .header
             .energy
             .max_rel_drift();
         let slope = (loose / tight).log10() / 2.0;
-        eprintln!("{name}: drift {loose:.2e} at rtol 1e-6, {tight:.2e} at 1e-8: slope {slope:.2}");
-        assert!(tight <= 1e-6, "{name}: drift {tight:.2e}");
+        eprintln!(
+            "{name}: drift {loose:.2e} at rtol {loose_rtol:.0e}, {tight:.2e} at {tight_rtol:.0e}: slope {slope:.2}"
+        );
+        assert!(tight <= tight_rtol, "{name}: drift {tight:.2e}");
         assert!(
             slope > 0.4,
             "{name}: drift does not fall with rtol ({loose:.2e} → {tight:.2e})"
@@ -156,32 +161,17 @@ fn mesh_convergence_of_the_peak_deflection() {
     }
 }
 
-/// The tip's mean deflection under the load, weighted by a Hann window over the loaded second
-/// (w̄ = ∫ w h dt / ∫ h dt, h = sin²(π t / T)): the vibration about the static shape, whose
-/// phase at any moment depends on the mesh's frequencies, averages out to a part in 10⁶
-/// (the window's leakage falls as the cube of the frequency, and the first mode makes some 30
-/// periods), which leaves the mesh's static flexibility: a well-conditioned headline.
-fn loaded_mean(r: &BeamRun, until: f64) -> f64 {
-    let (mut num, mut den) = (0.0, 0.0);
-    for pair in r.rows.windows(2).filter(|p| p[1].t <= until + 1e-12) {
-        let h = |t: f64| (std::f64::consts::PI * t / until).sin().powi(2);
-        let dt = pair[1].t - pair[0].t;
-        num += 0.5 * dt * (h(pair[0].t) * pair[0].probes[0].w + h(pair[1].t) * pair[1].probes[0].w);
-        den += 0.5 * dt * (h(pair[0].t) + h(pair[1].t));
-    }
-    num / den
-}
-
 /// Mesh convergence of the cantilevers (C1–C3): the windowed mean tip deflection under the load
-/// ([`loaded_mean`]) with linear elements (p = 1, reduced integration) on 4, 8 and 16 elements
-/// against p = 4 on 16, at the study's time settings. Linear Timoshenko elements with reduced
-/// integration converge at order 2 in the displacements; the test asks for a measured order
-/// above 1.8.
+/// ([`hann_mean`]; the first mode makes some 30 periods in the window, so its vibration
+/// averages out to a part in 10⁶) with linear elements (p = 1, reduced integration) on 4, 8
+/// and 16 elements against p = 4 on 16, at the study's time settings. Linear Timoshenko
+/// elements with reduced integration converge at order 2 in the displacements; the test asks
+/// for a measured order above 1.8.
 #[test]
 fn mesh_convergence_of_the_cantilevers_mean_deflection() {
     for name in ["cantilever-c1", "cantilever-c2", "cantilever-c3"] {
         let until = 1.0;
-        let reference = loaded_mean(
+        let reference = hann_mean(
             &run_beam(
                 &modified(name, until, 0.8, Some(16), Some(4)),
                 Method::GenAlpha,
@@ -199,7 +189,7 @@ fn mesh_convergence_of_the_cantilevers_mean_deflection() {
                     1e-6,
                     1e-12,
                 );
-                (loaded_mean(&r, until) / reference - 1.0).abs()
+                (hann_mean(&r, until) / reference - 1.0).abs()
             })
             .collect();
         let orders: Vec<f64> = errors.windows(2).map(|e| (e[0] / e[1]).log2()).collect();

@@ -5,7 +5,7 @@ mod common;
 
 use std::f64::consts::PI;
 
-use common::{changed, load, log_slope, run_beam, studies_dir, Set};
+use common::{changed, hann_mean, load, log_slope, run_beam, studies_dir, Set};
 use rollbeam::coupling::Coupling;
 use rollbeam::ode::Method;
 use rollbeam::plan::Planner;
@@ -579,27 +579,14 @@ fn patch_width_from_the_section_and_its_shear_kink() {
     assert!(d.deflection < 1e-3 && d.kink_angle < 1e-4, "{d:?}");
 }
 
-/// The Hann-windowed mean of the first probe's deflection over [0, until]: the vibration the
-/// crossing leaves on top of the moving valley averages out (see `beams.rs`, `loaded_mean`).
-fn windowed_mean(r: &BeamRun, until: f64) -> f64 {
-    let (mut num, mut den) = (0.0, 0.0);
-    let h = |t: f64| (PI * t / until).sin().powi(2);
-    for pair in r.rows.windows(2).filter(|p| p[1].t <= until + 1e-12) {
-        let dt = pair[1].t - pair[0].t;
-        num += 0.5 * dt * (h(pair[0].t) * pair[0].probes[0].w + h(pair[1].t) * pair[1].probes[0].w);
-        den += 0.5 * dt * (h(pair[0].t) + h(pair[1].t));
-    }
-    num / den
-}
-
 /// Mesh convergence of the rubber beam and the zip-line (issue 15): the Hann-windowed mean of
 /// the midspan deflection over the crossing (the rubber until 1.5 s, before the disk lifts off
 /// at 1.61 s; the zip-line until 3.4 s, before the disk leaves the rope at 3.5 s), under
 /// h-refinement at a fixed degree against degree 4 on the finest mesh, at rtol 10⁻⁷ so that
 /// time errors stay below the smallest mesh error. Lagrange elements of degree p converge at
 /// order p + 1 in the displacements: the zip-line with p = 2 on 8, 16, 32 elements (measured
-/// orders 5.1 and 3.9, the first pair still pre-asymptotic), the rubber beam with p = 3 on 5,
-/// 10, 20 (3.1 and 4.2; with p = 2 its errors stall near 3·10⁻⁵, the level at which the
+/// orders 5.1 and 4.0, the first pair still pre-asymptotic), the rubber beam with p = 3 on 5,
+/// 10, 20 (3.3 and 4.9; with p = 2 its errors stall near 3·10⁻⁵, the level at which the
 /// disk's contact patch over the strongly sheared beam is resolved). Each measured order must
 /// exceed 2.8, and the finer pair's p + 0.5.
 #[test]
@@ -618,7 +605,7 @@ fn mesh_convergence_of_the_rubber_beam_and_the_zipline() {
                     Set::LeftOut("output.shapes"),
                 ],
             );
-            windowed_mean(&run_beam(&scene, Method::GenAlpha, 1e-7, 1e-11), until)
+            hann_mean(&run_beam(&scene, Method::GenAlpha, 1e-7, 1e-11), until)
         };
         let reference = mean(fine, 4);
         let errors: Vec<f64> = meshes

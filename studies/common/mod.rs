@@ -156,3 +156,19 @@ pub fn midspan_against_fryba(r: &BeamRun) -> (f64, f64) {
     let series = fryba_bridge();
     midspan_against(r, |t| series.deflection(10.0, t, 301))
 }
+
+/// The first probe's deflection averaged over [0, until] under a Hann window
+/// (w̄ = ∫ w h dt / ∫ h dt, h = sin²(π t / until)): the vibration about the slowly varying
+/// response, whose phase at any moment depends on the mesh's frequencies, averages out (the
+/// window's leakage falls as the cube of the frequency), which leaves the mesh's static
+/// flexibility: a well-conditioned headline where the peak is not.
+pub fn hann_mean(r: &BeamRun, until: f64) -> f64 {
+    let h = |t: f64| (std::f64::consts::PI * t / until).sin().powi(2);
+    let (mut num, mut den) = (0.0, 0.0);
+    for pair in r.rows.windows(2).filter(|p| p[1].t <= until + 1e-12) {
+        let dt = pair[1].t - pair[0].t;
+        num += 0.5 * dt * (h(pair[0].t) * pair[0].probes[0].w + h(pair[1].t) * pair[1].probes[0].w);
+        den += 0.5 * dt * (h(pair[0].t) + h(pair[1].t));
+    }
+    num / den
+}
