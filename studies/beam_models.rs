@@ -64,7 +64,9 @@ fn with_model(file: &str, model: &str, more: &[Set]) -> Scene {
 /// (its modes chosen the same way) land within the accuracy of the exact beam. Where it keeps
 /// the beam exact (B1: clamped–pinned, its axis held from both ends, so it stretches as it
 /// bends, and the static indicator measured 6e-4 > 2.5e-4), the linear beam is indeed off by
-/// more than the share of the accuracy the indicator allows.
+/// more than the share of the accuracy the indicator allows. Measured: the modal bridges
+/// 1.6e-4 (D44) and 4.4e-4 (D50) off, the cantilevers' means 1–2e-5 for both reduced models,
+/// B1's linear mean 1.45e-3.
 #[test]
 fn reduced_models_against_exact_on_every_steel_study() {
     for (file, loaded_second) in [
