@@ -63,10 +63,10 @@ fn peak(r: &BeamRun) -> f64 {
 /// test took twice as long.
 #[test]
 fn energy_balance_every_study() {
+    let (tight_rtol, loose_rtol) = (1e-7, 1e-5);
     for name in STUDIES {
         let duration = if name.starts_with("beam") { 0.2 } else { 1.1 };
         let scene = modified(name, duration, 1.0, None, None);
-        let (tight_rtol, loose_rtol) = (1e-7, 1e-5);
         let tight = run_beam(&scene, Method::GenAlpha, tight_rtol, tight_rtol * 1e-4)
             .header
             .energy
