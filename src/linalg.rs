@@ -213,6 +213,32 @@ fn pattern(m: &Sparse) -> (Vec<usize>, Vec<usize>) {
     )
 }
 
+/// target += alpha · src in place, where src's pattern lies within target's: the sum keeps
+/// target's pattern, so a factorisation of it reuses its symbolic analysis, and nothing is
+/// sorted. `false` (target then untouched) where src has an entry outside it.
+pub fn add_within(target: &mut Sparse, src: &Sparse, alpha: f64) -> bool {
+    let (t_ptr, t_rows) = (target.symbolic().col_ptr(), target.symbolic().row_idx());
+    let (s_ptr, s_rows) = (src.symbolic().col_ptr(), src.symbolic().row_idx());
+    let mut at = Vec::with_capacity(s_rows.len());
+    for j in 0..src.ncols() {
+        let mut k = t_ptr[j];
+        for &i in &s_rows[s_ptr[j]..s_ptr[j + 1]] {
+            while k < t_ptr[j + 1] && t_rows[k] < i {
+                k += 1;
+            }
+            if k == t_ptr[j + 1] || t_rows[k] != i {
+                return false;
+            }
+            at.push(k);
+        }
+    }
+    let values = target.val_mut();
+    for (&k, v) in at.iter().zip(src.val()) {
+        values[k] += alpha * v;
+    }
+    true
+}
+
 /// Index of entry (i, j) in the stored values of m, if it is in the pattern.
 pub fn position(m: &Sparse, i: usize, j: usize) -> Option<usize> {
     let col_ptr = m.symbolic().col_ptr();
@@ -353,6 +379,42 @@ mod tests {
         s.add(0, 1, 1.0);
         s.add(1, 1, 1.0);
         assert!(SparseLu::factor(&s.build(), None).is_none());
+    }
+
+    /// A sum made in place on a wider pattern equals the one assembled from triplets, entry
+    /// by entry (exactly: each entry is the same two products added in the same order); an
+    /// operand with an entry outside the pattern is refused and leaves the target as it was.
+    #[test]
+    fn add_within_matches_assembly() {
+        let n = 6;
+        let (mut wide, mut narrow, mut outside) =
+            (Assembly::new(n), Assembly::new(n), Assembly::new(n));
+        for i in 0..n {
+            wide.add(i, i, 2.0 + i as f64);
+            narrow.add(i, i, -0.5 * i as f64);
+            if i > 0 {
+                wide.add(i, i - 1, 1.0);
+                wide.add(i - 1, i, 0.25);
+                narrow.add(i, i - 1, 3.0);
+            }
+        }
+        outside.add(0, n - 1, 1.0);
+        let (wide, narrow) = (wide.build(), narrow.build());
+        let mut sum = wide.clone();
+        assert!(add_within(&mut sum, &narrow, 0.3));
+        let mut whole = Assembly::new(n);
+        whole.add_sparse(&wide, 1.0, 0, 0);
+        whole.add_sparse(&narrow, 0.3, 0, 0);
+        let whole = whole.build();
+        for j in 0..n {
+            for i in 0..n {
+                let at = |m: &Sparse| position(m, i, j).map_or(0.0, |k| m.val()[k]);
+                assert_eq!(at(&sum), at(&whole), "({i}, {j})");
+            }
+        }
+        let before = sum.val().to_vec();
+        assert!(!add_within(&mut sum, &outside.build(), 1.0));
+        assert_eq!(sum.val(), &before[..]);
     }
 
     /// The Woodbury solve against the assembled matrix: a tridiagonal A, unsymmetric, plus

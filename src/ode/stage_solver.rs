@@ -180,12 +180,47 @@ pub(crate) fn mass_mul(p: &dyn Dynamics, t: f64, y: &[f64], x: &[f64], out: &mut
     }
 }
 
+/// The union of the patterns of every matrix the iteration matrix has been summed from: the
+/// disk's inertia moves along the beam and a tangent's pattern need not be the mass's, but on
+/// their union every sum has one pattern, and its factorisation one symbolic analysis.
+struct JointPattern(Option<Sparse>);
+
+impl JointPattern {
+    /// Σ c_k A_k on the union pattern, widened first if an A_k has an entry outside it.
+    fn combine(&mut self, parts: &[(&Sparse, f64)]) -> Sparse {
+        if let Some(union) = &self.0 {
+            let mut sum = union.clone();
+            sum.val_mut().fill(0.0);
+            if parts
+                .iter()
+                .all(|&(a, c)| linalg::add_within(&mut sum, a, c))
+            {
+                return sum;
+            }
+        }
+        let n = parts[0].0.nrows();
+        let mut widened = Assembly::new(n);
+        if let Some(union) = &self.0 {
+            widened.add_sparse(union, 0.0, 0, 0);
+        }
+        parts
+            .iter()
+            .for_each(|&(a, c)| widened.add_sparse(a, c, 0, 0));
+        let sum = widened.build();
+        self.0 = Some(sum.clone());
+        sum
+    }
+}
+
 pub(crate) struct StageSolver {
     jac: Option<Tangent>,
     /// The Jacobian was evaluated at the current step start.
     pub jac_fresh: bool,
     /// Factorised M − d h J and the d h it was built for.
     iteration: Option<(f64, SparseLu)>,
+    /// The factorisation is of an earlier Jacobian: only its symbolic analysis serves.
+    iteration_stale: bool,
+    pattern: JointPattern,
     /// Newton contraction estimate carried between solves (Hairer & Wanner IV.8).
     eta: f64,
     f: Vec<f64>,
@@ -200,6 +235,8 @@ impl StageSolver {
             jac: None,
             jac_fresh: false,
             iteration: None,
+            iteration_stale: false,
+            pattern: JointPattern(None),
             eta: 1.0,
             f: vec![0.0; n],
             g: vec![0.0; n],
@@ -220,7 +257,7 @@ impl StageSolver {
             }
         });
         self.jac_fresh = true;
-        self.iteration = None;
+        self.iteration_stale = true;
     }
 
     /// Factorise M(t, y) − d h J unless the factorisation for this d h is at hand.
@@ -232,7 +269,7 @@ impl StageSolver {
         dh: f64,
         ctx: &mut Ctx,
     ) -> Result<(), SolveError> {
-        if matches!(self.iteration, Some((d, _)) if d == dh) {
+        if !self.iteration_stale && matches!(self.iteration, Some((d, _)) if d == dh) {
             return Ok(());
         }
         let jac = self
@@ -242,31 +279,31 @@ impl StageSolver {
         let w = match jac {
             Tangent::Full(jac) => {
                 let n = y.len();
-                let mut w = Assembly::new(n);
-                match p.mass(t, y) {
-                    Some(m) => w.add_sparse(&m, 1.0, 0, 0),
-                    None => (0..n).for_each(|i| w.add(i, i, 1.0)),
-                }
-                w.add_sparse(jac, -dh, 0, 0);
-                w
+                let mass = p.mass(t, y).unwrap_or_else(|| {
+                    let mut identity = Assembly::new(n);
+                    (0..n).for_each(|i| identity.add(i, i, 1.0));
+                    identity.build()
+                });
+                self.pattern.combine(&[(&mass, 1.0), (jac, -dh)])
             }
             Tangent::Structural(k) => {
                 let s = p
                     .second_order()
                     .expect("a structural tangent comes from a structure");
-                let mut w = Assembly::new(s.dim());
-                w.add_sparse(&s.mass(t, &y[..s.dim()]), 1.0, 0, 0);
-                if let Some(c) = s.damping() {
-                    w.add_sparse(&c, dh, 0, 0);
+                let mass = s.mass(t, &y[..s.dim()]);
+                match s.damping() {
+                    Some(c) => self
+                        .pattern
+                        .combine(&[(&mass, 1.0), (&c, dh), (k, dh * dh)]),
+                    None => self.pattern.combine(&[(&mass, 1.0), (k, dh * dh)]),
                 }
-                w.add_sparse(k, dh * dh, 0, 0);
-                w
             }
         };
         ctx.stats.factorizations += 1;
         let previous = self.iteration.take().map(|(_, lu)| lu);
-        let lu = SparseLu::factor(&w.build(), previous).ok_or(SolveError::SingularMatrix { t })?;
+        let lu = SparseLu::factor(&w, previous).ok_or(SolveError::SingularMatrix { t })?;
         self.iteration = Some((dh, lu));
+        self.iteration_stale = false;
         Ok(())
     }
 
