@@ -188,6 +188,37 @@ impl Combination {
     }
 }
 
+/// Σ c_k A_k for any number of operands whose patterns may differ or move (a body's inertia
+/// riding along a beam), on the union of every pattern it has summed: each sum then has one
+/// pattern, and a factorisation of it one symbolic analysis. [`Combination`] is the two-operand
+/// case with fixed patterns, which rescales without looking at the patterns again.
+#[derive(Default)]
+pub struct JointSum(Option<Sparse>);
+
+impl JointSum {
+    /// Σ c_k A_k on the union pattern, widened first if an A_k has an entry outside it.
+    pub fn combine(&mut self, parts: &[(&Sparse, f64)]) -> Sparse {
+        if let Some(union) = &self.0 {
+            let mut sum = union.clone();
+            sum.val_mut().fill(0.0);
+            if parts.iter().all(|&(a, c)| add_within(&mut sum, a, c)) {
+                return sum;
+            }
+        }
+        let n = parts[0].0.nrows();
+        let mut widened = Assembly::new(n);
+        if let Some(union) = &self.0 {
+            widened.add_sparse(union, 0.0, 0, 0);
+        }
+        parts
+            .iter()
+            .for_each(|&(a, c)| widened.add_sparse(a, c, 0, 0));
+        let sum = widened.build();
+        self.0 = Some(sum.clone());
+        sum
+    }
+}
+
 /// One operand's values put in place on the joint pattern, if `m` still has the operand's
 /// `pattern`; `at` says where each of its stored entries goes.
 fn refill(

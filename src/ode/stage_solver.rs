@@ -14,7 +14,7 @@
 //! whose pivoting fills in. On a coupled beam that was most of a step's cost.
 
 use super::{Attempt, Ctx, Dynamics, SolveError, StepEnds, Stepper};
-use crate::linalg::{self, Assembly, Sparse, SparseLu};
+use crate::linalg::{self, Assembly, JointSum, Sparse, SparseLu};
 
 const MAX_NEWTON: usize = 8;
 /// Newton stops when its predicted remaining error is this fraction of the local tolerance.
@@ -180,38 +180,6 @@ pub(crate) fn mass_mul(p: &dyn Dynamics, t: f64, y: &[f64], x: &[f64], out: &mut
     }
 }
 
-/// The union of the patterns of every matrix the iteration matrix has been summed from: the
-/// disk's inertia moves along the beam and a tangent's pattern need not be the mass's, but on
-/// their union every sum has one pattern, and its factorisation one symbolic analysis.
-struct JointPattern(Option<Sparse>);
-
-impl JointPattern {
-    /// Σ c_k A_k on the union pattern, widened first if an A_k has an entry outside it.
-    fn combine(&mut self, parts: &[(&Sparse, f64)]) -> Sparse {
-        if let Some(union) = &self.0 {
-            let mut sum = union.clone();
-            sum.val_mut().fill(0.0);
-            if parts
-                .iter()
-                .all(|&(a, c)| linalg::add_within(&mut sum, a, c))
-            {
-                return sum;
-            }
-        }
-        let n = parts[0].0.nrows();
-        let mut widened = Assembly::new(n);
-        if let Some(union) = &self.0 {
-            widened.add_sparse(union, 0.0, 0, 0);
-        }
-        parts
-            .iter()
-            .for_each(|&(a, c)| widened.add_sparse(a, c, 0, 0));
-        let sum = widened.build();
-        self.0 = Some(sum.clone());
-        sum
-    }
-}
-
 pub(crate) struct StageSolver {
     jac: Option<Tangent>,
     /// The Jacobian was evaluated at the current step start.
@@ -220,7 +188,7 @@ pub(crate) struct StageSolver {
     iteration: Option<(f64, SparseLu)>,
     /// The factorisation is of an earlier Jacobian: only its symbolic analysis serves.
     iteration_stale: bool,
-    pattern: JointPattern,
+    pattern: JointSum,
     /// Newton contraction estimate carried between solves (Hairer & Wanner IV.8).
     eta: f64,
     f: Vec<f64>,
@@ -236,7 +204,7 @@ impl StageSolver {
             jac_fresh: false,
             iteration: None,
             iteration_stale: false,
-            pattern: JointPattern(None),
+            pattern: JointSum::default(),
             eta: 1.0,
             f: vec![0.0; n],
             g: vec![0.0; n],
