@@ -97,6 +97,9 @@ const PACE_WINDOW: usize = 2000;
 /// budgets on runs that do exceed them (ESDIRK4 at 10⁻⁴: 130 000 projected, 47 360 taken).
 const PACE_MARGIN: usize = 4;
 
+/// The controller's safety factor: the next step is this fraction of the one its error
+/// estimate asks for.
+pub(super) const SAFETY: f64 = 0.9;
 /// The step after one on which Newton failed, as a fraction of it.
 const NEWTON_CUT: f64 = 0.5;
 /// The controller's steps stay below this fraction of the last step on which Newton failed:
@@ -272,7 +275,7 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             self.ctx.stats.rejected += 1;
             let q = self.stepper.error_order() as f64;
             let factor = if err.is_finite() {
-                (0.9 * err.powf(-1.0 / (q + 1.0))).clamp(0.2, 1.0)
+                (SAFETY * err.powf(-1.0 / (q + 1.0))).clamp(0.2, 1.0)
             } else {
                 0.2
             };
@@ -348,7 +351,7 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
         } else {
             self.stepper.max_growth()
         };
-        let factor = (0.9 * err.max(1e-10).powf(-1.0 / (q + 1.0))).clamp(0.2, grow);
+        let factor = (SAFETY * err.max(1e-10).powf(-1.0 / (q + 1.0))).clamp(0.2, grow);
         let cap = self.newton_cap.max(h_try);
         self.newton_cap *= NEWTON_CAP_EASING;
         self.stepper.keep_step(h_try, (h_try * factor).min(cap))

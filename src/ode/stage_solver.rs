@@ -12,7 +12,13 @@
 //! (x₁ = b₁ + dh x₂) leaves (M + dh C + dh² K) x₂ = b₂ − dh K b₁: one matrix of the
 //! structure's size to assemble and factorise instead of one twice its size with four blocks,
 //! whose pivoting fills in. On a coupled beam that was most of a step's cost.
+//!
+//! The first block row, q − base_q = dh v, is linear: once a stage's iterate satisfies it, every
+//! Newton update keeps it (b₁ = 0, x₁ = dh x₂). So Newton starts from a guess that satisfies it
+//! and iterates on the velocities alone, and K b₁ is never formed; on a sudden load that product
+//! was a sixth of a run.
 
+use super::driver::SAFETY;
 use super::{Attempt, Ctx, Dynamics, SolveError, StepEnds, Stepper};
 use crate::linalg::{self, Assembly, JointSum, Sparse, SparseLu};
 
@@ -146,10 +152,15 @@ impl<M: DirkMethod> Stepper for Dirk<M> {
         self.s.ends.interpolate(t, out);
     }
 
-    /// Keep the factorised iteration matrix while the step would grow by less than 20 %: a
-    /// refactorisation costs more than the few steps a slightly larger h saves.
+    /// Keep the factorised iteration matrix while the step would grow by less than 20 %, or
+    /// shrink by no more than the controller's safety factor 0.9: a refactorisation costs
+    /// more than the few steps a slightly larger h saves, and a proposal of 0.9 h or more
+    /// comes from an error within tolerance at h, so h itself is expected to pass again. On
+    /// B3 (ESDIRK4, rtol 3·10⁻⁴, 8 elements) the lower bound 1.0 refactorised at 5229 of
+    /// 13 326 steps, 0.9 at 1614 of 12 144 (REPORT.md, "Fewer factorisations, smaller
+    /// matrices").
     fn keep_step(&self, h_old: f64, h_new: f64) -> f64 {
-        if (1.0..=1.2).contains(&(h_new / h_old)) {
+        if (SAFETY..=1.2).contains(&(h_new / h_old)) {
             h_old
         } else {
             h_new
@@ -287,6 +298,13 @@ impl StageSolver {
         ctx: &mut Ctx,
     ) -> bool {
         let n = z.len();
+        let structure = match &self.jac {
+            Some(Tangent::Structural(k)) => Some(k.nrows()),
+            _ => None,
+        };
+        if let Some(m) = structure {
+            kinematic(base, z, dh, m);
+        }
         let mut eta = self.eta.max(f64::EPSILON).powf(0.8);
         let mut prev: Option<f64> = None;
         for k in 0..MAX_NEWTON {
@@ -303,10 +321,16 @@ impl StageSolver {
                 }
             }
             let mut g = std::mem::take(&mut self.g);
-            self.back_substitute(&mut g);
+            match structure {
+                Some(m) => self.velocity_correction(&mut g, m),
+                None => self.back_substitute(&mut g),
+            }
             self.g = g;
             for i in 0..n {
                 z[i] += self.g[i];
+            }
+            if let Some(m) = structure {
+                kinematic(base, z, dh, m);
             }
             let norm = ctx.norm(&self.g, z, z);
             if !norm.is_finite() {
@@ -332,6 +356,17 @@ impl StageSolver {
         false
     }
 
+    /// x ← (M − d h J)⁻¹ x on a structure's factorisation where x₁ = 0 (an iterate that
+    /// satisfies the kinematic row): x₂ from the reduced matrix, x₁ = d h x₂.
+    fn velocity_correction(&self, x: &mut [f64], m: usize) {
+        let (dh, lu) = self.iteration.as_ref().expect("factorised before use");
+        let (x1, x2) = x.split_at_mut(m);
+        lu.solve_in_place(x2);
+        for (a, b) in x1.iter_mut().zip(x2.iter()) {
+            *a = dh * b;
+        }
+    }
+
     /// x ← (M − d h J)⁻¹ x on the current factorisation.
     pub fn back_substitute(&self, x: &mut [f64]) {
         let (dh, lu) = self.iteration.as_ref().expect("factorised before use");
@@ -352,5 +387,13 @@ impl StageSolver {
             }
             _ => lu.solve_in_place(x),
         }
+    }
+}
+
+/// q = base_q + d h v: the stage's kinematic row, which a structure's iterate is kept on.
+fn kinematic(base: &[f64], z: &mut [f64], dh: f64, m: usize) {
+    let (q, v) = z.split_at_mut(m);
+    for ((q, b), v) in q.iter_mut().zip(&base[..m]).zip(v.iter()) {
+        *q = b + dh * v;
     }
 }
