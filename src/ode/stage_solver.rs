@@ -18,6 +18,8 @@
 //! and iterates on the velocities alone, and K b₁ is never formed; on a sudden load that product
 //! was a sixth of a run.
 
+use std::borrow::Cow;
+
 use super::driver::SAFETY;
 use super::{Attempt, Ctx, Dynamics, SolveError, StepEnds, Stepper};
 use crate::linalg::{self, Assembly, JointSum, Sparse, SparseLu};
@@ -269,13 +271,22 @@ impl StageSolver {
                 let s = p
                     .second_order()
                     .expect("a structural tangent comes from a structure");
-                let mass = s.mass(t, &y[..s.dim()]);
-                match s.damping() {
-                    Some(c) => self
-                        .pattern
-                        .combine(&[(&mass, 1.0), (&c, dh), (k, dh * dh)]),
-                    None => self.pattern.combine(&[(&mass, 1.0), (k, dh * dh)]),
-                }
+                let q = &y[..s.dim()];
+                // A body riding on the structure is summed as its split (the beam's mass and
+                // the body's few rows): its mass alone is stored on a pattern wide enough for
+                // every position, whose explicit zeros the factorisation would fill in.
+                let (mass, rider) = match s.mass_split(t, q) {
+                    Some((base, terms)) => (
+                        Cow::Borrowed(base),
+                        Some(linalg::low_rank(base.nrows(), &terms)),
+                    ),
+                    None => (s.mass(t, q), None),
+                };
+                let damping = s.damping();
+                let mut parts = vec![(mass.as_ref(), 1.0), (k, dh * dh)];
+                parts.extend(rider.as_ref().map(|r| (r, 1.0)));
+                parts.extend(damping.as_deref().map(|c| (c, dh)));
+                self.pattern.combine(&parts)
             }
         };
         ctx.stats.factorizations += 1;
