@@ -397,19 +397,24 @@ impl Woodbury {
 mod tests {
     use super::*;
 
+    /// n × n with diag(i) on the diagonal and constants below and above it.
+    fn tridiagonal(n: usize, diag: impl Fn(usize) -> f64, lower: f64, upper: f64) -> Sparse {
+        let mut a = Assembly::new(n);
+        for i in 0..n {
+            a.add(i, i, diag(i));
+            if i > 0 {
+                a.add(i, i - 1, lower);
+                a.add(i - 1, i, upper);
+            }
+        }
+        a.build()
+    }
+
     /// A tridiagonal system with a known solution, solved twice through one symbolic analysis.
     #[test]
     fn tridiagonal_solve_and_reuse() {
         let n = 50;
-        let mut a = Assembly::new(n);
-        for i in 0..n {
-            a.add(i, i, 4.0);
-            if i > 0 {
-                a.add(i, i - 1, -1.0);
-                a.add(i - 1, i, -2.0);
-            }
-        }
-        let m = a.build();
+        let m = tridiagonal(n, |_| 4.0, -1.0, -2.0);
         let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.3).sin()).collect();
         let mut b = vec![0.0; n];
         mul(&m, &x, &mut b);
@@ -471,15 +476,7 @@ mod tests {
     #[test]
     fn joint_sum_follows_a_moving_rider() {
         let n = 20;
-        let mut band = Assembly::new(n);
-        for i in 0..n {
-            band.add(i, i, 2.0);
-            if i > 0 {
-                band.add(i, i - 1, -1.0);
-                band.add(i - 1, i, -1.0);
-            }
-        }
-        let band = band.build();
+        let band = tridiagonal(n, |_| 2.0, -1.0, -1.0);
         let mut joint = JointSum::default();
         let mut last = None;
         for at in 0..n - 3 {
