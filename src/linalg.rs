@@ -196,8 +196,8 @@ impl Combination {
 ///
 /// Where an operand no longer fits, the pattern is rebuilt from the operands alone, not widened:
 /// a body riding the length of a beam would otherwise leave the union of every position it
-/// passed, a band as wide as the beam is long for its row, and an LU of that fills in (on D44
-/// a factorisation took 0.4 ms, eight times the bare beam's).
+/// passed (its row across the whole beam, a band a patch wide), and an LU of that fills in
+/// (on D44 a factorisation took 0.4 ms; on the band and the patch where the disk is, 80 µs).
 #[derive(Default)]
 pub struct JointSum(Option<Sparse>);
 

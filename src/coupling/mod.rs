@@ -141,7 +141,8 @@ pub struct DiskOnBeam<'a> {
     cache: RefCell<Option<([f64; 3], DiskObservation, Option<Vec<f64>>)>>,
     /// Beam mass on a pattern that holds whatever the disk adds wherever it is (the
     /// displacements of any two nodes one patch apart, the contact coordinate's row and
-    /// column): one symbolic factorisation serves the whole run.
+    /// column): the mass of every state on one pattern. Its explicit zeros fill in an LU, so
+    /// the integrators factorise the split instead ([`Structure::mass_split`]).
     template: Sparse,
     /// `base_mass`, factorised once.
     lu: RefCell<Option<SparseLu>>,
