@@ -178,6 +178,20 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
         "{:?}",
         t[0].outcome
     );
+    // A run that gave up still reports what it cost: its time in the table's wall_s, the
+    // column after the quoted reason and the two empty errors.
+    let starved_dir = dir.join("starved");
+    tradeoff::write_tradeoff(&scene, &reference, &t, &starved_dir).expect("written");
+    let csv = std::fs::read_to_string(starved_dir.join("tradeoff.csv")).expect("tradeoff.csv");
+    let row = csv.lines().nth(1).expect("one run");
+    let after_reason = row.rsplit('"').next().expect("a quoted reason");
+    let wall: f64 = after_reason
+        .split(',')
+        .nth(3)
+        .expect("wall_s")
+        .parse()
+        .expect("a time");
+    assert!(wall > 0.0 && wall == t[0].spent_s, "{row}");
 }
 
 /// The same beam on 2 elements with the degree swept instead of the mesh: the reference takes

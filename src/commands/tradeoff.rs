@@ -510,6 +510,9 @@ pub fn reference_for(
 pub struct Trial {
     pub point: GridPoint,
     pub outcome: Result<Measured, String>,
+    /// Wall time from the run's start until its outcome was known: what a run that stopped
+    /// on its step budget cost (a finished run's own time is [`Measured::wall_s`]).
+    pub spent_s: f64,
 }
 
 #[derive(Clone, Debug)]
@@ -583,6 +586,7 @@ pub fn trial(scene: &Scene, plan: &Plan, reference: &Reference, point: GridPoint
     if reference.means.is_some() {
         over = with_means(over);
     }
+    let started = std::time::Instant::now();
     let outcome = run::run(&scene, &over, false)
         .and_then(|r| {
             let wall_s = mean_wall(&scene, &over, r.header().stats.wall_s)?;
@@ -601,7 +605,11 @@ pub fn trial(scene: &Scene, plan: &Plan, reference: &Reference, point: GridPoint
             })
         })
         .map_err(|e| e.to_string());
-    Trial { point, outcome }
+    Trial {
+        point,
+        outcome,
+        spent_s: started.elapsed().as_secs_f64(),
+    }
 }
 
 /// A run shorter than [`TIMING_FLOOR`] is below the clock's resolution and the noise of a
@@ -700,10 +708,11 @@ pub fn write_tradeoff(
             ),
             Err(e) => writeln!(
                 csv,
-                "{},{:e},{mesh},{order},{model},\"failed: {}\",,,,,,,",
+                "{},{:e},{mesh},{order},{model},\"failed: {}\",,,{},,,,",
                 p.method.name(),
                 p.rtol,
-                e.replace('"', "'")
+                e.replace('"', "'"),
+                t.spent_s
             ),
         };
     }
