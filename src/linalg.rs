@@ -188,11 +188,11 @@ impl Combination {
     }
 }
 
-/// Σ c_k A_k for any number of operands whose patterns may differ or move (a body's inertia
-/// riding along a beam), on the pattern of the last sum while the operands fit in it: sums
-/// on one pattern share a factorisation's symbolic analysis, and nothing is sorted.
-/// [`Combination`] is the two-operand case with fixed patterns, which rescales without looking
-/// at the patterns again.
+/// Σ c_k A_k + Σ w_k g_k g_kᵀ for any number of operands whose patterns may differ or move
+/// (a body's inertia riding along a beam, as its low-rank terms), on the pattern of the last
+/// sum while the operands fit in it: sums on one pattern share a factorisation's symbolic
+/// analysis, and nothing is sorted. [`Combination`] is the two-operand case with fixed
+/// patterns, which rescales without looking at the patterns again.
 ///
 /// Where an operand no longer fits, the pattern is rebuilt from the operands alone, not widened:
 /// a body riding the length of a beam would otherwise leave the union of every position it
@@ -202,12 +202,19 @@ impl Combination {
 pub struct JointSum(Option<Sparse>);
 
 impl JointSum {
-    /// Σ c_k A_k on the last sum's pattern, or on the operands' own union where they leave it.
-    pub fn combine(&mut self, parts: &[(&Sparse, f64)]) -> Sparse {
+    /// Σ c_k A_k + Σ w_k g_k g_kᵀ on the last sum's pattern, or on the operands' own union
+    /// where they leave it.
+    pub fn combine(
+        &mut self,
+        parts: &[(&Sparse, f64)],
+        rank: &[(f64, Vec<(usize, f64)>)],
+    ) -> Sparse {
         if let Some(last) = &self.0 {
             let mut sum = last.clone();
             sum.val_mut().fill(0.0);
-            if parts.iter().all(|&(a, c)| add_within(&mut sum, a, c)) {
+            if parts.iter().all(|&(a, c)| add_within(&mut sum, a, c))
+                && add_rank_within(&mut sum, rank)
+            {
                 return sum;
             }
         }
@@ -215,23 +222,38 @@ impl JointSum {
         parts
             .iter()
             .for_each(|&(a, c)| union.add_sparse(a, c, 0, 0));
+        low_rank_entries(rank).for_each(|(i, j, v)| union.add(i, j, v));
         let sum = union.build();
         self.0 = Some(sum.clone());
         sum
     }
 }
 
-/// Σ w_k g_k g_kᵀ as a sparse n × n matrix, on the entries the rows g_k touch.
-pub fn low_rank(n: usize, terms: &LowRank) -> Sparse {
-    let mut a = Assembly::new(n);
-    for (w, row) in terms {
-        for &(i, gi) in row {
-            for &(j, gj) in row {
-                a.add(i, j, w * gi * gj);
-            }
-        }
+/// The entries of Σ w_k g_k g_kᵀ, term by term: (i, j, w g_i g_j) for every pair of entries of
+/// a term's row (a pair two terms share comes once from each).
+pub fn low_rank_entries(
+    terms: &[(f64, Vec<(usize, f64)>)],
+) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+    terms.iter().flat_map(|(w, row)| {
+        row.iter()
+            .flat_map(move |&(i, gi)| row.iter().map(move |&(j, gj)| (i, j, w * gi * gj)))
+    })
+}
+
+/// target += Σ w_k g_k g_kᵀ in place, where every entry lies within target's pattern; `false`
+/// (target then untouched) where one does not.
+fn add_rank_within(target: &mut Sparse, terms: &[(f64, Vec<(usize, f64)>)]) -> bool {
+    let at: Option<Vec<usize>> = low_rank_entries(terms)
+        .map(|(i, j, _)| position(target, i, j))
+        .collect();
+    let Some(at) = at else {
+        return false;
+    };
+    let values = target.val_mut();
+    for (k, (_, _, v)) in at.into_iter().zip(low_rank_entries(terms)) {
+        values[k] += v;
     }
-    a.build()
+    true
 }
 
 /// One operand's values put in place on the joint pattern, if `m` still has the operand's
@@ -481,8 +503,7 @@ mod tests {
         let mut last = None;
         for at in 0..n - 3 {
             let terms: LowRank = vec![(0.7, (at..at + 4).map(|i| (i, 1.0 + i as f64)).collect())];
-            let rider = low_rank(n, &terms);
-            let sum = joint.combine(&[(&band, 1.5), (&rider, 1.0)]);
+            let sum = joint.combine(&[(&band, 1.5)], &terms);
             for j in 0..n {
                 for i in 0..n {
                     let at_m = |m: &Sparse| position(m, i, j).map_or(0.0, |k| m.val()[k]);

@@ -419,14 +419,9 @@ impl<'a> DiskOnBeam<'a> {
 
     fn mass_matrix(&self, added: &AddedMass) -> Sparse {
         let mut m = self.template.clone();
-        for (w, row) in added {
-            for &(i, gi) in row {
-                for &(j, gj) in row {
-                    let k =
-                        linalg::position(&m, i, j).expect("the template holds the contact block");
-                    m.val_mut()[k] += w * gi * gj;
-                }
-            }
+        for (i, j, v) in linalg::low_rank_entries(added) {
+            let k = linalg::position(&m, i, j).expect("the template holds the contact block");
+            m.val_mut()[k] += v;
         }
         m
     }

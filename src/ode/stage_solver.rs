@@ -265,7 +265,7 @@ impl StageSolver {
                     (0..n).for_each(|i| identity.add(i, i, 1.0));
                     identity.build()
                 });
-                self.pattern.combine(&[(&mass, 1.0), (jac, -dh)])
+                self.pattern.combine(&[(&mass, 1.0), (jac, -dh)], &[])
             }
             Tangent::Structural(k) => {
                 let s = p
@@ -276,17 +276,13 @@ impl StageSolver {
                 // the body's few rows): its mass alone is stored on a pattern wide enough for
                 // every position, whose explicit zeros the factorisation would fill in.
                 let (mass, rider) = match s.mass_split(t, q) {
-                    Some((base, terms)) => (
-                        Cow::Borrowed(base),
-                        Some(linalg::low_rank(base.nrows(), &terms)),
-                    ),
-                    None => (s.mass(t, q), None),
+                    Some((base, terms)) => (Cow::Borrowed(base), terms),
+                    None => (s.mass(t, q), Vec::new()),
                 };
                 let damping = s.damping();
                 let mut parts = vec![(mass.as_ref(), 1.0), (k, dh * dh)];
-                parts.extend(rider.as_ref().map(|r| (r, 1.0)));
                 parts.extend(damping.as_deref().map(|c| (c, dh)));
-                self.pattern.combine(&parts)
+                self.pattern.combine(&parts, &rider)
             }
         };
         ctx.stats.factorizations += 1;
