@@ -139,11 +139,6 @@ pub struct DiskOnBeam<'a> {
     /// The last observation and its acceleration, keyed by (t, s, ṡ): every event function
     /// of one state needs it, and so does the output row.
     cache: RefCell<Option<([f64; 3], DiskObservation, Option<Vec<f64>>)>>,
-    /// Beam mass on a pattern that holds whatever the disk adds wherever it is (the
-    /// displacements of any two nodes one patch apart, the contact coordinate's row and
-    /// column): the mass of every state on one pattern. Its explicit zeros fill in an LU, so
-    /// the integrators factorise the split instead ([`Structure::mass_split`]).
-    template: Sparse,
     /// `base_mass`, factorised once.
     lu: RefCell<Option<SparseLu>>,
     /// The beam's mass and a unit mass on the contact coordinate.
@@ -196,38 +191,6 @@ impl<'a> DiskOnBeam<'a> {
             Coupling::MovingForce => Box::new(moving_force::MovingForce),
         };
         let nz = n + law.unknowns();
-        let mut a = Assembly::new(nz);
-        a.add_sparse(loaded.model_mass(), 1.0, 0, 0);
-        a.add_sparse(&loaded.stiffness(0.0, &vec![0.0; n]), 0.0, 0, 0);
-        let beam = loaded.beam;
-        if loaded.modal.is_some() {
-            // Every mode is felt at every contact point: the rider's rows are dense.
-            for i in 0..n {
-                for j in 0..n {
-                    a.add(i, j, 0.0);
-                }
-            }
-        } else {
-            let spacing = beam.length / (beam.spec.elements * beam.spec.order) as f64;
-            // In floating point, so that no patch width can overflow the count of nodes it spans.
-            let reach = ((2.0 * spec.patch / spacing).ceil() + (2 * beam.spec.order) as f64)
-                .min(beam.nodes() as f64) as usize;
-            for i in 0..beam.nodes() {
-                for j in i.saturating_sub(reach)..(i + reach + 1).min(beam.nodes()) {
-                    for (ci, cj) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
-                        if let (Some(r), Some(c)) = (beam.eq_of(i, ci), beam.eq_of(j, cj)) {
-                            a.add(r, c, 0.0);
-                        }
-                    }
-                }
-            }
-        }
-        if nz > n {
-            for i in 0..nz {
-                a.add(i, n, 0.0);
-                a.add(n, i, 0.0);
-            }
-        }
         let mut base = Assembly::new(nz);
         base.add_sparse(loaded.model_mass(), 1.0, 0, 0);
         if nz > n {
@@ -241,12 +204,11 @@ impl<'a> DiskOnBeam<'a> {
             rider: Rider {
                 disk: spec.disk,
                 gravity,
-                n: beam.dim(),
+                n: loaded.beam.dim(),
                 omega0: spec.omega0,
             },
             spec,
             cache: RefCell::new(None),
-            template: a.build(),
             lu: RefCell::new(None),
             stiffness_pattern: OnceCell::new(),
             basis: RefCell::new(None),
@@ -417,13 +379,14 @@ impl<'a> DiskOnBeam<'a> {
             .collect()
     }
 
+    /// The beam's mass and the rider's inertia on the pattern of where the rider is now: only
+    /// what needs the whole of M (a first acceleration, an explicit method's derivative) asks
+    /// for it; the implicit methods factorise its split ([`Structure::mass_split`]).
     fn mass_matrix(&self, added: &AddedMass) -> Sparse {
-        let mut m = self.template.clone();
-        for (i, j, v) in linalg::low_rank_entries(added) {
-            let k = linalg::position(&m, i, j).expect("the template holds the contact block");
-            m.val_mut()[k] += v;
-        }
-        m
+        let mut m = Assembly::new(self.dim());
+        m.add_sparse(self.loaded.model_mass(), 1.0, 0, 0);
+        linalg::low_rank_entries(added).for_each(|(i, j, v)| m.add(i, j, v));
+        m.build()
     }
 
     /// The true acceleration at a state: M(z) z̈ = f(z, ż), by the Woodbury identity on the

@@ -273,8 +273,7 @@ impl StageSolver {
                     .expect("a structural tangent comes from a structure");
                 let q = &y[..s.dim()];
                 // A body riding on the structure is summed as its split (the beam's mass and
-                // the body's few rows): its mass alone is stored on a pattern wide enough for
-                // every position, whose explicit zeros the factorisation would fill in.
+                // the body's few rows), which the joint pattern follows as the body moves.
                 let (mass, rider) = match s.mass_split(t, q) {
                     Some((base, terms)) => (Cow::Borrowed(base), terms),
                     None => (s.mass(t, q), Vec::new()),
