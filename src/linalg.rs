@@ -204,11 +204,7 @@ pub struct JointSum(Option<Sparse>);
 impl JointSum {
     /// Σ c_k A_k + Σ w_k g_k g_kᵀ on the last sum's pattern, or on the operands' own union
     /// where they leave it.
-    pub fn combine(
-        &mut self,
-        parts: &[(&Sparse, f64)],
-        rank: &[(f64, Vec<(usize, f64)>)],
-    ) -> Sparse {
+    pub fn combine(&mut self, parts: &[(&Sparse, f64)], rank: &[RankOne]) -> Sparse {
         if let Some(last) = &self.0 {
             let mut sum = last.clone();
             sum.val_mut().fill(0.0);
@@ -231,9 +227,7 @@ impl JointSum {
 
 /// The entries of Σ w_k g_k g_kᵀ, term by term: (i, j, w g_i g_j) for every pair of entries of
 /// a term's row (a pair two terms share comes once from each).
-pub fn low_rank_entries(
-    terms: &[(f64, Vec<(usize, f64)>)],
-) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+pub fn low_rank_entries(terms: &[RankOne]) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
     terms.iter().flat_map(|(w, row)| {
         row.iter()
             .flat_map(move |&(i, gi)| row.iter().map(move |&(j, gj)| (i, j, w * gi * gj)))
@@ -242,15 +236,15 @@ pub fn low_rank_entries(
 
 /// target += Σ w_k g_k g_kᵀ in place, where every entry lies within target's pattern; `false`
 /// (target then untouched) where one does not.
-fn add_rank_within(target: &mut Sparse, terms: &[(f64, Vec<(usize, f64)>)]) -> bool {
-    let at: Option<Vec<usize>> = low_rank_entries(terms)
-        .map(|(i, j, _)| position(target, i, j))
+fn add_rank_within(target: &mut Sparse, terms: &[RankOne]) -> bool {
+    let placed: Option<Vec<(usize, f64)>> = low_rank_entries(terms)
+        .map(|(i, j, v)| position(target, i, j).map(|k| (k, v)))
         .collect();
-    let Some(at) = at else {
+    let Some(placed) = placed else {
         return false;
     };
     let values = target.val_mut();
-    for (k, (_, _, v)) in at.into_iter().zip(low_rank_entries(terms)) {
+    for (k, v) in placed {
         values[k] += v;
     }
     true
@@ -354,7 +348,9 @@ impl SparseLu {
 }
 
 /// Terms w g gᵀ of a matrix, each g a sparse row: (unknown, coefficient).
-pub type LowRank = Vec<(f64, Vec<(usize, f64)>)>;
+pub type LowRank = Vec<RankOne>;
+/// One term w g gᵀ of a [`LowRank`]: its weight and the sparse row g.
+pub type RankOne = (f64, Vec<(usize, f64)>);
 
 /// (A + G W Gᵀ)⁻¹ x from A's factorisation (Woodbury): with Z = A⁻¹ G,
 /// x ← A⁻¹x − Z (W⁻¹ + Gᵀ Z)⁻¹ Gᵀ A⁻¹x. W is diagonal, the columns of G sparse and few.
