@@ -188,29 +188,27 @@ impl Combination {
     }
 }
 
-/// Σ c_k A_k + Σ w_k g_k g_kᵀ for any number of operands whose patterns may differ or move
-/// (a body's inertia riding along a beam, as its low-rank terms), on the pattern of the last
-/// sum while the operands fit in it: sums on one pattern share a factorisation's symbolic
-/// analysis, and nothing is sorted. [`Combination`] is the two-operand case with fixed
-/// patterns, which rescales without looking at the patterns again.
+/// Σ c_k A_k for any number of operands whose patterns may differ or move (the mass of a
+/// general problem, which may depend on its state), on the pattern of the last sum while the
+/// operands fit in it: sums on one pattern share a factorisation's symbolic analysis, and
+/// nothing is sorted. [`Combination`] is the two-operand case with fixed patterns, which
+/// rescales without looking at the patterns again.
 ///
 /// Where an operand no longer fits, the pattern is rebuilt from the operands alone, not widened:
-/// a body riding the length of a beam would otherwise leave the union of every position it
-/// passed (its row across the whole beam, a band a patch wide), and an LU of that fills in
-/// (on D44 a factorisation took 0.4 ms; on the band and the patch where the disk is, 80 µs).
+/// an operand moving along the matrix (a body's inertia riding the length of a beam, assembled
+/// into its mass) would otherwise leave the union of every position it passed, and an LU of
+/// that fills in (on D44 a factorisation took 0.4 ms; on the band and the patch where the disk
+/// is, 80 µs).
 #[derive(Default)]
 pub struct JointSum(Option<Sparse>);
 
 impl JointSum {
-    /// Σ c_k A_k + Σ w_k g_k g_kᵀ on the last sum's pattern, or on the operands' own union
-    /// where they leave it.
-    pub fn combine(&mut self, parts: &[(&Sparse, f64)], rank: &[RankOne]) -> Sparse {
+    /// Σ c_k A_k on the last sum's pattern, or on the operands' own union where they leave it.
+    pub fn combine(&mut self, parts: &[(&Sparse, f64)]) -> Sparse {
         if let Some(last) = &self.0 {
             let mut sum = last.clone();
             sum.val_mut().fill(0.0);
-            if parts.iter().all(|&(a, c)| add_within(&mut sum, a, c))
-                && add_rank_within(&mut sum, rank)
-            {
+            if parts.iter().all(|&(a, c)| add_within(&mut sum, a, c)) {
                 return sum;
             }
         }
@@ -218,7 +216,6 @@ impl JointSum {
         parts
             .iter()
             .for_each(|&(a, c)| union.add_sparse(a, c, 0, 0));
-        low_rank_entries(rank).for_each(|(i, j, v)| union.add(i, j, v));
         let sum = union.build();
         self.0 = Some(sum.clone());
         sum
@@ -232,22 +229,6 @@ pub fn low_rank_entries(terms: &[RankOne]) -> impl Iterator<Item = (usize, usize
         row.iter()
             .flat_map(move |&(i, gi)| row.iter().map(move |&(j, gj)| (i, j, w * gi * gj)))
     })
-}
-
-/// target += Σ w_k g_k g_kᵀ in place, where every entry lies within target's pattern; `false`
-/// (target then untouched) where one does not.
-fn add_rank_within(target: &mut Sparse, terms: &[RankOne]) -> bool {
-    let placed: Option<Vec<(usize, f64)>> = low_rank_entries(terms)
-        .map(|(i, j, v)| position(target, i, j).map(|k| (k, v)))
-        .collect();
-    let Some(placed) = placed else {
-        return false;
-    };
-    let values = target.val_mut();
-    for (k, v) in placed {
-        values[k] += v;
-    }
-    true
 }
 
 /// One operand's values put in place on the joint pattern, if `m` still has the operand's
@@ -486,8 +467,8 @@ mod tests {
         assert_eq!(sum.val(), &before[..]);
     }
 
-    /// A rider's rank-one block moving along a tridiagonal matrix, as a disk's inertia on a
-    /// beam: every sum equals the one assembled from its operands, and after the block has
+    /// A rider's rank-one block moving along a tridiagonal matrix, as a disk's inertia assembled
+    /// into a beam's mass: every sum equals the one assembled from its operands, and after the block has
     /// moved from one end to the other the pattern holds no more than the band and the block
     /// where it now is. Had the pattern kept every place the block passed, it would be a band
     /// seven wide (about 7n entries, against the 3n + 16 here).
@@ -499,7 +480,9 @@ mod tests {
         let mut last = None;
         for at in 0..n - 3 {
             let terms: LowRank = vec![(0.7, (at..at + 4).map(|i| (i, 1.0 + i as f64)).collect())];
-            let sum = joint.combine(&[(&band, 1.5)], &terms);
+            let mut block = Assembly::new(n);
+            low_rank_entries(&terms).for_each(|(i, j, v)| block.add(i, j, v));
+            let sum = joint.combine(&[(&band, 1.5), (&block.build(), 1.0)]);
             for j in 0..n {
                 for i in 0..n {
                     let at_m = |m: &Sparse| position(m, i, j).map_or(0.0, |k| m.val()[k]);

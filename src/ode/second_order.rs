@@ -19,8 +19,8 @@ pub trait Structure {
     }
     /// M(t, q) = B + Σ_k w_k g_k g_kᵀ with B constant and a few sparse rows g_k, where the
     /// mass has that form (a body riding on a structure): B, and the (w_k, g_k) at (t, q).
-    /// Generalized-α then factorises its iteration matrix from B alone, once per step size,
-    /// and adds the rest exactly at every step by the Woodbury identity.
+    /// Every implicit method then factorises its iteration matrix from B alone, once per step
+    /// size and tangent, and adds the rest exactly at every step by the Woodbury identity.
     fn mass_split(&self, _t: f64, _q: &[f64]) -> Option<(&Sparse, LowRank)> {
         None
     }
