@@ -22,8 +22,8 @@
 //! [`super::second_order::Structure::mass_split`]). The iteration matrix is factorised from B
 //! alone and the body's few terms are added at every step's start by the Woodbury identity, as
 //! generalized-α does. Factorised whole, the body's inertia stayed where the factorisation
-//! found it: on D44, where the disk outweighs the beam under its patch thirtyfold, Newton then
-//! contracted by only 0.3–0.9 a step later, and half the steps refreshed their Jacobian.
+//! found it: on D44, where the disk outweighs the beam under its patch fifteenfold, Newton then
+//! contracted by only 0.3–0.9 a step later, and one step in three refreshed its Jacobian.
 
 use std::borrow::Cow;
 
