@@ -467,10 +467,10 @@ mod tests {
         assert_eq!(sum.val(), &before[..]);
     }
 
-    /// A rider's rank-one block moving along a tridiagonal matrix, as a disk's inertia assembled
-    /// into a beam's mass: every sum equals the one assembled from its operands, and after the block has
-    /// moved from one end to the other the pattern holds no more than the band and the block
-    /// where it now is. Had the pattern kept every place the block passed, it would be a band
+    /// A rider's rank-one block moving along a tridiagonal matrix, as a disk's inertia
+    /// assembled into a beam's mass: every sum equals the one assembled from its operands, and
+    /// after the block has moved from one end to the other the pattern holds no more than the
+    /// band and the block where it now is. Had the pattern kept every place the block passed, it would be a band
     /// seven wide (about 7n entries, against the 3n + 16 here).
     #[test]
     fn joint_sum_follows_a_moving_rider() {

@@ -253,7 +253,8 @@ impl StageSolver {
     }
 
     /// Factorise M(t, y) − d h J unless the factorisation for this d h is at hand; with a split
-    /// mass, factorise its constant part so and add the rider's terms where it is now.
+    /// mass, factorise it with the constant part in M's place and add the rider's terms where
+    /// the rider is now.
     pub fn factor(
         &mut self,
         p: &dyn Dynamics,
