@@ -376,16 +376,15 @@ impl Woodbury {
         if self.rows.is_empty() {
             return;
         }
-        let gx = nalgebra::DVector::from_iterator(
+        let mut coef = nalgebra::DVector::from_iterator(
             self.rows.len(),
             self.rows
                 .iter()
                 .map(|g| g.iter().map(|&(k, v)| v * x[k]).sum::<f64>()),
         );
-        let coef = self
-            .capacitance
-            .solve(&gx)
-            .expect("checked invertible when built");
+        // In place: every Newton iteration of a rider's run comes through here.
+        let solved = self.capacitance.solve_mut(&mut coef);
+        debug_assert!(solved, "checked invertible when built");
         for (c, z) in coef.iter().zip(&self.z) {
             x.iter_mut().zip(z).for_each(|(xi, zi)| *xi -= c * zi);
         }
@@ -470,8 +469,8 @@ mod tests {
     /// A rider's rank-one block moving along a tridiagonal matrix, as a disk's inertia
     /// assembled into a beam's mass: every sum equals the one assembled from its operands, and
     /// after the block has moved from one end to the other the pattern holds no more than the
-    /// band and the block where it now is. Had the pattern kept every place the block passed, it would be a band
-    /// seven wide (about 7n entries, against the 3n + 16 here).
+    /// band and the block where it now is. Had the pattern kept every place the block passed,
+    /// it would be a band seven wide (about 7n entries, against the 3n + 16 here).
     #[test]
     fn joint_sum_follows_a_moving_rider() {
         let n = 20;
