@@ -978,6 +978,34 @@ fn tradeoff_settings() {
             vec!["beam", "--orders", "2,11"],
             vec!["--orders 11", "from 1 to 10"],
         ),
+        (
+            vec!["--point", "esdirk4:1e-4:20:6"],
+            vec!["--point", "rigid curve"],
+        ),
+        (
+            vec!["beam", "--point", "esdirk4:1e-4:20"],
+            vec!["--point", "METHOD:RTOL:ELEMENTS:DEGREE"],
+        ),
+        (
+            vec!["beam", "--point", "rk45:1e-4:20:6"],
+            vec!["'rk45' is unknown"],
+        ),
+        (
+            vec!["beam", "--point", "esdirk4:tight:20:6"],
+            vec!["--point", "'tight' is not a number"],
+        ),
+        (
+            vec!["beam", "--point", "esdirk4:-1e-4:20:6"],
+            vec!["--point's rtol", "positive"],
+        ),
+        (
+            vec!["beam", "--point", "esdirk4:1e-4:100000000000000000000:6"],
+            vec!["--point", "from 1 to 1000"],
+        ),
+        (
+            vec!["beam", "--point", "esdirk4:1e-4:20:11"],
+            vec!["--point", "from 1 to 10"],
+        ),
     ] {
         // "beam" asks for the same flags on a beam scene.
         let (scene, args) = match args.split_first() {

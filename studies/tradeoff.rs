@@ -110,6 +110,7 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
         models: Vec::new(),
         max_steps: 20_000,
         reference_from: None,
+        points: Vec::new(),
     };
     let reference = tradeoff::reference(&scene, &plan, "test").expect("the reference runs");
     let trials = tradeoff::trials(&scene, &plan, &reference, false);
@@ -169,6 +170,7 @@ fn work_precision_on_a_beam_separates_mesh_and_time_error() {
         models: Vec::new(),
         max_steps: 100,
         reference_from: None,
+        points: Vec::new(),
     };
     let t = tradeoff::trials(&scene, &starved, &reference, false);
     assert!(
@@ -212,6 +214,7 @@ fn work_precision_sweeps_the_element_degree() {
         models: Vec::new(),
         max_steps: 20_000,
         reference_from: None,
+        points: Vec::new(),
     };
     let reference = tradeoff::reference(&scene, &plan, "test").expect("the reference runs");
     assert_eq!((reference.elements, reference.order), (Some(4), Some(3)));
@@ -390,11 +393,16 @@ fn stored_references_serve_and_reproduce() {
 }
 
 /// The stored windowed means (issue 15's 10⁻⁶, REPORT.md "A windowed mean reaches 10⁻⁶ on
-/// the sudden loads"): a setting none of them was made with, ESDIRK4 at rtol 10⁻⁴ on the
-/// grid's coarsest mesh, lands within 10⁻⁶ of each. Measured, it lands 0.5–58·10⁻⁹ away, and
-/// the means' references resolve 1.6·10⁻⁹–8.9·10⁻⁸, so at least a tenfold margin stands
-/// between the target and both. The extremes of the same runs lie 6·10⁻⁵–9·10⁻⁴ off: the means are what
-/// makes the target reachable, not the runs.
+/// the sudden loads" and "The bridges' 10⁻⁶ in the windowed means"): a setting none of them was
+/// made with lands within 10⁻⁶ of each. On the sudden loads it is ESDIRK4 at rtol 10⁻⁴ on the
+/// grid's coarsest mesh: measured, it lands 0.5–58·10⁻⁹ away, and the means' references
+/// resolve 1.6·10⁻⁹–8.9·10⁻⁸, so at least a tenfold margin stands between the target and both.
+/// On the bridges it is the point their grid runs past its meshes for (ESDIRK4 at 10⁻⁴ on 20
+/// elements of degree 6): measured, it lands 8.7·10⁻⁷ (D44) and 6.5·10⁻⁷ (D50) from
+/// references made on 40 elements at 10⁻⁶, which resolve 2.7·10⁻⁷ and 8.7·10⁻⁷ (D50's is the
+/// 20-element mesh's own distance): the target is within what they resolve, with less margin
+/// than on the sudden loads, and REPORT.md says so. The extremes of the same runs lie
+/// 10⁻⁵–10⁻³ off: the means are what makes the target reachable, not the runs.
 #[test]
 fn stored_windowed_means_are_reached_within_1e_6() {
     let mut scored = 0;
@@ -403,21 +411,27 @@ fn stored_windowed_means_are_reached_within_1e_6() {
             continue;
         };
         let Some(means) = stored.means else { continue };
+        let bound = if plan.points.is_empty() { 1e-7 } else { 1e-6 };
         assert!(
-            means.resolves <= 1e-7,
+            means.resolves <= bound,
             "{}: resolves {:.1e}",
             scene.name,
             means.resolves
         );
         let mut coarse = scene.clone();
-        if let (Model::Beam(b), Some(&n)) = (&mut coarse.model, plan.meshes.iter().min()) {
+        let (elements, order, rtol) = match plan.points.first() {
+            Some(p) => (p.elements, p.order, p.rtol),
+            None => (plan.meshes.iter().min().copied(), None, 1e-4),
+        };
+        if let (Model::Beam(b), Some(n)) = (&mut coarse.model, elements) {
             b.beam.elements = n;
+            b.beam.order = order.unwrap_or(b.beam.order);
             b.shapes.clear();
         }
         let over = Overrides {
             method: Some(Method::Esdirk4),
-            rtol: Some(1e-4),
-            atol: Some(1e-7),
+            rtol: Some(rtol),
+            atol: Some(rtol * 1e-3),
             windowed_means: true,
             ..Default::default()
         };
@@ -429,7 +443,7 @@ fn stored_windowed_means_are_reached_within_1e_6() {
         scored += 1;
     }
     assert!(
-        scored >= 6,
-        "the six sudden loads carry windowed means; {scored} did"
+        scored >= 8,
+        "the six sudden loads and the two bridges carry windowed means; {scored} did"
     );
 }

@@ -278,6 +278,7 @@ fn tradeoff(
         orders,
         models,
         max_steps,
+        points: Vec::new(),
         recompute: false,
         recompute_means: false,
     };

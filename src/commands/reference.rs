@@ -74,6 +74,9 @@ struct StoredMeans {
     method: String,
     rtol: f64,
     elements: Option<usize>,
+    /// Absent where the means' reference kept the scene's degree.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    order: Option<usize>,
     resolves: f64,
     scale: f64,
     wall_s: f64,
@@ -87,6 +90,7 @@ impl StoredMeans {
             method: m.method.name().to_string(),
             rtol: m.rtol,
             elements: m.elements,
+            order: m.order,
             resolves: m.resolves,
             scale: m.scale,
             wall_s: m.wall_s,
@@ -110,6 +114,7 @@ impl StoredMeans {
             method,
             rtol: self.rtol,
             elements: self.elements,
+            order: self.order,
             values: self.values,
             scale: self.scale,
             resolves: self.resolves,
@@ -252,6 +257,15 @@ pub fn load(
         Ok(m) => m,
         Err(why) => return bad(why),
     };
+    // Means made on a mesh coarser, or at an rtol looser, than the grid now asks cannot score
+    // its finest runs; the headlines' reference still serves, and the diagram in the means
+    // waits for `--reference-means`.
+    let (means_elements, means_order) = plan.means_mesh();
+    let means = means.filter(|m| {
+        m.elements >= means_elements
+            && m.order.or(scene_order) >= means_order.or(scene_order)
+            && m.rtol <= plan.means_rtol() * (1.0 + 1e-9)
+    });
     Stored::Usable(Box::new(Reference {
         method,
         rtol: file.rtol,

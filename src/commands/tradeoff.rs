@@ -26,7 +26,7 @@ use plotters::prelude::*;
 
 use super::{parse_method, rtol_flag};
 use crate::beam::{BeamModel, MAX_ORDER};
-use crate::error::Error;
+use crate::error::{quote, Error};
 use crate::ode::Method;
 use crate::output::plots::PALETTE;
 use crate::output::{io_error, write};
@@ -60,7 +60,14 @@ pub struct Plan {
     /// An rtol the reference starts a decade below even where the grid stops short of it:
     /// a grid cut for time must not loosen what its runs are scored against.
     pub reference_from: Option<f64>,
+    /// Settings past the grid, each run once: a mesh finer and of a higher degree than any the
+    /// grid tries, where only that reaches a target (the bridges' 10⁻⁶ in the windowed means).
+    /// Chosen for what they reach, they may take [`POINT_STEPS_FACTOR`] times a grid run's steps.
+    pub points: Vec<GridPoint>,
 }
+
+/// How many times `max_steps` a point past the grid may take.
+pub const POINT_STEPS_FACTOR: usize = 10;
 
 impl Plan {
     /// The rtol the reference starts at: a decade below the tightest rtol tried, or below
@@ -73,6 +80,48 @@ impl Plan {
     /// The degree the reference is computed with: the highest tried (`None`: the scene's).
     pub fn reference_order(&self) -> Option<usize> {
         self.orders.iter().copied().max()
+    }
+
+    /// The mesh the windowed means' reference is made on: twice the finest tried, of the
+    /// highest degree tried, the points past the grid included (`None`: the scene's).
+    pub fn means_mesh(&self) -> (Option<usize>, Option<usize>) {
+        let points = || self.points.iter();
+        let finest = self
+            .meshes
+            .iter()
+            .copied()
+            .chain(points().filter_map(|p| p.elements))
+            .max();
+        let order = self
+            .orders
+            .iter()
+            .copied()
+            .chain(points().filter_map(|p| p.order))
+            .max();
+        (finest.map(|n| 2 * n), order)
+    }
+
+    /// The rtol the windowed means' reference is made at: a decade below the tightest tried,
+    /// the points past the grid included. On the sudden loads (grid to 1e-4) that settles the
+    /// means to 10⁻⁹, mesh and time together (REPORT.md), in a minute or two; on the bridges
+    /// (grid to 1e-5) a decade less would leave the reference within 9·10⁻⁷ of the 10⁻⁶ their
+    /// point is scored to (D44 at rtol 1e-5).
+    pub fn means_rtol(&self) -> f64 {
+        self.rtols
+            .iter()
+            .copied()
+            .chain(self.points.iter().map(|p| p.rtol))
+            .fold(1.0, f64::min)
+            / 10.0
+    }
+
+    /// The steps a run of this point may take.
+    pub fn budget(&self, point: &GridPoint) -> usize {
+        if self.points.contains(point) {
+            POINT_STEPS_FACTOR.saturating_mul(self.max_steps)
+        } else {
+            self.max_steps
+        }
     }
 
     /// Every method that can integrate the scene, rtol from 1e-2 to 1e-8 (1e-6 on a beam), and
@@ -90,6 +139,7 @@ impl Plan {
                 models: Vec::new(),
                 max_steps: 200_000,
                 reference_from: None,
+                points: Vec::new(),
             },
             Model::Beam(b) => Plan {
                 methods: vec![Method::GenAlpha, Method::Esdirk4, Method::TrBdf2],
@@ -99,6 +149,7 @@ impl Plan {
                 models: Vec::new(),
                 max_steps: 20_000,
                 reference_from: None,
+                points: Vec::new(),
             },
         }
     }
@@ -317,6 +368,8 @@ pub struct MeansReference {
     pub method: Method,
     pub rtol: f64,
     pub elements: Option<usize>,
+    /// The elements' degree, where it is not the scene's.
+    pub order: Option<usize>,
     pub values: Vec<f64>,
     /// The largest |w| of that run's probes: what an error in the means is relative to.
     pub scale: f64,
@@ -326,10 +379,6 @@ pub struct MeansReference {
     pub wall_s: f64,
     pub made_by: String,
 }
-
-/// The means' reference is ESDIRK4 at this rtol: on the sudden loads it settles the means to
-/// 10⁻⁹, mesh and time together (REPORT.md), in a minute or two.
-pub const MEANS_RTOL: f64 = 1e-5;
 
 /// max |a − b| / scale over the windows; a run that did not cover the reference's windows
 /// counts as wholly wrong.
@@ -351,8 +400,9 @@ pub fn windowed_means(r: &Run) -> Option<&[f64]> {
     }
 }
 
-/// The means' reference for a beam scene: ESDIRK4 at [`MEANS_RTOL`] on twice the plan's finest
-/// mesh, checked at a tenfold rtol and on the finest mesh.
+/// The means' reference for a beam scene: ESDIRK4 a decade below the tightest rtol tried
+/// ([`Plan::means_rtol`]) on twice the finest mesh tried, of the highest degree tried
+/// ([`Plan::means_mesh`]), checked at a tenfold rtol and on a mesh half as fine.
 pub fn means_reference(scene: &Scene, plan: &Plan, made_by: &str) -> Result<MeansReference, Error> {
     let Some(beam) = scene.beam() else {
         return Err(Error::Input(format!(
@@ -360,20 +410,17 @@ pub fn means_reference(scene: &Scene, plan: &Plan, made_by: &str) -> Result<Mean
             scene.name
         )));
     };
-    let finest = plan
-        .meshes
-        .iter()
-        .copied()
-        .max()
-        .unwrap_or(beam.beam.elements);
+    let (elements, order) = plan.means_mesh();
+    let elements = elements.unwrap_or(2 * beam.beam.elements);
     let method = Method::Esdirk4;
     let run_on = |elements: usize, rtol: f64| {
-        let s = with_mesh(scene, Some(elements), plan.reference_order(), None);
+        let s = with_mesh(scene, Some(elements), order, None);
         run::run(&s, &with_means(overrides(method, rtol, usize::MAX)), false)
     };
-    let fine = run_on(2 * finest, MEANS_RTOL)?;
-    let looser = run_on(2 * finest, 10.0 * MEANS_RTOL)?;
-    let coarser = run_on(finest, MEANS_RTOL)?;
+    let rtol = plan.means_rtol();
+    let fine = run_on(elements, rtol)?;
+    let looser = run_on(elements, 10.0 * rtol)?;
+    let coarser = run_on(elements.div_ceil(2), rtol)?;
     let means = |r: &Run| windowed_means(r).unwrap_or_default().to_vec();
     let scale = headlines(&fine)
         .iter()
@@ -382,8 +429,9 @@ pub fn means_reference(scene: &Scene, plan: &Plan, made_by: &str) -> Result<Mean
         .max(f64::MIN_POSITIVE);
     let mut reference = MeansReference {
         method,
-        rtol: MEANS_RTOL,
-        elements: Some(2 * finest),
+        rtol,
+        elements: Some(elements),
+        order,
         values: means(&fine),
         scale,
         resolves: 0.0,
@@ -537,7 +585,8 @@ pub struct GridPoint {
     pub model: Option<BeamModel>,
 }
 
-/// Every point of the plan's grid, in the order its diagram and tables list them.
+/// Every point of the plan's grid, then the points past it, in the order its diagram and
+/// tables list them.
 pub fn grid(plan: &Plan) -> Vec<GridPoint> {
     fn each<T: Copy>(values: &[T]) -> Vec<Option<T>> {
         if values.is_empty() {
@@ -564,6 +613,7 @@ pub fn grid(plan: &Plan) -> Vec<GridPoint> {
             }
         }
     }
+    grid.extend(plan.points.iter().copied());
     grid
 }
 
@@ -582,7 +632,7 @@ pub fn trials(
 /// One run of the grid, scored against the reference.
 pub fn trial(scene: &Scene, plan: &Plan, reference: &Reference, point: GridPoint) -> Trial {
     let scene = with_mesh(scene, point.elements, point.order, point.model);
-    let mut over = overrides(point.method, point.rtol, plan.max_steps);
+    let mut over = overrides(point.method, point.rtol, plan.budget(&point));
     if reference.means.is_some() {
         over = with_means(over);
     }
@@ -746,12 +796,15 @@ pub fn write_tradeoff(
     ));
     if let Some(means) = &reference.means {
         lines.push(format!(
-            "windowed means' reference: {}, rtol {:.0e}{} ({:.2} s): resolves {:.1e} (a tenfold cut of rtol, and a mesh half as fine)",
+            "windowed means' reference: {}, rtol {:.0e}{}{} ({:.2} s): resolves {:.1e} (a tenfold cut of rtol, and a mesh half as fine)",
             means.method.name(),
             means.rtol,
             means
                 .elements
                 .map_or(String::new(), |n| format!(", {n} elements")),
+            means
+                .order
+                .map_or(String::new(), |k| format!(", degree {k}")),
             means.wall_s,
             means.resolves,
         ));
@@ -915,13 +968,19 @@ pub struct TradeoffArgs {
     /// Steps a run may take before it gives up (default 20000 on a beam, 200000 on a curve).
     #[arg(long)]
     max_steps: Option<usize>,
+    /// One more setting past the grid, METHOD:RTOL:ELEMENTS:DEGREE (e.g. esdirk4:1e-4:20:6),
+    /// run once with ten times the step budget; repeat the flag for more. The windowed means'
+    /// reference is made on a mesh finer than these too.
+    #[arg(long = "point")]
+    points: Vec<String>,
     /// Compute the reference again, even where a stored one serves, and store it in
     /// `references/` beside the scene file.
     #[arg(long)]
     reference: bool,
-    /// Make the probes' windowed means a reference (ESDIRK4 at rtol 1e-5 on twice the finest
-    /// mesh, checked at 1e-4 and on the finest) and store it with the scene's reference; the
-    /// diagram is then also drawn in the means (tradeoff-means.svg).
+    /// Make the probes' windowed means a reference (ESDIRK4 a decade below the tightest rtol
+    /// tried, on twice the finest mesh tried at the highest degree, checked at a tenfold rtol
+    /// and on a mesh half as fine) and store it with the scene's reference; the diagram is then
+    /// also drawn in the means (tradeoff-means.svg).
     #[arg(long)]
     reference_means: bool,
 }
@@ -935,6 +994,8 @@ pub struct TradeoffOptions {
     pub orders: Vec<usize>,
     pub models: Vec<String>,
     pub max_steps: Option<usize>,
+    /// Settings past the grid, METHOD:RTOL:ELEMENTS:DEGREE each.
+    pub points: Vec<String>,
     /// Compute the reference again and store it beside the scene file.
     pub recompute: bool,
     /// Make the windowed means' reference and store it with the scene's reference.
@@ -1003,8 +1064,49 @@ impl TradeoffOptions {
             }
             plan.max_steps = m;
         }
+        plan.points = self
+            .points
+            .iter()
+            .map(|p| parse_point(p, scene))
+            .collect::<Result<_, _>>()?;
         Ok(plan)
     }
+}
+
+/// A `--point`: METHOD:RTOL:ELEMENTS:DEGREE, each part checked as its own flag is.
+fn parse_point(text: &str, scene: &Scene) -> Result<GridPoint, Error> {
+    let bad = |why: String| Error::Input(format!("--point {}: {why}", quote(text)));
+    if scene.beam().is_none() {
+        return Err(bad(
+            "a point past the grid sets a beam's mesh; this scene has a rigid curve".into(),
+        ));
+    }
+    let parts: Vec<&str> = text.split(':').collect();
+    let [method, rtol, elements, order] = parts[..] else {
+        return Err(bad(
+            "write it METHOD:RTOL:ELEMENTS:DEGREE, e.g. esdirk4:1e-4:20:6".into(),
+        ));
+    };
+    let method = parse_method(method, scene)?;
+    let rtol: f64 = rtol
+        .parse()
+        .map_err(|_| bad(format!("the rtol {} is not a number", quote(rtol))))?;
+    rtol_flag(Some(rtol), "--point's rtol")?;
+    let elements = match elements.parse::<usize>() {
+        Ok(n) if (1..=1000).contains(&n) => n,
+        _ => return Err(bad("an element count is from 1 to 1000".into())),
+    };
+    let order = match order.parse::<usize>() {
+        Ok(k) if (1..=MAX_ORDER).contains(&k) => k,
+        _ => return Err(bad(format!("an element's degree is from 1 to {MAX_ORDER}"))),
+    };
+    Ok(GridPoint {
+        method,
+        rtol,
+        elements: Some(elements),
+        order: Some(order),
+        model: None,
+    })
 }
 
 /// Work–precision of a scene into `dir`: the reference (stored beside `file` where one
@@ -1062,6 +1164,7 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
         orders,
         models,
         max_steps,
+        points,
         reference: recompute,
         reference_means: recompute_means,
     } = args;
@@ -1073,6 +1176,7 @@ pub fn tradeoff(args: TradeoffArgs) -> Result<(), Error> {
         orders,
         models,
         max_steps,
+        points,
         recompute,
         recompute_means,
     };
