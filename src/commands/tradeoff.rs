@@ -886,7 +886,21 @@ fn diagram(scene: &Scene, trials: &[Trial], score: Score, path: &Path) -> Result
     if !x0.is_finite() {
         return Ok(());
     }
-    crate::output::plots::svg(path, (900, 600), |root| {
+    // A legend of many lines (D44's 37) would run off the foot of the figure and hide the
+    // costliest runs in the upper right: the figure grows with it, and the time axis runs on
+    // for two fifths of its decades again, to the legend's right of the data.
+    let many = lines.len() > 12;
+    let height = if many {
+        150 + 16 * lines.len() as u32
+    } else {
+        600
+    };
+    let x_end = if many {
+        x1 * 1.5 * (x1 * 1.5 / (x0 / 1.5)).powf(0.4)
+    } else {
+        x1 * 1.5
+    };
+    crate::output::plots::svg(path, (900, height.max(600)), |root| {
         let mut chart = ChartBuilder::on(root)
             .caption(
                 match score {
@@ -899,7 +913,7 @@ fn diagram(scene: &Scene, trials: &[Trial], score: Score, path: &Path) -> Result
             .x_label_area_size(45)
             .y_label_area_size(75)
             .build_cartesian_2d(
-                (x0 / 1.5..x1 * 1.5).log_scale(),
+                (x0 / 1.5..x_end).log_scale(),
                 // From just below a whole decade: plotters labels a log axis from the first
                 // decade inside its range upwards, so errors below that would go unlabelled.
                 (0.99 * 10f64.powf((y0 / 3.0).log10().floor())..y1 * 3.0).log_scale(),
