@@ -399,9 +399,9 @@ fn stored_references_serve_and_reproduce() {
 /// resolve 1.6·10⁻⁹–8.9·10⁻⁸, so at least a tenfold margin stands between the target and both.
 /// On the bridges it is the point their grid runs past its meshes for (ESDIRK4 at 10⁻⁴ on 20
 /// elements of degree 6): measured, it lands 8.7·10⁻⁷ (D44) and 6.5·10⁻⁷ (D50) from
-/// references made on 40 elements at 10⁻⁶, which resolve 2.7·10⁻⁷ and 8.7·10⁻⁷ (D50's is the
-/// 20-element mesh's own distance): the target is within what they resolve, with less margin
-/// than on the sudden loads, and REPORT.md says so. The extremes of the same runs lie
+/// references made on 40 elements at 10⁻⁶, which resolve 2.7·10⁻⁷ and 8.7·10⁻⁷: the target
+/// is within what they resolve, with less margin than on the sudden loads, and REPORT.md says
+/// so. The extremes of the same runs lie
 /// 10⁻⁵–10⁻³ off: the means are what makes the target reachable, not the runs.
 #[test]
 fn stored_windowed_means_are_reached_within_1e_6() {
