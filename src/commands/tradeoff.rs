@@ -85,20 +85,16 @@ impl Plan {
     /// The mesh the windowed means' reference is made on: twice the finest tried, of the
     /// highest degree tried, the points past the grid included (`None`: the scene's).
     pub fn means_mesh(&self) -> (Option<usize>, Option<usize>) {
-        let points = || self.points.iter();
-        let finest = self
-            .meshes
-            .iter()
-            .copied()
-            .chain(points().filter_map(|p| p.elements))
-            .max();
-        let order = self
-            .orders
-            .iter()
-            .copied()
-            .chain(points().filter_map(|p| p.order))
-            .max();
-        (finest.map(|n| 2 * n), order)
+        let highest = |grid: &[usize], of_point: fn(&GridPoint) -> Option<usize>| {
+            grid.iter()
+                .copied()
+                .chain(self.points.iter().filter_map(of_point))
+                .max()
+        };
+        (
+            highest(&self.meshes, |p| p.elements).map(|n| 2 * n),
+            highest(&self.orders, |p| p.order),
+        )
     }
 
     /// The rtol the windowed means' reference is made at: a decade below the tightest tried,
@@ -1039,9 +1035,10 @@ impl TradeoffOptions {
                     "--elements meshes a beam; this scene has a rigid curve".into(),
                 ));
             }
-            if let Some(&bad) = self.elements.iter().find(|&&n| n == 0 || n > 1000) {
+            if let Some(&bad) = self.elements.iter().find(|n| !ELEMENTS_TRIED.contains(n)) {
                 return Err(Error::Input(format!(
-                    "--elements {bad}: an element count is from 1 to 1000"
+                    "--elements {bad}: {}",
+                    elements_tried()
                 )));
             }
             plan.meshes = self.elements.clone();
@@ -1053,10 +1050,8 @@ impl TradeoffOptions {
                         .into(),
                 ));
             }
-            if let Some(&bad) = self.orders.iter().find(|&&k| k == 0 || k > MAX_ORDER) {
-                return Err(Error::Input(format!(
-                    "--orders {bad}: an element's degree is from 1 to {MAX_ORDER}"
-                )));
+            if let Some(&bad) = self.orders.iter().find(|k| !DEGREES.contains(k)) {
+                return Err(Error::Input(format!("--orders {bad}: {}", degrees())));
             }
             plan.orders = self.orders.clone();
         }
@@ -1087,6 +1082,27 @@ impl TradeoffOptions {
     }
 }
 
+/// The element counts a run of `tradeoff` may be given (`--elements`, `--point`).
+const ELEMENTS_TRIED: std::ops::RangeInclusive<usize> = 1..=1000;
+/// The elements' degrees (`--orders`, `--point`).
+const DEGREES: std::ops::RangeInclusive<usize> = 1..=MAX_ORDER;
+
+fn elements_tried() -> String {
+    format!(
+        "an element count is from {} to {}",
+        ELEMENTS_TRIED.start(),
+        ELEMENTS_TRIED.end()
+    )
+}
+
+fn degrees() -> String {
+    format!(
+        "an element's degree is from {} to {}",
+        DEGREES.start(),
+        DEGREES.end()
+    )
+}
+
 /// A `--point`: METHOD:RTOL:ELEMENTS:DEGREE, each part checked as its own flag is.
 fn parse_point(text: &str, scene: &Scene) -> Result<GridPoint, Error> {
     let bad = |why: String| Error::Input(format!("--point {}: {why}", quote(text)));
@@ -1107,12 +1123,12 @@ fn parse_point(text: &str, scene: &Scene) -> Result<GridPoint, Error> {
         .map_err(|_| bad(format!("the rtol {} is not a number", quote(rtol))))?;
     rtol_flag(Some(rtol), "--point's rtol")?;
     let elements = match elements.parse::<usize>() {
-        Ok(n) if (1..=1000).contains(&n) => n,
-        _ => return Err(bad("an element count is from 1 to 1000".into())),
+        Ok(n) if ELEMENTS_TRIED.contains(&n) => n,
+        _ => return Err(bad(elements_tried())),
     };
     let order = match order.parse::<usize>() {
-        Ok(k) if (1..=MAX_ORDER).contains(&k) => k,
-        _ => return Err(bad(format!("an element's degree is from 1 to {MAX_ORDER}"))),
+        Ok(k) if DEGREES.contains(&k) => k,
+        _ => return Err(bad(degrees())),
     };
     Ok(GridPoint {
         method,
