@@ -233,7 +233,7 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             projected = steps.saturating_add(((self.t_end - self.t) / pace).min(1e18) as usize);
             self.pace_from = (steps, self.t);
             let over = projected > self.opts.max_steps.saturating_mul(PACE_MARGIN);
-            hopeless = over && self.pace_over;
+            hopeless = over && self.pace_over && !self.opts.whole_budget;
             self.pace_over = over;
         }
         if steps >= self.opts.max_steps || hopeless {

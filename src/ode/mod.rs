@@ -177,6 +177,10 @@ pub struct Options {
     /// Take steps of exactly this size, with no error control.
     pub fixed_step: Option<f64>,
     pub max_steps: usize,
+    /// Spend all of `max_steps` before giving up, rather than give up early when the pace of
+    /// the steps so far projects far past it: for a setting known to finish whose first steps
+    /// are by far its densest (the zip-line's points past its work–precision grid).
+    pub whole_budget: bool,
     /// Generalized-α's spectral radius at infinity.
     pub rho_inf: f64,
 }
@@ -189,6 +193,7 @@ impl Default for Options {
             atol: 1e-9,
             fixed_step: None,
             max_steps: 10_000_000,
+            whole_budget: false,
             rho_inf: 1.0,
         }
     }

@@ -490,3 +490,25 @@ fn a_run_gives_up_early_only_on_a_pace_that_lasts() {
         other => panic!("expected an early give-up, got {other:?}"),
     }
 }
+
+/// The same budget spent whole: held dense until t = 1 (10 000 steps), every window projects
+/// 10⁵ steps, so a run judged by its pace gives up after 4000; a run told to spend its whole
+/// budget of 12 000 finishes, as a point past a work–precision grid must.
+#[test]
+fn a_run_told_to_spend_its_whole_budget_is_not_judged_by_its_pace() {
+    let scene = Decay { dense_until: 1.0 };
+    let judged = Options {
+        max_steps: 12_000,
+        ..Default::default()
+    };
+    assert!(matches!(
+        run(&scene, &[1.0], 10.0, &judged),
+        Err(SolveError::TooManySteps { steps: 4000, .. })
+    ));
+    let whole = Options {
+        whole_budget: true,
+        ..judged
+    };
+    let out = run(&scene, &[1.0], 10.0, &whole).expect("a run that fits its budget finishes");
+    assert!((out.y[0] - (-10.0f64).exp()).abs() < 1e-8, "{}", out.y[0]);
+}

@@ -105,6 +105,9 @@ pub struct Overrides {
     pub fixed_step: Option<f64>,
     /// Give up after this many steps (a budget, for `tradeoff`).
     pub max_steps: Option<usize>,
+    /// Spend the whole budget, not giving up on the pace of the first steps
+    /// (`ode::Options::whole_budget`).
+    pub whole_budget: bool,
     /// Read a modal beam's displacements without the static correction of the modes left
     /// out: what the correction does, measured.
     pub uncorrected_modes: bool,
@@ -134,6 +137,7 @@ impl Overrides {
             max_steps: self
                 .max_steps
                 .unwrap_or(crate::ode::Options::default().max_steps),
+            whole_budget: self.whole_budget,
             ..Default::default()
         }
     }
