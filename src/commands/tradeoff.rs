@@ -1004,9 +1004,9 @@ pub struct TradeoffArgs {
     #[arg(long)]
     reference: bool,
     /// Make the probes' windowed means a reference (ESDIRK4, or the method of the tightest
-    /// `--point`, a decade below the tightest rtol tried, on twice the finest mesh tried at the highest degree, checked at a tenfold rtol
-    /// and on a mesh half as fine) and store it with the scene's reference; the diagram is then
-    /// also drawn in the means (tradeoff-means.svg).
+    /// `--point`, a decade below the tightest rtol tried, on twice the finest mesh tried at the
+    /// highest degree, checked at a tenfold rtol and on a mesh half as fine) and store it with
+    /// the scene's reference; the diagram is then also drawn in the means (tradeoff-means.svg).
     #[arg(long)]
     reference_means: bool,
 }
