@@ -102,8 +102,9 @@ impl Plan {
     /// The rtol the windowed means' reference is made at: a decade below the tightest tried,
     /// the points past the grid included. On the sudden loads (grid to 1e-4) that is 1e-5,
     /// which settles the means to 10⁻⁹, mesh and time together (REPORT.md), in a minute or
-    /// two. On the bridges (grid to 1e-5) it is 1e-6: at 1e-5 D44's reference resolved only
-    /// 8.9·10⁻⁷, too near the 10⁻⁶ its point is scored to.
+    /// two. The bridges' stored means were made with their grid to 1e-5 (`--rtols`, in the
+    /// command each records), so at 1e-6: at 1e-5 D44's resolved only 8.9·10⁻⁷, too near the
+    /// 10⁻⁶ its point is scored to. The rubber's point at 1e-8 puts its means at 1e-9.
     pub fn means_rtol(&self) -> f64 {
         self.rtols
             .iter()
@@ -124,12 +125,13 @@ impl Plan {
             .map_or(Method::Esdirk4, |p| p.method)
     }
 
-    /// The steps a run of this point may take.
-    pub fn budget(&self, point: &GridPoint) -> usize {
+    /// The steps a run of this point may take, and whether it spends them whole: a point past
+    /// the grid does, and may take [`POINT_STEPS_FACTOR`] times a grid run's.
+    pub fn budget(&self, point: &GridPoint) -> (usize, bool) {
         if self.points.contains(point) {
-            POINT_STEPS_FACTOR.saturating_mul(self.max_steps)
+            (POINT_STEPS_FACTOR.saturating_mul(self.max_steps), true)
         } else {
-            self.max_steps
+            (self.max_steps, false)
         }
     }
 
@@ -641,9 +643,10 @@ pub fn trials(
 /// One run of the grid, scored against the reference.
 pub fn trial(scene: &Scene, plan: &Plan, reference: &Reference, point: GridPoint) -> Trial {
     let scene = with_mesh(scene, point.elements, point.order, point.model);
+    let (max_steps, whole_budget) = plan.budget(&point);
     let mut over = Overrides {
-        whole_budget: plan.points.contains(&point),
-        ..overrides(point.method, point.rtol, plan.budget(&point))
+        whole_budget,
+        ..overrides(point.method, point.rtol, max_steps)
     };
     if reference.means.is_some() {
         over = with_means(over);
