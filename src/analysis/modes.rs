@@ -30,6 +30,63 @@ pub struct Modes {
     pub shapes: DMatrix<f64>,
 }
 
+/// What a mode of the straight beam is: the unknowns of the axis' stretch and those of its
+/// bending are coupled only through the deformation, so about the undeformed state each mode
+/// moves one kind or the other.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ModeKind {
+    /// Transverse displacement and rotation: what EN 1991-2's f1, f3 and the deck's
+    /// acceleration mean.
+    Bending,
+    /// Stretch along the axis, w ≡ 0.
+    Axial,
+}
+
+impl ModeKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            ModeKind::Bending => "bending",
+            ModeKind::Axial => "axial",
+        }
+    }
+}
+
+impl Modes {
+    /// Each mode's kind, by where its kinetic energy φᵀ M φ lies: mostly in the axial
+    /// displacements u, an axial mode; otherwise a bending one.
+    pub fn kinds(&self, beam: &Beam) -> Vec<ModeKind> {
+        let axial: Vec<usize> = (0..beam.nodes())
+            .filter_map(|node| beam.eq_of(node, 0))
+            .collect();
+        let mass = beam.mass();
+        (0..self.shapes.ncols())
+            .map(|j| {
+                let phi = self.shapes.column(j);
+                let mut m_phi = vec![0.0; phi.len()];
+                linalg::mul(mass, phi.as_slice(), &mut m_phi);
+                let total: f64 = phi.iter().zip(&m_phi).map(|(a, b)| a * b).sum();
+                let along: f64 = axial.iter().map(|&i| phi[i] * m_phi[i]).sum();
+                if along > 0.5 * total {
+                    ModeKind::Axial
+                } else {
+                    ModeKind::Bending
+                }
+            })
+            .collect()
+    }
+
+    /// The circular frequencies of the bending modes, ascending.
+    pub fn bending_omega(&self, beam: &Beam) -> Vec<f64> {
+        self.kinds(beam)
+            .iter()
+            .zip(&self.omega)
+            .filter(|(k, _)| **k == ModeKind::Bending)
+            .map(|(_, w)| *w)
+            .collect()
+    }
+}
+
 /// A square matrix read entry by entry, (row, column, value): the mesh's sparse K and M, or
 /// the dense ones a subspace iteration reduces them to. Entries that are exactly zero may be
 /// left out; a repeated entry adds.
@@ -90,8 +147,8 @@ fn kept() -> &'static Mutex<Vec<(String, Eigen)>> {
     KEPT_SOLUTIONS.get_or_init(|| Mutex::new(Vec::new()))
 }
 
-/// The beam's Rayleigh damping, a ratio anchored on the natural frequencies its mesh has;
-/// `Err` names a mode the mesh does not have.
+/// The beam's Rayleigh damping, a ratio anchored on the natural frequencies of the bending
+/// modes its mesh has; `Err` names a mode the mesh does not have.
 pub fn rayleigh(beam: &Beam) -> Result<Option<Rayleigh>, String> {
     let Some(spec) = beam.spec.damping else {
         return Ok(None);
@@ -100,14 +157,13 @@ pub fn rayleigh(beam: &Beam) -> Result<Option<Rayleigh>, String> {
     let omega = if needed == 0 {
         Vec::new()
     } else {
-        modes(beam, needed)
+        lowest_bending(beam, needed)
             .ok_or("the natural modes the damping ratio is anchored on could not be computed")?
-            .omega
     };
     if omega.len() < needed {
         return Err(format!(
-            "`track.beam.damping.modes` names mode {needed}, but the mesh has {} modes",
-            beam.dim()
+            "`track.beam.damping.modes` names bending mode {needed}, but the mesh has {} bending modes",
+            omega.len()
         ));
     }
     let r = Rayleigh::resolve(spec, &omega)
@@ -118,6 +174,20 @@ pub fn rayleigh(beam: &Beam) -> Result<Option<Rayleigh>, String> {
             "`track.beam.damping` is anchored on modes whose frequencies ({}) are not positive numbers: the beam moves as a rigid body, or its values are too extreme",
             crate::error::short_numbers(&format!("{:?} rad/s", &omega[..needed]))
         )),
+    }
+}
+
+/// The circular frequencies of the lowest `count` bending modes (fewer where the mesh has
+/// fewer), ascending: the modes EN 1991-2's rules and a damping ratio's anchors mean.
+pub fn lowest_bending(beam: &Beam, count: usize) -> Option<Vec<f64>> {
+    let n = beam.dim();
+    let mut asked = count.min(n);
+    loop {
+        let bending = modes(beam, asked)?.bending_omega(beam);
+        if bending.len() >= count || asked >= n {
+            return Some(bending.into_iter().take(count).collect());
+        }
+        asked = (2 * asked).min(n);
     }
 }
 

@@ -228,7 +228,10 @@ fn damping(f: &mut fmt::Formatter<'_>, b: &Beam) -> fmt::Result {
     };
     let anchored = match spec {
         DampingSpec::Ratio { zeta, modes } => {
-            format!(", from ζ = {zeta} at modes {} and {}", modes[0], modes[1])
+            format!(
+                ", from ζ = {zeta} at bending modes {} and {}",
+                modes[0], modes[1]
+            )
         }
         DampingSpec::Rayleigh { .. } => String::new(),
     };
@@ -236,8 +239,16 @@ fn damping(f: &mut fmt::Formatter<'_>, b: &Beam) -> fmt::Result {
         .map(|m| {
             m.omega
                 .iter()
-                .filter(|w| w.is_normal())
-                .map(|w| format!("{:.3} Hz {:.4}", w / std::f64::consts::TAU, r.ratio_at(*w)))
+                .zip(m.kinds(b))
+                .filter(|(w, _)| w.is_normal())
+                .map(|(w, kind)| {
+                    format!(
+                        "{:.3} Hz ({}) {:.4}",
+                        w / std::f64::consts::TAU,
+                        kind.name(),
+                        r.ratio_at(*w)
+                    )
+                })
                 .collect::<Vec<_>>()
                 .join(", ")
         })

@@ -151,11 +151,15 @@ pub fn static_solution(scene: &Scene, setup: &BeamScene) -> Result<StaticFile, E
 struct ModesFile {
     scene: String,
     frequencies_hz: Vec<f64>,
+    /// Each mode's kind: bending or axial.
+    kinds: Vec<modes::ModeKind>,
 }
 
 /// Natural frequencies (Hz) and mode shapes, mass-normalised, sampled at `xs`.
 pub struct NaturalModes {
     pub hz: Vec<f64>,
+    /// Each mode's kind (bending or axial).
+    pub kinds: Vec<modes::ModeKind>,
     pub xs: Vec<f64>,
     /// Per mode, u, w and φ at each of `xs`.
     pub shapes: Vec<Vec<crate::beam::PointDisplacement>>,
@@ -205,24 +209,35 @@ pub fn natural_modes(
                 .collect()
         })
         .collect();
-    Ok(NaturalModes { hz, xs, shapes })
+    Ok(NaturalModes {
+        hz,
+        kinds: m.kinds(&beam),
+        xs,
+        shapes,
+    })
 }
 
 /// The lowest `count` natural frequencies and mode shapes about the undeformed state.
 pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Result<String, Error> {
-    let NaturalModes { hz, xs, shapes } = natural_modes(scene, setup, count, 200)?;
+    let NaturalModes {
+        hz,
+        kinds,
+        xs,
+        shapes,
+    } = natural_modes(scene, setup, count, 200)?;
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
     write(
         &dir.join("modes.yaml"),
         &yaml(&ModesFile {
             scene: scene.name.clone(),
             frequencies_hz: hz.clone(),
+            kinds: kinds.clone(),
         })?,
     )?;
     let labels: Vec<String> = hz
         .iter()
         .enumerate()
-        .map(|(k, f)| format!("mode {} ({f:.3} Hz)", k + 1))
+        .map(|(k, f)| format!("mode {} ({f:.3} Hz, {})", k + 1, kinds[k].name()))
         .collect();
     let series: Vec<(&str, Vec<(f64, f64)>)> = (0..hz.len())
         .map(|k| {
@@ -246,7 +261,7 @@ pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Resu
     )?;
     let mut text = format!("{}: natural frequencies (Hz)\n", scene.name);
     for (k, f) in hz.iter().enumerate() {
-        let _ = writeln!(text, "  {:>2}: {f:.6}", k + 1);
+        let _ = writeln!(text, "  {:>2}: {f:.6} ({})", k + 1, kinds[k].name());
     }
     let _ = writeln!(text, "  wrote {}", dir.join("modes.yaml").display());
     Ok(text)

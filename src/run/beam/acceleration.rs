@@ -1,5 +1,6 @@
 //! The deck acceleration as EN 1991-2 §6.4.6 counts it: the beam's acceleration with the modes
-//! above a cutoff frequency left out (by default max(30 Hz, 1.5 f1, f3)). On a modal beam that
+//! above a cutoff frequency left out (by default max(30 Hz, 1.5 f1, f3), f1 and f3 the first
+//! and third bending modes: an axial mode, w ≡ 0, is not what the rule counts). On a modal beam that
 //! is the modes kept below the cutoff; on the mesh (exact and linear beams) the acceleration is
 //! projected on the linear beam's modes below it, a = Σ φ_k φ_kᵀ M a: the same filter, so the
 //! models report the same quantity.
@@ -49,13 +50,16 @@ impl AccelerationFilter {
                 "as the scene gives (output.acceleration_cutoff_hz)".to_string(),
             ),
             None => {
-                let f = hz(&m);
+                let f: Vec<f64> = crate::analysis::modes::lowest_bending(beam, 3)?
+                    .iter()
+                    .map(|w| w / std::f64::consts::TAU)
+                    .collect();
                 let f1 = f.first().copied().unwrap_or(0.0);
                 let f3 = f.get(2).copied().unwrap_or(f1);
                 (
                     CUTOFF_FLOOR_HZ.max(1.5 * f1).max(f3),
                     format!(
-                        "EN 1991-2 §6.4.6.4: max(30 Hz, 1.5 f1 = {:.2} Hz, f3 = {f3:.2} Hz)",
+                        "EN 1991-2 §6.4.6.4: max(30 Hz, 1.5 f1 = {:.2} Hz, f3 = {f3:.2} Hz), f1 and f3 the first and third bending modes",
                         1.5 * f1
                     ),
                 )
