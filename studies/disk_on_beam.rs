@@ -34,17 +34,8 @@ fn probe(r: &BeamRun, name: &str) -> usize {
 
 /// Half the range of w at a probe after the disk has left: the residual vibration.
 fn residual(r: &BeamRun, name: &str) -> f64 {
-    let k = probe(r, name);
-    let te = r.left_track_t.expect("the disk left the beam");
-    let (lo, hi) = r
-        .rows
-        .iter()
-        .filter(|row| row.t > te)
-        .map(|row| row.probes[k].w)
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), w| {
-            (l.min(w), h.max(w))
-        });
-    0.5 * (hi - lo)
+    r.amplitude_after_exit(probe(r, name))
+        .expect("the disk left the beam")
 }
 
 /// The moving force on the bridge with shear made stiff (G × 10⁴, the Euler–Bernoulli limit)

@@ -497,7 +497,13 @@ impl Beam {
         self.eq[3 * node + c]
     }
 
+    /// The length of one element (the mesh is uniform).
+    pub fn element_length(&self) -> f64 {
+        self.h
+    }
+
     /// The element holding material point x (the end elements extend past the ends).
+
     pub fn element_of(&self, x: f64) -> usize {
         ((x / self.h).floor().max(0.0) as usize).min(self.spec.elements - 1)
     }

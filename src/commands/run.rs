@@ -74,18 +74,13 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
             say!("  disk at s = {:.6}, centre ({:.6}, {:.6}) m, velocity ({:.6}, {:.6}) m/s, Ω = {:.6} 1/s", d.s, d.x, d.y, d.vx, d.vy, d.omega);
         }
         Run::Beam(b) => {
-            for (k, p) in b.setup.probes.iter().enumerate() {
-                let (lo, hi) = b
-                    .rows
-                    .iter()
-                    .map(|r| r.probes[k].w)
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, c), w| {
-                        (a.min(w), c.max(w))
-                    });
+            for (p, [_, w, ..]) in b.setup.probes.iter().zip(&b.extremes.probes) {
                 say!(
-                    "  probe {} (x = {} m): w from {lo:.6e} to {hi:.6e} m",
+                    "  probe {} (x = {} m): w from {:.6e} to {:.6e} m",
                     p.name,
-                    p.x
+                    p.x,
+                    w.min,
+                    w.max
                 );
             }
             for w in b.setup.warnings() {

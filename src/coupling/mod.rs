@@ -519,7 +519,9 @@ impl<'a> DiskOnBeam<'a> {
             .unwrap_or(self.spec.disk.mass * self.spec.gravity * height)
     }
 
-    fn observe_with(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> DiskObservation {
+    /// What the run reports of the disk at (t, z, ż) whose acceleration z̈ is known (a dense
+    /// output's): [`Self::observe`] without the solve for it.
+    pub fn observe_with(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> DiskObservation {
         let at = self.observed_contact(t, z, zd);
         let motion = self.motion(&at, zd, zdd);
         let tg = at.tangent();
@@ -677,12 +679,14 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
     /// The averaged track changes over the patch half-width b and no faster, and a crest
     /// there shows in the contact force, not in the motion the error estimate measures: a
     /// step moves a rolling disk by at most b/2, so the contact-loss event sees every crest.
-    fn max_step(&self, _t: f64, _q: &[f64], v: &[f64]) -> f64 {
-        if self.rolls() {
+    /// A prescribed load crosses at most one element a step (`LoadedBeam::load_step_bound`).
+    fn max_step(&self, t: f64, _q: &[f64], v: &[f64]) -> f64 {
+        let own = if self.rolls() {
             0.5 * self.spec.patch / v[self.n].abs()
         } else {
-            f64::INFINITY
-        }
+            self.beam().element_length() / self.spec.v0().abs()
+        };
+        own.min(self.loaded.load_step_bound(t))
     }
 
     fn breakpoints(&self) -> Vec<f64> {

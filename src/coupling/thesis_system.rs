@@ -141,6 +141,10 @@ impl Problem for ThesisSystem<'_> {
         self.coupled.loaded.enter_segment(start, end)
     }
 
+    fn max_step(&self, t: f64, _y: &[f64]) -> f64 {
+        self.coupled.loaded.load_step_bound(t)
+    }
+
     fn events(&self) -> &[EventSpec<StopReason>] {
         // Off either end, and contact lost: the rolling couplings' first three.
         &super::EVENTS[..3]

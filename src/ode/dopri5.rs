@@ -164,4 +164,19 @@ impl Stepper for Dopri5 {
             *o = c(0) + th * (c(1) + th1 * (c(2) + th * (c(3) + th1 * c(4))));
         }
     }
+
+    fn interpolate_rate(&self, t: f64, out: &mut [f64]) {
+        let th = (t - self.t_old) / self.h;
+        let th1 = 1.0 - th;
+        for (i, o) in out.iter_mut().enumerate() {
+            let c = |k: usize| self.cont[k][i];
+            // The polynomial's nested factors and their derivatives in θ, innermost first.
+            let inner = c(3) + th1 * c(4);
+            let b = c(2) + th * inner;
+            let db = inner - th * c(4);
+            let a = c(1) + th1 * b;
+            let da = -b + th1 * db;
+            *o = (a + th * da) / self.h;
+        }
+    }
 }

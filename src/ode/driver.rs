@@ -9,8 +9,8 @@ use super::genalpha::GenAlphaStepper;
 use super::stage_solver::Dirk;
 use super::trbdf2::TrBdf2;
 use super::{
-    Attempt, Ctx, Dynamics, EventHit, EventSpec, Method, Observer, Options, Outcome, Problem,
-    SolveError, Stats, Stepper, EVENT_TIME_TOL,
+    Attempt, Ctx, Dense, Dynamics, EventHit, EventSpec, Method, Observer, Options, Outcome,
+    Problem, SolveError, Stats, Stepper, EVENT_TIME_TOL,
 };
 
 fn make_stepper(opts: &Options, n: usize) -> Box<dyn Stepper> {
@@ -315,11 +315,7 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             },
         );
         let t_stop = first.map_or(t_new, |(_, te)| te);
-        observer.span(self.t, t_stop, &|t| {
-            let mut y = vec![0.0; p.dim()];
-            stepper.interpolate(t, &mut y);
-            y
-        });
+        observer.span(self.t, t_stop, &StepperDense(stepper.as_ref()));
         while self.next_out < self.outputs.len() && self.outputs[self.next_out] <= t_stop {
             let to = self.outputs[self.next_out];
             stepper.interpolate(to, y_tmp);
@@ -355,6 +351,23 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
         let cap = self.newton_cap.max(h_try);
         self.newton_cap *= NEWTON_CAP_EASING;
         self.stepper.keep_step(h_try, (h_try * factor).min(cap))
+    }
+}
+
+/// The dense output of the stepper's last accepted step.
+struct StepperDense<'a>(&'a dyn Stepper);
+
+impl Dense for StepperDense<'_> {
+    fn at(&self, t: f64) -> Vec<f64> {
+        let mut y = vec![0.0; self.0.y_new().len()];
+        self.0.interpolate(t, &mut y);
+        y
+    }
+
+    fn rate(&self, t: f64) -> Option<Vec<f64>> {
+        let mut yp = vec![0.0; self.0.y_new().len()];
+        self.0.interpolate_rate(t, &mut yp);
+        Some(yp)
     }
 }
 

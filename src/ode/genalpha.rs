@@ -498,6 +498,10 @@ impl Stepper for GenAlphaStepper {
         self.ends.interpolate(t, out);
     }
 
+    fn interpolate_rate(&self, t: f64, out: &mut [f64]) {
+        self.ends.interpolate_rate(t, out);
+    }
+
     fn max_growth(&self) -> f64 {
         2.0
     }

@@ -310,13 +310,31 @@ impl fmt::Display for SolveError {
 
 impl std::error::Error for SolveError {}
 
+/// The dense output of an accepted step, for t within it.
+pub trait Dense {
+    /// y(t).
+    fn at(&self, t: f64) -> Vec<f64>;
+    /// y'(t), the interpolant's own derivative (at the step's ends the method's y'); `None`
+    /// where the view of the state has none.
+    fn rate(&self, _t: f64) -> Option<Vec<f64>> {
+        None
+    }
+}
+
+/// A dense output given as a function of t alone.
+impl<F: Fn(f64) -> Vec<f64>> Dense for F {
+    fn at(&self, t: f64) -> Vec<f64> {
+        self(t)
+    }
+}
+
 /// Receives the solution at output times and after every accepted step.
 pub trait Observer {
     fn output(&mut self, t: f64, y: &[f64]);
     fn step(&mut self, _t: f64, _y: &[f64]) {}
-    /// The accepted step from t0 to t1 as its dense output, y(t) for t in [t0, t1]: for what
-    /// integrates over time, which the output grid would alias.
-    fn span(&mut self, _t0: f64, _t1: f64, _dense: &dyn Fn(f64) -> Vec<f64>) {}
+    /// The accepted step from t0 to t1 as its dense output: for what integrates over time
+    /// and the extremes between output times, which the output grid would alias or miss.
+    fn span(&mut self, _t0: f64, _t1: f64, _dense: &dyn Dense) {}
 }
 
 /// Step outcome of one attempt by a stepper.
@@ -352,6 +370,8 @@ pub(crate) trait Stepper {
     fn accept(&mut self, t_new: f64);
     /// Dense output inside the last accepted step [t_old, t_old + h].
     fn interpolate(&self, t: f64, out: &mut [f64]);
+    /// The dense output's derivative in t.
+    fn interpolate_rate(&self, t: f64, out: &mut [f64]);
     /// Implicit methods keep a factorised iteration matrix valid while h stays put.
     fn keep_step(&self, _h_old: f64, h_new: f64) -> f64 {
         h_new
@@ -544,6 +564,18 @@ impl StepEnds {
         std::mem::swap(&mut self.prev_yp, &mut self.yp);
         self.y.copy_from_slice(y);
         self.yp.copy_from_slice(yp);
+    }
+
+    /// y'(t) inside the last accepted step: the cubic's derivative.
+    pub fn interpolate_rate(&self, t: f64, out: &mut [f64]) {
+        let h = self.h;
+        let th = (t - self.t0) / h;
+        let d00 = 6.0 * th * (th - 1.0) / h;
+        let d10 = (3.0 * th - 1.0) * (th - 1.0);
+        let d11 = th * (3.0 * th - 2.0);
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = d00 * (self.prev_y[i] - self.y[i]) + d10 * self.prev_yp[i] + d11 * self.yp[i];
+        }
     }
 
     /// y(t) inside the last accepted step.

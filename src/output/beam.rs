@@ -57,32 +57,9 @@ struct PatchSummary {
 
 fn disk_summary(r: &BeamRun) -> Option<BeamDiskSummary> {
     let spec = r.setup.disk.as_ref()?;
-    let on: Vec<_> = r
-        .rows
-        .iter()
-        .filter_map(|row| row.disk.map(|d| (row, d)))
-        .collect();
-    let (_, last) = on.last()?;
-    let fold = |f: fn(&crate::rolling::DiskObservation) -> f64| {
-        on.iter()
-            .map(|(_, d)| f(d))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                (lo.min(v), hi.max(v))
-            })
-    };
-    let (rn_min, rn_max) = fold(|d| d.rn);
-    let (rt_min, rt_max) = fold(|d| d.rt);
-    let mu_needed_max = on
-        .iter()
-        .filter_map(|(_, d)| d.mu_needed())
-        .reduce(f64::max);
-    let (w_under_min, w_under_min_t) = on.iter().fold((f64::INFINITY, 0.0), |(w, t), (row, _)| {
-        if row.w_under < w {
-            (row.w_under, row.t)
-        } else {
-            (w, t)
-        }
-    });
+    let last = r.rows.iter().filter_map(|row| row.disk).last()?;
+    let [rn, rt, mu, w_under] = r.extremes.disk?;
+    let mu_needed_max = mu.seen().then_some(mu.max);
     Some(BeamDiskSummary {
         coupling: spec.coupling.name(),
         common: super::summary::DiskSummary {
@@ -92,16 +69,16 @@ fn disk_summary(r: &BeamRun) -> Option<BeamDiskSummary> {
             vx: last.vx,
             vy: last.vy,
             omega: last.omega,
-            rn_min,
-            rn_max,
-            rt_min,
-            rt_max,
+            rn_min: rn.min,
+            rn_max: rn.max,
+            rt_min: rt.min,
+            rt_max: rt.max,
             mu_needed_max,
             left_track_t: r.left_track_t,
             flights: r.flights.clone(),
         },
-        w_under_min,
-        w_under_min_t,
+        w_under_min: w_under.min,
+        w_under_min_t: w_under.min_t,
         patch: {
             let s = r.setup.patch_sensitivity()?;
             PatchSummary {
@@ -230,7 +207,8 @@ struct ProbeSummary {
     u_max: f64,
     phi_min: f64,
     phi_max: f64,
-    /// Half the range of w after the disk left the beam: the residual vibration.
+    /// Half the range of w after the last load left the beam (the disk, or a train's last
+    /// axle): the residual vibration.
     #[serde(skip_serializing_if = "Option::is_none")]
     w_amplitude_after_exit: Option<f64>,
     /// The largest |vertical acceleration| and when.
@@ -239,50 +217,19 @@ struct ProbeSummary {
 }
 
 fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
-    let rows = &r.rows;
-    let arg = |better: fn(f64, f64) -> bool| {
-        rows.iter()
-            .fold((rows[0].probes[k].w, rows[0].t), |(v, t), row| {
-                if better(row.probes[k].w, v) {
-                    (row.probes[k].w, row.t)
-                } else {
-                    (v, t)
-                }
-            })
-    };
-    let (w_min, w_min_t) = arg(|a, b| a < b);
-    let (w_max, w_max_t) = arg(|a, b| a > b);
-    let fold = |f: fn(&crate::beam::PointDisplacement) -> f64| {
-        rows.iter()
-            .map(|row| f(&row.probes[k]))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                (lo.min(v), hi.max(v))
-            })
-    };
-    let (u_min, u_max) = fold(|d| d.u);
-    let (phi_min, phi_max) = fold(|d| d.phi);
-    let w_amplitude_after_exit = r
-        .left_track_t
-        .map(|_| r.amplitude_after_exit(k).unwrap_or(0.0));
-    let (a_max, a_max_t) = rows.iter().fold((0.0_f64, 0.0), |(a, t), row| {
-        let v = row.accelerations[k].abs();
-        if v > a {
-            (v, row.t)
-        } else {
-            (a, t)
-        }
-    });
+    let [u, w, phi, a] = r.extremes.probes[k];
+    let (a_max, a_max_t) = a.largest_magnitude();
     ProbeSummary {
         x: r.setup.probes[k].x,
-        w_min,
-        w_min_t,
-        w_max,
-        w_max_t,
-        u_min,
-        u_max,
-        phi_min,
-        phi_max,
-        w_amplitude_after_exit,
+        w_min: w.min,
+        w_min_t: w.min_t,
+        w_max: w.max,
+        w_max_t: w.max_t,
+        u_min: u.min,
+        u_max: u.max,
+        phi_min: phi.min,
+        phi_max: phi.max,
+        w_amplitude_after_exit: r.amplitude_after_exit(k),
         a_max,
         a_max_t,
     }

@@ -111,21 +111,7 @@ impl Energy {
 impl Summary {
     pub fn from_run(r: &RunResult) -> Summary {
         let d = &r.last.disk;
-        let fold = |f: fn(&crate::rolling::DiskObservation) -> f64| {
-            r.rows
-                .iter()
-                .map(|row| f(&row.disk))
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                    (lo.min(v), hi.max(v))
-                })
-        };
-        let (rn_min, rn_max) = fold(|d| d.rn);
-        let (rt_min, rt_max) = fold(|d| d.rt);
-        let mu_needed_max = r
-            .rows
-            .iter()
-            .filter_map(|row| row.disk.mu_needed())
-            .reduce(f64::max);
+        let [rn, rt, mu] = r.contact;
         let left = matches!(
             r.header.stop,
             crate::run::Stop::Event(crate::rolling::StopReason::LeftTrack)
@@ -147,11 +133,11 @@ impl Summary {
                 vx: d.vx,
                 vy: d.vy,
                 omega: d.omega,
-                rn_min,
-                rn_max,
-                rt_min,
-                rt_max,
-                mu_needed_max,
+                rn_min: rn.min,
+                rn_max: rn.max,
+                rt_min: rt.min,
+                rt_max: rt.max,
+                mu_needed_max: mu.seen().then_some(mu.max),
                 left_track_t: left.then_some(r.last.t),
                 flights: r.flights.clone(),
             },

@@ -2,6 +2,7 @@
 //! beam), integrate it, watch its energy, and collect what the outputs need.
 
 pub mod beam;
+pub mod extremes;
 pub mod rolling;
 
 use std::io::IsTerminal;

@@ -2,6 +2,7 @@
 //! normal force falls to zero and the scene lets the disk fly, flights in closed form and the
 //! landings that end them (`rolling/flight.rs`).
 
+use super::extremes::{Range, Turning, Watch};
 use super::{EnergyCheck, FlightRecord, Overrides, Progress, RunHeader, Stop, MAX_FLIGHTS};
 use crate::error::Error;
 use crate::ode::{self, Observer};
@@ -34,6 +35,8 @@ pub struct RunResult {
     pub rows: Vec<Row>,
     pub last: Row,
     pub flights: Vec<FlightRecord>,
+    /// The extremes of rn, rt and the friction rolling needs, located on the solution.
+    pub contact: [Range; 3],
 }
 
 pub fn model(setup: &RollingScene) -> Box<dyn RollingModel> {
@@ -62,12 +65,25 @@ struct Recorder<'a> {
     energy: EnergyCheck,
     progress: Option<Progress>,
     impact: f64,
+    /// The contact force and the friction it needs ([`contact_quantities`]), watched for
+    /// their extremes on the solution.
+    watch: Watch,
+    /// Those quantities at the end of the last step watched.
+    last: Option<(f64, Vec<f64>)>,
+}
+
+/// What the summary reports the extremes of: rn, rt and the friction coefficient rolling
+/// needs (NaN where the disk does not press on the track).
+fn contact_quantities(d: &DiskObservation) -> Vec<f64> {
+    vec![d.rn, d.rt, d.mu_needed().unwrap_or(f64::NAN)]
 }
 
 impl Recorder<'_> {
     fn record(&mut self, row: Row) {
         let (total, scale) = energy_of(&row.disk, row.impact);
         self.energy.record(total, scale);
+        self.watch
+            .record_point(row.t, &contact_quantities(&row.disk));
         self.rows.push(row);
     }
 }
@@ -82,6 +98,23 @@ impl Observer for Recorder<'_> {
             gap: 0.0,
             impact,
         });
+    }
+
+    fn span(&mut self, t0: f64, t1: f64, dense: &dyn ode::Dense) {
+        if !(t1 > t0) {
+            return;
+        }
+        let model = self.model;
+        let at = |t: f64| contact_quantities(&model.observe(t, &dense.at(t)));
+        let start = match self.last.take() {
+            Some((t, v)) if t == t0 => v,
+            _ => at(t0),
+        };
+        let tm = 0.5 * (t0 + t1);
+        let (middle, end) = (at(tm), at(t1));
+        self.watch
+            .record_step([t0, tm, t1], [&start, &middle, &end], at);
+        self.last = Some((t1, end));
     }
 
     fn step(&mut self, t: f64, y: &[f64]) {
@@ -133,6 +166,8 @@ pub fn run(
             None
         },
         impact: 0.0,
+        watch: Watch::new(3, Turning::OnTheSolution),
+        last: None,
     };
     let mut stats = ode::Stats::default();
     let mut flights = Vec::new();
@@ -229,6 +264,11 @@ pub fn run(
         rows: rec.rows,
         last,
         flights,
+        contact: [
+            rec.watch.ranges[0],
+            rec.watch.ranges[1],
+            rec.watch.ranges[2],
+        ],
     })
 }
 

@@ -198,8 +198,8 @@ pub struct Summary {
     pub energy_drift: f64,
     pub steps: usize,
     pub wall_s: f64,
-    /// Beam scenes: per probe (name, w_min, w_max, amplitude after the disk left or NaN,
-    /// largest |vertical acceleration|).
+    /// Beam scenes: per probe (name, w_min, w_max, amplitude after the last load left or
+    /// NaN, largest |vertical acceleration|).
     pub probes: Vec<(String, f64, f64, f64, f64)>,
     /// With a disk: (rn_min, rn_max, left_track_t or NaN).
     pub disk: Option<(f64, f64, f64)>,
@@ -211,36 +211,17 @@ fn summarise(r: &Run) -> Summary {
     match r {
         Run::Beam(b) => {
             for (k, p) in b.setup.probes.iter().enumerate() {
-                let w = b.rows.iter().map(|row| row.probes[k].w);
-                let (lo, hi) = w.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
-                    (l.min(v), h.max(v))
-                });
+                let [_, w, _, a] = b.extremes.probes[k];
                 let after = b.amplitude_after_exit(k).unwrap_or(f64::NAN);
-                let a_max = b
-                    .rows
-                    .iter()
-                    .map(|row| row.accelerations[k].abs())
-                    .fold(0.0, f64::max);
-                probes.push((p.name.clone(), lo, hi, after, a_max));
+                probes.push((p.name.clone(), w.min, w.max, after, a.largest_magnitude().0));
             }
-            let on: Vec<_> = b.rows.iter().filter_map(|row| row.disk).collect();
-            if !on.is_empty() {
-                let (lo, hi) = on
-                    .iter()
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), d| {
-                        (l.min(d.rn), h.max(d.rn))
-                    });
-                disk = Some((lo, hi, b.left_track_t.unwrap_or(f64::NAN)));
+            if let Some([rn, ..]) = b.extremes.disk {
+                disk = Some((rn.min, rn.max, b.left_track_t.unwrap_or(f64::NAN)));
             }
         }
         Run::Rolling(rr) => {
-            let (lo, hi) = rr
-                .rows
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), row| {
-                    (l.min(row.disk.rn), h.max(row.disk.rn))
-                });
-            disk = Some((lo, hi, f64::NAN));
+            let [rn, ..] = rr.contact;
+            disk = Some((rn.min, rn.max, f64::NAN));
         }
     }
     Summary {
@@ -415,10 +396,17 @@ fn probe_names(rows: &[SweepRow]) -> Vec<String> {
 /// probes' extremes.
 pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
     let probe_names = &probe_names(rows);
+    // A scene without a disk (a train, loads) has no disk columns.
+    let disk = rows
+        .iter()
+        .any(|r| r.outcome.as_ref().is_ok_and(|s| s.disk.is_some()));
     let mut csv = format!(
-        "{},status,stopped,t_end,energy_drift,steps,wall_s,disk.rn_min,disk.rn_max,disk.left_track_t",
+        "{},status,stopped,t_end,energy_drift,steps,wall_s",
         keys.join(",")
     );
+    if disk {
+        csv.push_str(",disk.rn_min,disk.rn_max,disk.left_track_t");
+    }
     for p in probe_names {
         let _ = write!(
             csv,
@@ -438,25 +426,24 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
         let values = values.join(",");
         match &r.outcome {
             Ok(s) => {
-                let (lo, hi, left) = s.disk.unwrap_or((f64::NAN, f64::NAN, f64::NAN));
                 let _ = write!(
                     csv,
-                    "{values},ok,{},{},{},{},{},{},{},{}",
-                    s.stop,
-                    s.t_end,
-                    s.energy_drift,
-                    s.steps,
-                    s.wall_s,
-                    cell(lo),
-                    cell(hi),
-                    cell(left)
+                    "{values},ok,{},{},{},{},{}",
+                    s.stop, s.t_end, s.energy_drift, s.steps, s.wall_s,
                 );
+                if disk {
+                    let (lo, hi, left) = s.disk.unwrap_or((f64::NAN, f64::NAN, f64::NAN));
+                    let _ = write!(csv, ",{},{},{}", cell(lo), cell(hi), cell(left));
+                }
                 for p in &s.probes {
                     let _ = write!(csv, ",{},{},{},{}", p.1, p.2, cell(p.3), p.4);
                 }
             }
             Err(e) => {
-                let _ = write!(csv, "{values},\"failed: {}\",,,,,,,,", e.replace('"', "'"));
+                let _ = write!(csv, "{values},\"failed: {}\",,,,,", e.replace('"', "'"));
+                if disk {
+                    csv.push_str(",,,");
+                }
                 for _ in probe_names {
                     csv.push_str(",,,,");
                 }

@@ -108,6 +108,9 @@ impl Structure for BeneathFlight<'_> {
 
 impl SecondOrderProblem for BeneathFlight<'_> {
     type Event = FlightEvent;
+    fn max_step(&self, t: f64, _q: &[f64], _v: &[f64]) -> f64 {
+        self.loaded.load_step_bound(t)
+    }
     fn breakpoints(&self) -> Vec<f64> {
         self.loaded.breakpoints()
     }

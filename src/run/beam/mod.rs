@@ -13,6 +13,7 @@ mod ledger;
 mod phase;
 mod sensors;
 
+use super::extremes::{Range, Turning, Watch};
 use acceleration::AccelerationFilter;
 pub use acceleration::CutoffReport;
 use flight::{BeneathFlight, FlightEvent, FlyingDisk};
@@ -36,7 +37,7 @@ use crate::error::Error;
 use crate::linalg::SparseLu;
 use crate::ode::second_order::FirstOrder;
 use crate::ode::second_order::{SecondOrderProblem, Structure};
-use crate::ode::{self, Method, Observer, Stats};
+use crate::ode::{self, Dense, Method, Observer, Stats};
 use crate::rolling::flight::Flight;
 use crate::rolling::{ContactLoss, DiskObservation, StopReason};
 use crate::scene::{BeamScene, Scene};
@@ -117,6 +118,8 @@ pub struct BeamRun {
     /// run, probe-major, for the windows the run covered whole: a headline the fast modes'
     /// phase leaves alone. Empty unless [`Overrides::windowed_means`] asked for them.
     pub windowed_means: Vec<f64>,
+    /// The extremes of what the run reports, located on the solution.
+    pub extremes: Extremes,
     /// When the disk left the beam, if it did.
     pub left_track_t: Option<f64>,
     /// The disk's flights over the beam.
@@ -129,20 +132,56 @@ pub struct BeamRun {
     pub damping: Option<Rayleigh>,
 }
 
+/// The extremes over the run of what the summary reports, each located on the solution
+/// ([`super::extremes`]).
+#[derive(Clone, Debug, Default)]
+pub struct Extremes {
+    /// Per probe: u, w, φ and the vertical acceleration (filtered as recorded).
+    pub probes: Vec<[Range; 4]>,
+    /// Per probe: w after the last load left the beam (the disk, or a train's last axle).
+    pub after_exit: Option<Vec<Range>>,
+    /// The disk's normal and tangential contact force, the friction coefficient its rolling
+    /// needs and the deflection under it, while it is on or over the beam.
+    pub disk: Option<[Range; 4]>,
+}
+
 impl BeamRun {
-    /// Half the range of w at probe k after the disk left the beam: the residual vibration.
-    /// `None` without an exit, or with no output row after it.
+    /// Half the range of w at probe k after the last load left the beam: the residual
+    /// vibration. `None` without an exit, or with nothing of the run after it.
     pub fn amplitude_after_exit(&self, k: usize) -> Option<f64> {
-        let te = self.left_track_t?;
-        let (lo, hi) = self
-            .rows
-            .iter()
-            .filter(|row| row.t > te)
-            .map(|row| row.probes[k].w)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                (lo.min(v), hi.max(v))
-            });
-        (hi >= lo).then(|| 0.5 * (hi - lo))
+        self.extremes.after_exit.as_ref()?.get(k)?.half_range()
+    }
+}
+
+/// What the watches see of the run at one time: each probe's (u, w, φ, a); the disk's (rn,
+/// rt, μ needed, w under it, gap) while it is on or over the beam; and when asked, the
+/// envelope's stations' (u, w, φ, a) and the stretch of the axis.
+struct Snapshot {
+    probes: Vec<f64>,
+    disk: Option<[f64; 5]>,
+    along: Vec<f64>,
+}
+
+/// The quantities watched for their extremes (`extremes.rs`); `along` takes the parabola's
+/// turning values, as it holds every station of the envelope.
+struct Watches {
+    probes: Watch,
+    after_exit: Watch,
+    disk: Watch,
+    /// The gap of the current flight.
+    gap: Watch,
+    along: Watch,
+}
+
+impl Watches {
+    fn new(probes: usize, stations: usize) -> Self {
+        Watches {
+            probes: Watch::new(4 * probes, Turning::OnTheSolution),
+            after_exit: Watch::new(probes, Turning::OnTheSolution),
+            disk: Watch::new(4, Turning::OnTheSolution),
+            gap: Watch::new(1, Turning::OnTheSolution),
+            along: Watch::new(4 * stations + 1, Turning::OnTheParabola),
+        }
     }
 }
 
@@ -159,7 +198,178 @@ struct Recorder<'a> {
     envelope: Envelope,
     pictures: Pictures<'a>,
     means: Option<WindowedMeans>,
+    watches: Watches,
+    /// The snapshot at the end of the last step watched.
+    last: Option<(f64, Snapshot)>,
+    /// The stations at the start of the last step watched.
+    before: Option<(f64, Vec<f64>)>,
+    /// When the last load left the beam: from then on the residual vibration is watched.
+    exit_t: Option<f64>,
+    /// Whether the disk was seen on or over the beam.
+    disk_seen: bool,
     progress: Option<Progress>,
+}
+
+impl Recorder<'_> {
+    /// What the watches see at (t, y); the stations only when `along` asks for them.
+    fn snapshot(&self, t: f64, y: &[f64], rate: Option<&[f64]>, along: bool) -> Snapshot {
+        let phase = &self.phase;
+        // The accelerations are the dense output's where it has them: no solve for them.
+        let accelerations = rate.map(|yp| phase.split(yp).1);
+        let (disk, gap) = phase.disk_given(t, y, accelerations);
+        let q = phase.displaced(t, y, disk.as_ref());
+        let a = match accelerations {
+            Some(a) => a[..phase.loaded.dim()].to_vec(),
+            None => phase.acceleration(t, y),
+        };
+        let a = match &self.filter {
+            Some(f) => f.filtered(phase.loaded, &a),
+            None => phase.loaded.to_mesh(&a).into_owned(),
+        };
+        let beam = phase.beam;
+        let probes = self
+            .history
+            .probes
+            .iter()
+            .flat_map(|p| {
+                let d = beam.displacement_at(&q, p.x);
+                [d.u, d.w, d.phi, beam.displacement_at(&a, p.x).w]
+            })
+            .collect();
+        let disk = disk.map(|d| {
+            [
+                d.rn,
+                d.rt,
+                d.mu_needed().unwrap_or(f64::NAN),
+                beam.displacement_at(&q, d.s).w,
+                gap,
+            ]
+        });
+        let along = if along {
+            let displaced = beam.displacements(&self.stations, &q);
+            let accelerations = beam.deflections(&self.stations, &a);
+            stations_watched(&self.envelope.x, &displaced, &accelerations)
+        } else {
+            Vec::new()
+        };
+        Snapshot {
+            probes,
+            disk,
+            along,
+        }
+    }
+
+    /// Take in the step [t0, t1] of the dense output `dense`: its start, middle and end, and
+    /// the turning points between them that set an extreme.
+    fn watch(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
+        if !(t1 > t0) {
+            return;
+        }
+        let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0));
+        let last = self.last.take();
+        let before = self.before.take();
+        let flying = self.phase.flying.is_some();
+        let after = self.exit_t.is_some_and(|te| t0 >= te);
+        let see =
+            |t: f64, along: bool| self.snapshot(t, &dense.at(t), dense.rate(t).as_deref(), along);
+        // The stations are watched on the step ends alone, the parabola through the last
+        // three (`before`, t0, t1): on every station at the middle too, they would cost more
+        // than the rest of the run.
+        let (start, before) = match last {
+            Some((t, s)) if t == t0 => (s, before),
+            _ => (see(t0, true), None),
+        };
+        let tm = 0.5 * (t0 + t1);
+        let (middle, end) = (see(tm, false), see(t1, true));
+        let t = [t0, tm, t1];
+        let [s0, s1, s2] = [&start, &middle, &end];
+        w.probes
+            .record_step(t, [&s0.probes, &s1.probes, &s2.probes], |tt| {
+                see(tt, false).probes
+            });
+        match before {
+            Some((tb, along)) if !along.is_empty() => {
+                w.along
+                    .record_step([tb, t0, t1], [&along, &s0.along, &s2.along], |_| Vec::new())
+            }
+            _ => w.along.record_point(t1, &s2.along),
+        }
+        if after {
+            let deflections = |s: &Snapshot| -> Vec<f64> {
+                s.probes.iter().skip(1).step_by(4).copied().collect()
+            };
+            w.after_exit.record_step(
+                t,
+                [&deflections(s0), &deflections(s1), &deflections(s2)],
+                |tt| deflections(&see(tt, false)),
+            );
+        }
+        match (s0.disk, s1.disk, s2.disk) {
+            (Some(d0), Some(d1), Some(d2)) => {
+                let disk_at = |tt: f64| {
+                    see(tt, false)
+                        .disk
+                        .map_or(vec![f64::NAN; 5], |d| d.to_vec())
+                };
+                w.disk
+                    .record_step(t, [&d0[..4], &d1[..4], &d2[..4]], &disk_at);
+                if flying {
+                    w.gap.record_step(t, [&d0[4..], &d1[4..], &d2[4..]], |tt| {
+                        disk_at(tt)[4..].to_vec()
+                    });
+                }
+            }
+            disks => {
+                for (tt, d) in t.iter().zip([disks.0, disks.1, disks.2]) {
+                    if let Some(d) = d {
+                        w.disk.record_point(*tt, &d[..4]);
+                    }
+                }
+            }
+        }
+        self.disk_seen |= s0.disk.is_some() || s2.disk.is_some();
+        self.watches = w;
+        self.before = Some((t0, start.along));
+        self.last = Some((t1, end));
+    }
+
+    /// The extremes watched, and the envelope from the stations'.
+    fn extremes(&self) -> (Extremes, Envelope) {
+        let w = &self.watches;
+        let probes = w
+            .probes
+            .ranges
+            .chunks(4)
+            .map(|c| [c[0], c[1], c[2], c[3]])
+            .collect();
+        let extremes = Extremes {
+            probes,
+            after_exit: self
+                .exit_t
+                .map(|_| w.after_exit.ranges.clone())
+                .filter(|r| r.iter().all(Range::seen)),
+            disk: self.disk_seen.then(|| {
+                let r = &w.disk.ranges;
+                [r[0], r[1], r[2], r[3]]
+            }),
+        };
+        (extremes, self.envelope.from_stations(&w.along.ranges))
+    }
+}
+
+/// The stations' (u, w, φ, a), then the stretch of the axis through them.
+fn stations_watched(
+    x: &[f64],
+    along: &[crate::beam::PointDisplacement],
+    accelerations: &[f64],
+) -> Vec<f64> {
+    let mut out: Vec<f64> = along
+        .iter()
+        .zip(accelerations)
+        .flat_map(|(d, a)| [d.u, d.w, d.phi, *a])
+        .collect();
+    out.push(sensors::stretch(x, along));
+    out
 }
 
 impl Observer for Recorder<'_> {
@@ -180,7 +390,6 @@ impl Observer for Recorder<'_> {
             t,
             q: &q,
             a: &a,
-            along_a: &along_a,
             along: &along,
             disk,
             gap,
@@ -188,8 +397,32 @@ impl Observer for Recorder<'_> {
             reactions,
         };
         self.history.record(&sample);
-        self.envelope.record(&sample);
         self.pictures.record(&sample);
+        let row = self.history.rows.last().expect("recorded above");
+        let probes: Vec<f64> = row
+            .probes
+            .iter()
+            .zip(&row.accelerations)
+            .flat_map(|(d, a)| [d.u, d.w, d.phi, *a])
+            .collect();
+        self.watches.probes.record_point(t, &probes);
+        self.watches
+            .along
+            .record_point(t, &stations_watched(&self.envelope.x, &along, &along_a));
+        if self.exit_t.is_some_and(|te| t >= te) {
+            let w: Vec<f64> = row.probes.iter().map(|d| d.w).collect();
+            self.watches.after_exit.record_point(t, &w);
+        }
+        if self.phase.flying.is_some() {
+            self.watches.gap.record_point(t, &[gap]);
+        }
+        if let Some(d) = row.disk {
+            self.disk_seen = true;
+            self.watches.disk.record_point(
+                t,
+                &[d.rn, d.rt, d.mu_needed().unwrap_or(f64::NAN), row.w_under],
+            );
+        }
     }
 
     fn step(&mut self, t: f64, y: &[f64]) {
@@ -199,13 +432,14 @@ impl Observer for Recorder<'_> {
         }
     }
 
-    fn span(&mut self, t0: f64, t1: f64, dense: &dyn Fn(f64) -> Vec<f64>) {
+    fn span(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
+        self.watch(t0, t1, dense);
         let (phase, history) = (&self.phase, &self.history);
         let Some(means) = &mut self.means else {
             return;
         };
         means.record_span(t0, t1, |t| {
-            let y = dense(t);
+            let y = dense.at(t);
             let (disk, _) = phase.disk(t, &y);
             let q = phase.displaced(t, &y, disk.as_ref());
             history
@@ -232,9 +466,9 @@ impl Observer for Literal<'_, '_> {
         let r = self.sys.reduced(t, y);
         self.rec.step(t, &r);
     }
-    fn span(&mut self, t0: f64, t1: f64, dense: &dyn Fn(f64) -> Vec<f64>) {
+    fn span(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
         let sys = self.sys;
-        self.rec.span(t0, t1, &|t| sys.reduced(t, &dense(t)));
+        self.rec.span(t0, t1, &|t| sys.reduced(t, &dense.at(t)));
     }
 }
 
@@ -511,7 +745,7 @@ fn fly<'a>(
             max_gap: 0.0,
             energy_lost: None,
         });
-        let rows_before = rec.history.rows.len();
+        rec.watches.gap = Watch::new(1, Turning::OnTheSolution);
         let beneath = BeneathFlight { loaded, disk };
         let ahead: Vec<f64> = outputs.iter().copied().filter(|&o| o > launch.t).collect();
         let out = integrate(
@@ -527,11 +761,7 @@ fn fly<'a>(
         .map_err(|e| solver_error(scene, e))?;
         stats.add(&out.stats);
         let record = flights.last_mut().expect("pushed above");
-        // The highest gap on the output grid (the flight is watched there, not searched).
-        record.max_gap = rec.history.rows[rows_before..]
-            .iter()
-            .map(|r| r.gap)
-            .fold(0.0, f64::max);
+        record.max_gap = rec.watches.gap.ranges[0].max.max(0.0);
         let hit = match out.stopped_by {
             None => {
                 return Ok(Flown::Stops {
@@ -677,13 +907,18 @@ pub fn run(
     let modal = modal_basis(scene, &beam)?;
     let damping = crate::analysis::modes::rayleigh(&beam)
         .map_err(|why| Error::Input(format!("scene {}: {why}", scene.name)))?;
+    let lowest = match &modal {
+        Some(m) => m.omega.first().copied(),
+        None => modes(&beam, 1).and_then(|m| m.omega.first().copied()),
+    };
     let loaded = LoadedBeam::new(
         &beam,
         &setup.loads,
         modal.as_ref(),
         damping,
         setup.train.as_ref(),
-    );
+    )
+    .resolving(lowest.unwrap_or(0.0));
     let coupled = setup
         .disk
         .clone()
@@ -764,6 +999,11 @@ pub fn run(
         means: over
             .windowed_means
             .then(|| WindowedMeans::new(scene.duration, setup.probes.len())),
+        watches: Watches::new(setup.probes.len(), SAMPLES),
+        last: None,
+        before: None,
+        exit_t: setup.train.as_ref().map(|tr| tr.gone(beam.length)),
+        disk_seen: false,
         progress: if show_progress {
             Progress::new(scene.duration)
         } else {
@@ -823,6 +1063,7 @@ pub fn run(
                         Flown::Leaves { t, q, v } => {
                             (t0, q0, v0) = (t, q, v);
                             left_track_t = Some(t);
+                            rec.exit_t = Some(t);
                             break;
                         }
                         Flown::Stops { t, y, stop } => (t, y, stop),
@@ -834,6 +1075,7 @@ pub fn run(
                     let (z, zd) = rec.phase.split(&y);
                     (t0, q0, v0) = (t, z[..n].to_vec(), zd[..n].to_vec());
                     left_track_t = Some(t);
+                    rec.exit_t = Some(t);
                     break;
                 }
             };
@@ -878,6 +1120,7 @@ pub fn run(
         p.finish();
     }
     let y_end = on_mesh(&rec.phase, &y_end);
+    let (extremes, envelope) = rec.extremes();
     Ok(BeamRun {
         header: RunHeader {
             scene: scene.clone(),
@@ -892,7 +1135,8 @@ pub fn run(
         },
         setup: setup.clone(),
         rows: rec.history.rows,
-        envelope: rec.envelope,
+        envelope,
+        extremes,
         shapes: rec.pictures.shapes,
         frames: rec.pictures.frames,
         windowed_means: rec.means.map_or_else(Vec::new, |m| m.means()),

@@ -17,8 +17,6 @@ pub(super) struct Sample<'s> {
     pub a: &'s [f64],
     /// Displacements at the beam's sample points.
     pub along: &'s [PointDisplacement],
-    /// Vertical accelerations at the beam's sample points.
-    pub along_a: &'s [f64],
     pub disk: Option<DiskObservation>,
     /// The flying disk's gap to the beam (0 while it rolls).
     pub gap: f64,
@@ -91,36 +89,46 @@ impl Envelope {
         }
     }
 
-    pub(super) fn record(&mut self, s: &Sample) {
-        // Each chord's growth, ((h + Δu)² + Δw² − h²) / (|chord| + h): the length minus h
-        // would cancel all but a few digits of a stretch 10⁻⁷ of the span, and the samples
-        // span the axis, so their h add up to its length.
-        let stretch: f64 = self
-            .x
-            .windows(2)
-            .zip(s.along.windows(2))
-            .map(|(x, d)| {
-                let (h, du, dw) = (x[1] - x[0], d[1].u - d[0].u, d[1].w - d[0].w);
-                let chord = ((h + du) * (h + du) + dw * dw).sqrt();
-                (du * (2.0 * h + du) + dw * dw) / (chord + h)
-            })
-            .sum();
-        self.stretch_max = self.stretch_max.max(stretch);
-        for (k, a) in s.along_a.iter().enumerate() {
-            if a.abs() > self.a_max.0 {
-                self.a_max = (a.abs(), self.x[k], s.t);
+    /// The envelope from the extremes of the stations' (u, w, φ, a) and of the stretch, as
+    /// watched (`Recorder::watch`).
+    pub(super) fn from_stations(&self, ranges: &[crate::run::extremes::Range]) -> Envelope {
+        let mut e = Envelope::new(self.x.clone());
+        for (k, r) in ranges.chunks(4).take(self.x.len()).enumerate() {
+            e.min[k] = PointDisplacement {
+                u: r[0].min,
+                w: r[1].min,
+                phi: r[2].min,
+            };
+            e.max[k] = PointDisplacement {
+                u: r[0].max,
+                w: r[1].max,
+                phi: r[2].max,
+            };
+            let (a, t) = r[3].largest_magnitude();
+            if a > e.a_max.0 {
+                e.a_max = (a, self.x[k], t);
             }
         }
-        for (k, d) in s.along.iter().enumerate() {
-            let (lo, hi) = (&mut self.min[k], &mut self.max[k]);
-            lo.u = lo.u.min(d.u);
-            lo.w = lo.w.min(d.w);
-            lo.phi = lo.phi.min(d.phi);
-            hi.u = hi.u.max(d.u);
-            hi.w = hi.w.max(d.w);
-            hi.phi = hi.phi.max(d.phi);
+        if let Some(stretch) = ranges.get(4 * self.x.len()) {
+            e.stretch_max = stretch.max;
         }
+        e
     }
+}
+
+/// How much longer than the span the axis through the sample points `x`, displaced by
+/// `along`, is: each chord's growth, ((h + Δu)² + Δw² − h²) / (|chord| + h), since the length
+/// minus h would cancel all but a few digits of a stretch 10⁻⁷ of the span, and the samples
+/// span the axis, so their h add up to its length.
+pub(super) fn stretch(x: &[f64], along: &[PointDisplacement]) -> f64 {
+    x.windows(2)
+        .zip(along.windows(2))
+        .map(|(x, d)| {
+            let (h, du, dw) = (x[1] - x[0], d[1].u - d[0].u, d[1].w - d[0].w);
+            let chord = ((h + du) * (h + du) + dw * dw).sqrt();
+            (du * (2.0 * h + du) + dw * dw) / (chord + h)
+        })
+        .sum()
 }
 
 /// Deformed shapes at the requested times, and the animation's frames on a coarse grid with
