@@ -519,9 +519,7 @@ impl<'a> DiskOnBeam<'a> {
             .unwrap_or(self.spec.disk.mass * self.spec.gravity * height)
     }
 
-    /// What the run reports of the disk at (t, z, ż) whose acceleration z̈ is known (a dense
-    /// output's): [`Self::observe`] without the solve for it.
-    pub fn observe_with(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> DiskObservation {
+    fn observe_with(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> DiskObservation {
         let at = self.observed_contact(t, z, zd);
         let motion = self.motion(&at, zd, zdd);
         let tg = at.tangent();

@@ -197,6 +197,21 @@ impl Watch {
         }
     }
 
+    /// Take in the quantities `v` at three times `t` (ascending), with the turning value of
+    /// the parabola through them where it turns between them, whatever the watch's
+    /// [`Turning`]: for samples of steps far shorter than what they resolve, whose dense
+    /// output holds only the last.
+    pub fn record_parabola(&mut self, t: [f64; 3], v: [&[f64]; 3]) {
+        let spacing = Spacing::new(t);
+        for (k, range) in self.ranges.iter_mut().enumerate() {
+            let v = [v[0][k], v[1][k], v[2][k]];
+            range.take(t[2], v[2]);
+            if let Some((tt, value)) = spacing.turning(v) {
+                range.take(tt, value);
+            }
+        }
+    }
+
     /// Take in one value of each quantity at t.
     pub fn record_point(&mut self, t: f64, values: &[f64]) {
         for (range, &v) in self.ranges.iter_mut().zip(values) {

@@ -87,22 +87,6 @@ impl<'a> Phase<'a> {
         (self.coupled.map(|c| c.observe(t, z, zd)), 0.0)
     }
 
-    /// [`Phase::disk`], with the model's accelerations `a` where they are known already.
-    pub fn disk_given(
-        &self,
-        t: f64,
-        y: &[f64],
-        a: Option<&[f64]>,
-    ) -> (Option<DiskObservation>, f64) {
-        match (self.coupled, a) {
-            (Some(c), Some(a)) if self.flying.is_none() => {
-                let (z, zd) = self.split(y);
-                (Some(c.observe_with(t, z, zd, a)), 0.0)
-            }
-            _ => self.disk(t, y),
-        }
-    }
-
     /// The disk rides on the beam again.
     pub fn couple(&mut self, c: &'a DiskOnBeam<'a>) {
         self.flying = None;

@@ -1,0 +1,295 @@
+//! What a run reports at the defaults, against what it should: the extremes located on the
+//! solution whatever the output grid, no step that carries a load past the beam unseen, the
+//! residual vibration and a train's rebound within the accuracy of a converged run, and the
+//! bending modes EN 1991-2's rules mean.
+
+mod common;
+
+use common::{changed, parse, run_beam, Set, FRYBA_BRIDGE};
+use rollbeam::analysis::modes::{modes, ModeKind};
+use rollbeam::beam::Beam;
+use rollbeam::ode::Method;
+use rollbeam::run::beam::BeamRun;
+use rollbeam::run::{self, Overrides};
+use rollbeam::scene::Scene;
+
+/// The run as planned: the solver's choices from the scene's accuracy.
+fn at_defaults(scene: &Scene) -> BeamRun {
+    run::run(scene, &Overrides::default(), false)
+        .expect("the run completes")
+        .beam()
+        .expect("a beam scene")
+}
+
+/// The 15 m concrete bridge of the HSLM study, with a train given as `train`.
+fn hslm_bridge(train: &str, duration: f64) -> Scene {
+    parse(&format!(
+        "name: hslm-bridge
+duration: {duration}
+track:
+  beam:
+    from: [0.0, 0.0]
+    to: [15.0, 0.0]
+    E: 35.0e9
+    G: 14.5833e9
+    rho: 2500
+    A: 6.0
+    Av: 5.0
+    I: 0.219830886
+    supports: {{from: pinned, to: roller}}
+    damping: {{ratio: 0.0185, modes: [1, 2]}}
+train: {train}
+output:
+  probes: [{{name: mid, x: 7.5}}]
+"
+    ))
+}
+
+/// Probe `mid`'s w extremes, residual amplitude and largest acceleration.
+fn headlines(r: &BeamRun) -> [f64; 4] {
+    let k = r
+        .setup
+        .probes
+        .iter()
+        .position(|p| p.name == "mid")
+        .expect("mid");
+    let [_, w, _, a] = r.extremes.probes[k];
+    [
+        w.min,
+        w.max,
+        r.amplitude_after_exit(k).unwrap_or(f64::NAN),
+        a.largest_magnitude().0,
+    ]
+}
+
+/// Two axles 200 m apart at 10 m/s over a beam that starts at rest, the first on the
+/// support: the error estimate sees nothing as an axle enters, and without a breakpoint at
+/// each entry the steps grew past the whole train (w_min = 0 after ten steps). Each axle
+/// crosses alone (the first one's vibration has decayed by e⁻³⁰⁰ when the second comes), so
+/// the train's lowest deflection is one axle's, within the accuracy.
+#[test]
+fn no_step_carries_an_axle_past_the_span() {
+    let one = at_defaults(&hslm_bridge(
+        "{axles: [0.0], load: 170.0e3, speed: 10.0}",
+        0.5,
+    ));
+    let two = at_defaults(&hslm_bridge(
+        "{axles: [0.0, 200.0], load: 170.0e3, speed: 10.0}",
+        0.5,
+    ));
+    let (w1, w2) = (headlines(&one)[0], headlines(&two)[0]);
+    assert!(w1 < -1.5e-3, "one axle: {w1:e}");
+    assert!((w2 - w1).abs() <= 1e-3 * w1.abs(), "{w2:e} against {w1:e}");
+    let t = two.extremes.probes[0][1].min_t;
+    assert!(
+        (0.0..1.5).contains(&t) || (20.0..21.5).contains(&t),
+        "the lowest deflection at t = {t} with no axle on the beam"
+    );
+}
+
+/// HSLM-A1 at 90 m/s followed for 0.5 s and for 30 s after it leaves: the peaks, the residual
+/// amplitude and the largest acceleration are taken where they occur, while the train is on
+/// and just after it, so the long run reports the short one's within the accuracy (on the
+/// output grid, every run length / 500, the 30 s run read the peak 7 % low).
+#[test]
+fn a_long_free_vibration_leaves_the_headlines_alone() {
+    let train = "{hslm: A1, speed: 90.0}";
+    let short = headlines(&at_defaults(&hslm_bridge(train, 0.5)));
+    let long = headlines(&at_defaults(&hslm_bridge(train, 30.0)));
+    let scale = short[0].abs();
+    for (k, name) in ["w_min", "w_max", "residual"].iter().enumerate() {
+        assert!(
+            (short[k] - long[k]).abs() <= 1e-3 * scale,
+            "{name}: {:e} against {:e}",
+            long[k],
+            short[k]
+        );
+    }
+    assert!(
+        (short[3] - long[3]).abs() <= 1e-3 * short[3],
+        "a_max: {} against {}",
+        long[3],
+        short[3]
+    );
+}
+
+/// D44 with the rolling disk at the defaults, its history written every 6 ms (the default,
+/// run length / 500) and every 0.5 ms: every extreme the summary reports (the probes', the
+/// disk's contact forces and the deflection under it, the envelope) is one number whatever
+/// the grid, within the accuracy of its own scale. On the grid the lowest contact force read
+/// 12 895 N and 11 917 N.
+#[test]
+fn the_output_grid_moves_no_extreme() {
+    let base = [
+        Set::LeftOut("track.beam.model"),
+        Set::LeftOut("track.beam.elements"),
+        Set::LeftOut("track.beam.order"),
+        Set::LeftOut("solver.method"),
+        Set::LeftOut("solver.rho_inf"),
+        Set::LeftOut("solver.rtol"),
+        Set::LeftOut("output.interval"),
+        Set::LeftOut("output.shapes"),
+    ];
+    let coarse = at_defaults(&changed("bridge-d44.yaml", &base));
+    let mut fine = base.to_vec();
+    fine.push(Set::Number("output.interval", 5e-4));
+    let fine = at_defaults(&changed("bridge-d44.yaml", &fine));
+    let same = |what: &str, a: f64, b: f64, scale: f64| {
+        assert!(
+            (a - b).abs() <= 1e-3 * scale,
+            "{what}: {a:e} on the default grid, {b:e} on the fine one"
+        )
+    };
+    let w_scale = headlines(&coarse)[0].abs();
+    for (p, q) in coarse.extremes.probes.iter().zip(&fine.extremes.probes) {
+        for (k, scale) in [w_scale, w_scale, 1e-3, p[3].largest_magnitude().0]
+            .into_iter()
+            .enumerate()
+        {
+            same("a probe's minimum", p[k].min, q[k].min, scale);
+            same("a probe's maximum", p[k].max, q[k].max, scale);
+        }
+    }
+    let weight = 1500.0 * 9.81;
+    let (d, e) = (
+        coarse.extremes.disk.expect("a disk"),
+        fine.extremes.disk.expect("a disk"),
+    );
+    for k in [0, 1] {
+        same("a contact force's minimum", d[k].min, e[k].min, weight);
+        same("a contact force's maximum", d[k].max, e[k].max, weight);
+    }
+    same("w under the disk", d[3].min, e[3].min, w_scale);
+    for (a, b) in coarse.envelope.min.iter().zip(&fine.envelope.min) {
+        same("the envelope's w", a.w, b.w, w_scale);
+    }
+    same(
+        "the envelope's largest acceleration",
+        coarse.envelope.a_max.0,
+        fine.envelope.a_max.0,
+        coarse.envelope.a_max.0,
+    );
+}
+
+/// The displacement headlines at the defaults against the same model converged (rtol 10⁻⁸):
+/// the peaks, and the residual amplitude after the load leaves, each within the accuracy
+/// (10⁻³) of the peak. The residual is where the error of every step before it adds up: after
+/// D44's moving force it is a cancellation (1.5 mm left of a 31 mm peak), after HSLM-A1 at
+/// 90 m/s a resonance (33 mm).
+#[test]
+fn the_residual_and_the_peaks_within_the_accuracy_at_the_defaults() {
+    let mut moving_force = FRYBA_BRIDGE.to_vec();
+    moving_force.extend([
+        Set::LeftOut("track.beam.model"),
+        Set::LeftOut("track.beam.elements"),
+        Set::LeftOut("track.beam.order"),
+        Set::LeftOut("solver.method"),
+        Set::LeftOut("solver.rho_inf"),
+        Set::LeftOut("solver.rtol"),
+        Set::LeftOut("output.shapes"),
+    ]);
+    let scenes = [
+        (
+            "D44, moving force",
+            changed("bridge-d44.yaml", &moving_force),
+        ),
+        (
+            "HSLM-A1 at 90 m/s",
+            hslm_bridge("{hslm: A1, speed: 90.0}", 0.5),
+        ),
+    ];
+    for (name, scene) in scenes {
+        let planned = headlines(&at_defaults(&scene));
+        let atol = 1e-8 * planned[0].abs();
+        let converged = headlines(&run_beam(&scene, Method::GenAlpha, 1e-8, atol));
+        let scale = converged[0].abs();
+        for (k, what) in ["w_min", "w_max", "residual"].iter().enumerate() {
+            let error = (planned[k] - converged[k]).abs() / scale;
+            assert!(
+                error <= 1e-3,
+                "{name}, {what}: {:e} at the defaults, {:e} converged ({error:.1e} of the peak)",
+                planned[k],
+                converged[k]
+            );
+        }
+    }
+}
+
+/// A 30 m simply supported concrete bridge (E 35 GPa, ρ 2500 kg/m³, A 6 m², I 3 m⁴): its third
+/// mode is axial, w ≡ 0, at c/4L = √(E/ρ)/(4L) = 31.18 Hz (the pinned end holds u, the roller
+/// does not), between the second and third bending modes, which follow Timoshenko's simply
+/// supported beam (shear area Av, rotary inertia ρI): ω² the lower root of
+/// (ρ²I/κG) ω⁴ − (ρA + ρI α² (1 + E/κG)) ω² + EI α⁴ = 0, α = kπ/L, κG = G Av/A, within 10⁻³
+/// (the mesh's error). EN 1991-2's cutoff max(30 Hz, 1.5 f1, f3) takes f3 from the bending
+/// modes: the third, not the axial one.
+#[test]
+fn the_cutoff_counts_bending_modes() {
+    let scene = parse(
+        "name: concrete-30
+duration: 0.2
+track:
+  beam:
+    from: [0.0, 0.0]
+    to: [30.0, 0.0]
+    E: 35.0e9
+    G: 14.5833e9
+    rho: 2500
+    A: 6.0
+    Av: 5.0
+    I: 3.0
+    supports: {from: pinned, to: roller}
+    model: linear
+train: {axles: [0.0], load: 1.0e5, speed: 50.0}
+output:
+  probes: [{name: mid, x: 15.0}]
+",
+    );
+    let setup = scene.beam().expect("a beam");
+    let beam = Beam::new(setup.beam.clone());
+    let m = modes(&beam, 6).expect("the modes");
+    let hz: Vec<f64> = m.omega.iter().map(|w| w / std::f64::consts::TAU).collect();
+    let kinds = m.kinds(&beam);
+    let axial = (35.0e9_f64 / 2500.0).sqrt() / (4.0 * 30.0);
+    let k = kinds
+        .iter()
+        .position(|&k| k == ModeKind::Axial)
+        .expect("an axial mode");
+    assert!(
+        (hz[k] - axial).abs() <= 1e-3 * axial,
+        "{} against {axial}",
+        hz[k]
+    );
+    let bending: Vec<f64> = hz
+        .iter()
+        .zip(&kinds)
+        .filter(|(_, &k)| k == ModeKind::Bending)
+        .map(|(f, _)| *f)
+        .collect();
+    let (e, g, rho, a, av, i, l) = (35.0e9_f64, 14.5833e9, 2500.0, 6.0, 5.0, 3.0, 30.0);
+    let kg = g * av / a;
+    let timoshenko = |k: f64| {
+        let alpha = k * std::f64::consts::PI / l;
+        let (p, q, r) = (
+            rho * rho * i / kg,
+            rho * a + rho * i * alpha * alpha * (1.0 + e / kg),
+            e * i * alpha.powi(4),
+        );
+        let omega2 = (q - (q * q - 4.0 * p * r).sqrt()) / (2.0 * p);
+        omega2.sqrt() / std::f64::consts::TAU
+    };
+    for (k, f) in bending.iter().take(3).enumerate() {
+        let closed = timoshenko(k as f64 + 1.0);
+        assert!(
+            (f - closed).abs() <= 1e-3 * closed,
+            "bending mode {}: {f} Hz against {closed} Hz",
+            k + 1
+        );
+    }
+    let r = at_defaults(&scene);
+    let cutoff = r.acceleration.expect("a cutoff").cutoff_hz;
+    assert!(
+        (cutoff - bending[2]).abs() < 1e-9 * cutoff,
+        "cutoff {cutoff} Hz against f3 = {} Hz",
+        bending[2]
+    );
+}
