@@ -92,12 +92,14 @@ impl Planner {
         b.response = response_size(&b.beam, &b.loads, weight, &xs);
         if !rtol_given {
             let solver = &mut scene.solver;
-            solver.rtol = rtol_for(b).0;
-            solver.rtol_from_accuracy = true;
+            let (rtol, why) = rtol_for(b);
+            solver.rtol = rtol;
+            solver.rtol_chosen = Some(why.to_string());
             if !atol_given {
-                if let Some((atol, _)) = atol_for(b, solver.rtol) {
-                    solver.atol = atol;
-                    solver.atol_scale = b.response;
+                if let Some((size, why)) = atol_for(b) {
+                    solver.atol = rtol * size;
+                    solver.atol_scale = Some(size);
+                    solver.atol_chosen = Some(why);
                 }
             }
         }
@@ -247,20 +249,20 @@ fn damped_by_the_scene(scene: &BeamScene) -> bool {
     scene.rho_inf < 1.0 && scene.rho_inf_chosen.is_none()
 }
 
-/// The atol a beam scene gets when it leaves both tolerances out, and why: rtol times the size
-/// of its response (`response_size`), unless the scene asks for numerical damping itself. With
+/// The size of the response a beam scene's atol is rtol times when it leaves both tolerances
+/// out, and why: the size `response_size` found, unless the scene asks for numerical damping itself. With
 /// a ρ∞ < 1 the scene gives, the step also sets how much of the high modes numerical damping
 /// takes, and a sudden load's peak is carried by them: at the looser steps such an atol
 /// allows, B1, B3, C1, C2 and the zip-line missed by 1.1–1.6 ε, so there atol stays at
 /// round-off size and the tolerance relative to the state. The plan's own ρ∞ = 0.9 damps only
 /// modes shown to carry nothing ([`rho_inf_for`]).
-pub fn atol_for(scene: &BeamScene, rtol: f64) -> Option<(f64, String)> {
+pub fn atol_for(scene: &BeamScene) -> Option<(f64, String)> {
     if damped_by_the_scene(scene) {
         return None;
     }
     let size = scene.response?;
     Some((
-        rtol * size,
+        size,
         format!(
             "rtol times {:.3e} m, the largest static displacement the loads cause at a probe: each step's error is measured against the response, not against the displacement of the moment, which a vibration takes through zero twice a period",
             size

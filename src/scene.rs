@@ -264,10 +264,13 @@ pub struct SolverSettings {
     pub method: Method,
     pub rtol: f64,
     pub atol: f64,
-    /// rtol was left out and taken from the beam scene's accuracy.
-    pub rtol_from_accuracy: bool,
+    /// Why rtol is what it is, where it was left out and the planner chose it from the beam
+    /// scene's accuracy.
+    pub rtol_chosen: Option<String>,
     /// atol was left out with rtol: it is rtol times this size of the response (m).
     pub atol_scale: Option<f64>,
+    /// Why, where it was.
+    pub atol_chosen: Option<String>,
 }
 
 /// A disk on a rigid curve.
@@ -583,7 +586,8 @@ impl SceneSpec {
     /// applied. Reading the text back gives the same scene (a planned sweep's case files,
     /// the Python package's pickled scenes).
     pub fn to_yaml(&self) -> Result<String, Error> {
-        crate::output::yaml(&self.file)
+        serde_saphyr::to_string(&self.file)
+            .map_err(|e| Error::Output(format!("cannot write the scene as YAML: {e}")))
     }
 
     /// The model the scene names, checked; mesh and tolerances as given.
@@ -939,8 +943,9 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
         },
         rtol: 1e-6,
         atol: 1e-9,
-        rtol_from_accuracy: false,
+        rtol_chosen: None,
         atol_scale: None,
+        atol_chosen: None,
     };
     let (mut rtol_given, mut atol_given) = (false, false);
     if let Some(s) = &raw.solver {

@@ -80,7 +80,7 @@ fn defaults_land_within_the_accuracy_asked() {
         for scene in [damped.clone(), left_out(study, &EVERY_SETTING)] {
             let beam = scene.beam().expect("a beam study");
             let chosen = beam.discretisation.as_ref().expect("the mesh was chosen");
-            assert!(scene.solver.rtol_from_accuracy);
+            assert!(scene.solver.rtol_chosen.is_some());
             let rtol = scene.solver.rtol;
             let p = peak(&run_beam(
                 &scene,
@@ -175,7 +175,7 @@ fn what_the_scene_gives_is_kept() {
     let beam = scene.beam().expect("beam");
     assert!(beam.discretisation.is_none());
     assert_eq!(beam.beam.elements, 10);
-    assert!(!scene.solver.rtol_from_accuracy);
+    assert!(scene.solver.rtol_chosen.is_none());
     assert_eq!(scene.solver.rtol, 1e-5);
 }
 

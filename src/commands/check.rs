@@ -47,24 +47,19 @@ impl fmt::Display for Described<'_> {
                 writeln!(f, "  rho_inf chosen for accuracy {:e}: {why}", b.accuracy)?;
             }
         }
-        if scene.solver.rtol_from_accuracy {
-            if let Some(b) = scene.beam() {
-                let (rtol, why) = crate::plan::rtol_for(b);
+        if let (Some(b), Some(why)) = (scene.beam(), &scene.solver.rtol_chosen) {
+            writeln!(
+                f,
+                "  rtol chosen for accuracy {:e}: {}, {why}",
+                b.accuracy,
+                output::tolerance(scene.solver.rtol)
+            )?;
+            if let Some(why) = &scene.solver.atol_chosen {
                 writeln!(
                     f,
-                    "  rtol chosen for accuracy {:e}: {}, {why}",
-                    b.accuracy,
-                    output::tolerance(rtol)
+                    "  atol chosen with it: {}, {why}",
+                    output::tolerance(scene.solver.atol)
                 )?;
-                if scene.solver.atol_scale.is_some() {
-                    if let Some((atol, why)) = crate::plan::atol_for(b, rtol) {
-                        writeln!(
-                            f,
-                            "  atol chosen with it: {}, {why}",
-                            output::tolerance(atol)
-                        )?;
-                    }
-                }
             }
         }
         writeln!(

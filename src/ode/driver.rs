@@ -10,7 +10,7 @@ use super::stage_solver::Dirk;
 use super::trbdf2::TrBdf2;
 use super::{
     Attempt, Ctx, Dense, Dynamics, EventHit, EventSpec, Method, Observer, Options, Outcome,
-    Problem, SolveError, Stats, Stepper, EVENT_TIME_TOL,
+    Problem, SolveError, Stats, Stepper, EVENT_TIME_TOL, SAFETY,
 };
 
 fn make_stepper(opts: &Options, n: usize) -> Box<dyn Stepper> {
@@ -97,9 +97,6 @@ const PACE_WINDOW: usize = 2000;
 /// budgets on runs that do exceed them (ESDIRK4 at 10⁻⁴: 130 000 projected, 47 360 taken).
 const PACE_MARGIN: usize = 4;
 
-/// The controller's safety factor: the next step is this fraction of the one its error
-/// estimate asks for.
-pub(super) const SAFETY: f64 = 0.9;
 /// The step after one on which Newton failed, as a fraction of it.
 const NEWTON_CUT: f64 = 0.5;
 /// The controller's steps stay below this fraction of the last step on which Newton failed:

@@ -31,6 +31,10 @@ use crate::linalg::{self, Sparse, SparseLu};
 /// Events are located to this width of their bracket in time (s).
 pub const EVENT_TIME_TOL: f64 = 1e-10;
 
+/// The step-size controller's safety factor: the next step is this fraction of the one its
+/// error estimate asks for.
+pub(crate) const SAFETY: f64 = 0.9;
+
 /// An event g(t, y) of a problem: the run is watched for g passing from ≥ 0 to < 0, and a hit
 /// carries the reason the problem gave it, of the problem's own type.
 #[derive(Clone, Copy, Debug)]

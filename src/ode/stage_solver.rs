@@ -27,8 +27,7 @@
 
 use std::borrow::Cow;
 
-use super::driver::SAFETY;
-use super::{Attempt, Ctx, Dynamics, SolveError, StepEnds, Stepper};
+use super::{Attempt, Ctx, Dynamics, SolveError, StepEnds, Stepper, SAFETY};
 use crate::linalg::{self, Assembly, JointSum, Sparse, SparseLu, Woodbury};
 
 const MAX_NEWTON: usize = 8;

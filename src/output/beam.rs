@@ -11,7 +11,6 @@ use super::plots::{line_chart, stacked_chart, PALETTE};
 use super::{write, yaml};
 use crate::error::Error;
 use crate::ode::Method;
-use crate::plan::{atol_for, rtol_for};
 use crate::run::beam::BeamRun;
 
 #[derive(Serialize)]
@@ -633,20 +632,23 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
 
 fn chosen(r: &BeamRun) -> Option<Chosen> {
     let mesh = r.setup.discretisation.as_ref().map(|d| d.why.clone());
-    let rtol = (r.header.scene.solver.rtol_from_accuracy
-        && r.header.rtol == r.header.scene.solver.rtol)
-        .then(|| {
-            let (rtol, why) = rtol_for(&r.setup);
-            format!("{}, {why}", super::tolerance(rtol))
-        });
-    let atol = r
-        .header
-        .scene
-        .solver
-        .atol_scale
-        .and_then(|_| atol_for(&r.setup, r.header.rtol))
-        .filter(|(atol, _)| *atol == r.header.atol)
-        .map(|(atol, why)| format!("{}, {why}", super::tolerance(atol)));
+    // The planner's reasons hold where the run kept what it chose: an rtol given on the
+    // command line replaces the chosen one, and the chosen atol follows it.
+    let solver = &r.header.scene.solver;
+    let rtol = solver
+        .rtol_chosen
+        .as_ref()
+        .filter(|_| r.header.rtol == solver.rtol)
+        .map(|why| format!("{}, {why}", super::tolerance(r.header.rtol)));
+    let atol = solver
+        .atol_chosen
+        .as_ref()
+        .filter(|_| {
+            solver
+                .atol_scale
+                .is_some_and(|size| r.header.atol == r.header.rtol * size)
+        })
+        .map(|why| format!("{}, {why}", super::tolerance(r.header.atol)));
     let beam = r.setup.model_choice.clone();
     let rho_inf = r
         .setup
