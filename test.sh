@@ -3,9 +3,8 @@
 # checkout into a fresh virtual environment and its tests (which also run examples/).
 set -euo pipefail
 cd "$(dirname "$0")"
-# Built without the release profile's whole-program optimisation, which gives every test
-# binary and the Python extension a link-time pass of the whole program: on a slow day
-# (2026-11-26) the build took 4.5–6 minutes instead of 10.
+# Built without the release profile's whole-program optimisation, which would give every test
+# binary and the Python extension a link-time pass of the whole program, doubling the build.
 export CARGO_PROFILE_RELEASE_LTO=false
 # The workspace, so that the features pyo3's macros ask of shared crates are resolved here too
 # and the Python package below links the library built here (python/Cargo.toml).

@@ -1,10 +1,10 @@
 //! Study D44 (the disk crossing the bridge, consistent coupling) whole, with the default
 //! solver (generalized-α, the scene's ρ∞ = 0.8) at rtol 10⁻⁶ and 10⁻⁸: the cost of accuracy
-//! on the coupled problem. Ten samples each; the 10⁻⁸ run takes about 8 s per sample.
+//! on the coupled problem. Ten samples each.
 //!
 //! And the issue's performance target: D44 at 0.1 % of the converged peak midspan deflection.
 //! `rollbeam tradeoff` names rtol 10⁻³ on 6 elements of degree 4 for it (0.02 % measured);
-//! the target is 0.15 s for the whole run on one core, with the default settings. The
+//! REPORT.md's performance table gives the target for the whole run on one core. The
 //! automatic defaults (test `defaults_land_within_the_accuracy_asked`) are measured both ways
 //! a user meets them: the solver block left empty (ρ∞ = 1, atol from the response's size: the
 //! defaults proper) and the mesh and tolerances left out (the study's ρ∞ = 0.8, atol 10⁻⁹).
@@ -14,7 +14,7 @@
 //! at G × 10⁴ (what an undamped stiff shear costs).
 //!
 //! Issue 17's target: the HSLM study's whole sweep, A1–A10 at 40–120 m/s (810 cases on the
-//! automatic modal beam), on the machine's cores as `rollbeam sweep` runs it; under 10 s.
+//! automatic modal beam), on the machine's cores as `rollbeam sweep` runs it.
 
 use std::path::Path;
 

@@ -197,8 +197,8 @@ impl Combination {
 /// Where an operand no longer fits, the pattern is rebuilt from the operands alone, not widened:
 /// an operand moving along the matrix (a body's inertia riding the length of a beam, assembled
 /// into its mass) would otherwise leave the union of every position it passed, and an LU of
-/// that fills in (on D44 a factorisation took 0.4 ms; on the band and the patch where the disk
-/// is, 80 µs).
+/// that fills in far beyond the band and the patch where the body is (the `bridge` bench
+/// measures the factorisations this saves).
 #[derive(Default)]
 pub struct JointSum(Option<Sparse>);
 

@@ -182,8 +182,8 @@ pub fn study_plan(scene: &Scene) -> tradeoff::Plan {
     let mut plan = tradeoff::Plan::default_for(scene);
     // The grid of a beam whose damping takes the high modes runs on to rtol 1e-8, past the
     // default on a beam: nothing of the modes a load excites high up rides on the headline, so
-    // its reference settles below 10⁻⁶ in seconds (HSLM: rtol 1e-11 and a mesh check, 2.6 s)
-    // and its diagram can show what 10⁻⁶ costs.
+    // its reference settles below 10⁻⁶ cheaply (HSLM: rtol 1e-11 and a mesh check) and its
+    // diagram can show what 10⁻⁶ costs.
     let damped = scene
         .beam()
         .and_then(|b| b.beam.damping)
@@ -194,9 +194,8 @@ pub fn study_plan(scene: &Scene) -> tradeoff::Plan {
     } else if switched {
         // A load switched on or off excites every mode the mesh holds, and undamped they all
         // stay: ESDIRK4 takes 41 000–103 000 steps at rtol 1e-4 on B1–C3, where it reaches
-        // 10⁻⁴–10⁻³, and 205 000–481 000 at 1e-5 (11–50 s a run: the finer meshes' six would
-        // take the main job past three minutes; REPORT.md, "A deeper budget for the sudden
-        // loads" and "Down to what the references resolve").
+        // 10⁻⁴–10⁻³, and 205 000–481 000 at 1e-5, which would take the main job past three
+        // minutes (docs/numerics.md, "The work–precision grids").
         // Their references still start at 1e-6: a cut made for time must not loosen what the
         // runs are scored against.
         plan.rtols.retain(|&r| r >= 1e-4);
@@ -204,19 +203,17 @@ pub fn study_plan(scene: &Scene) -> tradeoff::Plan {
         plan.reference_from = Some(1e-5);
     } else if let Some(b) = scene.beam().filter(|b| plan::responds_nonlinearly(b)) {
         // A large deflection (the rubber, the zip-line): every step iterates on a new tangent,
-        // so each tenfold cut of the reference's rtol costs minutes (the zip-line's at 1e-8,
-        // 657 s with its mesh check), and their references' meshes resolve only 3.5·10⁻⁴ and
-        // 4.7·10⁻⁵: a decade more of grid could not be scored and would cost the main job.
-        // The grid stops at 1e-4: on the study's meshes rtol 1e-5 bought nothing (no run of it
-        // on the rubber's fronts of cost against error, none finished within its budget on the
-        // zip-line; 10 s of CPU that the rubber's point needs; REPORT.md, "10⁻⁶ on the rubber
-        // and the zip-line"). The references still start at 1e-6.
+        // so each tenfold cut of the reference's rtol costs more than the whole job, and their
+        // references' meshes resolve only 3.5·10⁻⁴ and 4.7·10⁻⁵: a decade more of grid could
+        // not be scored. The grid stops at 1e-4: on the study's meshes rtol 1e-5 bought nothing
+        // (no run of it on the rubber's fronts of cost against error, none finished within its
+        // budget on the zip-line). The references still start at 1e-6.
         plan.rtols.retain(|&r| r >= 1e-4);
         plan.reference_from = Some(1e-5);
         // 10⁻⁶ in the windowed means takes, on the rubber, twice the mesh at two degrees more
-        // and ESDIRK4 at rtol 1e-8 (45 000 steps, about 27 s); on the zip-line generalized-α
-        // at 1e-7 on 64 elements, 650 000 steps and six minutes (REPORT.md, "10⁻⁶ on the
-        // rubber and the zip-line").
+        // and ESDIRK4 at rtol 1e-8 (45 000 steps); on the zip-line generalized-α at 1e-7 on 64
+        // elements, 650 000 steps, more than the job's whole budget (REPORT.md,
+        // "Work–precision").
         if scene.name == DEEP_NONLINEAR {
             plan.points = vec![finer_point(b, 1e-8)];
         }
@@ -225,11 +222,9 @@ pub fn study_plan(scene: &Scene) -> tradeoff::Plan {
         // or linear beam comes within the step budget on the grid's meshes, and the modal ones
         // stay at their truncation's 10⁻⁴; the windowed means on the scene's mesh stop at
         // 4–7·10⁻⁶. 10⁻⁶ in the means takes twice the mesh at two degrees more, at rtol 1e-4
-        // (ESDIRK4, 16–22 s; REPORT.md, "The bridges' 10⁻⁶ in the windowed means, in the main
-        // job"): that point is run instead of the decades that buy nothing, 1e-6 and 1e-5 (no
-        // run at 1e-5 was on either bridge's front of cost against error but D44's modal
-        // 8 by generalized-α, a hair from 16 modes by ESDIRK4 at 1e-4; 40 s of CPU; REPORT.md,
-        // "10⁻⁶ on the rubber and the zip-line").
+        // (ESDIRK4): that point is run instead of the decades that buy nothing, 1e-6 and 1e-5
+        // (no run at 1e-5 was on either bridge's front of cost against error but D44's modal
+        // 8 by generalized-α, a hair from 16 modes by ESDIRK4 at 1e-4).
         plan.rtols.retain(|&r| r >= 1e-4);
         plan.reference_from = Some(1e-6);
         plan.points = vec![finer_point(b, 1e-4)];
@@ -376,8 +371,8 @@ fn compare_parabola(results: &[&RunResult], figures: &Path) -> Result<(), Error>
 
 /// The speed sweep's rtol, looser than the study's 1e-5: the amplification it plots then lies
 /// within 7·10⁻⁴ of rtol 1e-6's at every speed (1e-5: 1·10⁻⁴), ten times below the 0.7 % of
-/// shear deflection by which it stands above Frýba's closed form, for 2.9 s of sweep a coupling
-/// against 7.5 s (REPORT.md, "Speed sweep").
+/// shear deflection by which it stands above Frýba's closed form, at about a third of the
+/// cost (REPORT.md, "D44 and D50").
 const SPEED_SWEEP_RTOL: f64 = 1e-4;
 
 /// Dynamic amplification of the bridge's midspan deflection (largest over the run, crossing

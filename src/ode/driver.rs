@@ -102,8 +102,8 @@ const NEWTON_CUT: f64 = 0.5;
 /// The controller's steps stay below this fraction of the last step on which Newton failed:
 /// where the error allows far longer steps than Newton converges on (a disk rolling on a
 /// beam, whose convective terms the tangent leaves out), growing straight back fails again.
-/// Without the cap ESDIRK4 on D44 at rtol 10⁻⁴ failed Newton on 2499 of 9651 steps, and its
-/// run took 13.3 s; with it 5.1 s (REPORT.md, "Steps Newton cannot take").
+/// Without the cap ESDIRK4 on D44 at rtol 10⁻⁴ failed Newton on 2499 of its 9651 steps
+/// (docs/numerics.md, "Steps Newton cannot take").
 const NEWTON_CAP: f64 = 0.9;
 /// How fast the cap eases at each accepted step: where Newton converges again on longer
 /// steps (the disk has moved on), the steps grow back within a few dozen.

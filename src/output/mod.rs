@@ -126,8 +126,8 @@ pub(crate) fn write(path: &Path, text: &str) -> Result<(), Error> {
         )));
     }
     // A file from an earlier run is removed, not truncated: ext4 flushes a file truncated and
-    // rewritten when it is closed (a rerun of D44 into its folder waited about 1 ms of 18 on
-    // that), and a symbolic link left at the path is replaced, not written through.
+    // rewritten when it is closed, which a rerun into the same folder waits for, and a
+    // symbolic link left at the path is replaced, not written through.
     let _ = std::fs::remove_file(path);
     std::fs::write(path, text).map_err(|e| io_error(path, e))
 }

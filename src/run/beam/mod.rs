@@ -288,7 +288,7 @@ impl Recorder<'_> {
         // three samples taken as it is: at 32 samples a period of the acceleration's cutoff
         // it is within 10⁻⁴ of that mode's amplitude, and on every step and middle the
         // watching cost a third of such a run. A disk's contact force also holds the crossing
-        // of its patch over each node, faster than the cutoff: sampled at 1 ms, D44's lowest
+        // of its patch over each node, faster than the cutoff: sampled every millisecond, D44's lowest
         // contact force moved by 1.4·10⁻³ of the weight; with a disk on or over the beam the
         // samples are also [`SAMPLES_PER_PATCH`] to the patch's crossing.
         let riding = (self.phase.coupled).or(self.phase.flying.as_ref().map(|f| f.coupled));

@@ -1,0 +1,46 @@
+//! The documents stay true: the scene README.md's first screen shows reads, plans and runs, and
+//! every figure REPORT.md shows exists.
+
+use std::path::Path;
+
+use rollbeam::run::{self, Overrides};
+use rollbeam::scene::Scene;
+
+fn read(file: &str) -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(file))
+        .unwrap_or_else(|e| panic!("{file}: {e}"))
+}
+
+/// The first ```yaml block of README.md is a scene that runs to its end, with its train's
+/// residual vibration reported (the first screen says it is).
+#[test]
+fn the_readme_scene_runs() {
+    let readme = read("README.md");
+    let start = readme.find("```yaml\n").expect("a yaml block") + "```yaml\n".len();
+    let text = &readme[start..start + readme[start..].find("```").expect("its end")];
+    let scene = Scene::parse(text, "README.md", "bridge").expect("the README's scene is valid");
+    let r = run::run(&scene, &Overrides::default(), false)
+        .expect("it runs")
+        .beam()
+        .expect("a beam scene");
+    assert_eq!(r.header.stop.name(), "end");
+    assert!(r.amplitude_after_exit(0).is_some_and(|a| a > 0.0));
+}
+
+/// Every image REPORT.md and README.md link, `](path.svg)` or `](path.png)`, is in the
+/// repository.
+#[test]
+fn every_linked_figure_exists() {
+    for doc in ["REPORT.md", "README.md"] {
+        let text = read(doc);
+        for (i, _) in text.match_indices("](") {
+            let rest = &text[i + 2..];
+            let Some(end) = rest.find(')') else { continue };
+            let link = &rest[..end];
+            if link.ends_with(".svg") || link.ends_with(".png") {
+                let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(link);
+                assert!(path.exists(), "{doc} links {link}, which is not there");
+            }
+        }
+    }
+}
