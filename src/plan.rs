@@ -171,7 +171,7 @@ impl Scene {
 ///   modes far above anything the loads excite. Undamped (ρ∞ = 1) they keep what the rolling
 ///   contact puts into them: D44 with G × 10⁴ took 5001 steps against 2423 at the real G, the
 ///   error estimate spread over modes of 100–800 Hz and Newton stalling on the shear. With
-///   ρ∞ = 0.9 it takes 1140 against 1289 (REPORT.md, item 3). Any damping removes the growth
+///   ρ∞ = 0.9 it takes 1140 against 1289 (docs/numerics.md, "Generalized-α"). Any damping removes the growth
 ///   (0.98: 3377 against 2945; 0.95: 1603 against 1983); 0.9 also halves the real beam's
 ///   steps and lands within 0.05 of the accuracy, where 0.8 takes little more off. It damps
 ///   a mode the step resolves only at third order in ω h, which the error estimate watches.

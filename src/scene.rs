@@ -2185,7 +2185,7 @@ fn disk_on_beam(
             p,
             "disk.patch",
             length,
-            "a contact that short is a point, on which the disk's contact force is not defined (see REPORT.md, \"The contact patch\")",
+            "a contact that short is a point, on which the disk's contact force is not defined (see REPORT.md, \"What depends on the patch\")",
             (
                 "is wider than the beam",
                 "the patch is the half-width of the contact, about the section's depth",

@@ -515,7 +515,7 @@ fn static_deflection_under_the_disk_weight() {
     assert!((w / exact - 1.0).abs() < 1e-4, "w = {w} against {exact}");
 }
 
-/// The contact patch (`coupling::patch`, REPORT.md "The contact patch"). Its default half-width
+/// The contact patch (`coupling::patch`, REPORT.md, "What depends on the patch"). Its default half-width
 /// is the kernel matching a load dispersed at one to one through half the depth plus Hertz's
 /// half-width, b = √(11/3) (h/2 + a_H): on the rubber's 0.2 m square section 0.217 m. The
 /// estimate the patch warning rests on is checked against the model: widening the patch from

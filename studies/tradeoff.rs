@@ -234,7 +234,7 @@ fn work_precision_sweeps_the_element_degree() {
 /// A study's grid cut for the main job's time (the sudden loads stop at rtol 1e-4) does not
 /// loosen what its runs are scored against: every study's reference starts a decade below its
 /// grid's tightest rtol and at 1e-6 or below, where the beam studies' references settle to
-/// 10⁻⁵ or better (REPORT.md, "Settled to" is in time only).
+/// 10⁻⁵ or better (docs/numerics.md, "The work–precision grids").
 #[test]
 fn a_grid_cut_for_time_keeps_its_reference_tight() {
     use rollbeam::commands::studies;
@@ -393,8 +393,7 @@ fn stored_references_serve_and_reproduce() {
 }
 
 /// The stored windowed means (issue 15's 10⁻⁶): a setting none of them was made with lands
-/// within 10⁻⁶ of each, on the sudden loads (REPORT.md, "A windowed mean reaches 10⁻⁶ on the
-/// sudden loads"). It is ESDIRK4 at rtol 10⁻⁴ on the grid's coarsest mesh: measured, it lands
+/// within 10⁻⁶ of each, on the sudden loads (REPORT.md, "Work–precision"). It is ESDIRK4 at rtol 10⁻⁴ on the grid's coarsest mesh: measured, it lands
 /// 0.5–58·10⁻⁹ away, and the means' references resolve 1.6·10⁻⁹–8.9·10⁻⁸, so at least a
 /// tenfold margin stands between the target and both. The extremes of the same runs lie
 /// 6·10⁻⁵–9·10⁻⁴ off: the means are what makes the target reachable, not the runs.
@@ -407,8 +406,7 @@ fn stored_windowed_means_are_reached_within_1e_6() {
     );
 }
 
-/// The same on the bridges and the rubber (REPORT.md, "The bridges' 10⁻⁶ in the windowed
-/// means, in the main job" and "10⁻⁶ on the rubber and the zip-line"), at the point each grid
+/// The same on the bridges and the rubber (REPORT.md, "Work–precision"), at the point each grid
 /// runs past its meshes for: ESDIRK4 on 20 elements of degree 6, at rtol 10⁻⁴ on the bridges
 /// and 10⁻⁸ on the rubber. Measured, they land 8.7·10⁻⁷ (D44), 6.5·10⁻⁷ (D50) and 8.5·10⁻⁷
 /// (rubber) from references made on 40 elements, which resolve 2.7·10⁻⁷, 8.7·10⁻⁷ and

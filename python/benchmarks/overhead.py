@@ -1,5 +1,5 @@
 """What the Python package costs beside the command line (issue 19's performance table in
-REPORT.md, "Python and cluster sweeps"). Not a test: timings depend on the machine.
+REPORT.md, "Performance"). Not a test: timings depend on the machine.
 
     python python/benchmarks/overhead.py [--cases 1000]
 

@@ -172,7 +172,7 @@ const SWITCHED_LOAD_STEPS: usize = 120_000;
 const DEEP_NONLINEAR: &str = "rubber";
 
 /// The study whose diagram also trades the beam model: the thesis' exact beam against the
-/// linear one and modal ones of 4 to 32 modes (REPORT.md, "Beam models").
+/// linear one and modal ones of 4 to 32 modes (REPORT.md, "Beam models and couplings: which to choose").
 const MODEL_TRADE: &str = "bridge-d44";
 
 /// The grid a study's work–precision diagram is drawn from, and its reference made against:
@@ -252,7 +252,7 @@ fn finer_point(b: &BeamScene, rtol: f64) -> tradeoff::GridPoint {
 
 /// The HSLM study (`hslm-15m.yaml`) as EN 1991-2 §6.4 asks it: every train A1–A10 at every
 /// speed from 40 to 120 m/s in steps of 1 m/s, 810 runs; the deck acceleration and deflection
-/// against speed, a line per train and their envelope (REPORT.md, "The HSLM sweep").
+/// against speed, a line per train and their envelope (REPORT.md, "Trains and the HSLM sweep").
 fn hslm_sweep(studies: &Path, out: &Path, figures: &Path) -> Result<(), Error> {
     let file = studies.join("hslm-15m.yaml");
     if !file.exists() {
@@ -372,7 +372,7 @@ fn compare_parabola(results: &[&RunResult], figures: &Path) -> Result<(), Error>
 /// The speed sweep's rtol, looser than the study's 1e-5: the amplification it plots then lies
 /// within 7·10⁻⁴ of rtol 1e-6's at every speed (1e-5: 1·10⁻⁴), ten times below the 0.7 % of
 /// shear deflection by which it stands above Frýba's closed form, at about a third of the
-/// cost (REPORT.md, "D44 and D50").
+/// cost (REPORT.md, "Study 4").
 const SPEED_SWEEP_RTOL: f64 = 1e-4;
 
 /// Dynamic amplification of the bridge's midspan deflection (largest over the run, crossing

@@ -16,7 +16,7 @@
 //!    The disk's largest contact force on a beam is not a headline: it carries the beam's
 //!    high-frequency content, and on D44 its peak moved by 2 % between rtol 1e-8 and 1e-9
 //!    while the deflections had settled.
-//! 4. tradeoff.csv, tradeoff.svg (headline error against wall time, log–log, a line per method,
+//! 4. tradeoff.csv, tradeoff.svg (headline error against the work, log–log, a line per method,
 //!    mesh and degree), and the cheapest settings that reach 1e-2, 1e-4 and 1e-6.
 
 use std::fmt::Write as _;
@@ -498,7 +498,7 @@ pub fn reference(scene: &Scene, plan: &Plan, made_by: &str) -> Result<Reference,
         }
     }
     // The cuts of rtol say nothing of the mesh; one run on a mesh twice as fine does. On the
-    // undamped studies it is the larger of the two (REPORT.md, "Settled to" is in time only).
+    // undamped studies it is the larger of the two (docs/numerics.md, "The work–precision grids").
     let mesh_gap = match elements {
         Some(n) => {
             let finer = with_mesh(scene, Some(2 * n), order, None);
@@ -865,7 +865,10 @@ fn cheapest_lines(trials: &[Trial], score: Score, resolves: f64, what: &str) -> 
         .collect()
 }
 
-/// Error in `score` against wall time, log–log, a line per method, mesh, degree and model.
+/// Error in `score` against the work, log–log, a line per method, mesh, degree and model. The
+/// work is the right-hand sides evaluated, which a rerun repeats exactly, so the committed
+/// diagrams change only where the physics or the method does; `tradeoff.csv` and
+/// `tradeoff.txt` keep the wall times.
 fn diagram(scene: &Scene, trials: &[Trial], score: Score, path: &Path) -> Result<(), Error> {
     let err =
         |e: &dyn std::fmt::Display| Error::Output(format!("cannot draw {}: {e}", path.display()));
@@ -882,7 +885,7 @@ fn diagram(scene: &Scene, trials: &[Trial], score: Score, path: &Path) -> Result
         if let Some(m) = p.model {
             name = format!("{name} {}", model_label(m));
         }
-        let point = (m.wall_s.max(1e-5), error.max(1e-12));
+        let point = ((m.rhs_evals as f64).max(1.0), error.max(1e-12));
         match lines.iter_mut().find(|(n, _)| *n == name) {
             Some((_, pts)) => pts.push(point),
             None => lines.push((name, vec![point])),
@@ -903,7 +906,8 @@ fn diagram(scene: &Scene, trials: &[Trial], score: Score, path: &Path) -> Result
     }
     // A legend of many lines (D44's 37) would run off the foot of the figure and hide the
     // costliest runs in the upper right: the figure grows with it, and the time axis runs on
-    // for two fifths of its decades again, to the legend's right of the data.
+    // for two fifths of its decades again, to the legend's right of the data. Past the
+    // palette's colours the lines take another marker, so that each stays told apart.
     let many = lines.len() > 12;
     let height = if many {
         150 + 16 * lines.len() as u32
@@ -936,7 +940,7 @@ fn diagram(scene: &Scene, trials: &[Trial], score: Score, path: &Path) -> Result
             .map_err(|e| err(&e))?;
         chart
             .configure_mesh()
-            .x_desc("wall time (s)")
+            .x_desc("right-hand sides evaluated (work)")
             .y_desc(match score {
                 Score::Headlines => "headline error (relative)",
                 Score::Means => "error in the windowed means (relative)",
@@ -957,9 +961,21 @@ fn diagram(scene: &Scene, trials: &[Trial], score: Score, path: &Path) -> Result
                 .map_err(|e| err(&e))?
                 .label(name.as_str())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
-            chart
-                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
-                .map_err(|e| err(&e))?;
+            match i / PALETTE.len() {
+                0 => chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled()))),
+                1 => {
+                    chart.draw_series(pts.iter().map(|&p| Cross::new(p, 4, color.stroke_width(2))))
+                }
+                2 => chart.draw_series(
+                    pts.iter()
+                        .map(|&p| TriangleMarker::new(p, 4, color.filled())),
+                ),
+                _ => chart.draw_series(
+                    pts.iter()
+                        .map(|&p| Circle::new(p, 4, color.stroke_width(1))),
+                ),
+            }
+            .map_err(|e| err(&e))?;
         }
         chart
             .configure_series_labels()

@@ -6,7 +6,7 @@
 //! length of about the depth h, widened by the Hertz contact at the face. A patch shorter than
 //! that is not physics but the beam theory's artefact: under a point force a Timoshenko axis
 //! kinks by P/(G Av), and a disk rolling over the kink feels a curvature of the averaged track
-//! that grows as the patch shrinks (see `REPORT.md`, "The contact patch").
+//! that grows as the patch shrinks (see `REPORT.md`, "What depends on the patch").
 //!
 //! The patch's kernel K(ξ) ∝ (1 − (ξ/b)²)⁴ has variance b²/11; a uniform load over ±c has c²/3.
 //! The default b gives the kernel the second moment of the uniform load over

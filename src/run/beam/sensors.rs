@@ -180,8 +180,8 @@ const GAUSS: [(f64, f64); 3] = [
 /// Each probe's deflection averaged over equal windows of the run with a Hann weight, the
 /// integral taken on every step's dense output. The weight's leakage falls as the cube of a
 /// mode's frequency, so the fast modes whose phase decides the extremes leave the means
-/// alone; integrated on the output grid instead, they would alias into them (REPORT.md, "A
-/// windowed mean reaches 10⁻⁶ on the sudden loads").
+/// alone; integrated on the output grid instead, they would alias into them
+/// (docs/numerics.md, "The work–precision grids").
 pub struct WindowedMeans {
     length: f64,
     /// Σ Hann · w per probe and window, probe-major.
