@@ -5,21 +5,24 @@
 
 mod common;
 
-use common::{changed, parse, run_beam, Set, FRYBA_BRIDGE};
+use common::{at_defaults, changed, parse, run_beam, Set, FRYBA_BRIDGE};
 use rollbeam::analysis::modes::{modes, ModeKind};
 use rollbeam::beam::Beam;
 use rollbeam::ode::Method;
 use rollbeam::run::beam::BeamRun;
-use rollbeam::run::{self, Overrides};
 use rollbeam::scene::Scene;
 
-/// The run as planned: the solver's choices from the scene's accuracy.
-fn at_defaults(scene: &Scene) -> BeamRun {
-    run::run(scene, &Overrides::default(), false)
-        .expect("the run completes")
-        .beam()
-        .expect("a beam scene")
-}
+/// What a study scene leaves to the plan once its model, mesh and solver settings are taken
+/// out (and its deformed-shape snapshots, which a test does not draw).
+const LEFT_TO_THE_PLAN: [Set<'static>; 7] = [
+    Set::LeftOut("track.beam.model"),
+    Set::LeftOut("track.beam.elements"),
+    Set::LeftOut("track.beam.order"),
+    Set::LeftOut("solver.method"),
+    Set::LeftOut("solver.rho_inf"),
+    Set::LeftOut("solver.rtol"),
+    Set::LeftOut("output.shapes"),
+];
 
 /// The 15 m concrete bridge of the HSLM study, with a train given as `train`.
 fn hslm_bridge(train: &str, duration: f64) -> Scene {
@@ -120,16 +123,8 @@ fn a_long_free_vibration_leaves_the_headlines_alone() {
 /// 12 895 N and 11 917 N.
 #[test]
 fn the_output_grid_moves_no_extreme() {
-    let base = [
-        Set::LeftOut("track.beam.model"),
-        Set::LeftOut("track.beam.elements"),
-        Set::LeftOut("track.beam.order"),
-        Set::LeftOut("solver.method"),
-        Set::LeftOut("solver.rho_inf"),
-        Set::LeftOut("solver.rtol"),
-        Set::LeftOut("output.interval"),
-        Set::LeftOut("output.shapes"),
-    ];
+    let mut base = LEFT_TO_THE_PLAN.to_vec();
+    base.push(Set::LeftOut("output.interval"));
     let coarse = at_defaults(&changed("bridge-d44.yaml", &base));
     let mut fine = base.to_vec();
     fine.push(Set::Number("output.interval", 5e-4));
@@ -179,15 +174,7 @@ fn the_output_grid_moves_no_extreme() {
 #[test]
 fn the_residual_and_the_peaks_within_the_accuracy_at_the_defaults() {
     let mut moving_force = FRYBA_BRIDGE.to_vec();
-    moving_force.extend([
-        Set::LeftOut("track.beam.model"),
-        Set::LeftOut("track.beam.elements"),
-        Set::LeftOut("track.beam.order"),
-        Set::LeftOut("solver.method"),
-        Set::LeftOut("solver.rho_inf"),
-        Set::LeftOut("solver.rtol"),
-        Set::LeftOut("output.shapes"),
-    ]);
+    moving_force.extend(LEFT_TO_THE_PLAN);
     let scenes = [
         (
             "D44, moving force",

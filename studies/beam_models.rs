@@ -15,7 +15,7 @@
 
 mod common;
 
-use common::{changed, hann_mean, run_beam, Set};
+use common::{at_defaults, changed, hann_mean, run_beam, Set};
 use rollbeam::beam::BeamModel;
 use rollbeam::ode::Method;
 use rollbeam::run::beam::BeamRun;
@@ -97,8 +97,8 @@ fn reduced_models_against_exact_on_every_steel_study() {
             .unwrap()
             .beam
             .model;
-        let exact = run_beam_as_given(&changed(file, &settings));
-        let linear = run_beam_as_given(&with_model(file, "linear", &settings));
+        let exact = at_defaults(&changed(file, &settings));
+        let linear = at_defaults(&with_model(file, "linear", &settings));
         let el = off(&linear, &exact);
         if chosen == BeamModel::Exact {
             eprintln!("{file}: chosen exact; linear {el:.2e} off the exact beam");
@@ -110,7 +110,7 @@ fn reduced_models_against_exact_on_every_steel_study() {
         }
         let modal_scene = with_model(file, "modal", &settings);
         let modes = modal_scene.beam().unwrap().beam.model.modes().unwrap();
-        let modal = run_beam_as_given(&modal_scene);
+        let modal = at_defaults(&modal_scene);
         let em = off(&modal, &exact);
         eprintln!(
             "{file}: chosen {chosen:?}; linear {el:.2e}, modal ({modes} modes) {em:.2e} off the exact beam"
@@ -118,13 +118,6 @@ fn reduced_models_against_exact_on_every_steel_study() {
         assert!(el <= 1e-3, "{file}: linear off by {el:.3e}");
         assert!(em <= 1e-3, "{file}: modal ({modes} modes) off by {em:.3e}");
     }
-}
-
-fn run_beam_as_given(scene: &Scene) -> BeamRun {
-    run::run(scene, &Overrides::default(), false)
-        .expect("the run completes")
-        .beam()
-        .expect("a beam scene")
 }
 
 fn run_modal(scene: &Scene, corrected: bool) -> BeamRun {
@@ -234,8 +227,8 @@ fn automatic_choice_reduces_the_bridge_and_keeps_the_rubber_beam_and_the_rope_ex
             Set::Number("duration", until),
             Set::LeftOut("output.shapes"),
         ];
-        let exact = run_beam_as_given(&changed(file, &short));
-        let linear = run_beam_as_given(&with_model(file, "linear", &short));
+        let exact = at_defaults(&changed(file, &short));
+        let linear = at_defaults(&with_model(file, "linear", &short));
         let e = peak_error(&linear, &exact);
         eprintln!("{file}: the linear beam is off the exact one by {e:.2e} of the peak");
         assert!(e > 1e-2, "{file}: linear off by only {e:.2e}");
@@ -275,7 +268,7 @@ fn stiff_shear_modes_cost_no_steps_on_the_exact_beam() {
                 .as_ref()
                 .unwrap()
                 .contains("responds linearly"));
-            let r = run_beam_as_given(&s);
+            let r = at_defaults(&s);
             let finer = run_beam(
                 &s,
                 Method::GenAlpha,

@@ -596,7 +596,11 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
                 cy - scale * h / 2.0..cy + scale * h / 2.0,
             )
             .map_err(|e| err(&e))?;
-        super::plots::plane_mesh(&mut chart).map_err(|e| err(&e))?;
+        let (x, y) = (
+            format!("X (m), displacements × {mag}"),
+            format!("Y (m), displacements × {mag}"),
+        );
+        super::plots::plane_mesh(&mut chart, &x, &y).map_err(|e| err(&e))?;
         chart
             .draw_series(LineSeries::new(
                 axis.iter().map(|p| (p[0], p[1])),

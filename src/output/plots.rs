@@ -115,18 +115,21 @@ fn draw(path: &Path, x_desc: &str, panels: &[Panel]) -> Result<(), Error> {
 }
 
 /// The grid of a figure drawn to scale in the plane: X and Y in metres, labelled lines only.
+/// The axes of a drawing in the plane, labelled `x` and `y`.
 pub(crate) fn plane_mesh<DB: DrawingBackend>(
     chart: &mut ChartContext<
         '_,
         DB,
         Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
     >,
+    x: &str,
+    y: &str,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     chart
         .configure_mesh()
         .light_line_style(TRANSPARENT)
-        .x_desc("X (m)")
-        .y_desc("Y (m)")
+        .x_desc(x)
+        .y_desc(y)
         .draw()
 }
 
@@ -262,7 +265,7 @@ pub fn track_figure(r: &RunResult, path: &Path, count: usize) -> Result<(), Erro
             .y_label_area_size(50)
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(|e| err(&e))?;
-        plane_mesh(&mut chart).map_err(|e| err(&e))?;
+        plane_mesh(&mut chart, "X (m)", "Y (m)").map_err(|e| err(&e))?;
         chart
             .draw_series(LineSeries::new(track, BLACK.stroke_width(2)))
             .map_err(|e| err(&e))?;

@@ -61,6 +61,14 @@ pub fn run_with(scene: &Scene, method: Method, rtol: f64, atol: f64) -> RunResul
         .expect("a rolling scene")
 }
 
+/// The run as planned: the solver's choices from the scene's accuracy, or the scene's own.
+pub fn at_defaults(scene: &Scene) -> BeamRun {
+    run::run(scene, &Overrides::default(), false)
+        .expect("the run completes")
+        .beam()
+        .expect("a beam scene")
+}
+
 pub fn run_beam(scene: &Scene, method: Method, rtol: f64, atol: f64) -> BeamRun {
     let over = Overrides {
         method: Some(method),

@@ -530,7 +530,7 @@ fn train_charts(
         line_chart_with_references(
             &dir.join(file),
             &format!("sweep over {} per train", speed.key),
-            &speed.key,
+            &with_unit(&speed.key),
             &what,
             &drawn(&series),
             &drawn(&references),
@@ -559,7 +559,7 @@ fn sweep_chart(
             ok.iter().map(|(v, s)| (*v, s.probes[k].1)).collect(),
         ));
         series.push((
-            format!("{p}: amplitude after the disk left"),
+            format!("{p}: amplitude after the last load left"),
             ok.iter()
                 .filter(|(_, s)| s.probes[k].3.is_finite())
                 .map(|(v, s)| (*v, s.probes[k].3))
@@ -598,10 +598,30 @@ fn sweep_chart(
     line_chart(
         &dir.join("sweep.svg"),
         &format!("sweep over {}", setting.key),
-        &setting.key,
+        &with_unit(&setting.key),
         y_desc,
         &series,
     )
+}
+
+/// A swept key as an axis label, with the unit the scene format gives it.
+fn with_unit(key: &str) -> String {
+    let unit = match key.rsplit('.').next().unwrap_or(key) {
+        "speed" | "v0" => "m/s",
+        "omega0" => "1/s",
+        "mass" => "kg",
+        "radius" | "s0" | "x" | "patch" | "depth" | "x0" => "m",
+        "E" | "G" => "Pa",
+        "rho" => "kg/m³",
+        "A" | "Av" => "m²",
+        "I" => "m⁴",
+        "duration" | "interval" => "s",
+        "load" | "fx" | "fy" => "N",
+        "gravity" | "acceleration" => "m/s²",
+        "acceleration_cutoff_hz" => "Hz",
+        _ => return key.to_string(),
+    };
+    format!("{key} ({unit})")
 }
 
 #[cfg(test)]
