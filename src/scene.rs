@@ -1547,88 +1547,96 @@ fn train(
             )
         }
     };
-    let (name, axles, loads) =
-        match (&t.hslm, &t.axles, &t.load) {
-            (Some(h), None, None) => {
-                let (axles, force) = hslm(&h.value).map_or_else(
-                    || {
-                        c.err(
-                            h.referenced.line(),
-                            "train.hslm",
-                            format!(
-                                "is {}; EN 1991-2's HSLM-A trains are {HSLM_NAMES}",
-                                quote(&h.value)
-                            ),
-                        )
-                    },
-                    Ok,
-                )?;
-                let loads = vec![force; axles.len()];
-                (h.value.clone(), axles, loads)
-            }
-            (Some(h), _, _) => return c.err(
+    let (name, axles, loads) = match (&t.hslm, &t.axles, &t.load) {
+        (Some(h), None, None) => {
+            let (axles, force) = hslm(&h.value).map_or_else(
+                || {
+                    c.err(
+                        h.referenced.line(),
+                        "train.hslm",
+                        format!(
+                            "is {}; EN 1991-2's HSLM-A trains are {HSLM_NAMES}",
+                            quote(&h.value)
+                        ),
+                    )
+                },
+                Ok,
+            )?;
+            let loads = vec![force; axles.len()];
+            (h.value.clone(), axles, loads)
+        }
+        (Some(h), _, _) => {
+            return c.err(
                 h.referenced.line(),
                 "train.hslm",
                 "names a train whose axles and loads are EN 1991-2's: leave `axles` and `load` out",
-            ),
-            (None, Some(a), Some(l)) => {
-                let line = a.referenced.line();
-                let axles = a.value.clone();
-                if axles.is_empty() || axles.len() > MAX_AXLES {
+            )
+        }
+        (None, Some(a), Some(l)) => {
+            let line = a.referenced.line();
+            let axles = a.value.clone();
+            if axles.is_empty() || axles.len() > MAX_AXLES {
+                return c.err(
+                    line,
+                    "train.axles",
+                    format!("must hold 1 to {MAX_AXLES} axles"),
+                );
+            }
+            if axles.iter().any(|x| !x.is_finite() || *x < 0.0)
+                || axles.windows(2).any(|w| w[1] <= w[0])
+            {
+                return c.err(
+                    line,
+                    "train.axles",
+                    "must be distances behind the first axle (m), from 0 and increasing",
+                );
+            }
+            let loads = match &l.value {
+                AxleLoads::All(p) => vec![*p; axles.len()],
+                AxleLoads::Each(each) if each.len() == axles.len() => each.clone(),
+                AxleLoads::Each(each) => {
                     return c.err(
-                        line,
-                        "train.axles",
-                        format!("must hold 1 to {MAX_AXLES} axles"),
-                    );
-                }
-                if axles.iter().any(|x| !x.is_finite() || *x < 0.0)
-                    || axles.windows(2).any(|w| w[1] <= w[0])
-                {
-                    return c.err(
-                        line,
-                        "train.axles",
-                        "must be distances behind the first axle (m), from 0 and increasing",
-                    );
-                }
-                let loads = match &l.value {
-                    AxleLoads::All(p) => vec![*p; axles.len()],
-                    AxleLoads::Each(each) if each.len() == axles.len() => each.clone(),
-                    AxleLoads::Each(each) => {
-                        return c.err(
-                            l.referenced.line(),
-                            "train.load",
-                            format!(
+                        l.referenced.line(),
+                        "train.load",
+                        format!(
                             "lists {} loads for {} axles: give one per axle, or one number for all",
                             each.len(),
                             axles.len()
                         ),
-                        )
-                    }
-                };
-                if loads.iter().any(|p| !p.is_finite()) {
-                    return c.err(
+                    )
+                }
+            };
+            if loads.iter().any(|p| !p.is_finite()) {
+                return c.err(
+                    l.referenced.line(),
+                    "train.load",
+                    "must hold finite forces (N)",
+                );
+            }
+            if model == TrainModel::MovingMass && loads.iter().any(|p| !(*p > 0.0)) {
+                return c.err(
                         l.referenced.line(),
                         "train.load",
-                        "must hold finite forces (N)",
+                        "must hold positive forces (N) with moving-mass, whose axle masses are the loads over gravity",
                     );
-                }
-                ("axles".to_string(), axles, loads)
             }
-            (None, Some(_), None) => {
-                return c.err(
-                    file.referenced.line(),
-                    "train.load",
-                    "is missing: give the force per axle (N), or one per axle",
-                )
-            }
-            (None, None, _) => {
-                return c.err(
-                    file.referenced.line(),
-                    "train",
-                    "needs `hslm` (A1 to A10), or `axles` and `load`",
-                )
-            }
-        };
+            ("axles".to_string(), axles, loads)
+        }
+        (None, Some(_), None) => {
+            return c.err(
+                file.referenced.line(),
+                "train.load",
+                "is missing: give the force per axle (N), or one per axle",
+            )
+        }
+        (None, None, _) => {
+            return c.err(
+                file.referenced.line(),
+                "train",
+                "needs `hslm` (A1 to A10), or `axles` and `load`",
+            )
+        }
+    };
     let masses = match model {
         TrainModel::MovingForce => Vec::new(),
         TrainModel::MovingMass => loads.iter().map(|p| p / gravity).collect(),

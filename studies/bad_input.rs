@@ -640,7 +640,7 @@ fn damping_anchored_past_the_mesh() {
     );
 }
 
-/// A train: an unknown HSLM name, axles not increasing or negative, a load list of the wrong
+/// A train: an unknown HSLM name (A01 too), a negative load on moving masses, axles not increasing or negative, a load list of the wrong
 /// length, a speed not above zero, a train beside a disk, an HSLM name with axles, a train on
 /// a rigid curve, an unknown model, and moving masses without gravity to weigh them.
 #[test]
@@ -650,6 +650,16 @@ fn bad_trains() {
         "hslm-unknown",
         &train("  hslm: A11\n  speed: 50\n"),
         &["train.hslm", "'A11'", "A1 to A10"],
+    );
+    rejected(
+        "hslm-leading-zero",
+        &train("  hslm: A01\n  speed: 50\n"),
+        &["train.hslm", "'A01'", "A1 to A10"],
+    );
+    rejected(
+        "moving-mass-negative-load",
+        &train("  axles: [0, 3]\n  load: -1.0e5\n  speed: 50\n  model: moving-mass\n"),
+        &["train.load", "positive forces", "moving-mass"],
     );
     for axles in ["[0, 3, 3]", "[0, -3]", "[5, 3]"] {
         rejected(

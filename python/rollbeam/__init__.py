@@ -155,7 +155,7 @@ class Scene:
             self._text,
             self._source,
             self._stem,
-            self._values + [(str(k), _plain(v)) for k, v in values.items()],
+            self._values + [(str(k), _value(str(k), v)) for k, v in values.items()],
         )
         return changed
 
@@ -176,6 +176,22 @@ def _plain(v: Any) -> Any:
     """numpy scalars as Python numbers and names."""
     if isinstance(v, np.generic):
         return v.item()
+    return v
+
+
+def _value(key: str, v: Any) -> Any:
+    """A value set at `key`: a finite number or a name, else a SceneError naming the key."""
+    v = _plain(v)
+    if isinstance(v, str):
+        return v
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        raise SceneError(f"`{key}` = {v!r} is neither a number nor a name")
+    try:
+        number = float(v)
+    except OverflowError:
+        raise SceneError(f"`{key}` = {v} is too large for a double") from None
+    if number != number or number in (float("inf"), float("-inf")):
+        raise SceneError(f"`{key}` = {v} is not a finite number")
     return v
 
 
@@ -262,6 +278,9 @@ class Modes:
 def modes(scene: Scene, count: Optional[int] = None, samples: int = 200) -> Modes:
     """The lowest ``count`` modes (default 6, or as many as a modal beam keeps), the shapes
     at ``samples + 1`` evenly spaced points."""
+    for name, n in (("count", count), ("samples", samples)):
+        if n is not None and (isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1):
+            raise SceneError(f"`{name}` = {n!r} must be a whole number of at least 1")
     return Modes(_call(_native.modes, scene, count, samples))
 
 
@@ -336,9 +355,13 @@ def sweep_case(
     """One case of a sweep, the values set at the keys: its record (the text a planned
     sweep's ``done/<id>.yaml`` holds). A pure, picklable function of its arguments, for
     executors; a case that cannot run records why."""
-    return _call(
-        _native.run_case, scene, list(keys), [_plain(v) for v in values], method, rtol, atol
-    )
+    keys, values = list(keys), list(values)
+    if len(keys) != len(values):
+        raise SceneError(
+            f"{len(keys)} keys ({', '.join(map(str, keys))}) and {len(values)} values: give one value per key"
+        )
+    values = [_value(str(k), v) for k, v in zip(keys, values)]
+    return _call(_native.run_case, scene, keys, values, method, rtol, atol)
 
 
 def sweep(

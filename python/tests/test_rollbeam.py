@@ -303,6 +303,19 @@ def test_sweep_errors(d44):
     assert np.isnan(table["mid.w_min"][1])
 
 
+def test_bad_values_fail_in_pythons_words_naming_the_key(d44):
+    for bad in (None, [1.0], 10**400, float("nan"), True):
+        with pytest.raises(rollbeam.SceneError) as e:
+            d44.with_values({"disk.omega0": bad})
+        assert e.value.key == "disk.omega0", e.value
+    with pytest.raises(rollbeam.SceneError, match="one value per key"):
+        rollbeam.sweep_case(d44, ["disk.mass", "disk.radius"], [1.0])
+    for count in (-1, 0, 2.5):
+        with pytest.raises(rollbeam.SceneError) as e:
+            rollbeam.modes(d44, count=count)
+        assert e.value.key == "count"
+
+
 def test_the_sweep_matches_the_command_lines_sweep_csv(tmp_path, d44):
     cli("sweep", STUDIES / "bridge-d44.yaml", "--set", "disk.omega0=-20:-40:3", "--rtol", "1e-4", "--out", tmp_path)
     table = rollbeam.sweep(d44, {"disk.omega0": [-40.0, -30.0, -20.0]}, rtol=1e-4)

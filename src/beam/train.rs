@@ -37,7 +37,12 @@ const POWER_CAR_GAP: f64 = 3.525;
 /// A power car, N + 3 trailer bogies with centres D apart (each two axles d apart), and the
 /// mirror power car: 2N + 14 axles.
 pub fn hslm(name: &str) -> Option<(Vec<f64>, f64)> {
-    let k: usize = name.strip_prefix('A')?.parse().ok()?;
+    let digits = name.strip_prefix('A')?;
+    // The names are A1 to A10 as EN 1991-2 writes them: not A01, nor A+1.
+    if digits.starts_with('0') || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    let k: usize = digits.parse().ok()?;
     let &(n, coach, bogie, force) = HSLM_A.get(k.checked_sub(1)?)?;
     let mut axles = POWER_CAR.to_vec();
     let first = POWER_CAR[3] + POWER_CAR_GAP;
@@ -186,6 +191,8 @@ mod tests {
                 assert!((a + b - length).abs() < 1e-9, "A{} is not symmetric", k + 1);
             }
         }
-        assert!(hslm("A0").is_none() && hslm("A11").is_none() && hslm("B1").is_none());
+        for name in ["A0", "A11", "B1", "A01", "A+1", "A", "a1"] {
+            assert!(hslm(name).is_none(), "{name}");
+        }
     }
 }
