@@ -220,8 +220,6 @@ struct Recorder<'a> {
     spacing: f64,
     /// When the last load left the beam: from then on the residual vibration is watched.
     exit_t: Option<f64>,
-    /// Whether the disk was seen on or over the beam.
-    disk_seen: bool,
     progress: Option<Progress>,
 }
 
@@ -365,7 +363,6 @@ impl Recorder<'_> {
                 }
             }
         }
-        self.disk_seen |= s0.disk.is_some() || s2.disk.is_some();
         self.watches = w;
         self.before = Some((t0, start));
         self.last = Some((t1, end));
@@ -412,7 +409,6 @@ impl Recorder<'_> {
             if self.phase.flying.is_some() {
                 w.gap.record_point(t, &d[4..]);
             }
-            self.disk_seen = true;
         }
         self.last = Some((t, end));
     }
@@ -432,7 +428,8 @@ impl Recorder<'_> {
                 .exit_t
                 .map(|_| w.after_exit.ranges.clone())
                 .filter(|r| r.iter().all(Range::seen)),
-            disk: self.disk_seen.then(|| {
+            // Any value watched says the disk was on or over the beam.
+            disk: w.disk.ranges.iter().any(Range::seen).then(|| {
                 let r = &w.disk.ranges;
                 [r[0], r[1], r[2], r[3]]
             }),
@@ -501,7 +498,6 @@ impl Observer for Recorder<'_> {
             self.watches.gap.record_point(t, &[gap]);
         }
         if let Some(d) = row.disk {
-            self.disk_seen = true;
             self.watches.disk.record_point(
                 t,
                 &[d.rn, d.rt, d.mu_needed().unwrap_or(f64::NAN), row.w_under],
@@ -1092,7 +1088,6 @@ pub fn run(
         before: None,
         spacing,
         exit_t: setup.train.as_ref().map(|tr| tr.gone(beam.length)),
-        disk_seen: false,
         progress: if show_progress {
             Progress::new(scene.duration)
         } else {
