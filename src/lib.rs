@@ -8,6 +8,7 @@ pub mod coupling;
 pub mod curve;
 pub mod disk;
 pub mod error;
+pub mod files;
 pub mod linalg;
 pub mod ode;
 pub mod output;

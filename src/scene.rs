@@ -400,6 +400,21 @@ const MAX_NODES: f64 = 100_001.0;
 const MAX_SPANS: usize = 1000;
 /// Most axles a train may have: every one is a load the beam reads at every evaluation.
 const MAX_AXLES: usize = 10_000;
+/// Most moving-mass axles on the deck at one time.
+const MAX_MASSES_ON_DECK: usize = 100;
+
+/// The most of the increasing positions `x` that fit in one window of length `span`.
+fn most_within(x: &[f64], span: f64) -> usize {
+    let mut first = 0;
+    let mut most = 0;
+    for (last, &xl) in x.iter().enumerate() {
+        while xl - x[first] > span {
+            first += 1;
+        }
+        most = most.max(last + 1 - first);
+    }
+    most
+}
 use crate::beam::modal::MAX_MODES;
 
 /// Reports problems as "FILE line N: KEY ...".
@@ -555,10 +570,12 @@ pub struct Checked {
     pub rho_inf_given: bool,
 }
 
+/// Largest scene file read: a curve or profile of a million points, with room to spare.
+pub const MAX_SCENE_BYTES: u64 = 64 << 20;
+
 impl SceneSpec {
     pub fn load(path: &Path) -> Result<SceneSpec, Error> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| Error::Input(format!("cannot read scene file {}: {e}", path.display())))?;
+        let text = crate::files::read_text(path, MAX_SCENE_BYTES, "scene file")?;
         let stem = path
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
@@ -882,7 +899,7 @@ impl SceneSpec {
             }
             _ => {
                 return Err(Error::Input(format!(
-                    "`{key}` is not a name the scene format holds; names are name, disk.coupling, disk.formulation, disk.contact_loss, solver.method, train.hslm, train.model, track.beam.model, track.beam.quadrature, track.beam.initial and track.beam.self_weight"
+                    "`{key}` does not take a name (a number key is swept as `{key}=FROM:TO:COUNT`); the keys that take names are name, disk.coupling, disk.formulation, disk.contact_loss, solver.method, train.hslm, train.model, track.beam.model, track.beam.quadrature, track.beam.initial and track.beam.self_weight"
                 )))
             }
         }
@@ -1637,6 +1654,17 @@ fn train(
             )
         }
     };
+    if model == TrainModel::MovingMass {
+        let span = (beam.to[0] - beam.from[0]).hypot(beam.to[1] - beam.from[1]);
+        let most = most_within(&axles, span);
+        if most > MAX_MASSES_ON_DECK {
+            return c.err(
+                file.referenced.line(),
+                "train",
+                format!("puts up to {most} moving-mass axles on the {span} m deck at once; at most {MAX_MASSES_ON_DECK} can be (each one's inertia couples to every other's through the beam, so the work grows with their square): use moving-force, or fewer axles"),
+            );
+        }
+    }
     let masses = match model {
         TrainModel::MovingForce => Vec::new(),
         TrainModel::MovingMass => loads.iter().map(|p| p / gravity).collect(),
@@ -1855,10 +1883,20 @@ fn supports(
     bearings.sort_by(f64::total_cmp);
     let fractions: Vec<f64> = bearings.iter().map(|x| x / length).collect();
     let Some(multiple) = mesh_multiple(&fractions, MAX_SPANS) else {
+        // The first bearing that no mesh fits together with those before it is the one named:
+        // a list of hundreds would not be a sentence.
+        let k = (1..=fractions.len())
+            .find(|&k| mesh_multiple(&fractions[..k], MAX_SPANS).is_none())
+            .unwrap_or(fractions.len());
+        let before = match k - 1 {
+            0 => String::new(),
+            1 => format!(" with the bearing at x = {} before it", bearings[0]),
+            n => format!(" with the {n} bearings before it"),
+        };
         return c.err(
             b.supports.referenced.line(),
             "track.beam.supports.intermediate",
-            format!("puts bearings at x = {bearings:?}, which do not divide the beam into spans of commensurable length (a uniform mesh of at most {MAX_SPANS} elements needs a node at each)"),
+            format!("has a bearing at x = {}{before} that does not divide the beam into spans of commensurable length (a uniform mesh of at most {MAX_SPANS} elements needs a node at each)", bearings[k - 1]),
         );
     };
     Ok((supports, bearings, multiple))

@@ -472,3 +472,43 @@ fn means_within_1e_6(past_grid: bool, resolves: f64) -> usize {
     }
     scored
 }
+
+/// Nothing read back from disk is trusted: a stored reference whose history was cut to three
+/// rows (it served, and every run's history error dropped from ~6·10⁻⁷ to ~6·10⁻¹⁶, each run
+/// scored against itself) or replaced by a device is stale, and says why; the same files
+/// untouched serve.
+#[test]
+fn a_stored_history_cut_or_replaced_is_stale() {
+    use rollbeam::commands::studies;
+    let dir = std::env::temp_dir().join(format!("rollbeam-stored-{}", std::process::id()));
+    let refs = dir.join("references");
+    std::fs::create_dir_all(&refs).expect("temp dir");
+    let from = common::studies_dir();
+    std::fs::copy(from.join("parabola-p1.yaml"), dir.join("parabola-p1.yaml")).expect("copy");
+    for ext in ["yaml", "history.csv"] {
+        let name = format!("parabola-p1.{ext}");
+        std::fs::copy(from.join("references").join(&name), refs.join(&name)).expect("copy");
+    }
+    let file = dir.join("parabola-p1.yaml");
+    let scene = Scene::load(&file).expect("a valid study");
+    let plan = studies::study_plan(&scene);
+    let path = reference::stored_path(&file, &scene.name);
+    let hash = reference::scene_hash(&file).expect("a readable scene");
+    let method = tradeoff::reference_method(&scene);
+    let load = || reference::load(&path, &hash, &plan, method, None);
+    assert!(matches!(load(), Stored::Usable(_)), "the copy serves");
+    let history = refs.join("parabola-p1.history.csv");
+    let text = std::fs::read_to_string(&history).expect("history");
+    let cut: String = text.lines().take(3).map(|l| format!("{l}\n")).collect();
+    std::fs::write(&history, cut).expect("cut");
+    match load() {
+        Stored::Stale(why) => assert!(why.contains("hash differs"), "{why}"),
+        _ => panic!("a history cut to three rows served"),
+    }
+    std::fs::remove_file(&history).expect("remove");
+    std::os::unix::fs::symlink("/dev/zero", &history).expect("link");
+    match load() {
+        Stored::Stale(why) => assert!(why.contains("a device"), "{why}"),
+        _ => panic!("a device served as a history"),
+    }
+}

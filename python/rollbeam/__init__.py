@@ -48,6 +48,7 @@ __all__ = [
 
 #: Most cases one sweep runs, as on the command line.
 MAX_CASES = 100_000
+MAX_SCENE_BYTES = 64 << 20
 
 
 class SceneError(ValueError):
@@ -123,6 +124,10 @@ class Scene:
             text = json.dumps(data, indent=1, allow_nan=False)
         except (TypeError, ValueError) as e:
             raise SceneError(f"the scene dict cannot be read: {e}") from None
+        except RecursionError:
+            raise SceneError(
+                "the scene dict is nested deeper than any scene is (Python's recursion limit)"
+            ) from None
         self._set(text, "scene", "scene", [])
 
     @classmethod
@@ -132,6 +137,10 @@ class Scene:
         if isinstance(path_or_text, os.PathLike) or _native.is_file(str(path_or_text)):
             path = Path(path_or_text)
             try:
+                if not path.is_file():
+                    raise OSError("not a regular file")
+                if path.stat().st_size > MAX_SCENE_BYTES:
+                    raise OSError(f"larger than a scene file can be ({MAX_SCENE_BYTES} bytes)")
                 text = path.read_text()
             except (OSError, UnicodeDecodeError) as e:
                 raise SceneError(f"cannot read scene file {path}: {e}") from None
@@ -170,6 +179,16 @@ class Scene:
 
     def __repr__(self) -> str:
         return f"Scene({self.name!r}, from {self._source}, {len(self._values)} values set)"
+
+
+def _scene(scene: Any, function: str) -> "Scene":
+    """The scene argument, checked: a dict or a path given where a Scene belongs is named."""
+    if not isinstance(scene, Scene):
+        raise SceneError(
+            f"{function}() takes a rollbeam.Scene (got {type(scene).__name__}); "
+            "make one with rollbeam.Scene(dict) or rollbeam.Scene.from_yaml(path)"
+        )
+    return scene
 
 
 def _plain(v: Any) -> Any:
@@ -244,17 +263,20 @@ def run(
 ) -> Result:
     """Run a scene; ``method`` (dopri5, trbdf2, esdirk4, genalpha), ``rtol`` and ``atol``
     override the scene's as ``rollbeam run --method --rtol --atol`` do. Releases the GIL."""
+    _scene(scene, "run")
     return Result(_call(_native.run, scene, method, rtol, atol))
 
 
 def check(scene: Scene) -> str:
     """What ``rollbeam check`` prints: the model the scene builds, what was chosen and why."""
+    _scene(scene, "check")
     return _call(_native.check, scene)
 
 
 def static(scene: Scene) -> Dict[str, Any]:
     """Static equilibrium of a beam scene (``static.yaml``): probes' u, w (m), phi (rad),
     the supports' reactions fx, fy (N), mz (N m) on the beam in global axes."""
+    _scene(scene, "static")
     return _yaml(_call(_native.static_yaml, scene))
 
 
@@ -278,6 +300,7 @@ class Modes:
 def modes(scene: Scene, count: Optional[int] = None, samples: int = 200) -> Modes:
     """The lowest ``count`` modes (default 6, or as many as a modal beam keeps), the shapes
     at ``samples + 1`` evenly spaced points."""
+    _scene(scene, "modes")
     for name, n in (("count", count), ("samples", samples)):
         if n is not None and (isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1):
             raise SceneError(f"`{name}` = {n!r} must be a whole number of at least 1")
@@ -327,6 +350,7 @@ def tradeoff(
     ``out/<name>-tradeoff``): the table of ``tradeoff.csv`` and the lines the command prints
     (the reference's origin and the cheapest settings for 1e-2, 1e-4 and 1e-6). A scene read
     from a file uses the reference stored beside it where one serves."""
+    _scene(scene, "tradeoff")
     directory = Path(out) if out is not None else Path("out") / f"{scene.name}-tradeoff"
     file = scene.source if _native.is_file(scene.source) else None
     lines = _call(
@@ -355,6 +379,7 @@ def sweep_case(
     """One case of a sweep, the values set at the keys: its record (the text a planned
     sweep's ``done/<id>.yaml`` holds). A pure, picklable function of its arguments, for
     executors; a case that cannot run records why."""
+    _scene(scene, "sweep_case")
     keys, values = list(keys), list(values)
     if len(keys) != len(values):
         raise SceneError(
@@ -378,6 +403,7 @@ def sweep(
     ``concurrent.futures.Executor`` (a process pool, ``dask.distributed.Client.get_executor()``,
     a Slurm executor). Either way the table is the one ``rollbeam sweep`` writes as
     ``sweep.csv``, with one row per case in grid order."""
+    _scene(scene, "sweep")
     if not values:
         raise SceneError("sweep needs at least one key with values")
     keys = [str(k) for k in values]

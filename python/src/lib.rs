@@ -13,7 +13,7 @@ use pyo3::types::{PyBool, PyBytes};
 use rollbeam::commands::check::Described;
 use rollbeam::commands::report::{natural_modes, static_solution};
 use rollbeam::commands::solver_overrides;
-use rollbeam::commands::sweep::cluster::Record;
+use rollbeam::commands::sweep::cluster::{self, Record};
 use rollbeam::commands::sweep::{self, Value};
 use rollbeam::commands::tradeoff::{run_tradeoff, TradeoffOptions};
 use rollbeam::error::{short_numbers, Error};
@@ -368,12 +368,16 @@ fn run_case(
 /// The text of sweep.csv from the cases' records, in their order.
 #[pyfunction]
 fn merge(keys: Vec<String>, records: Vec<String>) -> PyResult<String> {
-    let rows = records
+    let records = records
         .iter()
         .enumerate()
-        .map(|(i, r)| Record::from_yaml(r, &format!("case {i}")).map(|r| r.row()))
+        .map(|(i, r)| {
+            let source = format!("case {i}");
+            Record::from_yaml(r, &source).map(|r| (source, r))
+        })
         .collect::<Result<Vec<_>, _>>()
         .map_err(py_err)?;
+    let rows = cluster::rows(&records, keys.len()).map_err(py_err)?;
     Ok(sweep::sweep_csv(&rows, &keys))
 }
 

@@ -316,6 +316,31 @@ def test_bad_values_fail_in_pythons_words_naming_the_key(d44):
         assert e.value.key == "count"
 
 
+def test_what_is_not_a_scene_fails_in_pythons_words(tmp_path):
+    deep: dict = {}
+    node = deep
+    for _ in range(5000):
+        node["a"] = {}
+        node = node["a"]
+    with pytest.raises(rollbeam.SceneError, match="nested deeper"):
+        rollbeam.Scene(deep)
+    for function in (rollbeam.run, rollbeam.check, rollbeam.static, rollbeam.modes):
+        with pytest.raises(rollbeam.SceneError, match=r"takes a rollbeam.Scene \(got dict\)"):
+            function({"name": "x"})
+    fifo = tmp_path / "scene.yaml"
+    os.mkfifo(fifo)
+    with pytest.raises(rollbeam.SceneError, match="not a regular file"):
+        rollbeam.Scene.from_yaml(fifo)
+
+
+def test_merged_records_must_agree(d44):
+    record = rollbeam.sweep_case(d44, ["disk.omega0"], [-44.0])
+    other = record.replace("- name: mid", "- name: elsewhere", 1)
+    assert other != record
+    with pytest.raises(rollbeam.SceneError, match="not of one scene"):
+        rollbeam._call(rollbeam._native.merge, ["disk.omega0"], [record, other])
+
+
 def test_the_sweep_matches_the_command_lines_sweep_csv(tmp_path, d44):
     cli("sweep", STUDIES / "bridge-d44.yaml", "--set", "disk.omega0=-20:-40:3", "--rtol", "1e-4", "--out", tmp_path)
     table = rollbeam.sweep(d44, {"disk.omega0": [-40.0, -30.0, -20.0]}, rtol=1e-4)

@@ -8,7 +8,7 @@ use nalgebra::{DMatrix, SymmetricEigen};
 
 use std::sync::{Mutex, OnceLock};
 
-use crate::beam::damping::Rayleigh;
+use crate::beam::damping::{DampingSpec, Rayleigh};
 use crate::beam::{Beam, BeamModel, BeamSpec};
 use crate::linalg::{self, Combination, Sparse, SparseLu};
 
@@ -153,13 +153,23 @@ pub fn rayleigh(beam: &Beam) -> Result<Option<Rayleigh>, String> {
     let Some(spec) = beam.spec.damping else {
         return Ok(None);
     };
+    // α and β as given are checked where a ratio is: at the lowest bending mode, whose ratio
+    // α/(2ω₁) + βω₁/2 of 1 or more leaves no vibration to damp.
+    // (A beam free to move as a rigid body has no lowest vibration to check.)
     let needed = Rayleigh::modes_needed(spec);
-    let omega = if needed == 0 {
-        Vec::new()
-    } else {
-        lowest_bending(beam, needed)
-            .ok_or("the natural modes the damping ratio is anchored on could not be computed")?
-    };
+    let omega = lowest_bending(beam, needed.max(1))
+        .ok_or("the natural modes the damping is checked on could not be computed")?;
+    if let (DampingSpec::Rayleigh { alpha, beta }, Some(&w1)) = (spec, omega.first()) {
+        let zeta = (Rayleigh { alpha, beta }).ratio_at(w1);
+        if w1.is_normal() && w1 > 0.0 && (zeta >= 1.0 || zeta.is_nan()) {
+            return Err(format!(
+                "`track.beam.damping` {{alpha: {alpha:e}, beta: {beta:e}}} damps the lowest bending mode (f = {:.4} Hz) at a ratio of {zeta:.4e} (α/(2ω) + βω/2); a ratio of 1 or more is no longer a vibration: give α < {:.4e} 1/s or β < {:.4e} s",
+                w1 / std::f64::consts::TAU,
+                2.0 * w1,
+                2.0 / w1
+            ));
+        }
+    }
     if omega.len() < needed {
         return Err(format!(
             "`track.beam.damping.modes` names bending mode {needed}, but the mesh has {} bending modes",

@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 
 use super::tradeoff::{Headline, MeansReference, Plan, Reference};
 use crate::error::Error;
+use crate::files::read_text;
 use crate::ode::Method;
 use crate::output::{io_error, write, yaml};
 
@@ -31,8 +32,7 @@ pub fn content_hash(text: &str) -> String {
 
 /// The hash of the scene file at `path`.
 pub fn scene_hash(path: &Path) -> Result<String, Error> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| Error::Input(format!("cannot read {}: {e}", path.display())))?;
+    let text = crate::files::read_text(path, crate::scene::MAX_SCENE_BYTES, "scene file")?;
     Ok(content_hash(&text))
 }
 
@@ -44,6 +44,11 @@ pub fn stored_path(scene_file: &Path, name: &str) -> PathBuf {
         .join("references")
         .join(format!("{name}.yaml"))
 }
+
+/// Largest stored reference file read: headlines and windowed means, a few kilobytes.
+const MAX_STORED_BYTES: u64 = 4 << 20;
+/// Largest stored history read: a reference on a fine output grid is a few megabytes.
+const MAX_HISTORY_BYTES: u64 = 256 << 20;
 
 #[derive(Serialize, Deserialize)]
 struct StoredFile {
@@ -63,6 +68,10 @@ struct StoredFile {
     wall_s: f64,
     headlines: Vec<Headline>,
     history_columns: usize,
+    /// The content hash of the history file beside it: a history cut or edited is not the
+    /// reference, and would score every run against itself.
+    #[serde(default)]
+    history_hash: Option<String>,
     /// The windowed means' own reference, where one was made (`tradeoff --reference-means`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     means: Option<StoredMeans>,
@@ -128,6 +137,14 @@ impl StoredMeans {
 pub fn store(reference: &Reference, name: &str, hash: &str, path: &Path) -> Result<(), Error> {
     let dir = path.parent().unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
+    let mut csv = String::new();
+    for (t, values) in &reference.history {
+        let _ = write!(csv, "{t:e}");
+        for v in values {
+            let _ = write!(csv, ",{v:e}");
+        }
+        csv.push('\n');
+    }
     let file = StoredFile {
         scene: name.to_string(),
         scene_hash: hash.to_string(),
@@ -140,19 +157,12 @@ pub fn store(reference: &Reference, name: &str, hash: &str, path: &Path) -> Resu
         mesh_gap: reference.mesh_gap,
         wall_s: reference.wall_s,
         headlines: reference.headlines.clone(),
+        history_hash: Some(content_hash(&csv)),
         history_columns: reference.history.first().map_or(0, |(_, v)| v.len()),
         means: reference.means.as_ref().map(StoredMeans::from),
     };
-    write(path, &yaml(&file)?)?;
-    let mut csv = String::new();
-    for (t, values) in &reference.history {
-        let _ = write!(csv, "{t:e}");
-        for v in values {
-            let _ = write!(csv, ",{v:e}");
-        }
-        csv.push('\n');
-    }
-    write(&history_path(path), &csv)
+    write(&history_path(path), &csv)?;
+    write(path, &yaml(&file)?)
 }
 
 fn history_path(path: &Path) -> PathBuf {
@@ -177,10 +187,14 @@ pub fn load(
     method: Method,
     scene_order: Option<usize>,
 ) -> Stored {
-    let Ok(text) = std::fs::read_to_string(path) else {
+    if !path.exists() {
         return Stored::Missing;
-    };
+    }
     let bad = |why: String| Stored::Stale(format!("{}: {why}", path.display()));
+    let text = match read_text(path, MAX_STORED_BYTES, "stored reference") {
+        Ok(t) => t,
+        Err(e) => return Stored::Stale(e.to_string()),
+    };
     let file: StoredFile = match serde_saphyr::from_str(&text) {
         Ok(f) => f,
         Err(e) => return bad(format!("unreadable ({e})")),
@@ -228,9 +242,22 @@ pub fn load(
             }
         }
     }
-    let Ok(csv) = std::fs::read_to_string(history_path(path)) else {
-        return bad("its history file is missing".into());
+    let csv = match read_text(&history_path(path), MAX_HISTORY_BYTES, "stored history") {
+        Ok(csv) => csv,
+        Err(e) => return Stored::Stale(e.to_string()),
     };
+    match &file.history_hash {
+        Some(h) if *h == content_hash(&csv) => {}
+        Some(_) => {
+            return bad(
+                "its history file is not the one stored with it (its hash differs: cut or edited)"
+                    .into(),
+            )
+        }
+        None => {
+            return bad("it holds no hash of its history, so the history cannot be checked".into())
+        }
+    }
     let mut history = Vec::new();
     for line in csv.lines() {
         let numbers: Result<Vec<f64>, _> = line.split(',').map(str::parse::<f64>).collect();
@@ -283,7 +310,8 @@ pub fn load(
 /// The windowed means' reference stored at `path` for the scene text hashed `hash`, if there
 /// is one: it outlives a recomputed reference of the headlines, which does not touch it.
 pub fn stored_means(path: &Path, hash: &str) -> Option<MeansReference> {
-    let file: StoredFile = serde_saphyr::from_str(&std::fs::read_to_string(path).ok()?).ok()?;
+    let text = read_text(path, MAX_STORED_BYTES, "stored reference").ok()?;
+    let file: StoredFile = serde_saphyr::from_str(&text).ok()?;
     (file.scene_hash == hash)
         .then_some(file.means)
         .flatten()
@@ -298,7 +326,7 @@ pub fn store_means(means: &MeansReference, hash: &str, path: &Path) -> Result<()
             path.display()
         ))
     };
-    let text = std::fs::read_to_string(path).map_err(|_| missing())?;
+    let text = read_text(path, MAX_STORED_BYTES, "stored reference").map_err(|_| missing())?;
     let mut file: StoredFile = serde_saphyr::from_str(&text).map_err(|_| missing())?;
     if file.scene_hash != hash {
         return Err(missing());

@@ -38,6 +38,7 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
                 scene.display()
             )));
         }
+        super::sweep::cluster::check_case(plan, id)?;
         if super::sweep::cluster::is_done(plan, id) {
             say!("{}: case {id} is done already; skipped", plan.display());
             return Ok(());

@@ -1113,9 +1113,28 @@ impl TradeoffOptions {
             .iter()
             .map(|p| parse_point(p, scene))
             .collect::<Result<_, _>>()?;
+        let runs = [
+            plan.methods.len(),
+            plan.rtols.len(),
+            plan.meshes.len().max(1),
+            plan.orders.len().max(1),
+            plan.models.len().max(1),
+        ]
+        .iter()
+        .try_fold(1_usize, |n, &k| n.checked_mul(k))
+        .and_then(|n| n.checked_add(plan.points.len()))
+        .filter(|&n| n <= MAX_RUNS);
+        if runs.is_none() {
+            return Err(Error::Input(format!(
+                "the options make more than {MAX_RUNS} runs (methods × rtols × elements × orders × models, and the points); try fewer"
+            )));
+        }
         Ok(plan)
     }
 }
+
+/// Most runs one work–precision diagram is made of: each is a whole run of the scene.
+const MAX_RUNS: usize = 10_000;
 
 /// The element counts a run of `tradeoff` may be given (`--elements`, `--point`).
 const ELEMENTS_TRIED: std::ops::RangeInclusive<usize> = 1..=1000;

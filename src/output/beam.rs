@@ -235,9 +235,9 @@ fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
 }
 
 pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
-    write(&dir.join("summary.yaml"), &summary_yaml(r)?)?;
     write(&dir.join("history.csv"), &csv(r))?;
-    figures(r, dir)
+    figures(r, dir)?;
+    write(&dir.join("summary.yaml"), &summary_yaml(r)?)
 }
 
 /// The text of `summary.yaml`.

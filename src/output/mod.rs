@@ -13,6 +13,9 @@ use crate::run::{Run, RunResult};
 
 pub fn write_all(run: &Run, dir: &Path) -> Result<(), Error> {
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
+    // The summary says how the run ended, so it is written last, once every other file is
+    // whole; one left from an earlier run goes first, so that a failed write leaves none.
+    let _ = std::fs::remove_file(dir.join("summary.yaml"));
     match run {
         Run::Rolling(r) => write_rolling(r, dir),
         Run::Beam(b) => beam::write_all(b, dir),
@@ -42,9 +45,9 @@ pub fn yaml(value: &impl serde::Serialize) -> Result<String, Error> {
 
 fn write_rolling(result: &RunResult, dir: &Path) -> Result<(), Error> {
     let summary = summary::Summary::from_run(result);
-    write(&dir.join("summary.yaml"), &yaml(&summary)?)?;
     write(&dir.join("history.csv"), &history::csv(result))?;
-    plots::all(result, dir)
+    plots::all(result, dir)?;
+    write(&dir.join("summary.yaml"), &yaml(&summary)?)
 }
 
 /// Append one CSV row of numbers and its newline. A quantity that is undefined at that time
@@ -125,11 +128,11 @@ pub(crate) fn write(path: &Path, text: &str) -> Result<(), Error> {
             path.display()
         )));
     }
-    // A file from an earlier run is removed, not truncated: ext4 flushes a file truncated and
-    // rewritten when it is closed, which a rerun into the same folder waits for, and a
-    // symbolic link left at the path is replaced, not written through.
+    // A file from an earlier run is removed first: ext4 flushes a file that replaces another
+    // by rename (or truncation) before the rename returns, which a rerun into the same folder
+    // would wait for.
     let _ = std::fs::remove_file(path);
-    std::fs::write(path, text).map_err(|e| io_error(path, e))
+    crate::files::write_whole(path, text)
 }
 
 /// The first line and token of a CSV or YAML text that is an infinity or NaN as Rust or YAML

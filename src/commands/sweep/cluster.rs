@@ -22,6 +22,7 @@ use super::{
     case_at, case_spec, grid, row, summarise, Setting, Summary, SweepRow, Value, MAX_CASES,
 };
 use crate::error::{quote, Error};
+use crate::files::{read_text, write_whole};
 use crate::output::{io_error, yaml};
 use crate::plan::Planner;
 use crate::run::{self, Overrides, Run};
@@ -190,28 +191,6 @@ fn record_path(dir: &Path, id: &str) -> PathBuf {
     dir.join("done").join(format!("{id}.yaml"))
 }
 
-/// Write a file whole or not at all: a shard killed mid-write leaves no record that claims
-/// the case is done.
-fn write_whole(path: &Path, text: &str) -> Result<(), Error> {
-    let partial = path.with_extension("partial");
-    std::fs::write(&partial, text).map_err(|e| io_error(&partial, e))?;
-    std::fs::rename(&partial, path).map_err(|e| io_error(path, e))
-}
-
-fn read_bounded(path: &Path, limit: u64, what: &str) -> Result<String, Error> {
-    let size = std::fs::metadata(path)
-        .map_err(|e| Error::Input(format!("cannot read {what} {}: {e}", path.display())))?
-        .len();
-    if size > limit {
-        return Err(Error::Input(format!(
-            "{} is {size} bytes, more than a {what} can be ({limit} bytes)",
-            path.display()
-        )));
-    }
-    std::fs::read_to_string(path)
-        .map_err(|e| Error::Input(format!("cannot read {what} {}: {e}", path.display())))
-}
-
 /// Write the plan of a sweep into `dir`: one case file per combination of the settings'
 /// values, with the solver settings `solver` sets written into each. Returns the number of
 /// cases, and of those already done by an earlier plan of the same cases.
@@ -229,6 +208,7 @@ pub fn write_plan(
     for sub in [&case_dir, &dir.join("done")] {
         std::fs::create_dir_all(sub).map_err(|e| io_error(sub, e))?;
     }
+    folders_in_place(dir)?;
     let width = cases.len().saturating_sub(1).to_string().len().max(4);
     let mut ids = Vec::with_capacity(cases.len());
     let mut done = 0;
@@ -265,14 +245,21 @@ fn read_plan(dir: &Path) -> Result<(Plan, Vec<Setting>), Error> {
             dir.display()
         )));
     }
-    let text = read_bounded(&path, MAX_PLAN_BYTES, "plan")?;
+    let text = read_text(&path, MAX_PLAN_BYTES, "plan")?;
     let plan: Plan = serde_saphyr::from_str(&text)
         .map_err(|e| Error::Input(format!("{} is not a sweep plan: {e}", path.display())))?;
+    if plan.sets.is_empty() {
+        return Err(Error::Input(format!(
+            "{} sets no key (`sets: []`); a plan sweeps at least one --set; write the plan again",
+            path.display()
+        )));
+    }
     let settings: Vec<Setting> = plan
         .sets
         .iter()
         .map(|s| Setting::parse(s))
-        .collect::<Result<_, _>>()?;
+        .collect::<Result<_, _>>()
+        .map_err(|e| Error::Input(format!("{}: {e}", path.display())))?;
     let count = settings
         .iter()
         .try_fold(1_usize, |n, s| n.checked_mul(s.all().len()));
@@ -291,7 +278,45 @@ fn read_plan(dir: &Path) -> Result<(Plan, Vec<Setting>), Error> {
             quote(bad)
         )));
     }
+    folders_in_place(dir)?;
     Ok((plan, settings))
+}
+
+/// The plan's `cases/` and `done/` are folders inside it, not links elsewhere: a shard writes
+/// its records into the plan folder and nowhere else.
+fn folders_in_place(dir: &Path) -> Result<(), Error> {
+    for sub in ["cases", "done"] {
+        let path = dir.join(sub);
+        if !crate::files::is_real_dir(&path) {
+            return Err(Error::Input(format!(
+                "{} is not a folder of the plan (missing, or a link elsewhere); write the plan again",
+                path.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The text of case `id`'s scene, checked against the hash its id carries: a case file
+/// swapped or edited after planning is not the case the plan lists.
+fn case_text(dir: &Path, id: &str) -> Result<String, Error> {
+    let path = dir.join("cases").join(format!("{id}.yaml"));
+    let text = read_text(&path, crate::scene::MAX_SCENE_BYTES, "case file")?;
+    let hash = super::super::reference::content_hash(&text);
+    let (_, expected) = id.split_once('-').unwrap_or(("", id));
+    if hash.trim_start_matches("fnv1a64:") != expected {
+        return Err(Error::Input(format!(
+            "{} is not the case its name says (its text hashes to {}, the id says {expected}): it was edited or swapped after planning; write the plan again",
+            path.display(),
+            hash.trim_start_matches("fnv1a64:")
+        )));
+    }
+    Ok(text)
+}
+
+/// Check that the file `rollbeam run` was given as case `id` of the plan in `dir` is that case.
+pub fn check_case(dir: &Path, id: &str) -> Result<(), Error> {
+    case_text(dir, id).map(|_| ())
 }
 
 /// A case id names a file inside the plan folder and nothing else.
@@ -351,7 +376,7 @@ pub fn run_shard(
         .collect();
     let outcomes = super::super::parallel::map(&todo, show_progress, |id| {
         let case = dir.join("cases").join(format!("{id}.yaml"));
-        let spec = SceneSpec::load(&case)?;
+        let spec = SceneSpec::parse(&case_text(dir, id)?, &case.display().to_string(), id)?;
         let values = case_values(&plan, &settings, id)?;
         let outcome = Planner::default()
             .plan(&spec)
@@ -425,14 +450,61 @@ pub fn merge(dir: &Path) -> Result<(String, Vec<SweepRow>, Vec<Setting>), Error>
             dir.display()
         )));
     }
-    let rows = plan
+    let records = plan
         .cases
         .iter()
         .map(|id| {
             let path = record_path(dir, id);
-            let text = read_bounded(&path, MAX_RECORD_BYTES, "case record")?;
-            Ok(Record::from_yaml(&text, &path.display().to_string())?.row())
+            let text = read_text(&path, MAX_RECORD_BYTES, "case record")?;
+            let source = path.display().to_string();
+            let record = Record::from_yaml(&text, &source)?;
+            let values: Vec<String> = case_values(&plan, &settings, id)?
+                .iter()
+                .map(Value::to_string)
+                .collect();
+            if record.values != values {
+                return Err(Error::Input(format!(
+                    "{source} records the values [{}] where the plan's case {id} has [{}]; remove it and run the case again",
+                    record.values.join(", "),
+                    values.join(", ")
+                )));
+            }
+            Ok((source, record))
         })
         .collect::<Result<Vec<_>, Error>>()?;
+    let rows = rows(&records, settings.len())?;
     Ok((plan.scene, rows, settings))
+}
+
+/// The rows of the records `(source, record)` of one sweep over `keys` keys, checked against
+/// each other before any is used: each holds one value per key, and every case that ran
+/// reports the same probes, and a disk if one does. A record that disagrees is named.
+pub fn rows(records: &[(String, Record)], keys: usize) -> Result<Vec<SweepRow>, Error> {
+    let mut first: Option<(&str, &RecordSummary)> = None;
+    for (source, record) in records {
+        if record.values.len() != keys {
+            return Err(Error::Input(format!(
+                "{source} records {} values for a sweep over {keys} keys",
+                record.values.len()
+            )));
+        }
+        let Some(summary) = &record.ok else { continue };
+        let Some((first_source, expected)) = first else {
+            first = Some((source, summary));
+            continue;
+        };
+        let names = |s: &RecordSummary| -> Vec<String> {
+            s.probes.iter().map(|p| p.name.clone()).collect()
+        };
+        if names(summary) != names(expected) || summary.disk.is_some() != expected.disk.is_some() {
+            return Err(Error::Input(format!(
+                "{source} reports probes [{}]{} where {first_source} reports [{}]{}: the records are not of one scene",
+                names(summary).join(", "),
+                if summary.disk.is_some() { " and a disk" } else { "" },
+                names(expected).join(", "),
+                if expected.disk.is_some() { " and a disk" } else { "" },
+            )));
+        }
+    }
+    Ok(records.iter().map(|(_, r)| r.row()).collect())
 }
