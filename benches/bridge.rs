@@ -135,8 +135,8 @@ fn beam_models(c: &mut Criterion) {
 }
 
 fn hslm_sweep(c: &mut Criterion) {
-    use rollbeam::commands::sweep::{run_grid, Setting};
     use rollbeam::scene::SceneSpec;
+    use rollbeam::workflows::sweep::{run_grid, Setting};
     let mut group = c.benchmark_group("hslm-15m-sweep");
     group.sample_size(10);
     let spec =

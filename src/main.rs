@@ -31,9 +31,9 @@ enum Command {
     /// Validate a scene and print the model it would build; runs nothing.
     Check(commands::check::CheckArgs),
     /// Static equilibrium of a beam scene.
-    Static(commands::report::StaticArgs),
+    Static(commands::analyses::StaticArgs),
     /// Natural frequencies and mode shapes of a beam scene.
-    Modes(commands::report::ModesArgs),
+    Modes(commands::analyses::ModesArgs),
     /// Run one scene over a range of one parameter, in parallel on all cores; writes
     /// sweep.csv (one row per run) and sweep.svg.
     Sweep(commands::sweep::SweepArgs),
@@ -76,8 +76,8 @@ fn main() -> ExitCode {
     let done = match cli.command {
         Command::Run(args) => commands::run::run(args),
         Command::Check(args) => commands::check::check(args),
-        Command::Static(args) => commands::report::static_command(args),
-        Command::Modes(args) => commands::report::modes_command(args),
+        Command::Static(args) => commands::analyses::static_command(args),
+        Command::Modes(args) => commands::analyses::modes_command(args),
         Command::Sweep(args) => commands::sweep::sweep(args),
         Command::Tradeoff(args) => commands::tradeoff::tradeoff(args),
         Command::Studies(args) => commands::studies::studies(args),

@@ -462,7 +462,7 @@ fn leaving_at_either_end_and_slipping() {
 /// shows as the residual growing six-fold from −44 to −50 1/s.
 #[test]
 fn sweep_matches_single_runs() {
-    use rollbeam::commands::sweep::{run_sweep, Setting};
+    use rollbeam::workflows::sweep::{run_sweep, Setting};
     let mut spec = SceneSpec::load(&studies_dir().join("bridge-d44.yaml")).expect("a valid study");
     spec.set_name("disk.coupling", "moving-force")
         .expect("a key");
@@ -496,7 +496,7 @@ fn static_deflection_under_the_disk_weight() {
     let scene = variant("bridge-d44.yaml", &[Set::Number("disk.s0", 10.0)]);
     let setup = scene.beam().expect("a beam scene");
     let dir = std::env::temp_dir().join(format!("rollbeam-static-{}", std::process::id()));
-    rollbeam::commands::report::statics(&scene, setup, &dir).expect("static solution");
+    rollbeam::workflows::analyses::statics(&scene, setup, &dir).expect("static solution");
     let text = std::fs::read_to_string(dir.join("static.yaml")).expect("static.yaml");
     let mid = &text[text.find("mid:").expect("mid probe")..];
     let w: f64 = mid

@@ -8,11 +8,11 @@
 mod common;
 
 use common::{changed, load, Set};
-use rollbeam::commands::reference::{self, Stored};
-use rollbeam::commands::tradeoff::{self, Plan, Trial, REFERENCE_SETTLED};
 use rollbeam::ode::Method;
 use rollbeam::run::{self, Overrides};
 use rollbeam::scene::{Model, Scene};
+use rollbeam::workflows::reference::{self, Stored};
+use rollbeam::workflows::tradeoff::{self, Plan, Trial, REFERENCE_SETTLED};
 
 fn errors(trials: &[Trial], method: Method) -> Vec<(f64, f64, usize)> {
     trials
@@ -237,7 +237,7 @@ fn work_precision_sweeps_the_element_degree() {
 /// 10⁻⁵ or better (docs/numerics.md, "The work–precision grids").
 #[test]
 fn a_grid_cut_for_time_keeps_its_reference_tight() {
-    use rollbeam::commands::studies;
+    use rollbeam::workflows::studies;
 
     for file in studies::scene_files(&common::studies_dir()).expect("the studies folder") {
         let scene = Scene::load(&file).expect("a valid study");
@@ -256,7 +256,7 @@ fn a_grid_cut_for_time_keeps_its_reference_tight() {
 /// Each study, its grid's plan, and what loading its stored reference found: the reference
 /// `rollbeam studies` scores its diagram against.
 fn stored_references() -> Vec<(Scene, Plan, Stored)> {
-    use rollbeam::commands::studies;
+    use rollbeam::workflows::studies;
     let files = studies::scene_files(&common::studies_dir()).expect("the studies folder");
     files
         .into_iter()
@@ -479,7 +479,7 @@ fn means_within_1e_6(past_grid: bool, resolves: f64) -> usize {
 /// untouched serve.
 #[test]
 fn a_stored_history_cut_or_replaced_is_stale() {
-    use rollbeam::commands::studies;
+    use rollbeam::workflows::studies;
     let dir = std::env::temp_dir().join(format!("rollbeam-stored-{}", std::process::id()));
     let refs = dir.join("references");
     std::fs::create_dir_all(&refs).expect("temp dir");

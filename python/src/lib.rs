@@ -11,16 +11,16 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyBytes};
 
 use rollbeam::commands::check::Described;
-use rollbeam::commands::report::{natural_modes, static_solution};
-use rollbeam::commands::solver_overrides;
-use rollbeam::commands::sweep::cluster::{self, Record};
-use rollbeam::commands::sweep::{self, Value};
-use rollbeam::commands::tradeoff::{run_tradeoff, TradeoffOptions};
 use rollbeam::error::{short_numbers, Error};
 use rollbeam::output;
 use rollbeam::plan::Planner;
 use rollbeam::run::{self as core_run, Overrides, Run};
 use rollbeam::scene::{BeamScene, Scene, SceneSpec};
+use rollbeam::workflows::analyses::{natural_modes, static_solution};
+use rollbeam::workflows::settings::solver_overrides;
+use rollbeam::workflows::sweep::cluster::{self, Record};
+use rollbeam::workflows::sweep::{self, Value};
+use rollbeam::workflows::tradeoff::{run_tradeoff, TradeoffOptions};
 
 pyo3::create_exception!(_native, SceneError, PyException);
 pyo3::create_exception!(_native, SolverError, PyException);

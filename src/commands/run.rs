@@ -30,7 +30,7 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
         animate,
     } = args;
     // A planned sweep's case runs into its plan folder, once.
-    let case = super::sweep::cluster::planned_case(&scene);
+    let case = crate::workflows::sweep::cluster::planned_case(&scene);
     if let Some((plan, id)) = &case {
         if solver.given() {
             return Err(Error::Input(format!(
@@ -38,8 +38,8 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
                 scene.display()
             )));
         }
-        super::sweep::cluster::check_case(plan, id)?;
-        if super::sweep::cluster::is_done(plan, id) {
+        crate::workflows::sweep::cluster::check_case(plan, id)?;
+        if crate::workflows::sweep::cluster::is_done(plan, id) {
             say!("{}: case {id} is done already; skipped", plan.display());
             return Ok(());
         }
@@ -65,7 +65,7 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
         output::animation::write_animation(b, &dir.join("animation.svg"))?;
     }
     if let Some((plan, id)) = &case {
-        super::sweep::cluster::record_case(plan, id, &result)?;
+        crate::workflows::sweep::cluster::record_case(plan, id, &result)?;
     }
     let h = result.header();
     say!("{}: {}", scene.name, h.stop.sentence(h.t_end));

@@ -1,13 +1,12 @@
-//! `rollbeam static` and `rollbeam modes`: run the analysis on a beam scene and write
-//! `static.yaml` / `modes.yaml` (and mode-shape plots); return the text printed to the user.
+//! Static equilibrium and natural modes of a beam scene: solved, written as `static.yaml` /
+//! `modes.yaml` (and mode-shape plots), and the text printed to the user returned.
 
 use std::collections::BTreeMap;
 use std::fmt::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use serde::Serialize;
 
-use super::beam_only;
 use crate::analysis::{modes, statics};
 use crate::beam::supports::statically_supported;
 use crate::beam::Beam;
@@ -265,48 +264,4 @@ pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Resu
     }
     let _ = writeln!(text, "  wrote {}", dir.join("modes.yaml").display());
     Ok(text)
-}
-
-#[derive(clap::Args)]
-pub struct StaticArgs {
-    scene: PathBuf,
-    #[arg(long)]
-    out: Option<PathBuf>,
-}
-
-/// `rollbeam static`.
-pub fn static_command(args: StaticArgs) -> Result<(), Error> {
-    let StaticArgs { scene: path, out } = args;
-    let scene = Scene::load(&path)?;
-    let setup = beam_only(&scene, &path, "static")?;
-    let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
-    let result = statics(&scene, setup, &dir)?;
-    print!("{result}");
-    Ok(())
-}
-
-#[derive(clap::Args)]
-pub struct ModesArgs {
-    scene: PathBuf,
-    /// How many modes (default 6, or as many as a modal beam keeps if fewer).
-    #[arg(long)]
-    count: Option<usize>,
-    #[arg(long)]
-    out: Option<PathBuf>,
-}
-
-/// `rollbeam modes`.
-pub fn modes_command(args: ModesArgs) -> Result<(), Error> {
-    let ModesArgs {
-        scene: path,
-        count,
-        out,
-    } = args;
-    let scene = Scene::load(&path)?;
-    let setup = beam_only(&scene, &path, "modes")?;
-    let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
-    let kept = setup.beam.model.modes().unwrap_or(usize::MAX);
-    let result = modes(&scene, setup, count.unwrap_or(6.min(kept)), &dir)?;
-    print!("{result}");
-    Ok(())
 }

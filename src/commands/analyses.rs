@@ -1,0 +1,54 @@
+//! `rollbeam static` and `rollbeam modes` (the work is `workflows::analyses`).
+
+use std::path::PathBuf;
+
+use std::path::Path;
+
+use super::beam_only;
+use crate::error::Error;
+use crate::scene::Scene;
+use crate::workflows::analyses::{modes, statics};
+
+#[derive(clap::Args)]
+pub struct StaticArgs {
+    scene: PathBuf,
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// `rollbeam static`.
+pub fn static_command(args: StaticArgs) -> Result<(), Error> {
+    let StaticArgs { scene: path, out } = args;
+    let scene = Scene::load(&path)?;
+    let setup = beam_only(&scene, &path, "static")?;
+    let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
+    let result = statics(&scene, setup, &dir)?;
+    print!("{result}");
+    Ok(())
+}
+
+#[derive(clap::Args)]
+pub struct ModesArgs {
+    scene: PathBuf,
+    /// How many modes (default 6, or as many as a modal beam keeps if fewer).
+    #[arg(long)]
+    count: Option<usize>,
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// `rollbeam modes`.
+pub fn modes_command(args: ModesArgs) -> Result<(), Error> {
+    let ModesArgs {
+        scene: path,
+        count,
+        out,
+    } = args;
+    let scene = Scene::load(&path)?;
+    let setup = beam_only(&scene, &path, "modes")?;
+    let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
+    let kept = setup.beam.model.modes().unwrap_or(usize::MAX);
+    let result = modes(&scene, setup, count.unwrap_or(6.min(kept)), &dir)?;
+    print!("{result}");
+    Ok(())
+}

@@ -1,0 +1,311 @@
+//! Editing a scene by dotted key (`disk.omega0`, `track.beam.E`): what `sweep --set`, the
+//! Python package's `with_values` and the tests change before the scene is checked again.
+
+use super::*;
+
+impl SceneSpec {
+    /// Set the number at a dotted key of the scene format (`disk.omega0`, `track.beam.E`,
+    /// `track.beam.elements`, …), whether or not the file gives it. The changed scene is not
+    /// checked here: [`SceneSpec::check`] does that.
+    pub fn set(&mut self, key: &str, value: f64) -> Result<(), Error> {
+        let f = &mut self.file;
+        let unset = |what: &str| {
+            Err(Error::Input(format!(
+                "`{key}` cannot be set: the scene has no {what}"
+            )))
+        };
+        let number = |slot: &mut Spanned<f64>| slot.value = value;
+        let option = |slot: &mut Option<Spanned<f64>>| match slot {
+            Some(s) => s.value = value,
+            None => *slot = Some(given(value)),
+        };
+        let whole = |slot: &mut Option<Spanned<i64>>| -> Result<(), Error> {
+            if value.fract() != 0.0 || value.abs() > 1e15 {
+                return Err(Error::Input(format!(
+                    "`{key}` takes a whole number (got {value})"
+                )));
+            }
+            let v = value as i64;
+            match slot {
+                Some(s) => s.value = v,
+                None => *slot = Some(given(v)),
+            }
+            Ok(())
+        };
+        match key.split_once('.') {
+            None => match key {
+                "gravity" => option(&mut f.gravity),
+                "duration" => number(&mut f.duration),
+                _ => return Err(not_a_number(key)),
+            },
+            Some(("track", rest)) => match rest.split_once('.') {
+                Some(("beam", field)) => {
+                    let Some(b) = f.track.value.beam.as_mut() else {
+                        return unset("beam track");
+                    };
+                    let b = &mut b.value;
+                    match field {
+                        "E" => number(&mut b.E),
+                        "G" => number(&mut b.G),
+                        "rho" => number(&mut b.rho),
+                        "A" => number(&mut b.A),
+                        "Av" => number(&mut b.Av),
+                        "I" => number(&mut b.I),
+                        "depth" => option(&mut b.depth),
+                        "elements" => whole(&mut b.elements)?,
+                        "order" => whole(&mut b.order)?,
+                        "modes" => whole(&mut b.modes)?,
+                        "damping.ratio" | "damping.alpha" | "damping.beta" => {
+                            let d = &mut b
+                                .damping
+                                .get_or_insert_with(|| given(DampingFile::default()))
+                                .value;
+                            match field {
+                                "damping.ratio" => option(&mut d.ratio),
+                                "damping.alpha" => option(&mut d.alpha),
+                                _ => option(&mut d.beta),
+                            }
+                        }
+                        _ => return Err(not_a_number(key)),
+                    }
+                }
+                Some(("curve", "parabola.k")) => {
+                    match f
+                        .track
+                        .value
+                        .curve
+                        .as_mut()
+                        .and_then(|c| c.value.parabola.as_mut())
+                    {
+                        Some(p) => number(&mut p.k),
+                        None => return unset("parabola"),
+                    }
+                }
+                _ => return Err(not_a_number(key)),
+            },
+            Some(("disk", field)) => {
+                let Some(d) = f.disk.as_mut() else {
+                    return unset("disk");
+                };
+                let d = &mut d.value;
+                match field {
+                    "mass" => number(&mut d.mass),
+                    "radius" => number(&mut d.radius),
+                    "s0" => option(&mut d.s0),
+                    "omega0" => option(&mut d.omega0),
+                    "mu" => option(&mut d.mu),
+                    "patch" => option(&mut d.patch),
+                    "restitution" => option(&mut d.restitution),
+                    _ => return Err(not_a_number(key)),
+                }
+            }
+            Some(("train", field)) => {
+                let Some(t) = f.train.as_mut() else {
+                    return unset("train");
+                };
+                match field {
+                    "speed" => number(&mut t.value.speed),
+                    _ => return Err(not_a_number(key)),
+                }
+            }
+            Some(("solver", field)) => {
+                let s = f.solver.get_or_insert_with(SolverFile::default);
+                match field {
+                    "rtol" => option(&mut s.rtol),
+                    "atol" => option(&mut s.atol),
+                    "rho_inf" => option(&mut s.rho_inf),
+                    "accuracy" => option(&mut s.accuracy),
+                    _ => return Err(not_a_number(key)),
+                }
+            }
+            Some(("output", field)) => {
+                let o = f.output.get_or_insert_with(OutputFile::default);
+                match field {
+                    "interval" => option(&mut o.interval),
+                    "magnify" => option(&mut o.magnify),
+                    "acceleration_cutoff_hz" => option(&mut o.acceleration_cutoff_hz),
+                    _ => return Err(not_a_number(key)),
+                }
+            }
+            _ => return Err(not_a_number(key)),
+        }
+        Ok(())
+    }
+
+    /// Leave out an optional key, so that its default applies (`output.shapes`, `solver.rtol`,
+    /// `track.beam.elements`, …).
+    pub fn unset(&mut self, key: &str) -> Result<(), Error> {
+        let f = &mut self.file;
+        let no = |what: &str| {
+            Err(Error::Input(format!(
+                "`{key}` cannot be left out: the scene has no {what}"
+            )))
+        };
+        match key {
+            "gravity" => f.gravity = None,
+            "loads" => f.loads = None,
+            "track.beam.elements"
+            | "track.beam.order"
+            | "track.beam.quadrature"
+            | "track.beam.initial"
+            | "track.beam.depth"
+            | "track.beam.model"
+            | "track.beam.modes"
+            | "track.beam.damping"
+            | "track.beam.self_weight" => {
+                let Some(b) = f.track.value.beam.as_mut() else {
+                    return no("beam track");
+                };
+                let b = &mut b.value;
+                match key {
+                    "track.beam.elements" => b.elements = None,
+                    "track.beam.order" => b.order = None,
+                    "track.beam.quadrature" => b.quadrature = None,
+                    "track.beam.depth" => b.depth = None,
+                    "track.beam.model" => b.model = None,
+                    "track.beam.modes" => b.modes = None,
+                    "track.beam.damping" => b.damping = None,
+                    "track.beam.self_weight" => b.self_weight = None,
+                    _ => b.initial = None,
+                }
+            }
+            "disk.s0" | "disk.omega0" | "disk.mu" | "disk.patch" | "disk.coupling"
+            | "disk.formulation" | "disk.contact_loss" | "disk.restitution" => {
+                let Some(d) = f.disk.as_mut() else {
+                    return no("disk");
+                };
+                let d = &mut d.value;
+                match key {
+                    "disk.s0" => d.s0 = None,
+                    "disk.omega0" => d.omega0 = None,
+                    "disk.mu" => d.mu = None,
+                    "disk.patch" => d.patch = None,
+                    "disk.coupling" => d.coupling = None,
+                    "disk.contact_loss" => d.contact_loss = None,
+                    "disk.restitution" => d.restitution = None,
+                    _ => d.formulation = None,
+                }
+            }
+            "solver.method" | "solver.rtol" | "solver.atol" | "solver.rho_inf"
+            | "solver.accuracy" => {
+                if let Some(s) = f.solver.as_mut() {
+                    match key {
+                        "solver.method" => s.method = None,
+                        "solver.rtol" => s.rtol = None,
+                        "solver.atol" => s.atol = None,
+                        "solver.rho_inf" => s.rho_inf = None,
+                        _ => s.accuracy = None,
+                    }
+                }
+            }
+            "output.interval"
+            | "output.probes"
+            | "output.shapes"
+            | "output.magnify"
+            | "output.acceleration_cutoff_hz" => {
+                if let Some(o) = f.output.as_mut() {
+                    match key {
+                        "output.interval" => o.interval = None,
+                        "output.probes" => o.probes = None,
+                        "output.shapes" => o.shapes = None,
+                        "output.magnify" => o.magnify = None,
+                        _ => o.acceleration_cutoff_hz = None,
+                    }
+                }
+            }
+            _ => {
+                return Err(Error::Input(format!(
+                    "`{key}` is not an optional key of the scene format"
+                )))
+            }
+        }
+        Ok(())
+    }
+
+    /// Set the name at a dotted key of the scene format (`disk.coupling`, `solver.method`,
+    /// `track.beam.quadrature`, …), whether or not the file gives it.
+    pub fn set_name(&mut self, key: &str, value: &str) -> Result<(), Error> {
+        let f = &mut self.file;
+        let text = |slot: &mut Option<Spanned<String>>| match slot {
+            Some(s) => s.value = value.into(),
+            None => *slot = Some(given(value.to_string())),
+        };
+        match key {
+            "name" => text(&mut f.name),
+            "disk.coupling" | "disk.formulation" | "disk.contact_loss" => {
+                let Some(d) = f.disk.as_mut() else {
+                    return Err(Error::Input(format!(
+                        "`{key}` cannot be set: the scene has no disk"
+                    )));
+                };
+                match key {
+                    "disk.coupling" => text(&mut d.value.coupling),
+                    "disk.formulation" => text(&mut d.value.formulation),
+                    _ => text(&mut d.value.contact_loss),
+                }
+            }
+            "solver.method" => text(&mut f.solver.get_or_insert_with(SolverFile::default).method),
+            "train.hslm" | "train.model" => {
+                let Some(t) = f.train.as_mut() else {
+                    return Err(Error::Input(format!(
+                        "`{key}` cannot be set: the scene has no train"
+                    )));
+                };
+                if key == "train.hslm" {
+                    text(&mut t.value.hslm);
+                    t.value.axles = None;
+                    t.value.load = None;
+                } else {
+                    text(&mut t.value.model);
+                }
+            }
+            "track.beam.self_weight" => {
+                let Some(b) = f.track.value.beam.as_mut() else {
+                    return Err(Error::Input(format!(
+                        "`{key}` cannot be set: the scene has no beam track"
+                    )));
+                };
+                let on = match value {
+                    "true" => true,
+                    "false" => false,
+                    _ => {
+                        return Err(Error::Input(format!(
+                            "`{key}` is true or false (got {})",
+                            quote(value)
+                        )))
+                    }
+                };
+                b.value.self_weight = Some(given(on));
+            }
+            "track.beam.quadrature" | "track.beam.initial" | "track.beam.model" => {
+                let Some(b) = f.track.value.beam.as_mut() else {
+                    return Err(Error::Input(format!(
+                        "`{key}` cannot be set: the scene has no beam track"
+                    )));
+                };
+                match key {
+                    "track.beam.quadrature" => text(&mut b.value.quadrature),
+                    "track.beam.model" => text(&mut b.value.model),
+                    _ => text(&mut b.value.initial),
+                }
+            }
+            _ => {
+                return Err(Error::Input(format!(
+                    "`{key}` does not take a name (a number key is swept as `{key}=FROM:TO:COUNT`); the keys that take names are name, disk.coupling, disk.formulation, disk.contact_loss, solver.method, train.hslm, train.model, track.beam.model, track.beam.quadrature, track.beam.initial and track.beam.self_weight"
+                )))
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A value set rather than read: it has no line in the file.
+pub(super) fn given<T>(value: T) -> Spanned<T> {
+    Spanned::new(value, Location::UNKNOWN, Location::UNKNOWN)
+}
+
+pub(super) fn not_a_number(key: &str) -> Error {
+    Error::Input(format!(
+        "`{key}` is not a number the scene format holds (keys are dotted paths such as disk.omega0, track.beam.E or solver.rtol)"
+    ))
+}

@@ -1,0 +1,390 @@
+//! The scene file (see SCENE-FORMAT in the README): read with locations into a [`SceneSpec`]
+//! (what the user wrote, which a typed [`SceneSpec::set`] may change key by key), and checked
+//! into the model it names, and only that; nothing is chosen or computed here beyond what the
+//! check needs. What the scene leaves out is chosen by the planning step (`plan.rs`). Every
+//! problem is reported as one sentence with the file, the line and the key.
+//!
+//! Here: the public scene types, reading, and the check of the whole file. `file`: the file's
+//! structure as serde reads it; `keys`: editing by dotted key; `checker`: the reporter and the
+//! bounds; `rolling`, `beam`, `train`: each section's checks; `yaml_error`: a YAML reader's
+//! error as one sentence.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+use serde_saphyr::{Location, Spanned};
+
+use crate::analysis::discretisation::{
+    jumps, weight_drops, Discretisation, DEFAULT_ACCURACY, DEFAULT_ORDER,
+};
+use crate::beam::damping::DampingSpec;
+use crate::beam::element::Section;
+use crate::beam::load::{BeamStart, PointLoad, Probe};
+use crate::beam::modal::MAX_MODES;
+use crate::beam::supports::{mesh_multiple, statically_supported, Support};
+use crate::beam::train::{hslm, Train, TrainModel, HSLM_NAMES};
+use crate::beam::{BeamModel, BeamSpec, Quadrature, MAX_ORDER};
+use crate::coupling::{patch, Coupling, DiskOnBeamSpec};
+use crate::curve::expr::Formula;
+use crate::curve::spline::Spline;
+use crate::curve::Curve;
+use crate::disk::Disk;
+use crate::error::{quote, Error};
+use crate::ode::Method;
+use crate::rolling::{ContactLoss, Rolling};
+
+mod beam;
+mod checker;
+mod file;
+mod keys;
+mod rolling;
+mod train;
+mod yaml_error;
+
+use beam::*;
+use checker::*;
+use file::*;
+use rolling::*;
+use train::*;
+
+/// How the disk on a rigid curve is formulated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Formulation {
+    Minimal,
+    Thesis,
+}
+
+impl Formulation {
+    pub fn name(self) -> &'static str {
+        match self {
+            Formulation::Minimal => "minimal",
+            Formulation::Thesis => "thesis",
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct SolverSettings {
+    pub method: Method,
+    pub rtol: f64,
+    pub atol: f64,
+    /// Why rtol is what it is, where it was left out and the planner chose it from the beam
+    /// scene's accuracy.
+    pub rtol_chosen: Option<String>,
+    /// atol was left out with rtol: it is rtol times this size of the response (m).
+    pub atol_scale: Option<f64>,
+    /// Why, where it was.
+    pub atol_chosen: Option<String>,
+}
+
+/// A disk on a rigid curve.
+#[derive(Clone, Debug)]
+pub struct RollingScene {
+    pub rolling: Rolling,
+    pub formulation: Formulation,
+}
+
+/// A flexible beam under point loads.
+#[derive(Clone, Debug)]
+pub struct BeamScene {
+    pub beam: BeamSpec,
+    pub start: BeamStart,
+    /// A disk riding on the beam, if the scene has one.
+    pub disk: Option<DiskOnBeamSpec>,
+    /// A train of axle loads crossing the beam, if the scene has one (never with a disk).
+    pub train: Option<Train>,
+    pub loads: Vec<PointLoad>,
+    pub probes: Vec<Probe>,
+    pub shapes: Vec<f64>,
+    pub magnify: f64,
+    /// Spectral radius at infinity of generalized-α.
+    pub rho_inf: f64,
+    /// Why ρ∞ is what it is, when the plan chose it (`plan::rho_inf_for`).
+    pub rho_inf_chosen: Option<String>,
+    /// Relative accuracy asked of the peak deflection: what the mesh and tolerances are
+    /// chosen from when the scene leaves them out.
+    pub accuracy: f64,
+    /// The mesh the plan chose for the scene, when it left elements or order out.
+    pub discretisation: Option<Discretisation>,
+    /// Why the beam has the model it has, when the plan chose it (or its modes).
+    pub model_choice: Option<String>,
+    /// The frequency (Hz) above which the modes are left out of the recorded accelerations;
+    /// `None`: EN 1991-2's max(30 Hz, 1.5 f1, f3).
+    pub acceleration_cutoff_hz: Option<f64>,
+    /// The size of the displacements its loads cause (m), when the supports allow a static
+    /// estimate: see `analysis::discretisation::response_size`. Set by the plan.
+    pub response: Option<f64>,
+}
+
+impl BeamScene {
+    /// Whether a load is switched on or off during the run, the beam's own weight included
+    /// where it drops on a beam that starts undeformed: it then excites every mode the mesh
+    /// holds.
+    pub fn load_switched(&self) -> bool {
+        jumps(&self.loads, self.start) || weight_drops(&self.beam, self.start)
+    }
+}
+
+/// The shortest contact patch, and section depth, against the beam's length: below it the
+/// patch's kernel (of height 1/b) and the kink's curvature (θ/b) leave floating point.
+const MIN_PATCH_PER_LENGTH: f64 = 1e-6;
+
+impl BeamScene {
+    /// How much the disk's results depend on its contact patch (see `coupling::patch`): its
+    /// weight's kink in the axis, at the fastest it can roll (its start speed, plus what the
+    /// drop of the axis from its start can add), against the response size.
+    pub fn patch_sensitivity(&self) -> Option<patch::Sensitivity> {
+        let d = self.disk.as_ref()?;
+        let weight = d.disk.mass * d.gravity;
+        let (from, to) = (self.beam.from, self.beam.to);
+        let length = (to[0] - from[0]).hypot(to[1] - from[1]);
+        let start_y = from[1] + (to[1] - from[1]) * d.s0 / length;
+        let drop = (start_y - from[1].min(to[1])).max(0.0);
+        let speed = (d.v0() * d.v0() + 2.0 * d.gravity * drop).sqrt();
+        Some(patch::Sensitivity::of(
+            &self.beam.section,
+            weight,
+            d.gravity,
+            speed,
+            d.patch,
+            self.response.unwrap_or(f64::INFINITY),
+        ))
+    }
+
+    /// What the results depend on beyond the accuracy asked, one sentence each.
+    pub fn warnings(&self) -> Vec<String> {
+        self.patch_sensitivity()
+            .map_or_else(Vec::new, |s| s.warnings(self.accuracy))
+    }
+}
+
+/// What the scene models, and only that.
+#[derive(Clone, Debug)]
+pub enum Model {
+    Rolling(RollingScene),
+    Beam(BeamScene),
+}
+
+/// A checked scene: everything the run needs, nothing it does not.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub name: String,
+    pub duration: f64,
+    pub model: Model,
+    pub solver: SolverSettings,
+    /// Time between rows of history.csv.
+    pub interval: f64,
+}
+
+impl Scene {
+    pub fn rolling(&self) -> Option<&RollingScene> {
+        match &self.model {
+            Model::Rolling(r) => Some(r),
+            Model::Beam(_) => None,
+        }
+    }
+
+    pub fn beam(&self) -> Option<&BeamScene> {
+        match &self.model {
+            Model::Beam(b) => Some(b),
+            Model::Rolling(_) => None,
+        }
+    }
+}
+
+pub const DEFAULT_GRAVITY: f64 = 9.81;
+
+/// A scene as written: the file's values with their lines, nothing chosen. [`SceneSpec::set`]
+/// changes one of them by its dotted key, as `sweep --set` and the tests do; checking and
+/// planning it again gives the changed scene.
+#[derive(Clone)]
+pub struct SceneSpec {
+    file: SceneFile,
+    /// Names the source in messages.
+    source: String,
+    /// The default scene name.
+    stem: String,
+}
+
+/// A checked scene, not yet planned: what only the planning step (`plan.rs`) turns into a
+/// [`Scene`], choosing what the scene left out.
+pub struct Checked {
+    /// The scene with the mesh and tolerances as given, or provisional where left out.
+    pub scene: Scene,
+    /// Element count and degree as the scene gives them.
+    pub elements: Option<usize>,
+    pub order: Option<usize>,
+    /// Element counts are kept to multiples of this, which puts a node at each bearing.
+    pub multiple: usize,
+    /// The scene names its beam model (the plan chooses it otherwise).
+    pub model_given: bool,
+    pub rtol_given: bool,
+    pub atol_given: bool,
+    /// The scene gives generalized-α's ρ∞ (the plan chooses it otherwise).
+    pub rho_inf_given: bool,
+}
+
+/// Largest scene file read: a curve or profile of a million points, with room to spare.
+pub const MAX_SCENE_BYTES: u64 = 64 << 20;
+
+impl SceneSpec {
+    pub fn load(path: &Path) -> Result<SceneSpec, Error> {
+        let text = crate::files::read_text(path, MAX_SCENE_BYTES, "scene file")?;
+        let stem = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "scene".into());
+        SceneSpec::parse(&text, &path.display().to_string(), &stem)
+    }
+
+    /// Read and check; `source` names the source in messages, `stem` is the default scene name.
+    pub fn parse(text: &str, source: &str, stem: &str) -> Result<SceneSpec, Error> {
+        let file: SceneFile = serde_saphyr::from_str(text).map_err(|e| {
+            let at = e.location().map(|l| (l.line(), l.column()));
+            let sentence = yaml_error::describe(text, &e.to_string(), at);
+            Error::Input(format!("{source} {sentence}"))
+        })?;
+        let spec = SceneSpec {
+            file,
+            source: source.into(),
+            stem: stem.into(),
+        };
+        spec.check()?;
+        Ok(spec)
+    }
+
+    /// The scene as a scene file: what it was read from with every [`SceneSpec::set`]
+    /// applied. Reading the text back gives the same scene (a planned sweep's case files,
+    /// the Python package's pickled scenes).
+    pub fn to_yaml(&self) -> Result<String, Error> {
+        serde_saphyr::to_string(&self.file)
+            .map_err(|e| Error::Output(format!("cannot write the scene as YAML: {e}")))
+    }
+
+    /// The model the scene names, checked; mesh and tolerances as given.
+    pub fn check(&self) -> Result<Checked, Error> {
+        check(&self.file, &self.source, &self.stem)
+    }
+}
+
+fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
+    let c = Checker { file };
+    let name = scene_name(&c, raw.name.as_ref(), stem)?;
+    let gravity = match &raw.gravity {
+        Some(g) => c.finite(g, "gravity")?,
+        None => DEFAULT_GRAVITY,
+    };
+    let duration = c.positive(&raw.duration, "duration")?;
+    let track = &raw.track;
+    let (model, mesh) = match (&track.value.curve, &track.value.beam) {
+        (Some(_), Some(_)) | (None, None) => {
+            return c.err(
+                track.referenced.line(),
+                "track",
+                "must name exactly one of `curve` or `beam`",
+            )
+        }
+        (Some(curve), None) => (
+            Model::Rolling(rolling_scene(&c, raw, curve, gravity)?),
+            Given {
+                elements: None,
+                order: None,
+                multiple: 1,
+                model: true,
+                duration,
+            },
+        ),
+        (None, Some(beam)) => {
+            let (scene, mesh) = beam_scene(&c, raw, beam, duration, gravity)?;
+            (Model::Beam(scene), mesh)
+        }
+    };
+    let duration = mesh.duration;
+    let beam_default = matches!(model, Model::Beam(_));
+    let mut solver = SolverSettings {
+        method: if beam_default {
+            Method::GenAlpha
+        } else {
+            Method::Dopri5
+        },
+        rtol: 1e-6,
+        atol: 1e-9,
+        rtol_chosen: None,
+        atol_scale: None,
+        atol_chosen: None,
+    };
+    let (mut rtol_given, mut atol_given) = (false, false);
+    if let Some(s) = &raw.solver {
+        if let Some(m) = &s.method {
+            solver.method = Method::from_name(&m.value).map_or_else(
+                || {
+                    c.err(
+                        m.referenced.line(),
+                        "solver.method",
+                        format!("is {}; use one of {}", quote(&m.value), method_names()),
+                    )
+                },
+                Ok,
+            )?;
+            if solver.method == Method::GenAlpha && !beam_default {
+                return c.err(m.referenced.line(), "solver.method", "genalpha integrates structural (beam) scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve");
+            }
+        }
+        if let Some(r) = &s.rtol {
+            solver.rtol = c.positive(r, "solver.rtol")?;
+            if let Some(why) = crate::ode::rtol_problem(solver.rtol) {
+                return c.err(r.referenced.line(), "solver.rtol", why);
+            }
+            rtol_given = true;
+        }
+        if let Some(a) = &s.atol {
+            solver.atol = c.positive(a, "solver.atol")?;
+            atol_given = true;
+        }
+    }
+    let mut interval = duration / 500.0;
+    if let Some(i) = raw.output.as_ref().and_then(|o| o.interval.as_ref()) {
+        interval = c.positive(i, "output.interval")?;
+        if interval > duration {
+            return c.err(
+                i.referenced.line(),
+                "output.interval",
+                format!("= {interval} s is longer than `duration` = {duration} s; history.csv would hold t = 0 alone"),
+            );
+        }
+        if duration / interval > MAX_ROWS {
+            return c.err(i.referenced.line(), "output.interval", format!("= {interval:e} would write {:.3e} rows of history; at most {MAX_ROWS:.0} are allowed", duration / interval));
+        }
+    }
+    if let (Model::Beam(b), Some(s)) = (&model, &raw.solver) {
+        if let (Some(d), Some(m)) = (&b.disk, &s.method) {
+            if d.coupling == Coupling::Thesis
+                && solver.method != Method::GenAlpha
+                && b.beam.model != BeamModel::Exact
+                && mesh.model
+            {
+                return c.err(m.referenced.line(), "solver.method", format!("{} integrates the thesis coupling as the published 3n + 6 system, which transcribes the exact beam; use `model: exact`, or genalpha for the thesis coupling on a {} beam", solver.method.name(), b.beam.model.name()));
+            }
+        }
+    }
+    Ok(Checked {
+        scene: Scene {
+            name,
+            duration,
+            model,
+            solver,
+            interval,
+        },
+        elements: mesh.elements,
+        order: mesh.order,
+        multiple: mesh.multiple,
+        model_given: mesh.model,
+        rtol_given,
+        atol_given,
+        rho_inf_given: raw.solver.as_ref().is_some_and(|s| s.rho_inf.is_some()),
+    })
+}
+
+pub fn method_names() -> String {
+    Method::ALL.map(|m| m.name()).join(", ")
+}
