@@ -11,7 +11,7 @@ use common::{changed, load, Set};
 use rollbeam::ode::Method;
 use rollbeam::run::{self, Overrides};
 use rollbeam::scene::{Model, Scene};
-use rollbeam::workflows::reference::{self, Stored};
+use rollbeam::workflows::tradeoff::store::{self, Stored};
 use rollbeam::workflows::tradeoff::{self, Plan, Trial, REFERENCE_SETTLED};
 
 fn errors(trials: &[Trial], method: Method) -> Vec<(f64, f64, usize)> {
@@ -263,11 +263,11 @@ fn stored_references() -> Vec<(Scene, Plan, Stored)> {
         .map(|file| {
             let scene = Scene::load(&file).expect("a valid study");
             let plan = studies::study_plan(&scene);
-            let path = reference::stored_path(&file, &scene.name);
-            let hash = reference::scene_hash(&file).expect("a readable scene");
+            let path = store::stored_path(&file, &scene.name);
+            let hash = store::scene_hash(&file).expect("a readable scene");
             let method = tradeoff::reference_method(&scene);
             let order = scene.beam().map(|b| b.beam.order);
-            let stored = reference::load(&path, &hash, &plan, method, order);
+            let stored = store::load(&path, &hash, &plan, method, order);
             (scene, plan, stored)
         })
         .collect()
@@ -492,10 +492,10 @@ fn a_stored_history_cut_or_replaced_is_stale() {
     let file = dir.join("parabola-p1.yaml");
     let scene = Scene::load(&file).expect("a valid study");
     let plan = studies::study_plan(&scene);
-    let path = reference::stored_path(&file, &scene.name);
-    let hash = reference::scene_hash(&file).expect("a readable scene");
+    let path = store::stored_path(&file, &scene.name);
+    let hash = store::scene_hash(&file).expect("a readable scene");
     let method = tradeoff::reference_method(&scene);
-    let load = || reference::load(&path, &hash, &plan, method, None);
+    let load = || store::load(&path, &hash, &plan, method, None);
     assert!(matches!(load(), Stored::Usable(_)), "the copy serves");
     let history = refs.join("parabola-p1.history.csv");
     let text = std::fs::read_to_string(&history).expect("history");

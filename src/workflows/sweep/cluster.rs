@@ -216,7 +216,7 @@ pub fn write_plan(
         let mut case = case_spec(spec, &keys, values)?;
         solver(&mut case)?;
         let text = case.to_yaml()?;
-        let hash = super::super::reference::content_hash(&text);
+        let hash = crate::files::content_hash(&text);
         let hash = hash.trim_start_matches("fnv1a64:");
         let id = format!("{i:0width$}-{hash}");
         let path = case_dir.join(format!("{id}.yaml"));
@@ -302,7 +302,7 @@ fn folders_in_place(dir: &Path) -> Result<(), Error> {
 fn case_text(dir: &Path, id: &str) -> Result<String, Error> {
     let path = dir.join("cases").join(format!("{id}.yaml"));
     let text = read_text(&path, crate::scene::MAX_SCENE_BYTES, "case file")?;
-    let hash = super::super::reference::content_hash(&text);
+    let hash = crate::files::content_hash(&text);
     let (_, expected) = id.split_once('-').unwrap_or(("", id));
     if hash.trim_start_matches("fnv1a64:") != expected {
         return Err(Error::Input(format!(

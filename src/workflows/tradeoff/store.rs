@@ -13,22 +13,11 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::tradeoff::{Headline, MeansReference, Plan, Reference};
+use super::{Headline, MeansReference, Plan, Reference};
 use crate::error::Error;
-use crate::files::read_text;
+use crate::files::{content_hash, read_text};
 use crate::ode::Method;
 use crate::output::{io_error, write, yaml};
-
-/// FNV-1a (64 bit) of the scene text with carriage returns left out, so that a checkout with
-/// either line ending gives the same hash.
-pub fn content_hash(text: &str) -> String {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in text.bytes().filter(|&b| b != b'\r') {
-        h ^= u64::from(b);
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    format!("fnv1a64:{h:016x}")
-}
 
 /// The hash of the scene file at `path`.
 pub fn scene_hash(path: &Path) -> Result<String, Error> {
@@ -333,17 +322,4 @@ pub fn store_means(means: &MeansReference, hash: &str, path: &Path) -> Result<()
     }
     file.means = Some(StoredMeans::from(means));
     write(path, &yaml(&file)?)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::content_hash;
-
-    /// The reference FNV-1a 64 values of the empty string and "a".
-    #[test]
-    fn fnv1a_matches_its_definition() {
-        assert_eq!(content_hash(""), "fnv1a64:cbf29ce484222325");
-        assert_eq!(content_hash("a"), "fnv1a64:af63dc4c8601ec8c");
-        assert_eq!(content_hash("a\r\nb"), content_hash("a\nb"));
-    }
 }
