@@ -166,7 +166,7 @@ fn a_thousand_oscillations() {
             Set::Number("output.interval", 0.5),
         ],
     );
-    let drift_until = |r: &rollbeam::run::RunResult, t_end: f64| {
+    let drift_until = |r: &rollbeam::run::RollingRun, t_end: f64| {
         let e0 = r.rows[0].disk.kinetic + r.rows[0].disk.potential;
         let scale = r
             .rows

@@ -17,7 +17,7 @@ mod common;
 use common::{parse, run_beam, run_with};
 use rollbeam::ode::Method;
 use rollbeam::rolling::StopReason;
-use rollbeam::run::{RunResult, Stop};
+use rollbeam::run::{RollingRun, Stop};
 use rollbeam::scene::Scene;
 
 const G: f64 = 9.81;
@@ -50,7 +50,7 @@ fn jump_from(s0: f64, omega0: f64, extra: &str, end: f64) -> Scene {
     ))
 }
 
-fn run(scene: &Scene) -> RunResult {
+fn run(scene: &Scene) -> RollingRun {
     run_with(scene, Method::Dopri5, 1e-10, 1e-12)
 }
 
@@ -103,7 +103,7 @@ fn a_flight_is_a_parabola_with_constant_spin_after_the_run_that_stops() {
 
 /// The state just before the first landing, from the run that stops at the lift-off and the
 /// parabola: (velocity, spin, tangent and normal at the landing point).
-fn before_landing(scene: &Scene, flown: &RunResult) -> ([f64; 2], f64, [f64; 2], [f64; 2]) {
+fn before_landing(scene: &Scene, flown: &RollingRun) -> ([f64; 2], f64, [f64; 2], [f64; 2]) {
     let mut stop_scene = scene.clone();
     if let rollbeam::scene::Model::Rolling(r) = &mut stop_scene.model {
         r.rolling.contact_loss = rollbeam::rolling::ContactLoss::Stop;

@@ -11,7 +11,7 @@ use common::{at, load, log_slope, parse, run_fixed, run_with};
 use rollbeam::curve::Curve;
 use rollbeam::ode::Method;
 use rollbeam::rolling::StopReason;
-use rollbeam::run::{RunResult, Stop};
+use rollbeam::run::{RollingRun, Stop};
 use rollbeam::scene::{Formulation, Model, Scene};
 
 const G: f64 = 9.81;
@@ -352,7 +352,7 @@ fn converged_values(case: &str) -> Vec<Snapshot> {
         1e-12,
         1e-14,
     );
-    let pick = |r: &RunResult, t: f64| {
+    let pick = |r: &RollingRun, t: f64| {
         let d = at(r, t).disk;
         // v_x is the thesis' unknown: the centre speed along the tangent, −aΩ.
         let v_x = d.vx.hypot(d.vy) * if d.omega > 0.0 { -1.0 } else { 1.0 };

@@ -150,18 +150,18 @@ pub struct DiskOnBeam<'a> {
     stiffness_pattern: OnceCell<AssemblyPattern>,
     /// The rider's inertia at the last state asked: Newton takes the mass product, and the
     /// next step its split, at the state its force was evaluated at.
-    inertia: KeptAt<AddedMass>,
+    inertia: LastEvaluation<AddedMass>,
     /// The contact at the last state observed: an output row reads it for the disk, the
     /// reactions, the static correction and the energy.
-    observed: KeptAt<AxisPoint>,
+    observed: LastEvaluation<AxisPoint>,
 }
 
 /// A value kept with the time and state (t, y) it was formed at, until another is asked.
-struct KeptAt<T>(RefCell<Option<(f64, Vec<f64>, Rc<T>)>>);
+struct LastEvaluation<T>(RefCell<Option<(f64, Vec<f64>, Rc<T>)>>);
 
-impl<T> KeptAt<T> {
+impl<T> LastEvaluation<T> {
     fn new() -> Self {
-        KeptAt(RefCell::new(None))
+        LastEvaluation(RefCell::new(None))
     }
 
     /// The value at (t, the parts of y in order), formed by `form` unless it is the one kept.
@@ -212,8 +212,8 @@ impl<'a> DiskOnBeam<'a> {
             lu: RefCell::new(None),
             stiffness_pattern: OnceCell::new(),
             basis: RefCell::new(None),
-            inertia: KeptAt::new(),
-            observed: KeptAt::new(),
+            inertia: LastEvaluation::new(),
+            observed: LastEvaluation::new(),
         }
     }
 

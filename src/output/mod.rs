@@ -1,15 +1,18 @@
 //! What a run leaves in its output directory: `summary.yaml`, `history.csv` and SVG figures.
+//! `beam.rs` and `animation.rs` write a beam run's; `rolling_history.rs`, and the rigid curve's
+//! parts of `summary.rs` and `plots.rs`, a disk on a rigid curve's; `summary.rs` and `plots.rs`
+//! also hold what both share (the stop, the solver's report, the energy; the charts).
 
 pub mod animation;
 pub mod beam;
-pub mod history;
 pub mod plots;
+pub mod rolling_history;
 pub mod summary;
 
 use std::path::Path;
 
 use crate::error::Error;
-use crate::run::{Run, RunResult};
+use crate::run::{RollingRun, Run};
 
 pub fn write_all(run: &Run, dir: &Path) -> Result<(), Error> {
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
@@ -33,7 +36,7 @@ pub fn summary_yaml(run: &Run) -> Result<String, Error> {
 /// The text of `history.csv`, as `write_all` writes it.
 pub fn history_csv(run: &Run) -> String {
     match run {
-        Run::Rolling(r) => history::csv(r),
+        Run::Rolling(r) => rolling_history::csv(r),
         Run::Beam(b) => beam::csv(b),
     }
 }
@@ -43,9 +46,9 @@ pub fn yaml(value: &impl serde::Serialize) -> Result<String, Error> {
         .map_err(|e| Error::Output(format!("cannot format YAML output: {e}")))
 }
 
-fn write_rolling(result: &RunResult, dir: &Path) -> Result<(), Error> {
+fn write_rolling(result: &RollingRun, dir: &Path) -> Result<(), Error> {
     let summary = summary::Summary::from_run(result);
-    write(&dir.join("history.csv"), &history::csv(result))?;
+    write(&dir.join("history.csv"), &rolling_history::csv(result))?;
     plots::all(result, dir)?;
     write(&dir.join("summary.yaml"), &yaml(&summary)?)
 }

@@ -6,7 +6,7 @@ use std::path::Path;
 use plotters::prelude::*;
 
 use crate::error::Error;
-use crate::run::{Row, RunResult};
+use crate::run::{RollingRun, Row};
 
 type Series<'a> = (&'a str, Vec<(f64, f64)>);
 
@@ -210,7 +210,7 @@ fn series<'a>(rows: &[Row], name: &'a str, f: impl Fn(&Row) -> f64) -> Series<'a
 }
 
 /// The track with the disk drawn at `count` evenly spaced output times, equal axis scales.
-pub fn track_figure(r: &RunResult, path: &Path, count: usize) -> Result<(), Error> {
+pub fn track_figure(r: &RollingRun, path: &Path, count: usize) -> Result<(), Error> {
     let err = |e: &dyn std::fmt::Display| plot_error(path, e);
     let rolling = &r.setup.rolling;
     let a = rolling.disk.radius;
@@ -310,7 +310,7 @@ pub fn track_figure(r: &RunResult, path: &Path, count: usize) -> Result<(), Erro
 }
 
 /// Every figure of a rigid-track run.
-pub fn all(r: &RunResult, dir: &Path) -> Result<(), Error> {
+pub fn all(r: &RollingRun, dir: &Path) -> Result<(), Error> {
     let rows = &r.rows;
     let name = &r.header.scene.name;
     track_figure(r, &dir.join("track.svg"), 8)?;

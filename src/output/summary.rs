@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use crate::run::{RunHeader, RunResult};
+use crate::run::{RollingRun, RunHeader};
 
 #[derive(Serialize)]
 pub struct Summary {
@@ -109,7 +109,7 @@ impl Energy {
 }
 
 impl Summary {
-    pub fn from_run(r: &RunResult) -> Summary {
+    pub fn from_run(r: &RollingRun) -> Summary {
         let d = &r.last.disk;
         let [rn, rt, mu] = r.contact;
         let left = matches!(

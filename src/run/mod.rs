@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-pub use rolling::{model, Row, RunResult};
+pub use rolling::{model, RollingRun, Row};
 
 use crate::error::Error;
 use crate::ode::Method;
@@ -208,7 +208,7 @@ impl Progress {
 
 /// The result of a run, by kind of scene.
 pub enum Run {
-    Rolling(RunResult),
+    Rolling(RollingRun),
     Beam(beam::BeamRun),
 }
 
@@ -241,7 +241,7 @@ impl Run {
         }
     }
 
-    pub fn rolling(self) -> Option<RunResult> {
+    pub fn rolling(self) -> Option<RollingRun> {
         match self {
             Run::Rolling(r) => Some(r),
             Run::Beam(_) => None,

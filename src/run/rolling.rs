@@ -29,7 +29,7 @@ impl Row {
     }
 }
 
-pub struct RunResult {
+pub struct RollingRun {
     pub header: RunHeader,
     pub setup: RollingScene,
     pub rows: Vec<Row>,
@@ -146,7 +146,7 @@ pub fn run(
     setup: &RollingScene,
     over: &Overrides,
     show_progress: bool,
-) -> Result<RunResult, Error> {
+) -> Result<RollingRun, Error> {
     let clock = std::time::Instant::now();
     let model = model(setup);
     let y0 = model.initial_state();
@@ -248,7 +248,7 @@ pub fn run(
         rec.record(last);
     }
     stats.wall_s = clock.elapsed().as_secs_f64();
-    Ok(RunResult {
+    Ok(RollingRun {
         header: RunHeader {
             scene: scene.clone(),
             method: opts.method,

@@ -62,7 +62,7 @@ pub(super) fn beam_scene(
     file: &Spanned<BeamFile>,
     duration: f64,
     gravity: f64,
-) -> Result<(BeamScene, Given), Error> {
+) -> Result<(BeamScene, MeshAsGiven), Error> {
     let b = &file.value;
     let (mut beam, length, multiple, model_given) = beam_spec(c, b)?;
     beam.damping = damping(c, b)?;
@@ -125,7 +125,7 @@ pub(super) fn beam_scene(
             v
         }
     };
-    let given = Given {
+    let given = MeshAsGiven {
         elements: b.elements.as_ref().map(|_| beam.elements),
         order: b.order.as_ref().map(|_| beam.order),
         multiple,
@@ -160,7 +160,7 @@ pub(super) fn beam_scene(
 }
 
 /// What of the mesh and model a beam scene gives itself (the plan chooses the rest).
-pub struct Given {
+pub struct MeshAsGiven {
     pub elements: Option<usize>,
     pub order: Option<usize>,
     /// Element counts are kept to multiples of this, which puts a node at each bearing.

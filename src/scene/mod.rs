@@ -286,7 +286,7 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
         }
         (Some(curve), None) => (
             Model::Rolling(rolling_scene(&c, raw, curve, gravity)?),
-            Given {
+            MeshAsGiven {
                 elements: None,
                 order: None,
                 multiple: 1,

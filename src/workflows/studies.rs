@@ -12,7 +12,7 @@ use crate::error::Error;
 use crate::ode::Method;
 use crate::output::{self, io_error, plots};
 use crate::plan::{self, Planner};
-use crate::run::{self, Overrides, Run, RunResult};
+use crate::run::{self, Overrides, RollingRun, Run};
 use crate::say;
 use crate::scene::{BeamScene, Scene, SceneSpec};
 
@@ -82,7 +82,7 @@ pub fn run_all(
         );
         results.push(result);
     }
-    let rolling: Vec<&RunResult> = results
+    let rolling: Vec<&RollingRun> = results
         .iter()
         .filter_map(|r| {
             if let Run::Rolling(r) = r {
@@ -309,8 +309,8 @@ pub fn store_references(studies: &Path) -> Result<(), Error> {
 }
 
 /// Study 1 side by side: the four disks' speeds, angular velocities and normal reactions.
-fn compare_parabola(results: &[&RunResult], figures: &Path) -> Result<(), Error> {
-    let cases: Vec<&RunResult> = results
+fn compare_parabola(results: &[&RollingRun], figures: &Path) -> Result<(), Error> {
+    let cases: Vec<&RollingRun> = results
         .iter()
         .copied()
         .filter(|r| r.header.scene.name.starts_with("parabola-p"))
@@ -318,7 +318,7 @@ fn compare_parabola(results: &[&RunResult], figures: &Path) -> Result<(), Error>
     if cases.is_empty() {
         return Ok(());
     }
-    let label = |r: &RunResult| {
+    let label = |r: &RollingRun| {
         format!(
             "{} (m = {}, a = {})",
             &r.header.scene.name["parabola-".len()..].to_uppercase(),

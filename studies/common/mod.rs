@@ -8,7 +8,7 @@ use rollbeam::analysis::moving_load::MovingForce;
 use rollbeam::ode::Method;
 use rollbeam::plan::Planner;
 use rollbeam::run::beam::BeamRun;
-use rollbeam::run::{self, Overrides, Row, RunResult};
+use rollbeam::run::{self, Overrides, RollingRun, Row};
 use rollbeam::scene::{Scene, SceneSpec};
 
 pub fn studies_dir() -> PathBuf {
@@ -47,7 +47,7 @@ pub fn parse(text: &str) -> Scene {
     Scene::parse(text, "test scene", "test").expect("test scene is valid")
 }
 
-pub fn run_with(scene: &Scene, method: Method, rtol: f64, atol: f64) -> RunResult {
+pub fn run_with(scene: &Scene, method: Method, rtol: f64, atol: f64) -> RollingRun {
     let over = Overrides {
         method: Some(method),
         rtol: Some(rtol),
@@ -85,7 +85,7 @@ pub fn run_beam(scene: &Scene, method: Method, rtol: f64, atol: f64) -> BeamRun 
 
 /// Fixed steps of size h. The tolerances then only stop Newton iterations: they are tight so
 /// that what is measured is the method's truncation error, not the nonlinear solve's.
-pub fn run_fixed(scene: &Scene, method: Method, h: f64) -> RunResult {
+pub fn run_fixed(scene: &Scene, method: Method, h: f64) -> RollingRun {
     let over = Overrides {
         method: Some(method),
         rtol: Some(1e-13),
@@ -100,7 +100,7 @@ pub fn run_fixed(scene: &Scene, method: Method, h: f64) -> RunResult {
 }
 
 /// The history row at time t (output times are multiples of the scene's interval).
-pub fn at(r: &RunResult, t: f64) -> Row {
+pub fn at(r: &RollingRun, t: f64) -> Row {
     *r.rows
         .iter()
         .min_by(|a, b| (a.t - t).abs().total_cmp(&(b.t - t).abs()))

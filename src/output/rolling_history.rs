@@ -1,6 +1,7 @@
-//! `history.csv`: one row per output time, columns as SCENE-FORMAT names them.
+//! A disk on a rigid curve's `history.csv`: one row per output time, columns as SCENE-FORMAT
+//! names them.
 
-use crate::run::RunResult;
+use crate::run::RollingRun;
 
 pub const COLUMNS: [&str; 18] = [
     "t",
@@ -23,7 +24,7 @@ pub const COLUMNS: [&str; 18] = [
     "energy.total",
 ];
 
-pub fn csv(r: &RunResult) -> String {
+pub fn csv(r: &RollingRun) -> String {
     let mut out = COLUMNS.join(",");
     out.push('\n');
     for row in &r.rows {

@@ -1,0 +1,497 @@
+//! The run's observers in one: what the sensors record at output times, the extremes watched
+//! over every step, the energy ledger, and the progress bar.
+
+use super::*;
+
+/// Samples of the extremes' watch a period of the acceleration's cutoff, where the steps are
+/// shorter (see `Recorder::watch`).
+pub(super) const SAMPLES_PER_CUTOFF_PERIOD: f64 = 32.0;
+
+/// Samples of the watch, where the steps are shorter, to the time a disk takes to cross its
+/// contact patch's half-width.
+pub(super) const SAMPLES_PER_PATCH: f64 = 20.0;
+
+/// What the watches see of the run at one time: each probe's (u, w, φ, a); the disk's (rn,
+/// rt, μ needed, w under it, gap) while it is on or over the beam; and when asked, the
+/// envelope's stations' (u, w, φ, a) and the stretch of the axis.
+pub(super) struct Snapshot {
+    pub(super) probes: Vec<f64>,
+    pub(super) disk: Option<[f64; 5]>,
+    pub(super) along: Vec<f64>,
+}
+
+impl Snapshot {
+    /// Each probe's w.
+    pub(super) fn deflections(&self) -> Vec<f64> {
+        self.probes.iter().skip(1).step_by(4).copied().collect()
+    }
+}
+
+/// The quantities watched for their extremes (`extremes.rs`); `along` takes the parabola's
+/// turning values, as it holds every station of the envelope.
+pub(super) struct Watches {
+    pub(super) probes: Watch,
+    pub(super) after_exit: Watch,
+    pub(super) disk: Watch,
+    /// The gap of the current flight.
+    pub(super) gap: Watch,
+    pub(super) along: Watch,
+}
+
+impl Watches {
+    pub(super) fn new(probes: usize, stations: usize) -> Self {
+        Watches {
+            probes: Watch::new(4 * probes, Turning::OnTheSolution),
+            after_exit: Watch::new(probes, Turning::OnTheSolution),
+            disk: Watch::new(4, Turning::OnTheSolution),
+            gap: Watch::new(1, Turning::OnTheSolution),
+            along: Watch::new(4 * stations + 1, Turning::OnTheParabola),
+        }
+    }
+}
+
+/// The run's observer: at every output time the phase gives the disk and the reactions, the
+/// ledger the energies, and the sensors record them; at every step the ledger books the work.
+pub(super) struct Recorder<'a> {
+    pub(super) phase: Phase<'a>,
+    pub(super) ledger: Ledger<'a>,
+    /// The beam's axis at the envelope's sample points.
+    pub(super) stations: Stations,
+    /// What of the acceleration is recorded.
+    pub(super) filter: Option<AccelerationFilter>,
+    pub(super) history: History<'a>,
+    pub(super) envelope: Envelope,
+    pub(super) pictures: Pictures<'a>,
+    pub(super) means: Option<WindowedMeans>,
+    pub(super) watches: Watches,
+    /// The snapshot at the end of the last step watched.
+    pub(super) last: Option<(f64, Snapshot)>,
+    /// The snapshot before that: with the stations, the start of the last step watched.
+    pub(super) before: Option<(f64, Snapshot)>,
+    /// The least time between samples of steps far shorter than it (see `Recorder::watch`).
+    pub(super) spacing: f64,
+    /// When the last load left the beam: from then on the residual vibration is watched.
+    pub(super) exit_t: Option<f64>,
+    pub(super) progress: Option<Progress>,
+}
+
+impl Recorder<'_> {
+    /// What the watches see at (t, y); the stations only when `along` asks for them.
+    pub(super) fn snapshot(
+        &self,
+        t: f64,
+        y: &[f64],
+        rate: Option<&[f64]>,
+        along: bool,
+    ) -> Snapshot {
+        let phase = &self.phase;
+        let (disk, gap) = phase.disk(t, y);
+        let q = phase.displaced(t, y, disk.as_ref());
+        // The beam alone takes its accelerations from the dense output, without a solve for
+        // them. With the disk on, the observation has solved for them already, and the
+        // contact force, which the beam's acceleration under the disk enters, is sensitive
+        // to it: the dense output's derivative moved D44's lowest contact force by 2e-3 of
+        // the disk's weight against the acceleration of the interpolated state.
+        let a = match (phase.coupled, rate) {
+            (None, Some(yp)) => phase.split(yp).1[..phase.loaded.dim()].to_vec(),
+            _ => phase.acceleration(t, y),
+        };
+        let a = match &self.filter {
+            Some(f) => f.filtered(phase.loaded, &a),
+            None => phase.loaded.to_mesh(&a).into_owned(),
+        };
+        let beam = phase.beam;
+        let probes = self
+            .history
+            .probes
+            .iter()
+            .flat_map(|p| {
+                let d = beam.displacement_at(&q, p.x);
+                [d.u, d.w, d.phi, beam.displacement_at(&a, p.x).w]
+            })
+            .collect();
+        let disk = disk.map(|d| {
+            [
+                d.rn,
+                d.rt,
+                d.mu_needed().unwrap_or(f64::NAN),
+                beam.displacement_at(&q, d.s).w,
+                gap,
+            ]
+        });
+        let along = if along {
+            let displaced = beam.displacements(&self.stations, &q);
+            let accelerations = beam.deflections(&self.stations, &a);
+            stations_watched(&self.envelope.x, &displaced, &accelerations)
+        } else {
+            Vec::new()
+        };
+        Snapshot {
+            probes,
+            disk,
+            along,
+        }
+    }
+
+    /// Take in the step [t0, t1] of the dense output `dense`: its start, middle and end, and
+    /// the turning points between them that set an extreme.
+    pub(super) fn watch(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
+        if !(t1 > t0) {
+            return;
+        }
+        // Steps far shorter than the fastest thing reported (a sudden load's, at the defaults)
+        // are watched at their ends only, every `spacing` s, the parabola through the last
+        // three samples taken as it is: at 32 samples a period of the acceleration's cutoff
+        // it is within 10⁻⁴ of that mode's amplitude, and on every step and middle the
+        // watching cost a third of such a run. A disk's contact force also holds the crossing
+        // of its patch over each node, faster than the cutoff: sampled every millisecond, D44's lowest
+        // contact force moved by 1.4·10⁻³ of the weight; with a disk on or over the beam the
+        // samples are also [`SAMPLES_PER_PATCH`] to the patch's crossing.
+        let riding = (self.phase.coupled).or(self.phase.flying.as_ref().map(|f| f.coupled));
+        let spacing = riding.map_or(self.spacing, |c| {
+            let crossing = c.spec.patch / c.spec.v0().abs();
+            self.spacing.min(crossing / SAMPLES_PER_PATCH)
+        });
+        if t1 - t0 < spacing {
+            if self.last.as_ref().is_some_and(|(t, _)| t1 - t < spacing) {
+                return;
+            }
+            let end = self.snapshot(t1, &dense.at(t1), dense.rate(t1).as_deref(), true);
+            self.sampled(end, t1);
+            return;
+        }
+        let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0));
+        let last = self.last.take();
+        let before = self.before.take();
+        let flying = self.phase.flying.is_some();
+        let after = self.exit_t.is_some_and(|te| t0 >= te);
+        let see =
+            |t: f64, along: bool| self.snapshot(t, &dense.at(t), dense.rate(t).as_deref(), along);
+        // The stations are watched on the step ends alone, the parabola through the last
+        // three (`before`, t0, t1): on every station at the middle too, they would cost more
+        // than the rest of the run.
+        let (start, before) = match last {
+            Some((t, s)) if t == t0 => (s, before),
+            _ => ((see(t0, true)), None),
+        };
+        let tm = 0.5 * (t0 + t1);
+        let (middle, end) = (see(tm, false), see(t1, true));
+        let t = [t0, tm, t1];
+        let [s0, s1, s2] = [&start, &middle, &end];
+        w.probes
+            .record_step(t, [&s0.probes, &s1.probes, &s2.probes], |tt| {
+                see(tt, false).probes
+            });
+        match before {
+            Some((tb, b)) => {
+                w.along
+                    .record_step([tb, t0, t1], [&b.along, &s0.along, &s2.along], |_| {
+                        Vec::new()
+                    })
+            }
+            None => w.along.record_point(t1, &s2.along),
+        }
+        if after {
+            w.after_exit.record_step(
+                t,
+                [&s0.deflections(), &s1.deflections(), &s2.deflections()],
+                |tt| see(tt, false).deflections(),
+            );
+        }
+        match (s0.disk, s1.disk, s2.disk) {
+            (Some(d0), Some(d1), Some(d2)) => {
+                let disk_at = |tt: f64| {
+                    see(tt, false)
+                        .disk
+                        .map_or(vec![f64::NAN; 5], |d| d.to_vec())
+                };
+                w.disk
+                    .record_step(t, [&d0[..4], &d1[..4], &d2[..4]], &disk_at);
+                if flying {
+                    w.gap.record_step(t, [&d0[4..], &d1[4..], &d2[4..]], |tt| {
+                        disk_at(tt)[4..].to_vec()
+                    });
+                }
+            }
+            disks => {
+                for (tt, d) in t.iter().zip([disks.0, disks.1, disks.2]) {
+                    if let Some(d) = d {
+                        w.disk.record_point(*tt, &d[..4]);
+                    }
+                }
+            }
+        }
+        self.watches = w;
+        self.before = Some((t0, start));
+        self.last = Some((t1, end));
+    }
+
+    /// Take in a sample at t of the beam alone, on its own (a short step's end): with the
+    /// two before it, the parabola through the three.
+    pub(super) fn sampled(&mut self, end: Snapshot, t: f64) {
+        let w = &mut self.watches;
+        let after = self.exit_t.is_some_and(|te| t >= te);
+        match (self.before.take(), self.last.take()) {
+            (Some((ta, a)), Some((tb, b))) => {
+                let times = [ta, tb, t];
+                w.probes
+                    .record_parabola(times, [&a.probes, &b.probes, &end.probes]);
+                w.along
+                    .record_parabola(times, [&a.along, &b.along, &end.along]);
+                if after && ta >= self.exit_t.unwrap_or(f64::INFINITY) {
+                    w.after_exit.record_parabola(
+                        times,
+                        [&a.deflections(), &b.deflections(), &end.deflections()],
+                    );
+                }
+                if let (Some(da), Some(db), Some(de)) = (a.disk, b.disk, end.disk) {
+                    w.disk
+                        .record_parabola(times, [&da[..4], &db[..4], &de[..4]]);
+                    if self.phase.flying.is_some() {
+                        w.gap.record_parabola(times, [&da[4..], &db[4..], &de[4..]]);
+                    }
+                }
+                self.before = Some((tb, b));
+            }
+            (_, last) => {
+                w.probes.record_point(t, &end.probes);
+                w.along.record_point(t, &end.along);
+                self.before = last;
+            }
+        }
+        if after {
+            w.after_exit.record_point(t, &end.deflections());
+        }
+        if let Some(d) = end.disk {
+            w.disk.record_point(t, &d[..4]);
+            if self.phase.flying.is_some() {
+                w.gap.record_point(t, &d[4..]);
+            }
+        }
+        self.last = Some((t, end));
+    }
+
+    /// The extremes watched, and the envelope from the stations'.
+    pub(super) fn extremes(&self) -> (Extremes, Envelope) {
+        let w = &self.watches;
+        let probes = w
+            .probes
+            .ranges
+            .chunks(4)
+            .map(|c| [c[0], c[1], c[2], c[3]])
+            .collect();
+        let extremes = Extremes {
+            probes,
+            after_exit: self
+                .exit_t
+                .map(|_| w.after_exit.ranges.clone())
+                .filter(|r| r.iter().all(Range::seen)),
+            // Any value watched says the disk was on or over the beam.
+            disk: w.disk.ranges.iter().any(Range::seen).then(|| {
+                let r = &w.disk.ranges;
+                [r[0], r[1], r[2], r[3]]
+            }),
+        };
+        (extremes, self.envelope.from_stations(&w.along.ranges))
+    }
+}
+
+/// The stations' (u, w, φ, a), then the stretch of the axis through them.
+pub(super) fn stations_watched(
+    x: &[f64],
+    along: &[crate::beam::PointDisplacement],
+    accelerations: &[f64],
+) -> Vec<f64> {
+    let mut out: Vec<f64> = along
+        .iter()
+        .zip(accelerations)
+        .flat_map(|(d, a)| [d.u, d.w, d.phi, *a])
+        .collect();
+    out.push(sensors::stretch(x, along));
+    out
+}
+
+impl Observer for Recorder<'_> {
+    fn output(&mut self, t: f64, y: &[f64]) {
+        let phase = &self.phase;
+        let (disk, gap) = phase.disk(t, y);
+        let energy = self.ledger.at_output(phase, t, y, disk.as_ref());
+        let q = phase.displaced(t, y, disk.as_ref());
+        let a = phase.acceleration(t, y);
+        let reactions = phase.reactions(t, y, &q, &a, disk.as_ref());
+        let along = phase.beam.displacements(&self.stations, &q);
+        let a = match &self.filter {
+            Some(f) => f.filtered(phase.loaded, &a),
+            None => phase.loaded.to_mesh(&a).into_owned(),
+        };
+        let along_a = phase.beam.deflections(&self.stations, &a);
+        let sample = Sample {
+            t,
+            q: &q,
+            a: &a,
+            along: &along,
+            disk,
+            gap,
+            energy,
+            reactions,
+        };
+        self.history.record(&sample);
+        self.pictures.record(&sample);
+        let row = self.history.rows.last().expect("recorded above");
+        let probes: Vec<f64> = row
+            .probes
+            .iter()
+            .zip(&row.accelerations)
+            .flat_map(|(d, a)| [d.u, d.w, d.phi, *a])
+            .collect();
+        self.watches.probes.record_point(t, &probes);
+        self.watches
+            .along
+            .record_point(t, &stations_watched(&self.envelope.x, &along, &along_a));
+        if self.exit_t.is_some_and(|te| t >= te) {
+            let w: Vec<f64> = row.probes.iter().map(|d| d.w).collect();
+            self.watches.after_exit.record_point(t, &w);
+        }
+        if self.phase.flying.is_some() {
+            self.watches.gap.record_point(t, &[gap]);
+        }
+        if let Some(d) = row.disk {
+            self.watches.disk.record_point(
+                t,
+                &[d.rn, d.rt, d.mu_needed().unwrap_or(f64::NAN), row.w_under],
+            );
+        }
+    }
+
+    fn step(&mut self, t: f64, y: &[f64]) {
+        self.ledger.at_step(&self.phase, t, y);
+        if let Some(p) = &mut self.progress {
+            p.update(t);
+        }
+    }
+
+    fn span(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
+        self.watch(t0, t1, dense);
+        let (phase, history) = (&self.phase, &self.history);
+        let Some(means) = &mut self.means else {
+            return;
+        };
+        means.record_span(t0, t1, |t| {
+            let y = dense.at(t);
+            let (disk, _) = phase.disk(t, &y);
+            let q = phase.displaced(t, &y, disk.as_ref());
+            history
+                .probes
+                .iter()
+                .map(|p| history.beam.displacement_at(&q, p.x).w)
+                .collect()
+        });
+    }
+}
+
+/// Hands the recorder the reduced state (q, s; v, ṡ) of the literal thesis system.
+pub(super) struct ThesisSystemObserver<'a, 'r> {
+    pub(super) sys: &'a ThesisSystem<'a>,
+    pub(super) rec: &'a mut Recorder<'r>,
+}
+
+impl Observer for ThesisSystemObserver<'_, '_> {
+    fn output(&mut self, t: f64, y: &[f64]) {
+        let r = self.sys.reduced(t, y);
+        self.rec.output(t, &r);
+    }
+    fn step(&mut self, t: f64, y: &[f64]) {
+        let r = self.sys.reduced(t, y);
+        self.rec.step(t, &r);
+    }
+    fn span(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
+        let sys = self.sys;
+        self.rec.span(t0, t1, &|t| sys.reduced(t, &dense.at(t)));
+    }
+}
+
+/// The observers of a run, from its start state `y0`.
+pub(super) fn recorder<'a>(
+    scene: &Scene,
+    setup: &'a BeamScene,
+    over: &Overrides,
+    phase: Phase<'a>,
+    y0: &[f64],
+    rows: usize,
+    show_progress: bool,
+) -> Recorder<'a> {
+    let beam = phase.beam;
+    let xs: Vec<f64> = (0..SAMPLES)
+        .map(|k| beam.length * k as f64 / (SAMPLES - 1) as f64)
+        .collect();
+    let filter = AccelerationFilter::new(beam, phase.loaded, setup.acceleration_cutoff_hz);
+    let spacing = filter
+        .as_ref()
+        .map_or(0.0, |f| 1.0 / (SAMPLES_PER_CUTOFF_PERIOD * f.cutoff_hz));
+    Recorder {
+        ledger: Ledger::new(&phase, &setup.loads, y0),
+        filter,
+        stations: beam.stations(&xs),
+        history: History {
+            beam,
+            probes: &setup.probes,
+            rows: Vec::with_capacity(rows),
+        },
+        phase,
+        envelope: Envelope::new(xs),
+        pictures: Pictures {
+            shape_times: &setup.shapes,
+            frame_every: over.animate.then(|| scene.duration / (FRAMES - 1) as f64),
+            shapes: Vec::new(),
+            frames: Vec::new(),
+            turned: (0.0, setup.disk.as_ref().map_or(0.0, |d| d.omega0), 0.0),
+        },
+        means: over
+            .windowed_means
+            .then(|| WindowedMeans::new(scene.duration, setup.probes.len())),
+        watches: Watches::new(setup.probes.len(), SAMPLES),
+        last: None,
+        before: None,
+        spacing,
+        exit_t: setup.train.as_ref().map(|tr| tr.gone(beam.length)),
+        progress: if show_progress {
+            Progress::new(scene.duration)
+        } else {
+            None
+        },
+    }
+}
+
+/// What the observers recorded, theirs no longer: the beam they borrowed goes into the result.
+pub(super) struct Recorded {
+    pub(super) rows: Vec<BeamRow>,
+    pub(super) envelope: Envelope,
+    pub(super) extremes: Extremes,
+    pub(super) shapes: Vec<(f64, Vec<PointDisplacement>)>,
+    pub(super) frames: Vec<Frame>,
+    pub(super) windowed_means: Vec<f64>,
+    pub(super) y_end: Vec<f64>,
+    pub(super) acceleration: Option<CutoffReport>,
+    pub(super) energy: crate::run::EnergyCheck,
+}
+
+impl Recorded {
+    pub(super) fn from(rec: Recorder, y_end: &[f64]) -> Recorded {
+        if let Some(p) = &rec.progress {
+            p.finish();
+        }
+        let y_end = on_mesh(&rec.phase, y_end);
+        let (extremes, envelope) = rec.extremes();
+        Recorded {
+            rows: rec.history.rows,
+            envelope,
+            extremes,
+            shapes: rec.pictures.shapes,
+            frames: rec.pictures.frames,
+            windowed_means: rec.means.map_or_else(Vec::new, |m| m.means()),
+            y_end,
+            acceleration: rec.filter.as_ref().map(|f| f.report()),
+            energy: rec.ledger.check,
+        }
+    }
+}
