@@ -250,9 +250,10 @@ class Result:
         ``left-track``, …)."""
         return self.summary["stopped"]["reason"]
 
-    def write(self, directory: Union[str, os.PathLike]) -> None:
-        """Write exactly what ``rollbeam run`` writes: summary.yaml, history.csv, figures."""
-        _call(self._native.write, os.fspath(directory))
+    def write(self, directory: Union[str, os.PathLike], figures: bool = True) -> None:
+        """Write exactly what ``rollbeam run`` writes: summary.yaml, history.csv and, unless
+        ``figures=False`` (``rollbeam run --no-figures``), the SVG figures."""
+        _call(self._native.write, os.fspath(directory), bool(figures))
 
 
 def run(

@@ -185,10 +185,12 @@ impl NativeRun {
         ])
     }
 
-    /// Write exactly what `rollbeam run` writes into `dir`.
-    fn write(&self, py: Python<'_>, dir: PathBuf) -> PyResult<()> {
+    /// Write exactly what `rollbeam run` writes into `dir` (the figures where asked).
+    #[pyo3(signature = (dir, figures=true))]
+    fn write(&self, py: Python<'_>, dir: PathBuf, figures: bool) -> PyResult<()> {
         let run = &self.run;
-        py.detach(|| output::write_all(run, &dir)).map_err(py_err)
+        py.detach(|| output::write_all(run, &dir, figures))
+            .map_err(py_err)
     }
 }
 

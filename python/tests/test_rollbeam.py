@@ -155,6 +155,10 @@ def test_result_write_writes_what_run_writes(tmp_path):
     cli("run", study, "--rtol", "1e-4", "--out", tmp_path / "cli")
     assert sorted(os.listdir(tmp_path / "py")) == sorted(os.listdir(tmp_path / "cli"))
     assert (tmp_path / "py" / "history.csv").read_text() == (tmp_path / "cli" / "history.csv").read_text()
+    result.write(tmp_path / "py-bare", figures=False)
+    cli("run", study, "--rtol", "1e-4", "--no-figures", "--out", tmp_path / "cli-bare")
+    bare = sorted(os.listdir(tmp_path / "py-bare"))
+    assert bare == sorted(os.listdir(tmp_path / "cli-bare")) == ["history.csv", "summary.yaml"]
 
 
 def test_beam_results_have_shapes_and_envelope_consistent_with_the_history():

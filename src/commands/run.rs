@@ -20,6 +20,10 @@ pub struct RunArgs {
     /// Also write animation.svg: the disk rolling on the magnified beam (beam scenes).
     #[arg(long)]
     animate: bool,
+    /// Write summary.yaml and history.csv only, no SVG figures (sweeps of single runs, where
+    /// drawing costs more than the run).
+    #[arg(long)]
+    no_figures: bool,
 }
 
 pub fn run(args: RunArgs) -> Result<(), Error> {
@@ -28,7 +32,13 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
         out,
         solver,
         animate,
+        no_figures,
     } = args;
+    if animate && no_figures {
+        return Err(Error::Input(
+            "--animate draws a figure, which --no-figures leaves out; give one of them".into(),
+        ));
+    }
     // A planned sweep's case runs into its plan folder, once.
     let case = crate::workflows::sweep::cluster::planned_case(&scene);
     if let Some((plan, id)) = &case {
@@ -60,7 +70,7 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
         Some((plan, id)) => plan.join("runs").join(id),
         None => Path::new("out").join(&scene.name),
     });
-    output::write_all(&result, &dir)?;
+    output::write_all(&result, &dir, !no_figures)?;
     if let (true, Run::Beam(b)) = (animate, &result) {
         output::animation::write_animation(b, &dir.join("animation.svg"))?;
     }

@@ -234,9 +234,11 @@ fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
     }
 }
 
-pub fn write_all(r: &BeamRun, dir: &Path) -> Result<(), Error> {
+pub fn write_all(r: &BeamRun, dir: &Path, with_figures: bool) -> Result<(), Error> {
     write(&dir.join("history.csv"), &csv(r))?;
-    figures(r, dir)?;
+    if with_figures {
+        figures(r, dir)?;
+    }
     write(&dir.join("summary.yaml"), &summary_yaml(r)?)
 }
 

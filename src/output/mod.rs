@@ -14,14 +14,15 @@ use std::path::Path;
 use crate::error::Error;
 use crate::run::{RollingRun, Run};
 
-pub fn write_all(run: &Run, dir: &Path) -> Result<(), Error> {
+/// Every output of a run into `dir`: the figures too where `figures` says so.
+pub fn write_all(run: &Run, dir: &Path, figures: bool) -> Result<(), Error> {
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
     // The summary says how the run ended, so it is written last, once every other file is
     // whole; one left from an earlier run goes first, so that a failed write leaves none.
     let _ = std::fs::remove_file(dir.join("summary.yaml"));
     match run {
-        Run::Rolling(r) => write_rolling(r, dir),
-        Run::Beam(b) => beam::write_all(b, dir),
+        Run::Rolling(r) => write_rolling(r, dir, figures),
+        Run::Beam(b) => beam::write_all(b, dir, figures),
     }
 }
 
@@ -46,10 +47,12 @@ pub fn yaml(value: &impl serde::Serialize) -> Result<String, Error> {
         .map_err(|e| Error::Output(format!("cannot format YAML output: {e}")))
 }
 
-fn write_rolling(result: &RollingRun, dir: &Path) -> Result<(), Error> {
+fn write_rolling(result: &RollingRun, dir: &Path, figures: bool) -> Result<(), Error> {
     let summary = summary::Summary::from_run(result);
     write(&dir.join("history.csv"), &rolling_history::csv(result))?;
-    plots::all(result, dir)?;
+    if figures {
+        plots::all(result, dir)?;
+    }
     write(&dir.join("summary.yaml"), &yaml(&summary)?)
 }
 

@@ -54,7 +54,7 @@ pub fn run_all(
     let done = super::parallel::map(&scenes, true, |scene| -> Result<Run, Error> {
         let result = run::run(scene, &over, false)?;
         let dir = out.join(&scene.name);
-        output::write_all(&result, &dir)?;
+        output::write_all(&result, &dir, true)?;
         if let Run::Beam(b) = &result {
             if b.setup.disk.is_some() {
                 output::animation::write_animation(b, &dir.join("animation.svg"))?;
