@@ -144,6 +144,8 @@ pub(super) fn diagram(
     let err =
         |e: &dyn std::fmt::Display| Error::Output(format!("cannot draw {}: {e}", path.display()));
     let mut lines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    // Per method, every setting's (work, error): its front when the lines are too many.
+    let mut by_method: Vec<(&str, Vec<(f64, f64)>)> = Vec::new();
     for t in trials {
         let Ok(m) = &t.outcome else { continue };
         let Some(error) = score.of(m) else { continue };
@@ -161,6 +163,10 @@ pub(super) fn diagram(
             Some((_, pts)) => pts.push(point),
             None => lines.push((name, vec![point])),
         }
+        match by_method.iter_mut().find(|(n, _)| *n == p.method.name()) {
+            Some((_, pts)) => pts.push(point),
+            None => by_method.push((p.method.name(), vec![point])),
+        }
     }
     let all = lines.iter().flat_map(|(_, p)| p.iter());
     let (x0, x1, y0, y1) = all.fold(
@@ -175,22 +181,23 @@ pub(super) fn diagram(
     if !x0.is_finite() {
         return Ok(());
     }
-    // A legend of many lines (D44's 37) would run off the foot of the figure and hide the
-    // costliest runs in the upper right: the figure grows with it, and the time axis runs on
-    // for two fifths of its decades again, to the legend's right of the data. Past the
-    // palette's colours the lines take another marker, so that each stays told apart.
-    let many = lines.len() > 12;
-    let height = if many {
-        150 + 16 * lines.len() as u32
-    } else {
-        600
-    };
-    let x_end = if many {
-        x1 * 1.5 * (x1 * 1.5 / (x0 / 1.5)).powf(0.4)
-    } else {
-        x1 * 1.5
-    };
-    crate::output::plots::svg(path, (900, height.max(600)), |root| {
+    // More lines than the palette has colours cannot be told apart (D44's grid makes 37):
+    // then each method is drawn as its front, the cheapest of its settings for each accuracy,
+    // over every setting tried in grey; tradeoff.csv names the settings.
+    let everything: Vec<(f64, f64)> = lines.iter().flat_map(|(_, p)| p.clone()).collect();
+    let fronts = lines.len() > PALETTE.len();
+    if fronts {
+        lines = by_method
+            .into_iter()
+            .map(|(method, pts)| {
+                (
+                    format!("{method}: the cheapest for each accuracy"),
+                    front(pts),
+                )
+            })
+            .collect();
+    }
+    crate::output::plots::svg(path, (900, 600), |root| {
         let mut chart = ChartBuilder::on(root)
             .caption(
                 match score {
@@ -203,7 +210,7 @@ pub(super) fn diagram(
             .x_label_area_size(45)
             .y_label_area_size(75)
             .build_cartesian_2d(
-                (x0 / 1.5..x_end).log_scale(),
+                (x0 / 1.5..x1 * 1.5).log_scale(),
                 // From just below a whole decade: plotters labels a log axis from the first
                 // decade inside its range upwards, so errors below that would go unlabelled.
                 (0.99 * 10f64.powf((y0 / 3.0).log10().floor())..y1 * 3.0).log_scale(),
@@ -220,33 +227,28 @@ pub(super) fn diagram(
             .x_label_formatter(&|v| format!("{v:.0e}"))
             .draw()
             .map_err(|e| err(&e))?;
+        if fronts {
+            chart
+                .draw_series(
+                    everything
+                        .iter()
+                        .map(|&p| Circle::new(p, 2, RGBColor(150, 150, 150).filled())),
+                )
+                .map_err(|e| err(&e))?
+                .label("every setting tried")
+                .legend(|(x, y)| Circle::new((x + 10, y), 2, RGBColor(150, 150, 150).filled()));
+        }
         for (i, (name, pts)) in lines.iter().enumerate() {
             let color = PALETTE[i % PALETTE.len()];
-            let style = if i < PALETTE.len() {
-                color.stroke_width(2)
-            } else {
-                color.stroke_width(1)
-            };
+            let style = color.stroke_width(2);
             chart
                 .draw_series(LineSeries::new(pts.iter().copied(), style))
                 .map_err(|e| err(&e))?
                 .label(name.as_str())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
-            match i / PALETTE.len() {
-                0 => chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled()))),
-                1 => {
-                    chart.draw_series(pts.iter().map(|&p| Cross::new(p, 4, color.stroke_width(2))))
-                }
-                2 => chart.draw_series(
-                    pts.iter()
-                        .map(|&p| TriangleMarker::new(p, 4, color.filled())),
-                ),
-                _ => chart.draw_series(
-                    pts.iter()
-                        .map(|&p| Circle::new(p, 4, color.stroke_width(1))),
-                ),
-            }
-            .map_err(|e| err(&e))?;
+            chart
+                .draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                .map_err(|e| err(&e))?;
         }
         chart
             .configure_series_labels()
@@ -257,4 +259,16 @@ pub(super) fn diagram(
             .map_err(|e| err(&e))?;
         Ok(())
     })
+}
+
+/// The points no other point beats in both work and error, by increasing work.
+fn front(mut points: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+    points.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let mut best = f64::INFINITY;
+    points.retain(|&(_, e)| {
+        let better = e < best;
+        best = best.min(e);
+        better
+    });
+    points
 }
