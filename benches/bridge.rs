@@ -149,6 +149,14 @@ fn hslm_sweep(c: &mut Criterion) {
     group.bench_function("810-cases", |b| {
         b.iter(|| run_grid(&spec, &settings, &Overrides::default(), false).expect("runs"))
     });
+    // The same cases in closed form between the axles' node crossings.
+    let exact = Overrides {
+        method: Some(rollbeam::ode::Method::ExactModal),
+        ..Default::default()
+    };
+    group.bench_function("810-cases-exact-modal", |b| {
+        b.iter(|| run_grid(&spec, &settings, &exact, false).expect("runs"))
+    });
     group.finish();
 }
 

@@ -262,8 +262,9 @@ def run(
     rtol: Optional[float] = None,
     atol: Optional[float] = None,
 ) -> Result:
-    """Run a scene; ``method`` (dopri5, trbdf2, esdirk4, genalpha), ``rtol`` and ``atol``
-    override the scene's as ``rollbeam run --method --rtol --atol`` do. Releases the GIL."""
+    """Run a scene; ``method`` (dopri5, trbdf2, esdirk4, genalpha, exact-modal), ``rtol``
+    and ``atol`` override the scene's as ``rollbeam run --method --rtol --atol`` do. Releases
+    the GIL."""
     _scene(scene, "run")
     return Result(_call(_native.run, scene, method, rtol, atol))
 

@@ -14,7 +14,7 @@ use super::modal::ModalBasis;
 use super::train::{RidingAxle, Train, TrainModel};
 use super::Beam;
 use crate::linalg::{Assembly, LowRank, Sparse};
-use crate::ode::second_order::{SecondOrderProblem, Structure};
+use crate::ode::second_order::{LinearModal, SecondOrderProblem, Structure};
 use crate::ode::NoEvent;
 
 pub struct LoadedBeam<'a> {
@@ -479,6 +479,26 @@ impl Structure for LoadedBeam<'_> {
     fn norm_weights(&self) -> Option<Vec<f64>> {
         self.modal.map(|m| m.displacement_per_amplitude())
     }
+    /// A modal beam under moving forces, point loads and its weight: the modes' oscillators,
+    /// damped by α + β ω², under a force that is, between the axles' crossings of the mesh's
+    /// nodes, a polynomial of the elements' degree in t (the load's shape functions at a
+    /// point that moves at constant speed).
+    fn linear_modal(&self) -> Option<LinearModal> {
+        let m = self.modal?;
+        if self.moving_masses().is_some() {
+            return None;
+        }
+        let rayleigh = self.rayleigh();
+        Some(LinearModal {
+            stiffness: m.omega.iter().map(|w| w * w).collect(),
+            damping: m
+                .omega
+                .iter()
+                .map(|w| rayleigh.map_or(0.0, |r| r.alpha + r.beta * w * w))
+                .collect(),
+            degree: self.beam.spec.order,
+        })
+    }
     fn stiffness(&self, _t: f64, q: &[f64]) -> Sparse {
         match self.modal {
             None => self.beam.tangent(q),
@@ -518,6 +538,19 @@ impl SecondOrderProblem for LoadedBeam<'_> {
     type Event = NoEvent;
     fn max_step(&self, t: f64, _q: &[f64], _v: &[f64]) -> f64 {
         self.load_step_bound(t)
+    }
+    /// Each axle's crossing of each node of the mesh.
+    fn kinks(&self) -> Vec<f64> {
+        let Some(train) = self.train else {
+            return Vec::new();
+        };
+        let h = self.beam.element_length();
+        let nodes = self.beam.spec.elements + 1;
+        train
+            .axles
+            .iter()
+            .flat_map(|d| (0..nodes).map(move |j| (j as f64 * h + d) / train.speed))
+            .collect()
     }
     fn breakpoints(&self) -> Vec<f64> {
         let train = self.train_breakpoints.iter().copied();

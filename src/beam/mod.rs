@@ -503,7 +503,6 @@ impl Beam {
     }
 
     /// The element holding material point x (the end elements extend past the ends).
-
     pub fn element_of(&self, x: f64) -> usize {
         ((x / self.h).floor().max(0.0) as usize).min(self.spec.elements - 1)
     }

@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use super::dopri5::Dopri5;
 use super::esdirk::Esdirk4;
+use super::exact_modal::ExactModal;
 use super::genalpha::GenAlphaStepper;
 use super::stage_solver::Dirk;
 use super::trbdf2::TrBdf2;
@@ -19,6 +20,7 @@ fn make_stepper(opts: &Options, n: usize) -> Box<dyn Stepper> {
         Method::TrBdf2 => Box::new(Dirk::new(TrBdf2::new(n), n)),
         Method::Esdirk4 => Box::new(Dirk::new(Esdirk4::new(n), n)),
         Method::GenAlpha => Box::new(GenAlphaStepper::new(opts.rho_inf, n)),
+        Method::ExactModal => Box::new(ExactModal::new(n)),
     }
 }
 
@@ -138,7 +140,14 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             next_out: outputs.partition_point(|&o| o < t0),
             events: Vec::new(),
             g: (0..p.events().len()).map(|i| p.event(i, t0, y0)).collect(),
-            breaks: breakpoints_within(p.breakpoints(), t0, t_end),
+            breaks: breakpoints_within(
+                match opts.method {
+                    Method::ExactModal => [p.breakpoints(), p.kinks()].concat(),
+                    _ => p.breakpoints(),
+                },
+                t0,
+                t_end,
+            ),
             h_min: 1e-14 * t0.abs().max(t_end.abs()).max(1.0),
             newton_cap: f64::INFINITY,
             pace_from: (0, t0),
@@ -372,6 +381,9 @@ impl Dense for StepperDense<'_> {
 fn breakpoints_within(mut breaks: Vec<f64>, t0: f64, t_end: f64) -> Vec<f64> {
     breaks.retain(|&b| b > t0 && b < t_end);
     breaks.sort_by(f64::total_cmp);
+    // Two loads that switch at one time (an axle entering is also its first node crossing)
+    // make one breakpoint, not a step of round-off between them.
+    breaks.dedup_by(|b, a| *b - *a <= 1e-12 * a.abs().max(1.0));
     breaks
 }
 

@@ -13,6 +13,7 @@
 mod dopri5;
 mod driver;
 mod esdirk;
+mod exact_modal;
 mod genalpha;
 pub mod second_order;
 mod stage_solver;
@@ -87,6 +88,11 @@ pub trait Problem: Dynamics {
     fn breakpoints(&self) -> Vec<f64> {
         Vec::new()
     }
+    /// Times where f has a kink: steps of `exact-modal`, which fits f by polynomials, end
+    /// there; the other methods step over them under their error control.
+    fn kinks(&self) -> Vec<f64> {
+        Vec::new()
+    }
     /// Told before the steps of each stretch between breakpoints, so that a jump is seen on
     /// the right side of it by every stage.
     fn enter_segment(&self, _start: f64, _end: f64) {}
@@ -120,6 +126,9 @@ pub enum Method {
     /// ESDIRK4(3)6L[2]SA: fourth order, L-stable, for tight tolerances.
     #[serde(rename = "esdirk4")]
     Esdirk4,
+    /// Uncoupled linear oscillators (a modal beam under moving forces) in closed form.
+    #[serde(rename = "exact-modal")]
+    ExactModal,
 }
 
 impl Method {
@@ -131,6 +140,15 @@ impl Method {
     ];
     /// The methods that integrate any first-order problem.
     pub const FIRST_ORDER: [Method; 3] = [Method::Dopri5, Method::TrBdf2, Method::Esdirk4];
+    /// Every method a scene or the command line may name: the time-stepping ones, and
+    /// `exact-modal` for the structures it applies to.
+    pub const NAMED: [Method; 5] = [
+        Method::Dopri5,
+        Method::TrBdf2,
+        Method::GenAlpha,
+        Method::Esdirk4,
+        Method::ExactModal,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -138,11 +156,12 @@ impl Method {
             Method::TrBdf2 => "trbdf2",
             Method::GenAlpha => "genalpha",
             Method::Esdirk4 => "esdirk4",
+            Method::ExactModal => "exact-modal",
         }
     }
 
     pub fn from_name(name: &str) -> Option<Method> {
-        Method::ALL.into_iter().find(|m| m.name() == name)
+        Method::NAMED.into_iter().find(|m| m.name() == name)
     }
 
     /// Classical order of the propagated solution.
@@ -151,6 +170,9 @@ impl Method {
             Method::Dopri5 => 5,
             Method::Esdirk4 => 4,
             Method::TrBdf2 | Method::GenAlpha => 2,
+            // Exact where the force is a polynomial between kinks; its fit is of degree 6 and
+            // more.
+            Method::ExactModal => 7,
         }
     }
 }
@@ -269,6 +291,7 @@ pub enum SolveError {
         t: f64,
     },
     NeedsSecondOrder,
+    NotLinearModal,
 }
 
 impl fmt::Display for SolveError {
@@ -302,6 +325,10 @@ impl fmt::Display for SolveError {
                     "generalized-α integrates second-order (structural) problems only"
                 )
             }
+            SolveError::NotLinearModal => write!(
+                f,
+                "exact-modal integrates uncoupled linear oscillators under a force of time alone: a modal beam under moving forces, point loads or its weight, without a disk or moving masses"
+            ),
             SolveError::SingularMatrix { t } => {
                 write!(
                     f,

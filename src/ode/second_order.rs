@@ -8,6 +8,19 @@ use std::ops::Range;
 use super::{Dynamics, EventSpec, Problem};
 use crate::linalg::{self, Assembly, LowRank, Sparse};
 
+/// A structure that is uncoupled linear oscillators under a force of time alone: M = I and
+/// f(t, q, v) = g(t) − K q − C v with K and C diagonal (a modal beam under moving forces).
+#[derive(Clone, Debug)]
+pub struct LinearModal {
+    /// The diagonal of K (ω² per oscillator).
+    pub stiffness: Vec<f64>,
+    /// The diagonal of C.
+    pub damping: Vec<f64>,
+    /// The degree of g as a polynomial in t between the problem's kinks
+    /// ([`SecondOrderProblem::kinks`]).
+    pub degree: usize,
+}
+
 /// M(t, q) q'' = f(t, q, v): what generalized-α needs to take a step.
 pub trait Structure {
     fn dim(&self) -> usize;
@@ -47,6 +60,11 @@ pub trait Structure {
     fn norm_weights(&self) -> Option<Vec<f64>> {
         None
     }
+    /// Where the structure is uncoupled linear oscillators under a force of time alone, which
+    /// `exact-modal` integrates in closed form.
+    fn linear_modal(&self) -> Option<LinearModal> {
+        None
+    }
 }
 
 /// A structure over time: what the driver watches besides the steps (see [`Problem`]).
@@ -57,6 +75,11 @@ pub trait SecondOrderProblem: Structure {
         f64::INFINITY
     }
     fn breakpoints(&self) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Times where the force, smooth between them, has a kink (a moving load crossing a node
+    /// of the mesh): a method that fits the force by polynomials ends its steps there.
+    fn kinks(&self) -> Vec<f64> {
         Vec::new()
     }
     fn enter_segment(&self, _start: f64, _end: f64) {}
@@ -130,6 +153,9 @@ impl<E: Copy + std::fmt::Debug> Problem for FirstOrder<'_, E> {
     type Event = E;
     fn breakpoints(&self) -> Vec<f64> {
         self.inner.breakpoints()
+    }
+    fn kinks(&self) -> Vec<f64> {
+        self.inner.kinks()
     }
     fn enter_segment(&self, start: f64, end: f64) {
         self.inner.enter_segment(start, end)

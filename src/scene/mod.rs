@@ -326,8 +326,8 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
                 },
                 Ok,
             )?;
-            if solver.method == Method::GenAlpha && !beam_default {
-                return c.err(m.referenced.line(), "solver.method", "genalpha integrates structural (beam) scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve");
+            if matches!(solver.method, Method::GenAlpha | Method::ExactModal) && !beam_default {
+                return c.err(m.referenced.line(), "solver.method", format!("{} integrates structural (beam) scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve", solver.method.name()));
             }
         }
         if let Some(r) = &s.rtol {
@@ -386,5 +386,5 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
 }
 
 pub fn method_names() -> String {
-    Method::ALL.map(|m| m.name()).join(", ")
+    Method::NAMED.map(|m| m.name()).join(", ")
 }

@@ -67,8 +67,11 @@ pub(crate) fn parse_method(name: &str, scene: &Scene) -> Result<Method, Error> {
             method_names()
         ))
     })?;
-    if m == Method::GenAlpha && scene.beam().is_none() {
-        return Err(Error::Input("--method genalpha integrates beam scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve".into()));
+    if matches!(m, Method::GenAlpha | Method::ExactModal) && scene.beam().is_none() {
+        return Err(Error::Input(format!(
+            "--method {} integrates beam scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve",
+            m.name()
+        )));
     }
     Ok(m)
 }

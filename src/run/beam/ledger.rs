@@ -4,7 +4,7 @@
 //! so is the work of the beam's own weight (a constant load: its dot product with the
 //! displacement since the start); the work of a prescribed moving load is its power on the
 //! beam, and the energy damping takes is its power vᵀCv, both by the trapezoidal rule over the
-//! steps. A disk that leaves the beam takes its energy with it, which the budget keeps from
+//! steps, or over a long step by Simpson's rule on pieces of it (`pending`). A disk that leaves the beam takes its energy with it, which the budget keeps from
 //! then on; so does a disk that flies over it, whose flight keeps it constant, until it lands,
 //! and what a landing takes is booked as `impact`.
 
@@ -43,7 +43,20 @@ pub(super) struct Ledger<'a> {
     damped: (f64, f64, f64),
     /// Kinetic energy the landings took.
     impact: f64,
+    /// Pieces of the step under way, (midpoint, end) each with its state, booked by Simpson's
+    /// rule as the run passes their ends.
+    pending: std::collections::VecDeque<Piece>,
     pub check: EnergyCheck,
+}
+
+/// A piece of a long step, read when the step is taken (the loads on the beam are those of
+/// its stretch between breakpoints): its end, the moving loads' and the damping's powers at
+/// its midpoint and end, and the point loads' displacements at its end.
+pub(super) struct Piece {
+    end: f64,
+    moving: (f64, f64),
+    damping: (f64, f64),
+    at_loads: Vec<PointDisplacement>,
 }
 
 fn load_displacements(beam: &Beam, loads: &[PointLoad], q: &[f64]) -> Vec<PointDisplacement> {
@@ -98,6 +111,7 @@ impl<'a> Ledger<'a> {
             weight0: phase.loaded.weight_dot(&z0[..n]),
             damped: (0.0, phase.loaded.dissipation(&zd0[..n]), 0.0),
             impact: 0.0,
+            pending: std::collections::VecDeque::new(),
             check,
         };
         ledger.at_loads = ledger.at_loads(phase, y0);
@@ -179,6 +193,7 @@ impl<'a> Ledger<'a> {
         y: &[f64],
         disk: Option<&DiskObservation>,
     ) -> Energy {
+        self.catch_up(t);
         let (kinetic, strain) = Self::beam_energies(phase, y);
         let (disk_kinetic, potential) = self.disk_energies(phase, disk);
         let kinetic = kinetic + disk_kinetic;
@@ -202,14 +217,73 @@ impl<'a> Ledger<'a> {
         }
     }
 
-    /// An accepted step ends at (t, y): the work so far is booked, and the balance checked.
-    pub fn at_step(&mut self, phase: &Phase, t: f64, y: &[f64]) {
+    /// The work and the damping's energy booked up to (t, y) by the trapezoidal rule from the
+    /// last point booked.
+    fn book(&mut self, phase: &Phase, t: f64, y: &[f64]) {
         let now = self.at_loads(phase, y);
         self.done += work_since(self.loads, self.t, t, &self.at_loads, &now);
         self.t = t;
         self.at_loads = now;
         let power = Self::moving_power(phase, t, y);
         self.moving = (t, power, self.moving_work(t, power));
+        let (dissipated, power) = self.dissipated(phase, t, y);
+        self.damped = (t, power, dissipated);
+    }
+
+    /// Book the step under way by Simpson's rule on these pieces, each as the run passes its
+    /// end (a long step: `exact-modal`'s span many watched samples, over which the powers are
+    /// smooth and the trapezoidal rule over the whole step would not be).
+    pub fn book_in_pieces(&mut self, pieces: Vec<Piece>) {
+        self.pending.extend(pieces);
+    }
+
+    /// The piece of a step from the last point read to (t, y), through its midpoint (tm, ym).
+    pub fn piece(&self, phase: &Phase, (tm, ym): (f64, &[f64]), t: f64, y: &[f64]) -> Piece {
+        let n = phase.loaded.dim();
+        let damping = |y: &[f64]| phase.loaded.dissipation(&phase.split(y).1[..n]);
+        Piece {
+            end: t,
+            moving: (
+                Self::moving_power(phase, tm, ym),
+                Self::moving_power(phase, t, y),
+            ),
+            damping: (damping(ym), damping(y)),
+            at_loads: self.at_loads(phase, y),
+        }
+    }
+
+    /// Book the pending pieces that end by t, by Simpson's rule.
+    fn catch_up(&mut self, t: f64) {
+        while let Some(piece) = self.pending.pop_front() {
+            if piece.end > t {
+                self.pending.push_front(piece);
+                return;
+            }
+            let simpson = |(t0, p0, done): (f64, f64, f64), (pm, p1): (f64, f64)| {
+                (
+                    piece.end,
+                    p1,
+                    done + (piece.end - t0) / 6.0 * (p0 + 4.0 * pm + p1),
+                )
+            };
+            self.moving = simpson(self.moving, piece.moving);
+            self.damped = simpson(self.damped, piece.damping);
+            self.done += work_since(
+                self.loads,
+                self.t,
+                piece.end,
+                &self.at_loads,
+                &piece.at_loads,
+            );
+            self.t = piece.end;
+            self.at_loads = piece.at_loads;
+        }
+    }
+
+    /// An accepted step ends at (t, y): the work so far is booked, and the balance checked.
+    pub fn at_step(&mut self, phase: &Phase, t: f64, y: &[f64]) {
+        self.catch_up(t);
+        self.book(phase, t, y);
         let (kinetic, strain) = Self::beam_energies(phase, y);
         let (disk_kinetic, potential) = match phase.coupled {
             Some(c) if c.disk_in_system() => {
@@ -220,8 +294,7 @@ impl<'a> Ledger<'a> {
             None => self.left_with,
         };
         let kinetic = kinetic + disk_kinetic;
-        let (dissipated, power) = self.dissipated(phase, t, y);
-        self.damped = (t, power, dissipated);
+        let dissipated = self.damped.2;
         self.check.record(
             kinetic + strain + potential - self.done - self.moving.2 - self.weight_work(phase, y)
                 + dissipated

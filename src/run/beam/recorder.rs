@@ -371,6 +371,21 @@ impl Observer for Recorder<'_> {
     }
 
     fn span(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
+        // A step longer than two watched samples books the work and the damping on the way,
+        // by Simpson's rule on pieces at most a sample long: the trapezoidal rule over the
+        // step alone would miss what the modes below the cutoff do within it.
+        if self.spacing > 0.0 && t1 - t0 > 2.0 * self.spacing {
+            let count = ((t1 - t0) / self.spacing).ceil();
+            let at = |i: f64| t0 + (t1 - t0) * i / count;
+            let pieces = (1..=count as usize)
+                .map(|i| {
+                    let (tm, t) = (at(i as f64 - 0.5), at(i as f64).min(t1));
+                    self.ledger
+                        .piece(&self.phase, (tm, &dense.at(tm)), t, &dense.at(t))
+                })
+                .collect();
+            self.ledger.book_in_pieces(pieces);
+        }
         self.watch(t0, t1, dense);
         let (phase, history) = (&self.phase, &self.history);
         let Some(means) = &mut self.means else {

@@ -1,0 +1,499 @@
+//! Exact integration of uncoupled linear oscillators, q̈_k + c_k q̇_k + k_k q_k = g_k(t): a
+//! structure that says it is one ([`Structure::linear_modal`]) with a force that does not
+//! depend on the state. Over each step the force is fitted by a polynomial in t at
+//! Chebyshev–Lobatto points, and each oscillator's response to that polynomial is taken in
+//! closed form; where the force is a polynomial over the step (a moving point force between
+//! two nodes of the mesh its modes live on, which the problem's kinks make step ends), the
+//! step is exact to round-off and as long as the driver allows.
+//!
+//! Per oscillator, with σ = τ/h ∈ [0, 1] the step's own time and g(σ) = Σ g_j σ^j:
+//! - where ωh and ch are small, the Taylor series of the solution about the step's start,
+//!   whose coefficients follow from the equation term by term (every term bounded: no
+//!   cancellation), in sub-steps of ωh, ch ≤ [`SERIES_REACH`];
+//! - elsewhere, a polynomial particular solution (its coefficients from the top degree down,
+//!   each division by ω²h² ≥ [`SERIES_REACH`]² keeping them bounded) plus the free response
+//!   e^{−ch τ/2}(e₀ C(τ) + b S(τ)), C and S the cosine and sine (or their hyperbolic forms
+//!   over-damped), which holds every damping alike.
+//!
+//! The error estimate is what the two highest Chebyshev coefficients of the force would move:
+//! for a force that is a polynomial of the degree the problem names, nothing.
+
+use super::second_order::{LinearModal, Structure};
+use super::{Attempt, Ctx, Dynamics, SolveError, Stepper};
+
+/// How far (ωh or ch) a Taylor series is summed in one piece.
+const SERIES_REACH: f64 = 4.0;
+/// Terms of a series past which what is left is below round-off (4^k/k! < 1e-17 from here).
+const SERIES_TERMS: usize = 48;
+
+/// One oscillator's motion over an accepted step, in the step's own time σ ∈ [0, 1].
+#[derive(Clone, Debug)]
+enum Motion {
+    /// x(σ) on consecutive pieces of the step, each its Taylor coefficients in the piece's own
+    /// time (x = Σ s_k ς^k, ς ∈ [0, 1] across the piece).
+    Series(Vec<Vec<f64>>),
+    /// x = p(σ) + the free response from (e₀, e₁), e₁ the rate in t.
+    Particular { p: Vec<f64>, e0: f64, e1: f64 },
+}
+
+/// A step's motion: every oscillator's, and the force's polynomial in σ.
+#[derive(Clone, Debug, Default)]
+struct StepMotion {
+    t0: f64,
+    h: f64,
+    /// Per oscillator, the force's coefficients in σ.
+    force: Vec<Vec<f64>>,
+    motions: Vec<Motion>,
+}
+
+pub(crate) struct ExactModal {
+    /// Degree of the polynomial the force is fitted by.
+    degree: usize,
+    linear: Option<LinearModal>,
+    trial: StepMotion,
+    accepted: StepMotion,
+    y_new: Vec<f64>,
+}
+
+impl ExactModal {
+    pub fn new(n: usize) -> Self {
+        ExactModal {
+            degree: 6,
+            linear: None,
+            trial: StepMotion::default(),
+            accepted: StepMotion::default(),
+            y_new: vec![0.0; n],
+        }
+    }
+}
+
+fn structural(p: &dyn Dynamics) -> Result<&dyn Structure, SolveError> {
+    p.second_order().ok_or(SolveError::NeedsSecondOrder)
+}
+
+impl Stepper for ExactModal {
+    fn error_order(&self) -> u32 {
+        self.degree as u32 + 1
+    }
+
+    fn start(
+        &mut self,
+        p: &dyn Dynamics,
+        t0: f64,
+        y0: &[f64],
+        _ctx: &mut Ctx,
+    ) -> Result<(), SolveError> {
+        let s = structural(p)?;
+        let linear = s.linear_modal().ok_or(SolveError::NotLinearModal)?;
+        // A force of degree d within its pieces is fitted exactly with two degrees to spare,
+        // which the error estimate reads.
+        self.degree = linear.degree + 2;
+        self.linear = Some(linear);
+        self.y_new.copy_from_slice(y0);
+        self.accepted = StepMotion {
+            t0,
+            h: 0.0,
+            ..Default::default()
+        };
+        Ok(())
+    }
+
+    fn attempt(
+        &mut self,
+        p: &dyn Dynamics,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        ctx: &mut Ctx,
+    ) -> Result<Attempt, SolveError> {
+        let s = structural(p)?;
+        let linear = self.linear.as_ref().ok_or(SolveError::NotLinearModal)?;
+        let n = linear.stiffness.len();
+        let d = self.degree;
+        // The force at the Chebyshev–Lobatto points of the step, the state held at rest: what
+        // remains of f is g(t).
+        let nodes: Vec<f64> = (0..=d)
+            .map(|j| 0.5 * (1.0 - (std::f64::consts::PI * j as f64 / d as f64).cos()))
+            .collect();
+        let zeros = vec![0.0; n];
+        let mut samples = vec![vec![0.0; d + 1]; n];
+        let mut f = vec![0.0; n];
+        for (j, &sj) in nodes.iter().enumerate() {
+            s.force(t + sj * h, &zeros, &zeros, &mut f);
+            ctx.stats.rhs_evals += 1;
+            for k in 0..n {
+                samples[k][j] = f[k];
+            }
+        }
+        let mut error = vec![0.0; 2 * n];
+        let mut force = Vec::with_capacity(n);
+        let mut motions = Vec::with_capacity(n);
+        for k in 0..n {
+            let cheb = chebyshev_coefficients(&samples[k]);
+            let dropped = cheb[d].abs() + cheb[d - 1].abs();
+            let (w2, c) = (linear.stiffness[k], linear.damping[k]);
+            let w = w2.max(0.0).sqrt();
+            // What the two highest coefficients move: at most their size times the static
+            // (1/ω²) or the impulsive (h²/2) response, and a rate of h or 1/ω.
+            error[k] = dropped * (0.5 * h * h).min(if w2 > 0.0 { 1.0 / w2 } else { f64::INFINITY });
+            error[n + k] = dropped * h.min(if w > 0.0 { 1.0 / w } else { f64::INFINITY });
+            let g = monomial_in_sigma(&cheb);
+            let m = motion(w2, c, h, &g, y[k], y[n + k]);
+            let (x1, v1) = evaluate(&m, w2, c, h, 1.0);
+            self.y_new[k] = x1;
+            self.y_new[n + k] = v1;
+            force.push(g);
+            motions.push(m);
+        }
+        if self.y_new.iter().any(|v| !v.is_finite()) {
+            return Err(SolveError::NonFinite { t: t + h });
+        }
+        self.trial = StepMotion {
+            t0: t,
+            h,
+            force,
+            motions,
+        };
+        let err = ctx.norm(&error, y, &self.y_new);
+        Ok(Attempt::Done { err })
+    }
+
+    fn y_new(&self) -> &[f64] {
+        &self.y_new
+    }
+
+    fn accept(&mut self, t_new: f64) {
+        let mut m = std::mem::take(&mut self.trial);
+        m.h = t_new - m.t0;
+        self.accepted = m;
+    }
+
+    fn interpolate(&self, t: f64, out: &mut [f64]) {
+        let (x, v) = self.at(t);
+        let n = x.len();
+        out[..n].copy_from_slice(&x);
+        out[n..2 * n].copy_from_slice(&v);
+    }
+
+    fn interpolate_rate(&self, t: f64, out: &mut [f64]) {
+        let Some(linear) = &self.linear else { return };
+        let (x, v) = self.at(t);
+        let n = x.len();
+        let m = &self.accepted;
+        let sigma = if m.h > 0.0 { (t - m.t0) / m.h } else { 0.0 };
+        for k in 0..n {
+            let g = horner(&m.force[k], sigma);
+            out[k] = v[k];
+            out[n + k] = g - linear.damping[k] * v[k] - linear.stiffness[k] * x[k];
+        }
+    }
+
+    fn max_growth(&self) -> f64 {
+        // The step is exact where the force is a polynomial: it may grow to what the problem
+        // allows at once.
+        1e6
+    }
+}
+
+impl ExactModal {
+    /// Displacements and rates of every oscillator at t within the accepted step.
+    fn at(&self, t: f64) -> (Vec<f64>, Vec<f64>) {
+        let m = &self.accepted;
+        let n = m.motions.len();
+        if n == 0 || !(m.h > 0.0) {
+            let half = self.y_new.len() / 2;
+            return (self.y_new[..half].to_vec(), self.y_new[half..].to_vec());
+        }
+        let Some(linear) = &self.linear else {
+            return (vec![0.0; n], vec![0.0; n]);
+        };
+        let sigma = ((t - m.t0) / m.h).clamp(0.0, 1.0);
+        let mut x = vec![0.0; n];
+        let mut v = vec![0.0; n];
+        for k in 0..n {
+            (x[k], v[k]) = evaluate(
+                &m.motions[k],
+                linear.stiffness[k],
+                linear.damping[k],
+                m.h,
+                sigma,
+            );
+        }
+        (x, v)
+    }
+}
+
+/// The Chebyshev coefficients (on [0, 1]) of the polynomial through values at the
+/// Chebyshev–Lobatto points σ_j = (1 − cos(πj/d))/2.
+fn chebyshev_coefficients(values: &[f64]) -> Vec<f64> {
+    let d = values.len() - 1;
+    (0..=d)
+        .map(|i| {
+            let mut sum = 0.0;
+            for (j, v) in values.iter().enumerate() {
+                let w = if j == 0 || j == d { 0.5 } else { 1.0 };
+                // x_j = 2σ_j − 1 = −cos(πj/d); T_i(x_j) = cos(i·acos(x_j)) = (−1)^i cos(πij/d).
+                let sign = if i % 2 == 0 { 1.0 } else { -1.0 };
+                sum += w * v * sign * (std::f64::consts::PI * (i * j) as f64 / d as f64).cos();
+            }
+            let w = if i == 0 || i == d { 0.5 } else { 1.0 };
+            2.0 * w * sum / d as f64
+        })
+        .collect()
+}
+
+/// Σ c_i T_i(2σ − 1) as coefficients of σ^j.
+fn monomial_in_sigma(cheb: &[f64]) -> Vec<f64> {
+    let d = cheb.len() - 1;
+    // T_i(x) as monomials in x, by T_{i+1} = 2x T_i − T_{i−1}.
+    let mut t_prev = vec![0.0; d + 1];
+    let mut t_cur = vec![0.0; d + 1];
+    t_prev[0] = 1.0;
+    let mut in_x = vec![0.0; d + 1];
+    in_x[0] += cheb[0];
+    if d >= 1 {
+        t_cur[1] = 1.0;
+        in_x[1] += cheb[1];
+    }
+    for c in cheb.iter().skip(2) {
+        let mut next = vec![0.0; d + 1];
+        for j in 0..d {
+            next[j + 1] += 2.0 * t_cur[j];
+        }
+        for j in 0..=d {
+            next[j] -= t_prev[j];
+        }
+        for j in 0..=d {
+            in_x[j] += c * next[j];
+        }
+        t_prev = std::mem::replace(&mut t_cur, next);
+    }
+    // x = 2σ − 1: expand each x^j.
+    let mut out = vec![0.0; d + 1];
+    let mut power = vec![0.0; d + 1];
+    power[0] = 1.0;
+    for (j, &a) in in_x.iter().enumerate() {
+        if j > 0 {
+            let mut next = vec![0.0; d + 1];
+            for i in 0..d {
+                next[i + 1] += 2.0 * power[i];
+                next[i] -= power[i];
+            }
+            next[d] -= power[d];
+            power = next;
+        }
+        for i in 0..=d {
+            out[i] += a * power[i];
+        }
+    }
+    out
+}
+
+fn horner(c: &[f64], x: f64) -> f64 {
+    c.iter().rev().fold(0.0, |acc, &ci| acc * x + ci)
+}
+
+/// The coefficients of p(σ + shift) from those of p(σ).
+fn shifted(c: &[f64], shift: f64) -> Vec<f64> {
+    let mut out = c.to_vec();
+    let n = out.len();
+    for i in 0..n {
+        for j in (i..n - 1).rev() {
+            out[j] += shift * out[j + 1];
+        }
+    }
+    out
+}
+
+/// The motion of x'' + c x' + ω² x = g(σ) over [0, h] (' in t, σ = t/h), from (x0, v0).
+fn motion(w2: f64, c: f64, h: f64, g: &[f64], x0: f64, v0: f64) -> Motion {
+    let wh = w2.max(0.0).sqrt() * h;
+    let ch = c.abs() * h;
+    if wh > SERIES_REACH {
+        let p = particular(w2, c, h, g);
+        let (p0, p1) = (p[0], p.get(1).copied().unwrap_or(0.0) / h);
+        return Motion::Particular {
+            e0: x0 - p0,
+            e1: v0 - p1,
+            p,
+        };
+    }
+    let pieces = (wh.max(ch) / SERIES_REACH).ceil().max(1.0) as usize;
+    let part = 1.0 / pieces as f64;
+    let hp = h * part;
+    let mut out = Vec::with_capacity(pieces);
+    let (mut x, mut v) = (x0, v0);
+    for i in 0..pieces {
+        // The force in the piece's own time ς ∈ [0, 1]: σ = (i + ς)/pieces.
+        let mut gi = shifted(g, i as f64 * part);
+        let mut scale = 1.0;
+        for coefficient in gi.iter_mut() {
+            *coefficient *= scale;
+            scale *= part;
+        }
+        let s = series(w2, c, hp, &gi, x, v);
+        let (x1, v1) = series_at(&s, hp, 1.0);
+        (x, v) = (x1, v1);
+        out.push(s);
+    }
+    Motion::Series(out)
+}
+
+/// Taylor coefficients in ς = τ/hp of the solution from (x0, v0) under g(ς).
+fn series(w2: f64, c: f64, hp: f64, g: &[f64], x0: f64, v0: f64) -> Vec<f64> {
+    let mut s = vec![0.0; SERIES_TERMS];
+    s[0] = x0;
+    s[1] = v0 * hp;
+    let (w2h2, ch) = (w2 * hp * hp, c * hp);
+    for k in 0..SERIES_TERMS - 2 {
+        let gk = g.get(k).copied().unwrap_or(0.0) * hp * hp;
+        s[k + 2] = (gk - ch * (k + 1) as f64 * s[k + 1] - w2h2 * s[k]) / ((k + 2) * (k + 1)) as f64;
+    }
+    s
+}
+
+/// x and its rate in t at ς of a series over a piece of length hp.
+fn series_at(s: &[f64], hp: f64, sigma: f64) -> (f64, f64) {
+    let x = horner(s, sigma);
+    let mut rate = 0.0;
+    for k in (1..s.len()).rev() {
+        rate = rate * sigma + k as f64 * s[k];
+    }
+    (x, rate / hp)
+}
+
+/// The polynomial solution in σ of x''/h² + c x'/h + ω² x = g(σ), from the top degree down.
+fn particular(w2: f64, c: f64, h: f64, g: &[f64]) -> Vec<f64> {
+    let d = g.len() - 1;
+    let mut a = vec![0.0; d + 1];
+    for j in (0..=d).rev() {
+        let mut rhs = g[j];
+        if j < d {
+            rhs -= c / h * (j + 1) as f64 * a[j + 1];
+        }
+        if j + 1 < d {
+            rhs -= ((j + 2) * (j + 1)) as f64 / (h * h) * a[j + 2];
+        }
+        a[j] = rhs / w2;
+    }
+    a
+}
+
+/// x and its rate in t at σ of a motion over a step of length h.
+fn evaluate(m: &Motion, w2: f64, c: f64, h: f64, sigma: f64) -> (f64, f64) {
+    match m {
+        Motion::Series(pieces) => {
+            let count = pieces.len();
+            let hp = h / count as f64;
+            let at = sigma * count as f64;
+            let i = (at.floor() as usize).min(count - 1);
+            series_at(&pieces[i], hp, at - i as f64)
+        }
+        Motion::Particular { p, e0, e1 } => {
+            let x_p = horner(p, sigma);
+            let mut rate = 0.0;
+            for k in (1..p.len()).rev() {
+                rate = rate * sigma + k as f64 * p[k];
+            }
+            let (x_f, v_f) = free(w2, c, *e0, *e1, sigma * h);
+            (x_p + x_f, rate / h + v_f)
+        }
+    }
+}
+
+/// The free motion of x'' + c x' + ω² x = 0 from (e0, e1) after τ: e^{−cτ/2}(e0 C + b S),
+/// b = e1 + c e0/2, with C' = κ S and S' = C, κ = c²/4 − ω² (cosines under-damped,
+/// hyperbolic over-damped, and their limits between).
+fn free(w2: f64, c: f64, e0: f64, e1: f64, tau: f64) -> (f64, f64) {
+    let half = 0.5 * c;
+    let kappa = half * half - w2;
+    let b = e1 + half * e0;
+    let r = kappa.abs().sqrt();
+    // e^{−cτ/2} C and e^{−cτ/2} S, formed so that neither overflows over-damped.
+    let (ec, es) = if r * tau < 1e-4 {
+        let decay = (-half * tau).exp();
+        let k2 = kappa * tau * tau;
+        (
+            decay * (1.0 + 0.5 * k2 + k2 * k2 / 24.0),
+            decay * tau * (1.0 + k2 / 6.0 + k2 * k2 / 120.0),
+        )
+    } else if kappa < 0.0 {
+        let decay = (-half * tau).exp();
+        (decay * (r * tau).cos(), decay * (r * tau).sin() / r)
+    } else {
+        let up = ((r - half) * tau).exp();
+        let down = (-(r + half) * tau).exp();
+        (0.5 * (up + down), 0.5 * (up - down) / r)
+    };
+    let x = e0 * ec + b * es;
+    let v = -half * x + e0 * kappa * es + b * ec;
+    (x, v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// x'' + c x' + ω² x = g for a polynomial g, against the equation itself: the residual of
+    /// the motion, by finite differences of its own closed form, and its start.
+    fn check_motion(w2: f64, c: f64, h: f64, g: &[f64]) {
+        let (x0, v0) = (0.3, -1.7);
+        let m = motion(w2, c, h, g, x0, v0);
+        let (xs, vs) = evaluate(&m, w2, c, h, 0.0);
+        assert!((xs - x0).abs() < 1e-12 && (vs - v0).abs() < 1e-10 * (1.0 + v0.abs()));
+        for &sigma in &[0.1, 0.37, 0.5, 0.83, 0.99] {
+            // Short against the step and the period, so that the difference is the derivative.
+            let dt = (1e-5 * h).min(1e-4 / w2.sqrt().max(1.0));
+            let ds = dt / h;
+            let (x, v) = evaluate(&m, w2, c, h, sigma);
+            let (_, vp) = evaluate(&m, w2, c, h, sigma + ds);
+            let (_, vm) = evaluate(&m, w2, c, h, sigma - ds);
+            let a = (vp - vm) / (2.0 * dt);
+            let residual = a + c * v + w2 * x - horner(g, sigma);
+            let size = horner(g, sigma).abs() + w2 * x.abs() + c * v.abs() + 1.0;
+            assert!(
+                residual.abs() < 1e-5 * size,
+                "ω² {w2}, c {c}, h {h}, σ {sigma}: residual {residual:e} of {size:e}"
+            );
+        }
+    }
+
+    /// Series and particular forms, under-, critically and over-damped, and a free mass.
+    #[test]
+    fn motions_satisfy_their_equation() {
+        let g = [1.0, -2.0, 0.5, 3.0, -1.0];
+        for &(w2, c) in &[
+            (1.0, 0.0),
+            (100.0, 0.4),
+            (1.0e4, 200.0),
+            (1.0e4, 500.0),
+            (0.0, 0.0),
+            (4.0e6, 10.0),
+        ] {
+            for &h in &[1e-3, 0.01, 0.1, 1.0] {
+                check_motion(w2, c, h, &g);
+            }
+        }
+    }
+
+    /// The polynomial through Chebyshev–Lobatto samples of a polynomial is that polynomial.
+    #[test]
+    fn a_polynomial_is_fitted_exactly() {
+        let p = [0.5, -1.0, 2.0, 0.25, -3.0];
+        let d = 6;
+        let values: Vec<f64> = (0..=d)
+            .map(|j| {
+                horner(
+                    &p,
+                    0.5 * (1.0 - (std::f64::consts::PI * j as f64 / d as f64).cos()),
+                )
+            })
+            .collect();
+        let cheb = chebyshev_coefficients(&values);
+        assert!(cheb[5].abs() < 1e-13 && cheb[6].abs() < 1e-13, "{cheb:?}");
+        let back = monomial_in_sigma(&cheb);
+        for (a, b) in back.iter().zip(p.iter().chain([0.0, 0.0].iter())) {
+            assert!((a - b).abs() < 1e-12, "{back:?}");
+        }
+    }
+}
