@@ -5,12 +5,12 @@
 
 mod common;
 
-use common::{at_defaults, changed, parse, run_beam, Set, FRYBA_BRIDGE};
+use common::{
+    at_defaults, changed, hslm_bridge, mid_headlines, parse, run_beam, Set, FRYBA_BRIDGE,
+};
 use rollbeam::analysis::modes::{modes, ModeKind};
 use rollbeam::beam::Beam;
 use rollbeam::ode::Method;
-use rollbeam::run::beam::BeamRun;
-use rollbeam::scene::Scene;
 
 /// What a study scene leaves to the plan once its model, mesh and solver settings are taken
 /// out (and its deformed-shape snapshots, which a test does not draw).
@@ -24,47 +24,6 @@ const LEFT_TO_THE_PLAN: [Set<'static>; 7] = [
     Set::LeftOut("output.shapes"),
 ];
 
-/// The 15 m concrete bridge of the HSLM study, with a train given as `train`.
-fn hslm_bridge(train: &str, duration: f64) -> Scene {
-    parse(&format!(
-        "name: hslm-bridge
-duration: {duration}
-track:
-  beam:
-    from: [0.0, 0.0]
-    to: [15.0, 0.0]
-    E: 35.0e9
-    G: 14.5833e9
-    rho: 2500
-    A: 6.0
-    Av: 5.0
-    I: 0.219830886
-    supports: {{from: pinned, to: roller}}
-    damping: {{ratio: 0.0185, modes: [1, 2]}}
-train: {train}
-output:
-  probes: [{{name: mid, x: 7.5}}]
-"
-    ))
-}
-
-/// Probe `mid`'s w extremes, residual amplitude and largest acceleration.
-fn headlines(r: &BeamRun) -> [f64; 4] {
-    let k = r
-        .setup
-        .probes
-        .iter()
-        .position(|p| p.name == "mid")
-        .expect("mid");
-    let [_, w, _, a] = r.extremes.probes[k];
-    [
-        w.min,
-        w.max,
-        r.amplitude_after_exit(k).unwrap_or(f64::NAN),
-        a.largest_magnitude().0,
-    ]
-}
-
 /// Two axles 200 m apart at 10 m/s over a beam that starts at rest, the first on the
 /// support: the error estimate sees nothing as an axle enters, and without a breakpoint at
 /// each entry the steps grew past the whole train (w_min = 0 after ten steps). Each axle
@@ -75,12 +34,14 @@ fn no_step_carries_an_axle_past_the_span() {
     let one = at_defaults(&hslm_bridge(
         "{axles: [0.0], load: 170.0e3, speed: 10.0}",
         0.5,
+        "",
     ));
     let two = at_defaults(&hslm_bridge(
         "{axles: [0.0, 200.0], load: 170.0e3, speed: 10.0}",
         0.5,
+        "",
     ));
-    let (w1, w2) = (headlines(&one)[0], headlines(&two)[0]);
+    let (w1, w2) = (mid_headlines(&one)[0], mid_headlines(&two)[0]);
     assert!(w1 < -1.5e-3, "one axle: {w1:e}");
     assert!((w2 - w1).abs() <= 1e-3 * w1.abs(), "{w2:e} against {w1:e}");
     let t = two.extremes.probes[0][1].min_t;
@@ -97,8 +58,8 @@ fn no_step_carries_an_axle_past_the_span() {
 #[test]
 fn a_long_free_vibration_leaves_the_headlines_alone() {
     let train = "{hslm: A1, speed: 90.0}";
-    let short = headlines(&at_defaults(&hslm_bridge(train, 0.5)));
-    let long = headlines(&at_defaults(&hslm_bridge(train, 30.0)));
+    let short = mid_headlines(&at_defaults(&hslm_bridge(train, 0.5, "")));
+    let long = mid_headlines(&at_defaults(&hslm_bridge(train, 30.0, "")));
     let scale = short[0].abs();
     for (k, name) in ["w_min", "w_max", "residual"].iter().enumerate() {
         assert!(
@@ -135,7 +96,7 @@ fn the_output_grid_moves_no_extreme() {
             "{what}: {a:e} on the default grid, {b:e} on the fine one"
         )
     };
-    let w_scale = headlines(&coarse)[0].abs();
+    let w_scale = mid_headlines(&coarse)[0].abs();
     for (p, q) in coarse.extremes.probes.iter().zip(&fine.extremes.probes) {
         for (k, scale) in [w_scale, w_scale, 1e-3, p[3].largest_magnitude().0]
             .into_iter()
@@ -182,13 +143,13 @@ fn the_residual_and_the_peaks_within_the_accuracy_at_the_defaults() {
         ),
         (
             "HSLM-A1 at 90 m/s",
-            hslm_bridge("{hslm: A1, speed: 90.0}", 0.5),
+            hslm_bridge("{hslm: A1, speed: 90.0}", 0.5, ""),
         ),
     ];
     for (name, scene) in scenes {
-        let planned = headlines(&at_defaults(&scene));
+        let planned = mid_headlines(&at_defaults(&scene));
         let atol = 1e-8 * planned[0].abs();
-        let converged = headlines(&run_beam(&scene, Method::GenAlpha, 1e-8, atol));
+        let converged = mid_headlines(&run_beam(&scene, Method::GenAlpha, 1e-8, atol));
         let scale = converged[0].abs();
         for (k, what) in ["w_min", "w_max", "residual"].iter().enumerate() {
             let error = (planned[k] - converged[k]).abs() / scale;

@@ -332,20 +332,7 @@ fn a_train_is_the_superposition_of_its_axles() {
         ))
     })
     .collect();
-    let peak = full
-        .rows
-        .iter()
-        .map(|r| r.probes[0].w.abs())
-        .fold(0.0, f64::max);
-    let worst = full
-        .rows
-        .iter()
-        .enumerate()
-        .map(|(i, r)| {
-            let sum: f64 = parts.iter().map(|p| p.rows[i].probes[0].w).sum();
-            (r.probes[0].w - sum).abs()
-        })
-        .fold(0.0, f64::max);
+    let (worst, peak) = common::superposition_error(&full, &parts);
     eprintln!(
         "superposition off by {:.2e} of the peak {peak:.3e} m",
         worst / peak

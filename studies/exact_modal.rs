@@ -10,36 +10,11 @@
 
 mod common;
 
-use common::{parse, run_beam};
+use common::{hslm_bridge, mid_headlines, parse, run_beam, superposition_error};
 use rollbeam::ode::Method;
 use rollbeam::run::beam::BeamRun;
 use rollbeam::run::{self, Overrides};
 use rollbeam::scene::Scene;
-
-/// The 15 m concrete bridge of the HSLM study under `train`.
-fn hslm_bridge(train: &str) -> Scene {
-    parse(&format!(
-        "name: hslm-bridge
-duration: 0.5
-track:
-  beam:
-    from: [0.0, 0.0]
-    to: [15.0, 0.0]
-    E: 35.0e9
-    G: 14.5833e9
-    rho: 2500
-    A: 6.0
-    Av: 5.0
-    I: 0.219830886
-    supports: {{from: pinned, to: roller}}
-    damping: {{ratio: 0.0185, modes: [1, 2]}}
-    model: modal
-train: {train}
-output:
-  probes: [{{name: mid, x: 7.5}}]
-"
-    ))
-}
 
 /// D44's bridge, shear made stiff, as a modal beam under `train`, for `duration` s after it.
 fn fryba_bridge(train: &str, damping: &str, duration: f64) -> Scene {
@@ -77,17 +52,6 @@ fn exact(scene: &Scene) -> BeamRun {
         .expect("a beam scene")
 }
 
-/// Probe `mid`'s w extremes, residual amplitude and largest acceleration.
-fn headlines(r: &BeamRun) -> [f64; 4] {
-    let [_, w, _, a] = r.extremes.probes[0];
-    [
-        w.min,
-        w.max,
-        r.amplitude_after_exit(0).unwrap_or(f64::NAN),
-        a.largest_magnitude().0,
-    ]
-}
-
 /// HSLM-A3 at 103 m/s, where the time-stepped default run is 2.4·10⁻³ off in its lowest
 /// deflection: at its default tolerance the exact run agrees with generalized-α at rtol
 /// 10⁻¹⁰ (204 000 steps) to 10⁻⁵ of each headline (measured: 2·10⁻⁶ in w_min, 10⁻⁷ in the
@@ -95,10 +59,10 @@ fn headlines(r: &BeamRun) -> [f64; 4] {
 /// node crossing, none rejected; and the energy balance closes to 10⁻⁶.
 #[test]
 fn agrees_with_the_time_stepped_modal_run_at_rtol_1e_10() {
-    let scene = hslm_bridge("{hslm: A3, speed: 103.0}");
+    let scene = hslm_bridge("{hslm: A3, speed: 103.0}", 0.5, "    model: modal\n");
     let closed = exact(&scene);
     let stepped = run_beam(&scene, Method::GenAlpha, 1e-10, 1e-15);
-    let (a, b) = (headlines(&closed), headlines(&stepped));
+    let (a, b) = (mid_headlines(&closed), mid_headlines(&stepped));
     for (k, name) in ["w_min", "w_max", "amplitude after exit", "a_max"]
         .iter()
         .enumerate()
@@ -137,20 +101,7 @@ fn a_train_is_the_superposition_of_its_axles() {
     .iter()
     .map(|load| run(load))
     .collect();
-    let peak = full
-        .rows
-        .iter()
-        .map(|r| r.probes[0].w.abs())
-        .fold(0.0, f64::max);
-    let worst = full
-        .rows
-        .iter()
-        .enumerate()
-        .map(|(i, r)| {
-            let sum: f64 = parts.iter().map(|p| p.rows[i].probes[0].w).sum();
-            (r.probes[0].w - sum).abs()
-        })
-        .fold(0.0, f64::max);
+    let (worst, peak) = superposition_error(&full, &parts);
     eprintln!(
         "superposition off by {:.2e} of the peak {peak:.3e} m",
         worst / peak
@@ -209,7 +160,11 @@ fn refused_where_it_does_not_apply() {
     };
     refused(&common::load("bridge-d44.yaml"), "a disk");
     refused(
-        &hslm_bridge("{hslm: A1, speed: 90.0, model: moving-mass}"),
+        &hslm_bridge(
+            "{hslm: A1, speed: 90.0, model: moving-mass}",
+            0.5,
+            "    model: modal\n",
+        ),
         "moving masses",
     );
     refused(

@@ -180,3 +180,65 @@ pub fn hann_mean(r: &BeamRun, until: f64) -> f64 {
     }
     num / den
 }
+
+/// The 15 m concrete bridge of the HSLM study under `train`, run for `duration` s after it;
+/// `beam` adds keys to the beam (e.g. "    model: modal\n").
+pub fn hslm_bridge(train: &str, duration: f64, beam: &str) -> Scene {
+    parse(&format!(
+        "name: hslm-bridge
+duration: {duration}
+track:
+  beam:
+    from: [0.0, 0.0]
+    to: [15.0, 0.0]
+    E: 35.0e9
+    G: 14.5833e9
+    rho: 2500
+    A: 6.0
+    Av: 5.0
+    I: 0.219830886
+    supports: {{from: pinned, to: roller}}
+    damping: {{ratio: 0.0185, modes: [1, 2]}}
+{beam}train: {train}
+output:
+  probes: [{{name: mid, x: 7.5}}]
+"
+    ))
+}
+
+/// Probe `mid`'s w extremes, residual amplitude and largest acceleration.
+pub fn mid_headlines(r: &BeamRun) -> [f64; 4] {
+    let k = r
+        .setup
+        .probes
+        .iter()
+        .position(|p| p.name == "mid")
+        .expect("mid");
+    let [_, w, _, a] = r.extremes.probes[k];
+    [
+        w.min,
+        w.max,
+        r.amplitude_after_exit(k).unwrap_or(f64::NAN),
+        a.largest_magnitude().0,
+    ]
+}
+
+/// How far the first probe's deflection in `full` is from the sum of it in `parts` at every
+/// output time, and the largest deflection: (worst, peak), m. The runs share their clock.
+pub fn superposition_error(full: &BeamRun, parts: &[BeamRun]) -> (f64, f64) {
+    let peak = full
+        .rows
+        .iter()
+        .map(|r| r.probes[0].w.abs())
+        .fold(0.0, f64::max);
+    let worst = full
+        .rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let sum: f64 = parts.iter().map(|p| p.rows[i].probes[0].w).sum();
+            (r.probes[0].w - sum).abs()
+        })
+        .fold(0.0, f64::max);
+    (worst, peak)
+}
