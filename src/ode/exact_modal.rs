@@ -47,8 +47,10 @@ struct StepMotion {
 }
 
 pub(crate) struct ExactModal {
-    /// Degree of the polynomial the force is fitted by.
+    /// Degree of the polynomial the force is fitted by, and its Chebyshev–Lobatto points in
+    /// the step's own time.
     degree: usize,
+    nodes: Vec<f64>,
     linear: Option<LinearModal>,
     trial: StepMotion,
     accepted: StepMotion,
@@ -59,6 +61,7 @@ impl ExactModal {
     pub fn new(n: usize) -> Self {
         ExactModal {
             degree: 6,
+            nodes: Vec::new(),
             linear: None,
             trial: StepMotion::default(),
             accepted: StepMotion::default(),
@@ -88,6 +91,10 @@ impl Stepper for ExactModal {
         // A force of degree d within its pieces is fitted exactly with two degrees to spare,
         // which the error estimate reads.
         self.degree = linear.degree + 2;
+        let d = self.degree as f64;
+        self.nodes = (0..=self.degree)
+            .map(|j| 0.5 * (1.0 - (std::f64::consts::PI * j as f64 / d).cos()))
+            .collect();
         self.linear = Some(linear);
         self.y_new.copy_from_slice(y0);
         self.accepted = StepMotion {
@@ -112,13 +119,10 @@ impl Stepper for ExactModal {
         let d = self.degree;
         // The force at the Chebyshev–Lobatto points of the step, the state held at rest: what
         // remains of f is g(t).
-        let nodes: Vec<f64> = (0..=d)
-            .map(|j| 0.5 * (1.0 - (std::f64::consts::PI * j as f64 / d as f64).cos()))
-            .collect();
         let zeros = vec![0.0; n];
         let mut samples = vec![vec![0.0; d + 1]; n];
         let mut f = vec![0.0; n];
-        for (j, &sj) in nodes.iter().enumerate() {
+        for (j, &sj) in self.nodes.iter().enumerate() {
             s.force(t + sj * h, &zeros, &zeros, &mut f);
             ctx.stats.rhs_evals += 1;
             for k in 0..n {
