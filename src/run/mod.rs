@@ -119,6 +119,10 @@ pub struct Overrides {
     /// reference has them: three dense-output evaluations a step that a run scored otherwise
     /// would pay for nothing (a third more time on the bridge, more with a train).
     pub windowed_means: bool,
+    /// Leave the envelope along the beam unwatched: a sweep's case reports its probes and its
+    /// disk alone, and the envelope's stations, watched at every step end, are most of what
+    /// such a run costs.
+    pub no_envelope: bool,
 }
 
 impl Overrides {

@@ -45,7 +45,11 @@ impl Watches {
             after_exit: Watch::new(probes, Turning::OnTheSolution),
             disk: Watch::new(4, Turning::OnTheSolution),
             gap: Watch::new(1, Turning::OnTheSolution),
-            along: Watch::new(4 * stations + 1, Turning::OnTheParabola),
+            // No stations, no stretch through them.
+            along: Watch::new(
+                if stations == 0 { 0 } else { 4 * stations + 1 },
+                Turning::OnTheParabola,
+            ),
         }
     }
 }
@@ -64,6 +68,8 @@ pub(super) struct Recorder<'a> {
     pub(super) pictures: Pictures<'a>,
     pub(super) means: Option<WindowedMeans>,
     pub(super) watches: Watches,
+    /// Whether the envelope along the beam is watched (not in a sweep's case).
+    pub(super) watch_along: bool,
     /// The snapshot at the end of the last step watched.
     pub(super) last: Option<(f64, Snapshot)>,
     /// The snapshot before that: with the stations, the start of the last step watched.
@@ -119,7 +125,7 @@ impl Recorder<'_> {
                 gap,
             ]
         });
-        let along = if along {
+        let along = if along && self.watch_along {
             let displaced = beam.displacements(&self.stations, &q);
             let accelerations = beam.deflections(&self.stations, &a);
             stations_watched(&self.envelope.x, &displaced, &accelerations)
@@ -464,7 +470,11 @@ pub(super) fn recorder<'a>(
         means: over
             .windowed_means
             .then(|| WindowedMeans::new(scene.duration, setup.probes.len())),
-        watches: Watches::new(setup.probes.len(), SAMPLES),
+        watches: Watches::new(
+            setup.probes.len(),
+            if over.no_envelope { 0 } else { SAMPLES },
+        ),
+        watch_along: !over.no_envelope,
         last: None,
         before: None,
         spacing,

@@ -380,7 +380,13 @@ pub fn run_shard(
         let values = case_values(&plan, &settings, id)?;
         let outcome = Planner::default()
             .plan(&spec)
-            .and_then(|scene| run::run(&scene, &Overrides::default(), false))
+            .and_then(|scene| {
+                let over = Overrides {
+                    no_envelope: true,
+                    ..Default::default()
+                };
+                run::run(&scene, &over, false)
+            })
             .map(|r| summarise(&r))
             .map_err(|e| e.to_string());
         let record = Record::of(&row((values, outcome)));

@@ -337,9 +337,13 @@ pub fn run_case(
     values: &[Value],
     over: &Overrides,
 ) -> Result<Summary, String> {
+    let over = Overrides {
+        no_envelope: true,
+        ..over.clone()
+    };
     case_spec(spec, keys, values)
         .and_then(|c| Planner::default().plan(&c))
-        .and_then(|scene| run::run(&scene, over, false))
+        .and_then(|scene| run::run(&scene, &over, false))
         .map(|r| summarise(&r))
         .map_err(|e| e.to_string())
 }
