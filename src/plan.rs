@@ -28,7 +28,15 @@ pub struct Planner {
 impl Planner {
     /// Check the scene as it now stands and plan it.
     pub fn plan(&self, spec: &SceneSpec) -> Result<Scene, Error> {
-        Ok(self.plan_checked(spec.check()?))
+        let scene = self.plan_checked(spec.check()?);
+        // Whether the scene's `exact-modal` applies is known once the model is chosen: refused
+        // here, `check` and every run say so alike.
+        match scene.beam().and_then(|b| b.exact_modal_refusal()) {
+            Some(why) if scene.solver.method == crate::ode::Method::ExactModal => Err(
+                Error::Input(format!("scene {}: `solver.method`: {why}", scene.name)),
+            ),
+            _ => Ok(scene),
+        }
     }
 
     fn plan_checked(&self, checked: Checked) -> Scene {

@@ -175,6 +175,24 @@ fn refused_where_it_does_not_apply() {
         ),
         "a linear beam",
     );
+    // Named by the scene, it is refused when the scene is planned: `check` says so too.
+    let named = rollbeam::scene::SceneSpec::parse(
+        &std::fs::read_to_string(common::studies_dir().join("hslm-15m.yaml"))
+            .unwrap()
+            .replace("    damping:", "    model: linear\n    damping:")
+            .replace("train:", "solver: {method: exact-modal}\ntrain:"),
+        "named",
+        "named",
+    )
+    .expect("the scene reads");
+    let e = rollbeam::plan::Planner::default()
+        .plan(&named)
+        .err()
+        .expect("the plan refuses it");
+    assert!(
+        e.to_string().contains("`solver.method`") && e.to_string().contains("a linear beam"),
+        "{e}"
+    );
     let curve = rollbeam::scene::SceneSpec::parse(
         "duration: 1\ntrack:\n  curve:\n    parabola: {k: 1}\ndisk: {mass: 1, radius: 0.1, s0: -1}\nsolver: {method: exact-modal}\n",
         "curve",

@@ -25,9 +25,10 @@ pub const PALETTE: [RGBColor; 10] = [
     RGBColor(127, 127, 127),
 ];
 
-/// Pens of the reference lines drawn over a chart's series (an envelope, a code limit): in
-/// black and dark grey and thicker, so they stand apart from any number of series.
-const REFERENCE_PENS: [(RGBColor, u32); 2] = [(RGBColor(0, 0, 0), 3), (RGBColor(90, 90, 90), 2)];
+/// Pens of the reference lines drawn over a chart's series (an envelope, a code limit): black,
+/// which no series is, the first thick and the second thin, so that neither is taken for a
+/// series (the palette's grey) or for the other.
+const REFERENCE_PENS: [(RGBColor, u32); 2] = [(RGBColor(0, 0, 0), 3), (RGBColor(0, 0, 0), 1)];
 
 fn plot_error(path: &Path, e: impl std::fmt::Display) -> Error {
     Error::Output(format!("cannot draw {}: {e}", path.display()))

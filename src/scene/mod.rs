@@ -117,6 +117,27 @@ pub struct BeamScene {
 }
 
 impl BeamScene {
+    /// Why `exact-modal` cannot integrate this scene, if it cannot: it takes a modal beam under
+    /// moving forces, point loads or its weight, and nothing that rides with inertia.
+    pub fn exact_modal_refusal(&self) -> Option<String> {
+        let what = if self.disk.is_some() {
+            "a disk".to_string()
+        } else if self
+            .train
+            .as_ref()
+            .is_some_and(|t| t.model == TrainModel::MovingMass)
+        {
+            "moving masses".to_string()
+        } else if !matches!(self.beam.model, BeamModel::Modal { .. }) {
+            format!("a {} beam", self.beam.model.name())
+        } else {
+            return None;
+        };
+        Some(format!(
+            "exact-modal integrates a modal beam (`model: modal`) under moving forces, point loads or its weight; this scene has {what}: use genalpha"
+        ))
+    }
+
     /// Whether a load is switched on or off during the run, the beam's own weight included
     /// where it drops on a beam that starts undeformed: it then excites every mode the mesh
     /// holds.

@@ -388,18 +388,11 @@ pub fn run(
     let mass_lu = SparseLu::factor(loaded.model_mass(), None).ok_or_else(|| {
         Error::Solver(format!("scene {}: the mass matrix is singular", scene.name))
     })?;
-    if opts.method == Method::ExactModal && (coupled.is_some() || loaded.linear_modal().is_none()) {
-        return Err(Error::Input(format!(
-            "scene {}: exact-modal integrates a modal beam (`model: modal`) under moving forces, point loads or its weight; this scene has {}: use genalpha",
-            scene.name,
-            if coupled.is_some() {
-                "a disk".to_string()
-            } else if setup.train.as_ref().is_some_and(|t| t.model == crate::beam::train::TrainModel::MovingMass) {
-                "moving masses".to_string()
-            } else {
-                format!("a {} beam", setup.beam.model.name())
-            }
-        )));
+    if let Some(why) = setup
+        .exact_modal_refusal()
+        .filter(|_| opts.method == Method::ExactModal)
+    {
+        return Err(Error::Input(format!("scene {}: {why}", scene.name)));
     }
     let literal = thesis_system(scene, setup, coupled.as_ref(), &opts)?;
 
