@@ -49,6 +49,7 @@ pub use metrics::*;
 pub use plan::*;
 pub use reference::*;
 pub use report::*;
+pub use store::reference_for;
 pub use trials::*;
 
 /// The accuracies the command names the cheapest settings for.

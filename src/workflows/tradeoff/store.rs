@@ -13,11 +13,13 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::{Headline, MeansReference, Plan, Reference};
+use super::{reference, reference_method, Headline, MeansReference, Plan, Reference};
 use crate::error::Error;
 use crate::files::{content_hash, read_text};
 use crate::ode::Method;
 use crate::output::{io_error, write, yaml};
+use crate::say;
+use crate::scene::Scene;
 
 /// The hash of the scene file at `path`.
 pub fn scene_hash(path: &Path) -> Result<String, Error> {
@@ -156,6 +158,47 @@ pub fn store(reference: &Reference, name: &str, hash: &str, path: &Path) -> Resu
 
 fn history_path(path: &Path) -> PathBuf {
     path.with_extension("history.csv")
+}
+
+/// The reference for `scene`, read from `file`: the stored one where it serves, otherwise
+/// computed, and computed and stored when `recompute` is set (`--reference`). The line says
+/// which, and why.
+pub fn reference_for(
+    scene: &Scene,
+    file: &Path,
+    plan: &Plan,
+    recompute: bool,
+    made_by: &str,
+) -> Result<(Reference, String), Error> {
+    let path = stored_path(file, &scene.name);
+    let hash = scene_hash(file)?;
+    let why = if recompute {
+        "asked to compute it again".to_string()
+    } else {
+        let scene_order = scene.beam().map(|b| b.beam.order);
+        match load(&path, &hash, plan, reference_method(scene), scene_order) {
+            Stored::Usable(r) => {
+                let line = format!("stored reference {} ({hash})", path.display());
+                return Ok((*r, line));
+            }
+            Stored::Missing => {
+                format!("no stored reference at {}", path.display())
+            }
+            Stored::Stale(why) => {
+                format!("the stored reference does not serve: {why}")
+            }
+        }
+    };
+    say!("{}: computing the reference ({why})…", scene.name);
+    let mut r = reference(scene, plan, made_by)?;
+    let line = if recompute {
+        r.means = stored_means(&path, &hash);
+        store(&r, &scene.name, &hash, &path)?;
+        format!("computed and stored the reference in {}", path.display())
+    } else {
+        format!("computed the reference ({why}; `{made_by}` stores one)")
+    };
+    Ok((r, line))
 }
 
 /// Why a stored reference cannot serve, or the reference itself.
