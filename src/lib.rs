@@ -16,6 +16,7 @@ pub mod plan;
 pub mod rolling;
 pub mod run;
 pub mod scene;
+pub mod vehicle;
 pub mod workflows;
 
 /// println! that does not panic when stdout is closed (`rollbeam run … | head -1`): what a

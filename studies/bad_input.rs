@@ -1056,3 +1056,55 @@ fn bad_accuracy() {
         &["solver.accuracy", "rigid curve"],
     );
 }
+
+/// A beam for vehicles, and one vehicle whose parts `car` edits.
+const VEHICLE_BEAM: &str = "track:
+  beam:
+    from: [0.0, 0.0]
+    to: [25.0, 0.0]
+    E: 2.87e9
+    G: 1.0e12
+    rho: 2.303
+    A: 1000.0
+    Av: 1000.0
+    I: 2.9
+    supports: {from: pinned, to: roller}
+";
+
+fn car(edit: impl Fn(String) -> String) -> String {
+    let text = "vehicles:
+  - name: car
+    speed: 20.0
+    bodies: [{name: body, mass: 1000.0, inertia: 500.0, x: 1.0}]
+    axles: [{name: a1, x: 0.0}, {name: a2, x: 3.0}]
+    springs:
+      - {upper: body, lower: a1, x: 0.0, k: 1.0e6}
+      - {upper: body, lower: a2, x: 3.0, k: 1.0e6}
+"
+    .to_string();
+    format!("duration: 0.1\n{VEHICLE_BEAM}{}", edit(text))
+}
+
+/// Vehicles and their profile: one sentence naming the line and key for each flaw.
+#[test]
+fn vehicles_refused_with_one_sentence() {
+    let cases: [(&str, String, &[&str]); 14] = [
+        ("unknown-part", car(|t| t.replace("lower: a2", "lower: a9")), &["vehicles.springs.lower", "a9", "names no body or axle"]),
+        ("duplicate-name", car(|t| t.replace("name: a2", "name: body")), &["vehicles.axles.name", "names two parts"]),
+        ("negative-mass", car(|t| t.replace("mass: 1000.0", "mass: -1000.0")), &["vehicles.bodies.mass", "positive"]),
+        ("negative-k", car(|t| t.replace("k: 1.0e6}\n      - {upper: body, lower: a2", "k: -1.0e6}\n      - {upper: body, lower: a2")), &["vehicles.springs.k", "positive"]),
+        ("axles-decreasing", car(|t| t.replace("x: 3.0}]", "x: -3.0}]").replace("a2, x: 3.0", "a2, x: -3.0")), &["vehicles.axles.x", "increasing"]),
+        ("not-resting", car(|t| t.replace("x: 1.0}]", "x: 9.0}]")), &["does not rest on its axles"]),
+        ("loose-body", car(|t| t.replace("bodies: [", "bodies: [{name: cargo, mass: 10.0}, ")), &["cargo", "joined to no axle"]),
+        ("spring-off-axle", car(|t| t.replace("lower: a2, x: 3.0", "lower: a2, x: 2.0")), &["vehicles.springs.x", "not where axle"]),
+        ("no-axle", car(|t| t.replace("axles: [{name: a1, x: 0.0}, {name: a2, x: 3.0}]", "axles: []")), &["vehicles.axles", "no axle"]),
+        ("disk-wheel", car(|t| t.replace("speed: 20.0", "speed: 20.0\n    wheel: disk")), &["vehicles.wheel", "radius"]),
+        ("profile-decreasing", car(|t| t) .replace("    supports: {from: pinned, to: roller}\n", "    supports: {from: pinned, to: roller}\n  profile:\n    points: [[0.0, 0.0], [-1.0, 0.01]]\n"), &["track.profile.points", "increasing"]),
+        ("profile-nan", car(|t| t).replace("    supports: {from: pinned, to: roller}\n", "    supports: {from: pinned, to: roller}\n  profile:\n    points: [[0.0, .nan]]\n"), &["track.profile.points", "finite"]),
+        ("iso-class", car(|t| t).replace("    supports: {from: pinned, to: roller}\n", "    supports: {from: pinned, to: roller}\n  profile:\n    iso8608: {class: Z}\n"), &["track.profile.iso8608.class", "A to H"]),
+        ("vehicles-on-curve", format!("duration: 1\n{PARABOLA}{}", car(|t| t).split_once("    supports: {from: pinned, to: roller}\n").expect("split").1), &["vehicles", "beam tracks only"]),
+    ];
+    for (name, text, needles) in cases {
+        rejected(name, &text, needles);
+    }
+}

@@ -172,8 +172,15 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
             spec.section.rho_a * g
         )?;
     }
+    for v in &setup.vehicles {
+        vehicle(f, v)?;
+    }
+    if setup.profile != crate::vehicle::profile::Profile::Smooth {
+        writeln!(f, "  profile: {}", profile(&setup.profile))?;
+    }
     match (&setup.disk, &setup.train) {
         (None, Some(t)) => train(f, t, b.length)?,
+        (None, None) if !setup.vehicles.is_empty() => {}
         (None, None) => writeln!(f, "  disk: none (no disk unknowns)")?,
         (Some(d), _) => writeln!(
             f,
@@ -314,6 +321,53 @@ fn train(f: &mut std::fmt::Formatter, t: &Train, length: f64) -> std::fmt::Resul
             t.masses.iter().copied().fold(0.0, f64::max),
             t.patch
         ),
+    }
+}
+
+/// A vehicle: its parts, how it travels, what each wheel bears at rest.
+fn vehicle(f: &mut std::fmt::Formatter, v: &crate::vehicle::Vehicle) -> std::fmt::Result {
+    let loads: Vec<String> = v
+        .axles
+        .iter()
+        .zip(&v.static_loads)
+        .map(|(a, p)| format!("{} {:.6e} N", a.name, p))
+        .collect();
+    writeln!(
+        f,
+        "  vehicle {}: {} bodies ({} unknowns), {} axles, {} springs; from x = {} m at {} m/s{}; point wheels bearing at rest {}",
+        v.name,
+        v.bodies.len(),
+        v.unknowns(),
+        v.axles.len(),
+        v.springs.len(),
+        v.x0,
+        v.speed,
+        if v.acceleration == 0.0 {
+            String::new()
+        } else {
+            format!(
+                ", accelerating at {} m/s²{}",
+                v.acceleration,
+                v.stops_at()
+                    .map_or(String::new(), |t| format!(" (stops at t = {t:.6} s)"))
+            )
+        },
+        loads.join(", ")
+    )
+}
+
+/// The running surface, in one phrase.
+fn profile(p: &crate::vehicle::profile::Profile) -> String {
+    use crate::vehicle::profile::Profile;
+    match p {
+        Profile::Smooth => "level".into(),
+        Profile::Points(pts) => format!(
+            "piecewise linear through {} points from x = {} to {} m, constant beyond",
+            pts.len(),
+            pts[0][0],
+            pts[pts.len() - 1][0]
+        ),
+        Profile::Cosines(c) => format!("ISO 8608 random profile, {} cosines", c.len()),
     }
 }
 

@@ -78,7 +78,21 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
         crate::workflows::sweep::cluster::record_case(plan, id, &result)?;
     }
     let h = result.header();
-    say!("{}: {}", scene.name, h.stop.sentence(h.t_end));
+    let lost = match &result {
+        Run::Beam(b) => b
+            .vehicles
+            .iter()
+            .find_map(|v| v.lost_contact.as_ref().map(|a| (v.name.clone(), a.clone()))),
+        Run::Rolling(_) => None,
+    };
+    match lost {
+        Some((vehicle, axle)) => say!(
+            "{}: the wheel of axle {axle} of vehicle {vehicle} lost contact with the deck at t = {:.6} s (its contact force fell to zero; contact-lost)",
+            scene.name,
+            h.t_end
+        ),
+        None => say!("{}: {}", scene.name, h.stop.sentence(h.t_end)),
+    }
     match &result {
         Run::Rolling(r) => {
             let d = &r.last.disk;
@@ -93,6 +107,17 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
                     w.min,
                     w.max
                 );
+            }
+            for v in &b.vehicles {
+                for (body, a, _) in v.bodies.iter().filter(|(_, a, _)| a.seen()) {
+                    say!(
+                        "  vehicle {} body {}: largest |a| {:.6e} m/s² at t = {:.6} s",
+                        v.name,
+                        body,
+                        a.largest_magnitude().0,
+                        a.largest_magnitude().1
+                    );
+                }
             }
             for w in b.setup.warnings() {
                 say!("  warning: {w}");

@@ -31,6 +31,7 @@ mod moving_mass;
 pub mod patch;
 mod thesis;
 pub mod thesis_system;
+pub mod vehicles;
 
 use std::borrow::Cow;
 use std::cell::{OnceCell, RefCell};

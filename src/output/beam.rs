@@ -23,6 +23,8 @@ struct Summary {
     #[serde(skip_serializing_if = "Option::is_none")]
     disk: Option<BeamDiskSummary>,
     probes: BTreeMap<String, ProbeSummary>,
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    vehicles: BTreeMap<String, VehicleSummary>,
     envelope: EnvelopeSummary,
     /// What the recorded accelerations count (the cutoff, and the modes below it).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -234,6 +236,83 @@ fn probe_summary(r: &BeamRun, k: usize) -> ProbeSummary {
     }
 }
 
+/// A vehicle's extremes from the time it came onto the deck, located on the solution.
+#[derive(Serialize)]
+struct VehicleSummary {
+    bodies: BTreeMap<String, BodySummary>,
+    axles: BTreeMap<String, AxleSummary>,
+    /// When its last wheel left the deck, if it did.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    left_t: Option<f64>,
+    /// When it stopped, braking, if it did.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stopped_t: Option<f64>,
+    /// The axle whose wheel lost contact and stopped the run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    contact_lost: Option<String>,
+}
+
+/// A body's largest |vertical acceleration| of its centre of mass, when, and its root mean
+/// square (m/s²); absent while the vehicle never came onto the deck.
+#[derive(Serialize)]
+struct BodySummary {
+    a_max: f64,
+    a_max_t: f64,
+    a_rms: f64,
+}
+
+#[derive(Serialize)]
+struct AxleSummary {
+    rn_min: f64,
+    rn_min_t: f64,
+    rn_max: f64,
+    rn_max_t: f64,
+}
+
+fn vehicle_summaries(r: &BeamRun) -> BTreeMap<String, VehicleSummary> {
+    r.vehicles
+        .iter()
+        .map(|v| {
+            let bodies = v
+                .bodies
+                .iter()
+                .filter(|(_, range, _)| range.seen())
+                .map(|(name, range, rms)| {
+                    let (a_max, a_max_t) = range.largest_magnitude();
+                    let body = BodySummary {
+                        a_max,
+                        a_max_t,
+                        a_rms: *rms,
+                    };
+                    (name.clone(), body)
+                })
+                .collect();
+            let axles = v
+                .axles
+                .iter()
+                .filter(|(_, range)| range.seen())
+                .map(|(name, range)| {
+                    let axle = AxleSummary {
+                        rn_min: range.min,
+                        rn_min_t: range.min_t,
+                        rn_max: range.max,
+                        rn_max_t: range.max_t,
+                    };
+                    (name.clone(), axle)
+                })
+                .collect();
+            let summary = VehicleSummary {
+                bodies,
+                axles,
+                left_t: v.left_t,
+                stopped_t: v.stopped_t,
+                contact_lost: v.lost_contact.clone(),
+            };
+            (v.name.clone(), summary)
+        })
+        .collect()
+}
+
 pub fn write_all(r: &BeamRun, dir: &Path, with_figures: bool) -> Result<(), Error> {
     write(&dir.join("history.csv"), &csv(r))?;
     if with_figures {
@@ -266,6 +345,7 @@ pub fn summary_yaml(r: &BeamRun) -> Result<String, Error> {
         probes: (0..r.setup.probes.len())
             .map(|k| (r.setup.probes[k].name.clone(), probe_summary(r, k)))
             .collect(),
+        vehicles: vehicle_summaries(r),
         envelope: envelope_summary(r),
         acceleration: r.acceleration.clone(),
         warnings: r.setup.warnings(),
@@ -286,6 +366,16 @@ pub fn csv(r: &BeamRun) -> String {
     }
     for p in &r.setup.probes {
         head.extend(["u", "w", "phi", "a"].map(|c| format!("{}.{c}", p.name)));
+    }
+    for v in &r.setup.vehicles {
+        head.push(format!("{}.x", v.name));
+        for b in &v.bodies {
+            head.extend(["y", "a"].map(|c| format!("{}.{}.{c}", v.name, b.name)));
+            if b.pitches() {
+                head.push(format!("{}.{}.theta", v.name, b.name));
+            }
+        }
+        head.extend(v.axles.iter().map(|a| format!("{}.{}.rn", v.name, a.name)));
     }
     head.extend(
         [
@@ -330,6 +420,19 @@ pub fn csv(r: &BeamRun) -> String {
         for (d, a) in row.probes.iter().zip(&row.accelerations) {
             v.extend([d.u, d.w, d.phi, *a]);
         }
+        if let Some(obs) = &row.vehicles {
+            for (i, veh) in r.setup.vehicles.iter().enumerate() {
+                v.push(obs.x[i]);
+                for (b, body) in veh.bodies.iter().enumerate() {
+                    let [y, theta, a] = obs.bodies[i][b];
+                    v.extend([y, a]);
+                    if body.pitches() {
+                        v.push(theta);
+                    }
+                }
+                v.extend(&obs.rn[i]);
+            }
+        }
         // The potential is the disk's alone: the beam's own weight, where the scene puts it
         // on (erratum 6 leaves it out), is a load, whose work is in `work`.
         v.extend([
@@ -347,8 +450,74 @@ pub fn csv(r: &BeamRun) -> String {
     out
 }
 
+/// EN 1990 Annex A2 (A2.4.4.3.2): the body's vertical acceleration at the levels of comfort
+/// very good, good and acceptable (m/s²).
+pub const COMFORT_LEVELS: [(f64, &str); 3] = [
+    (1.0, "very good (EN 1990 A2)"),
+    (1.3, "good"),
+    (2.0, "acceptable"),
+];
+
+/// The vehicles' body accelerations against time, with the comfort levels where they reach
+/// them, and their wheels' contact forces.
+fn vehicle_figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
+    let name = &r.header.scene.name;
+    let mut bodies: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    let mut wheels: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for (i, v) in r.setup.vehicles.iter().enumerate() {
+        let of = |f: &dyn Fn(&crate::coupling::vehicles::VehicleObservation) -> f64| {
+            r.rows
+                .iter()
+                .filter_map(|row| row.vehicles.as_ref().map(|o| (row.t, f(o))))
+                .collect::<Vec<_>>()
+        };
+        for (b, body) in v.bodies.iter().enumerate() {
+            bodies.push((
+                format!("{} {}", v.name, body.name),
+                of(&|o| o.bodies[i][b][2]),
+            ));
+        }
+        for (a, axle) in v.axles.iter().enumerate() {
+            wheels.push((format!("{} {}", v.name, axle.name), of(&|o| o.rn[i][a])));
+        }
+    }
+    let largest = bodies
+        .iter()
+        .flat_map(|(_, s)| s.iter())
+        .fold(0.0_f64, |m, p| m.max(p.1.abs()));
+    let t_end = r.rows.last().map_or(0.0, |row| row.t);
+    for (level, label) in COMFORT_LEVELS.iter().filter(|(l, _)| *l <= largest) {
+        bodies.push((label.to_string(), vec![(0.0, *level), (t_end, *level)]));
+    }
+    let bodies: Vec<(&str, Vec<(f64, f64)>)> = bodies
+        .iter()
+        .map(|(n, p)| (n.as_str(), p.clone()))
+        .collect();
+    line_chart(
+        &dir.join("vehicles.svg"),
+        &format!("{name}: vertical acceleration of the vehicles' bodies"),
+        "t (s)",
+        "a (m/s²)",
+        &bodies,
+    )?;
+    let wheels: Vec<(&str, Vec<(f64, f64)>)> = wheels
+        .iter()
+        .map(|(n, p)| (n.as_str(), p.clone()))
+        .collect();
+    line_chart(
+        &dir.join("wheels.svg"),
+        &format!("{name}: the wheels' contact forces"),
+        "t (s)",
+        "R (N)",
+        &wheels,
+    )
+}
+
 fn figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
     let name = &r.header.scene.name;
+    if !r.setup.vehicles.is_empty() {
+        vehicle_figures(r, dir)?;
+    }
     let probes: Vec<(String, Vec<(f64, f64)>)> = r
         .setup
         .probes

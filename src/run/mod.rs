@@ -241,6 +241,11 @@ impl Run {
             Run::Beam(b) if b.setup.disk.is_some() => {
                 BEAM.iter().chain(&DISK_ON_BEAM).copied().collect()
             }
+            Run::Beam(b) if !b.setup.vehicles.is_empty() => BEAM
+                .iter()
+                .chain(&["vehicles", "wheels"])
+                .copied()
+                .collect(),
             Run::Beam(_) => BEAM.to_vec(),
         }
     }

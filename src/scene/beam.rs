@@ -12,6 +12,20 @@ pub(super) fn refuse_beam_keys(c: &Checker, raw: &SceneFile) -> Result<(), Error
             "crosses beam tracks only; on a rigid curve give a disk",
         );
     }
+    if let Some(v) = &raw.vehicles {
+        return c.err(
+            v.referenced.line(),
+            "vehicles",
+            "ride beam tracks only; on a rigid curve give a disk",
+        );
+    }
+    if let Some(p) = &raw.track.value.profile {
+        return c.err(
+            p.referenced.line(),
+            "track.profile",
+            "is the running surface of a beam track's vehicles; a rigid curve has none",
+        );
+    }
     if let Some(loads) = &raw.loads {
         return c.err(
             loads.referenced.line(),
@@ -75,15 +89,30 @@ pub(super) fn beam_scene(
         None => None,
         Some(t) => Some(train(c, raw, t, &beam, gravity)?),
     };
-    // With a train `duration` is the free vibration after its last axle has left.
-    let duration = match (&train, &raw.train) {
-        (Some(t), Some(file)) => c.derived(
+    let vehicles = vehicles(c, raw, &beam, gravity)?;
+    let profile = profile(c, raw, &raw.track.value)?;
+    // With a train or vehicles `duration` is the free vibration after the last axle has left
+    // (or the last vehicle has stopped).
+    let crossing = train.as_ref().map_or(0.0, |t| t.gone(length)).max(
+        vehicles
+            .iter()
+            .map(|v| vehicle_gone(v, length, patch::dispersed_half_width(beam.depth)))
+            .fold(0.0, f64::max),
+    );
+    let duration = match (&raw.train, &raw.vehicles) {
+        (None, None) => duration,
+        (Some(file), _) => c.derived(
             file.value.speed.referenced.line(),
             "train.speed",
             "the run's length, the crossing plus `duration`,",
-            t.gone(length) + duration,
+            crossing + duration,
         )?,
-        _ => duration,
+        (None, Some(file)) => c.derived(
+            file.referenced.line(),
+            "vehicles",
+            "the run's length, the crossing plus `duration`,",
+            crossing + duration,
+        )?,
     };
     let (probes, shapes, magnify) = outputs(c, raw, length, duration)?;
     let rho_inf = match raw.solver.as_ref().and_then(|s| s.rho_inf.as_ref()) {
@@ -137,6 +166,8 @@ pub(super) fn beam_scene(
         start,
         disk,
         train,
+        vehicles,
+        profile,
         loads,
         probes,
         shapes,

@@ -16,6 +16,8 @@ pub(super) struct SceneFile {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub(super) train: Option<Spanned<TrainFile>>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) vehicles: Option<Spanned<Vec<Spanned<VehicleFile>>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub(super) loads: Option<Spanned<Vec<Spanned<LoadFile>>>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub(super) solver: Option<SolverFile>,
@@ -30,6 +32,8 @@ pub(super) struct TrackFile {
     pub(super) curve: Option<Spanned<CurveFile>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub(super) beam: Option<Spanned<BeamFile>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) profile: Option<Spanned<ProfileFile>>,
 }
 
 #[derive(Clone, Deserialize, Serialize)]

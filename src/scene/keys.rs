@@ -108,6 +108,64 @@ impl SceneSpec {
                     _ => return Err(not_a_number(key)),
                 }
             }
+            Some(("vehicles", rest)) => {
+                let Some((name, field)) = rest.split_once('.') else {
+                    return Err(not_a_number(key));
+                };
+                let Some(v) = f
+                    .vehicles
+                    .as_mut()
+                    .and_then(|l| l.value.iter_mut().find(|v| v.value.name.value == name))
+                else {
+                    return unset(&format!("vehicle named {}", quote(name)));
+                };
+                let v = &mut v.value;
+                match field.split('.').collect::<Vec<_>>()[..] {
+                    ["speed"] => number(&mut v.speed),
+                    ["x0"] => option(&mut v.x0),
+                    ["acceleration"] => option(&mut v.acceleration),
+                    ["springs", i, what @ ("k" | "c")] => {
+                        let Some(s) = i
+                            .parse::<usize>()
+                            .ok()
+                            .and_then(|i| v.springs.value.get_mut(i))
+                        else {
+                            return unset(&format!("spring {i} in vehicle {}", quote(name)));
+                        };
+                        match what {
+                            "k" => number(&mut s.value.k),
+                            _ => option(&mut s.value.c),
+                        }
+                    }
+                    [part, what @ ("mass" | "inertia")] => {
+                        if let Some(b) = v
+                            .bodies
+                            .value
+                            .iter_mut()
+                            .find(|b| b.value.name.value == part)
+                        {
+                            match what {
+                                "mass" => number(&mut b.value.mass),
+                                _ => option(&mut b.value.inertia),
+                            }
+                        } else if let Some(a) = v
+                            .axles
+                            .value
+                            .iter_mut()
+                            .find(|a| a.value.name.value == part && what == "mass")
+                        {
+                            option(&mut a.value.mass)
+                        } else {
+                            return unset(&format!(
+                                "body or axle {} with {what} in vehicle {}",
+                                quote(part),
+                                quote(name)
+                            ));
+                        }
+                    }
+                    _ => return Err(not_a_number(key)),
+                }
+            }
             Some(("solver", field)) => {
                 let s = f.solver.get_or_insert_with(SolverFile::default);
                 match field {

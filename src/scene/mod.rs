@@ -39,6 +39,7 @@ mod file;
 mod keys;
 mod rolling;
 mod train;
+mod vehicles;
 mod yaml_error;
 
 use beam::*;
@@ -46,6 +47,7 @@ use checker::*;
 use file::*;
 use rolling::*;
 use train::*;
+use vehicles::*;
 
 /// How the disk on a rigid curve is formulated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -93,6 +95,10 @@ pub struct BeamScene {
     pub disk: Option<DiskOnBeamSpec>,
     /// A train of axle loads crossing the beam, if the scene has one (never with a disk).
     pub train: Option<Train>,
+    /// Vehicles crossing the beam (never with a disk).
+    pub vehicles: Vec<crate::vehicle::Vehicle>,
+    /// The running surface the vehicles ride on.
+    pub profile: crate::vehicle::profile::Profile,
     pub loads: Vec<PointLoad>,
     pub probes: Vec<Probe>,
     pub shapes: Vec<f64>,
@@ -174,8 +180,19 @@ impl BeamScene {
 
     /// What the results depend on beyond the accuracy asked, one sentence each.
     pub fn warnings(&self) -> Vec<String> {
-        self.patch_sensitivity()
-            .map_or_else(Vec::new, |s| s.warnings(self.accuracy))
+        let mut out = self
+            .patch_sensitivity()
+            .map_or_else(Vec::new, |s| s.warnings(self.accuracy));
+        let kinked = matches!(self.profile, crate::vehicle::profile::Profile::Points(_));
+        let unsprung = self
+            .vehicles
+            .iter()
+            .flat_map(|v| v.axles.iter())
+            .any(|a| a.mass > 0.0);
+        if kinked && unsprung {
+            out.push("axles with mass ride a piecewise-linear profile: at each kink a wheel's vertical velocity jumps, and the energy balance does not book the impulse; give the axles no mass and put it in a hub body on a tyre spring, for a balance that closes".into());
+        }
+        out
     }
 }
 

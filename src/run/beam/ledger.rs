@@ -86,7 +86,8 @@ impl<'a> Ledger<'a> {
     /// where it belongs to the system.
     pub fn new(phase: &Phase, loads: &'a [PointLoad], y0: &[f64]) -> Self {
         let strain0 = Self::beam_energies(phase, y0).1;
-        let mut check = EnergyCheck::new(strain0, strain0);
+        let (vk, vs, vp) = Self::vehicle_energies(phase, 0.0, y0);
+        let mut check = EnergyCheck::new(strain0 + vk + vs + vp, strain0 + vk + vs + vp.abs());
         let mut moving = (0.0, 0.0, 0.0);
         if let Some(c) = phase.coupled {
             let (z0, zd0) = phase.split(y0);
@@ -100,7 +101,7 @@ impl<'a> Ledger<'a> {
         }
         moving.1 = Self::moving_power(phase, 0.0, y0);
         let n = phase.loaded.dim();
-        let (z0, zd0) = phase.split(y0);
+        let z0 = phase.split(y0).0;
         let mut ledger = Ledger {
             loads,
             done: 0.0,
@@ -109,7 +110,7 @@ impl<'a> Ledger<'a> {
             moving,
             left_with: (0.0, 0.0),
             weight0: phase.loaded.weight_dot(&z0[..n]),
-            damped: (0.0, phase.loaded.dissipation(&zd0[..n]), 0.0),
+            damped: (0.0, Self::damping_power(phase, 0.0, y0), 0.0),
             impact: 0.0,
             pending: std::collections::VecDeque::new(),
             check,
@@ -123,6 +124,17 @@ impl<'a> Ledger<'a> {
         let n = phase.loaded.dim();
         let (z, zd) = phase.split(y);
         phase.loaded.energies(&z[..n], &zd[..n])
+    }
+
+    /// The vehicles' kinetic, spring and potential energy (`coupling::vehicles`).
+    fn vehicle_energies(phase: &Phase, t: f64, y: &[f64]) -> (f64, f64, f64) {
+        match phase.vehicles {
+            Some(v) => {
+                let (z, zd) = phase.split(y);
+                v.energies(t, z, zd)
+            }
+            None => (0.0, 0.0, 0.0),
+        }
     }
 
     /// The displacements at the loads' points (none to read without loads).
@@ -151,14 +163,21 @@ impl<'a> Ledger<'a> {
 
     /// The energy damping has taken up to (t, y), and its power there.
     fn dissipated(&self, phase: &Phase, t: f64, y: &[f64]) -> (f64, f64) {
-        let n = phase.loaded.dim();
-        let p = phase.loaded.dissipation(&phase.split(y).1[..n]);
+        let p = Self::damping_power(phase, t, y);
         let (t0, p0, done) = self.damped;
         (done + 0.5 * (p0 + p) * (t - t0), p)
     }
 
+    /// The power the beam's damping and the vehicles' dampers take at (t, y).
+    fn damping_power(phase: &Phase, t: f64, y: &[f64]) -> f64 {
+        let n = phase.loaded.dim();
+        let (z, zd) = phase.split(y);
+        let vehicles = phase.vehicles.map_or(0.0, |v| v.damper_power(t, z, zd));
+        phase.loaded.dissipation(&zd[..n]) + vehicles
+    }
+
     /// The power of the prescribed moving loads on the beam at (t, y): a disk carried at its
-    /// speed, and a train's axles.
+    /// speed, a train's axles, and the drive of the vehicles.
     fn moving_power(phase: &Phase, t: f64, y: &[f64]) -> f64 {
         let disk = match phase.coupled {
             Some(c) if !c.disk_in_system() => {
@@ -175,7 +194,11 @@ impl<'a> Ledger<'a> {
         } else {
             0.0
         };
-        disk + train
+        let drive = phase.vehicles.map_or(0.0, |v| {
+            let (z, zd) = phase.split(y);
+            v.drive_power(t, z, zd, &v.acceleration(t, z, zd))
+        });
+        disk + train + drive
     }
 
     /// The moving loads' work until t, where their power is `power`: the trapezoidal rule
@@ -196,7 +219,9 @@ impl<'a> Ledger<'a> {
         self.catch_up(t);
         let (kinetic, strain) = Self::beam_energies(phase, y);
         let (disk_kinetic, potential) = self.disk_energies(phase, disk);
-        let kinetic = kinetic + disk_kinetic;
+        let (vk, vs, vp) = Self::vehicle_energies(phase, t, y);
+        let (kinetic, strain, potential) =
+            (kinetic + disk_kinetic + vk, strain + vs, potential + vp);
         let now = self.at_loads(phase, y);
         let work = self.done
             + work_since(self.loads, self.t, t, &self.at_loads, &now)
@@ -239,15 +264,16 @@ impl<'a> Ledger<'a> {
 
     /// The piece of a step from the last point read to (t, y), through its midpoint (tm, ym).
     pub fn piece(&self, phase: &Phase, (tm, ym): (f64, &[f64]), t: f64, y: &[f64]) -> Piece {
-        let n = phase.loaded.dim();
-        let damping = |y: &[f64]| phase.loaded.dissipation(&phase.split(y).1[..n]);
         Piece {
             end: t,
             moving: (
                 Self::moving_power(phase, tm, ym),
                 Self::moving_power(phase, t, y),
             ),
-            damping: (damping(ym), damping(y)),
+            damping: (
+                Self::damping_power(phase, tm, ym),
+                Self::damping_power(phase, t, y),
+            ),
             at_loads: self.at_loads(phase, y),
         }
     }
@@ -293,7 +319,9 @@ impl<'a> Ledger<'a> {
             Some(_) => (0.0, 0.0),
             None => self.left_with,
         };
-        let kinetic = kinetic + disk_kinetic;
+        let (vk, vs, vp) = Self::vehicle_energies(phase, t, y);
+        let (kinetic, strain, potential) =
+            (kinetic + disk_kinetic + vk, strain + vs, potential + vp);
         let dissipated = self.damped.2;
         self.check.record(
             kinetic + strain + potential - self.done - self.moving.2 - self.weight_work(phase, y)

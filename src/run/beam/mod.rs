@@ -29,6 +29,7 @@ use crate::beam::modal::ModalBasis;
 use crate::beam::{Beam, BeamModel, PointDisplacement, Stations};
 use crate::coupling::landing::Landing;
 use crate::coupling::thesis_system::ThesisSystem;
+use crate::coupling::vehicles::{VehicleObservation, VehiclesOnBeam};
 use crate::coupling::{Coupling, DiskOnBeam};
 use crate::error::Error;
 use crate::linalg::SparseLu;
@@ -89,6 +90,8 @@ pub struct BeamRow {
     pub accelerations: Vec<f64>,
     /// What the supports exert on the beam, global (fx, fy, mz), at `from` and at `to`.
     pub reactions: [[f64; 3]; 2],
+    /// The vehicles, where the scene has them.
+    pub vehicles: Option<VehicleObservation>,
 }
 
 impl BeamRow {
@@ -138,6 +141,25 @@ pub struct BeamRun {
     pub acceleration: Option<CutoffReport>,
     /// The Rayleigh damping the run had, α and β resolved.
     pub damping: Option<Rayleigh>,
+    /// Each vehicle's extremes, in the scene's order.
+    pub vehicles: Vec<VehicleReport>,
+}
+
+/// What a vehicle did over the run: its bodies' vertical accelerations and its wheels'
+/// contact forces from the time it came onto the deck, located on the solution.
+#[derive(Clone, Debug)]
+pub struct VehicleReport {
+    pub name: String,
+    /// Per body: its name, the range of its vertical acceleration, and its root mean square.
+    pub bodies: Vec<(String, Range, f64)>,
+    /// Per axle: its name and the range of its wheel's contact force.
+    pub axles: Vec<(String, Range)>,
+    /// When its last wheel left the deck, if it did in the run.
+    pub left_t: Option<f64>,
+    /// When it stopped, braking, if it did.
+    pub stopped_t: Option<f64>,
+    /// The axle whose wheel lost contact and stopped the run.
+    pub lost_contact: Option<String>,
 }
 
 /// The extremes over the run of what the summary reports, each located on the solution
@@ -151,6 +173,9 @@ pub struct Extremes {
     /// The disk's normal and tangential contact force, the friction coefficient its rolling
     /// needs and the deflection under it, while it is on or over the beam.
     pub disk: Option<[Range; 4]>,
+    /// Per vehicle, each body's vertical acceleration then each axle's contact force, from
+    /// the time the vehicle came onto the deck.
+    pub vehicles: Vec<Range>,
 }
 
 impl BeamRun {
@@ -210,6 +235,7 @@ fn start_state(
     setup: &BeamScene,
     loaded: &LoadedBeam,
     coupled: Option<&DiskOnBeam>,
+    vehicles: Option<&VehiclesOnBeam>,
 ) -> Result<Vec<f64>, Error> {
     let beam = loaded.beam;
     let n = beam.dim();
@@ -219,6 +245,9 @@ fn start_state(
     }
     let mut loads = vec![0.0; n];
     loaded.external(0.0, &mut loads);
+    if let Some(v) = vehicles {
+        v.add_weights_at_rest(&mut loads);
+    }
     for _ in 0..START_ITERATIONS {
         let mut f = loads.clone();
         if let Some(c) = coupled {
@@ -350,6 +379,8 @@ struct Ridden {
     left_track_t: Option<f64>,
     flights: Vec<FlightRecord>,
     then: Then,
+    /// The vehicle and axle whose wheel lost contact, where one did.
+    lost_contact: Option<(usize, String)>,
 }
 
 /// How the run goes on after the riders' phase.
@@ -380,6 +411,7 @@ pub fn run(
         .disk
         .clone()
         .map(|spec| DiskOnBeam::new(&loaded, spec));
+    let vehicles = vehicles_on(scene, setup, &loaded)?;
     let mut opts = ode::Options {
         rho_inf: setup.rho_inf,
         ..over.options(scene)
@@ -396,25 +428,31 @@ pub fn run(
     }
     let literal = thesis_system(scene, setup, coupled.as_ref(), &opts)?;
 
-    let start = start_state(scene, setup, &loaded, coupled.as_ref())?;
+    let start = start_state(scene, setup, &loaded, coupled.as_ref(), vehicles.as_ref())?;
     let phase = Phase {
         beam: &beam,
         loaded: &loaded,
         coupled: coupled.as_ref(),
-        nz: coupled.as_ref().map_or(loaded.dim(), |c| c.dim()),
+        nz: match (&coupled, &vehicles) {
+            (Some(c), _) => c.dim(),
+            (None, Some(v)) => v.dim(),
+            (None, None) => loaded.dim(),
+        },
         mass_lu: &mass_lu,
         correct: !over.uncorrected_modes,
         flying: None,
+        vehicles: vehicles.as_ref(),
     };
-    let y0 = initial_state(&loaded, coupled.as_ref(), &start);
+    let y0 = initial_state(&loaded, coupled.as_ref(), vehicles.as_ref(), &start);
     let mut rec = recorder(scene, setup, over, phase, &y0, outputs.len(), show_progress);
 
     let mut stats = Stats::default();
-    let ridden = match &coupled {
-        Some(c) => ride(
+    let ridden = match (&coupled, &vehicles) {
+        (Some(c), _) => ride(
             scene, setup, &loaded, c, literal, &start, &outputs, &mut opts, &mut rec, &mut stats,
         )?,
-        None => Ridden {
+        (None, Some(v)) => drive(scene, v, &y0, &outputs, &opts, &mut rec, &mut stats)?,
+        (None, None) => Ridden {
             stop: Stop::End,
             left_track_t: None,
             flights: Vec::new(),
@@ -423,6 +461,7 @@ pub fn run(
                 q: loaded.from_mesh(&start),
                 v: vec![0.0; loaded.dim()],
             },
+            lost_contact: None,
         },
     };
     let (t_end, y_end) = match &ridden.then {
@@ -438,10 +477,11 @@ pub fn run(
         )?,
     };
 
-    let unknowns = match &coupled {
-        None => loaded.dim(),
-        Some(_) if literal => loaded.dim() + 6,
-        Some(c) => c.dim(),
+    let unknowns = match (&coupled, &vehicles) {
+        (None, Some(v)) => v.dim(),
+        (None, None) => loaded.dim(),
+        (Some(_), _) if literal => loaded.dim() + 6,
+        (Some(c), _) => c.dim(),
     };
     let recorded = Recorded::from(rec, &y_end);
     Ok(collect(
@@ -495,8 +535,17 @@ fn thesis_system(
     Ok(literal)
 }
 
-/// The model's state (z, ż) at the start, the beam in `start` and at rest.
-fn initial_state(loaded: &LoadedBeam, coupled: Option<&DiskOnBeam>, start: &[f64]) -> Vec<f64> {
+/// The model's state (z, ż) at the start, the beam in `start` and at rest (the vehicles'
+/// bodies settled on it).
+fn initial_state(
+    loaded: &LoadedBeam,
+    coupled: Option<&DiskOnBeam>,
+    vehicles: Option<&VehiclesOnBeam>,
+    start: &[f64],
+) -> Vec<f64> {
+    if let Some(v) = vehicles {
+        return v.initial_state(&loaded.from_mesh(start));
+    }
     match coupled {
         Some(c) => {
             let (z0, zd0) = c.initial_state(start);
@@ -589,8 +638,78 @@ fn ride<'a>(
             left_track_t: None,
             flights,
             then: Then::Ended { t, y },
+            lost_contact: None,
         });
     }
+}
+
+/// The vehicles on the beam, where the scene has them.
+fn vehicles_on<'a>(
+    scene: &Scene,
+    setup: &'a BeamScene,
+    loaded: &'a LoadedBeam<'a>,
+) -> Result<Option<VehiclesOnBeam<'a>>, Error> {
+    if setup.vehicles.is_empty() {
+        return Ok(None);
+    }
+    let patch = crate::coupling::patch::dispersed_half_width(setup.beam.depth);
+    VehiclesOnBeam::new(loaded, &setup.vehicles, &setup.profile, patch)
+        .map(Some)
+        .ok_or_else(|| {
+            Error::Solver(format!(
+                "scene {}: the mass matrix of the beam and the vehicles' bodies is singular",
+                scene.name
+            ))
+        })
+}
+
+/// Integrate the vehicles on the beam over the whole run: on the deck, and on the rigid
+/// approaches before and after it, until the end or a wheel loses contact.
+fn drive<'a>(
+    scene: &Scene,
+    v: &'a VehiclesOnBeam<'a>,
+    y0: &[f64],
+    outputs: &[f64],
+    opts: &ode::Options,
+    rec: &mut Recorder<'a>,
+    stats: &mut Stats,
+) -> Result<Ridden, Error> {
+    let n = v.dim();
+    let out = integrate(
+        v,
+        0.0,
+        &y0[..n],
+        &y0[n..],
+        scene.duration,
+        outputs,
+        opts,
+        rec,
+    )
+    .map_err(|e| solver_error(scene, e))?;
+    stats.add(&out.stats);
+    let (t, y) = (out.t, out.y);
+    let stop = match out.stopped_by {
+        Some(hit) => Stop::Event(hit.reason),
+        None => Stop::End,
+    };
+    let lost_contact = matches!(stop, Stop::Event(StopReason::ContactLost)).then(|| {
+        let (z, zd) = y.split_at(n);
+        let rn = v.contact_forces(t, z, zd, &v.acceleration(t, z, zd));
+        let k = (0..rn.len())
+            .min_by(|&a, &b| rn[a].total_cmp(&rn[b]))
+            .unwrap_or(0);
+        v.wheel(k)
+    });
+    if rec.history.rows.last().is_none_or(|r| r.t < t) {
+        rec.output(t, &y);
+    }
+    Ok(Ridden {
+        stop,
+        left_track_t: None,
+        flights: Vec::new(),
+        then: Then::Ended { t, y },
+        lost_contact,
+    })
 }
 
 /// The disk left the beam at t, the beam in (q, v): from then on the residual vibration is
@@ -608,6 +727,7 @@ fn left_beam(
         left_track_t: Some(t),
         flights,
         then: Then::Alone { t, q, v },
+        lost_contact: None,
     }
 }
 
@@ -664,7 +784,7 @@ fn collect(
         setup: setup.clone(),
         rows: recorded.rows,
         envelope: recorded.envelope,
-        extremes: recorded.extremes,
+        extremes: recorded.extremes.clone(),
         shapes: recorded.shapes,
         frames: recorded.frames,
         windowed_means: recorded.windowed_means,
@@ -673,6 +793,62 @@ fn collect(
         y_end: recorded.y_end,
         acceleration: recorded.acceleration,
         damping,
+        vehicles: vehicle_reports(
+            setup,
+            &recorded.extremes.vehicles,
+            &recorded.vehicle_rms,
+            ridden.lost_contact,
+            t_end,
+            beam.length,
+        ),
         beam,
     }
+}
+
+/// Each vehicle's report from the ranges watched (per vehicle, its bodies' accelerations then
+/// its wheels' contact forces) and the bodies' root mean squares.
+fn vehicle_reports(
+    setup: &BeamScene,
+    ranges: &[Range],
+    rms: &[f64],
+    lost: Option<(usize, String)>,
+    t_end: f64,
+    length: f64,
+) -> Vec<VehicleReport> {
+    let patch = crate::coupling::patch::dispersed_half_width(setup.beam.depth);
+    let (mut r, mut b) = (ranges.iter(), rms.iter());
+    setup
+        .vehicles
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let last = v.axles.last().map_or(0.0, |a| a.x);
+            VehicleReport {
+                name: v.name.clone(),
+                bodies: v
+                    .bodies
+                    .iter()
+                    .map(|body| {
+                        let range = r.next().copied().unwrap_or(Range::EMPTY);
+                        (
+                            body.name.clone(),
+                            range,
+                            b.next().copied().unwrap_or(f64::NAN),
+                        )
+                    })
+                    .collect(),
+                axles: v
+                    .axles
+                    .iter()
+                    .map(|a| (a.name.clone(), r.next().copied().unwrap_or(Range::EMPTY)))
+                    .collect(),
+                left_t: v.time_at(length + last + patch).filter(|&t| t <= t_end),
+                stopped_t: v.stops_at().filter(|&t| t <= t_end),
+                lost_contact: lost
+                    .as_ref()
+                    .filter(|(k, _)| *k == i)
+                    .map(|(_, axle)| axle.clone()),
+            }
+        })
+        .collect()
 }

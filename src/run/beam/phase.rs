@@ -8,6 +8,7 @@ use std::borrow::Cow;
 
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::Beam;
+use crate::coupling::vehicles::{VehicleObservation, VehiclesOnBeam};
 use crate::coupling::DiskOnBeam;
 use crate::linalg::{SparseLu, Woodbury};
 use crate::ode::second_order::Structure;
@@ -27,6 +28,8 @@ pub(super) struct Phase<'a> {
     pub correct: bool,
     /// The disk while it flies over the beam.
     pub flying: Option<super::flight::FlyingDisk<'a>>,
+    /// The vehicles, which ride the whole run (the state is then z = (q, vehicles')).
+    pub vehicles: Option<&'a VehiclesOnBeam<'a>>,
 }
 
 impl<'a> Phase<'a> {
@@ -65,6 +68,9 @@ impl<'a> Phase<'a> {
             let (z, zd) = self.split(y);
             c.add_contact_force_on_beam(t, z, zd, d, &mut f);
         }
+        for (x, p) in self.wheel_forces(t, y) {
+            self.beam.add_point_load(x, [0.0, p], 0.0, &mut f);
+        }
         let mut q = q.into_owned();
         modal.add_static_correction(&f, &mut q);
         Cow::Owned(q)
@@ -94,10 +100,38 @@ impl<'a> Phase<'a> {
         self.nz = c.dim();
     }
 
+    /// The vehicles' wheels' forces on the beam at (t, y) (global Y, at their places on it).
+    fn wheel_forces(&self, t: f64, y: &[f64]) -> Vec<(f64, f64)> {
+        let Some(v) = self.vehicles else {
+            return Vec::new();
+        };
+        let (z, zd) = self.split(y);
+        v.forces_on_beam(t, z, zd, &v.acceleration(t, z, zd))
+    }
+
+    /// The vehicles at (t, y), their accelerations from `rate` (the dense output's ẏ) where
+    /// given, solved for otherwise.
+    pub fn vehicles(&self, t: f64, y: &[f64], rate: Option<&[f64]>) -> Option<VehicleObservation> {
+        let v = self.vehicles?;
+        let (z, zd) = self.split(y);
+        let zdd = match rate {
+            Some(yp) => self.split(yp).1.to_vec(),
+            None => v.acceleration(t, z, zd),
+        };
+        Some(v.observe(t, z, zd, &zdd))
+    }
+
     /// The model's accelerations at (t, y): with the disk on the beam, the coupled system's
-    /// (from the disk's observation); the free beam's otherwise.
+    /// (from the disk's observation); with vehicles, theirs and the beam's together; the
+    /// free beam's otherwise.
     pub fn acceleration(&self, t: f64, y: &[f64]) -> Vec<f64> {
         let n = self.loaded.dim();
+        if let Some(v) = self.vehicles {
+            let (z, zd) = self.split(y);
+            let mut a = v.acceleration(t, z, zd);
+            a.truncate(n);
+            return a;
+        }
         match self.coupled {
             Some(c) => {
                 let (z, zd) = self.split(y);
@@ -149,6 +183,11 @@ impl<'a> Phase<'a> {
                 .axle_forces(t, &y[..n], &y[self.nz..self.nz + n], a)
                 .into_iter()
                 .map(|(x, f)| (x, f, 0.0)),
+        );
+        acting.extend(
+            self.wheel_forces(t, y)
+                .into_iter()
+                .map(|(x, p)| (x, [0.0, p], 0.0)),
         );
         if let Some(c) = self.coupled {
             let d = disk.expect("observed while coupled");

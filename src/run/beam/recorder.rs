@@ -18,6 +18,9 @@ pub(super) struct Snapshot {
     pub(super) probes: Vec<f64>,
     pub(super) disk: Option<[f64; 5]>,
     pub(super) along: Vec<f64>,
+    /// Per vehicle, its bodies' vertical accelerations then its wheels' contact forces; NaN
+    /// before it comes onto the deck.
+    pub(super) vehicles: Vec<f64>,
 }
 
 impl Snapshot {
@@ -36,11 +39,13 @@ pub(super) struct Watches {
     /// The gap of the current flight.
     pub(super) gap: Watch,
     pub(super) along: Watch,
+    pub(super) vehicles: Watch,
 }
 
 impl Watches {
-    pub(super) fn new(probes: usize, stations: usize) -> Self {
+    pub(super) fn new(probes: usize, stations: usize, vehicles: usize) -> Self {
         Watches {
+            vehicles: Watch::new(vehicles, Turning::OnTheSolution),
             probes: Watch::new(4 * probes, Turning::OnTheSolution),
             after_exit: Watch::new(probes, Turning::OnTheSolution),
             disk: Watch::new(4, Turning::OnTheSolution),
@@ -79,6 +84,10 @@ pub(super) struct Recorder<'a> {
     /// When the last load left the beam: from then on the residual vibration is watched.
     pub(super) exit_t: Option<f64>,
     pub(super) progress: Option<Progress>,
+    /// When each vehicle came onto the deck (`None`: it never does).
+    pub(super) arrivals: Vec<Option<f64>>,
+    /// Per body of every vehicle, ∫ a² dt and the time it covers since the vehicle arrived.
+    pub(super) squares: Vec<(f64, f64)>,
 }
 
 impl Recorder<'_> {
@@ -132,10 +141,59 @@ impl Recorder<'_> {
         } else {
             Vec::new()
         };
+        let vehicles = self.vehicle_values(t, phase.vehicles(t, y, rate).as_ref());
         Snapshot {
             probes,
             disk,
             along,
+            vehicles,
+        }
+    }
+
+    /// What the watches see of the vehicles: per vehicle its bodies' accelerations then its
+    /// wheels' contact forces, NaN before it arrives on the deck.
+    pub(super) fn vehicle_values(&self, t: f64, obs: Option<&VehicleObservation>) -> Vec<f64> {
+        let Some(obs) = obs else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for (i, (bodies, rn)) in obs.bodies.iter().zip(&obs.rn).enumerate() {
+            let on = self.arrivals[i].is_some_and(|ta| t >= ta);
+            let seen = |v: f64| if on { v } else { f64::NAN };
+            out.extend(bodies.iter().map(|b| seen(b[2])));
+            out.extend(rn.iter().map(|&r| seen(r)));
+        }
+        out
+    }
+
+    /// Where each body's acceleration is among the vehicles' values.
+    fn body_slots(&self) -> Vec<usize> {
+        let Some(v) = self.phase.vehicles else {
+            return Vec::new();
+        };
+        let mut slots = Vec::new();
+        let mut at = 0;
+        for veh in v.vehicles {
+            slots.extend(at..at + veh.bodies.len());
+            at += veh.bodies.len() + veh.axles.len();
+        }
+        slots
+    }
+
+    /// Add ∫ a² dt over [t0, t1] for each body, from its values at the ends (the trapezoidal
+    /// rule) or at the ends and the middle (Simpson's).
+    fn add_squares(&mut self, t: (f64, f64), values: [&[f64]; 2], middle: Option<&[f64]>) {
+        let h = t.1 - t.0;
+        for (k, slot) in self.body_slots().into_iter().enumerate() {
+            let (a0, a1) = (values[0][slot], values[1][slot]);
+            let integral = match middle {
+                Some(m) => h / 6.0 * (a0 * a0 + 4.0 * m[slot] * m[slot] + a1 * a1),
+                None => 0.5 * h * (a0 * a0 + a1 * a1),
+            };
+            if integral.is_finite() {
+                self.squares[k].0 += integral;
+                self.squares[k].1 += h;
+            }
         }
     }
 
@@ -166,7 +224,7 @@ impl Recorder<'_> {
             self.sampled(end, t1);
             return;
         }
-        let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0));
+        let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0, 0));
         let last = self.last.take();
         let before = self.before.take();
         let flying = self.phase.flying.is_some();
@@ -188,6 +246,12 @@ impl Recorder<'_> {
             .record_step(t, [&s0.probes, &s1.probes, &s2.probes], |tt| {
                 see(tt, false).probes
             });
+        if !s0.vehicles.is_empty() {
+            w.vehicles
+                .record_step(t, [&s0.vehicles, &s1.vehicles, &s2.vehicles], |tt| {
+                    see(tt, false).vehicles
+                });
+        }
         match before {
             Some((tb, b)) => {
                 w.along
@@ -228,6 +292,13 @@ impl Recorder<'_> {
             }
         }
         self.watches = w;
+        if !start.vehicles.is_empty() {
+            self.add_squares(
+                (t0, t1),
+                [&start.vehicles, &end.vehicles],
+                Some(&middle.vehicles),
+            );
+        }
         self.before = Some((t0, start));
         self.last = Some((t1, end));
     }
@@ -235,6 +306,12 @@ impl Recorder<'_> {
     /// Take in a sample at t of the beam alone, on its own (a short step's end): with the
     /// two before it, the parabola through the three.
     pub(super) fn sampled(&mut self, end: Snapshot, t: f64) {
+        if let Some((tl, last)) = self.last.take() {
+            if !end.vehicles.is_empty() {
+                self.add_squares((tl, t), [&last.vehicles, &end.vehicles], None);
+            }
+            self.last = Some((tl, last));
+        }
         let w = &mut self.watches;
         let after = self.exit_t.is_some_and(|te| t >= te);
         match (self.before.take(), self.last.take()) {
@@ -244,6 +321,10 @@ impl Recorder<'_> {
                     .record_parabola(times, [&a.probes, &b.probes, &end.probes]);
                 w.along
                     .record_parabola(times, [&a.along, &b.along, &end.along]);
+                if !end.vehicles.is_empty() {
+                    w.vehicles
+                        .record_parabola(times, [&a.vehicles, &b.vehicles, &end.vehicles]);
+                }
                 if after && ta >= self.exit_t.unwrap_or(f64::INFINITY) {
                     w.after_exit.record_parabola(
                         times,
@@ -262,6 +343,7 @@ impl Recorder<'_> {
             (_, last) => {
                 w.probes.record_point(t, &end.probes);
                 w.along.record_point(t, &end.along);
+                w.vehicles.record_point(t, &end.vehicles);
                 self.before = last;
             }
         }
@@ -297,6 +379,7 @@ impl Recorder<'_> {
                 let r = &w.disk.ranges;
                 [r[0], r[1], r[2], r[3]]
             }),
+            vehicles: w.vehicles.ranges.clone(),
         };
         (extremes, self.envelope.from_stations(&w.along.ranges))
     }
@@ -331,7 +414,11 @@ impl Observer for Recorder<'_> {
             None => phase.loaded.to_mesh(&a).into_owned(),
         };
         let along_a = phase.beam.deflections(&self.stations, &a);
+        let vehicles = phase.vehicles(t, y, None);
+        let watched = self.vehicle_values(t, vehicles.as_ref());
+        self.watches.vehicles.record_point(t, &watched);
         let sample = Sample {
+            vehicles,
             t,
             q: &q,
             a: &a,
@@ -449,6 +536,8 @@ pub(super) fn recorder<'a>(
     let spacing = filter
         .as_ref()
         .map_or(0.0, |f| 1.0 / (SAMPLES_PER_CUTOFF_PERIOD * f.cutoff_hz));
+    let exit_t = last_exit(setup, &phase, beam.length);
+    let arrivals = phase.vehicles.map_or_else(Vec::new, |v| v.arrives());
     Recorder {
         ledger: Ledger::new(&phase, &setup.loads, y0),
         filter,
@@ -473,17 +562,37 @@ pub(super) fn recorder<'a>(
         watches: Watches::new(
             setup.probes.len(),
             if over.no_envelope { 0 } else { SAMPLES },
+            setup
+                .vehicles
+                .iter()
+                .map(|v| v.bodies.len() + v.axles.len())
+                .sum(),
         ),
         watch_along: !over.no_envelope,
         last: None,
         before: None,
         spacing,
-        exit_t: setup.train.as_ref().map(|tr| tr.gone(beam.length)),
+        exit_t,
+        arrivals,
+        squares: vec![(0.0, 0.0); setup.vehicles.iter().map(|v| v.bodies.len()).sum()],
         progress: if show_progress {
             Progress::new(scene.duration)
         } else {
             None
         },
+    }
+}
+
+/// When the last load leaves the beam: a train's last axle, or the vehicles' last wheel
+/// (`None` while a vehicle never leaves).
+fn last_exit(setup: &BeamScene, phase: &Phase, length: f64) -> Option<f64> {
+    let train = setup.train.as_ref().map(|tr| tr.gone(length));
+    let vehicles = phase.vehicles.map(|v| v.gone());
+    match (train, vehicles) {
+        (_, Some(None)) => None,
+        (Some(a), Some(Some(b))) => Some(a.max(b)),
+        (a, Some(b)) => a.or(b),
+        (a, None) => a,
     }
 }
 
@@ -498,6 +607,8 @@ pub(super) struct Recorded {
     pub(super) y_end: Vec<f64>,
     pub(super) acceleration: Option<CutoffReport>,
     pub(super) energy: crate::run::EnergyCheck,
+    /// Per body of every vehicle, the root mean square of its acceleration since it arrived.
+    pub(super) vehicle_rms: Vec<f64>,
 }
 
 impl Recorded {
@@ -517,6 +628,17 @@ impl Recorded {
             y_end,
             acceleration: rec.filter.as_ref().map(|f| f.report()),
             energy: rec.ledger.check,
+            vehicle_rms: rec
+                .squares
+                .iter()
+                .map(|&(sq, time)| {
+                    if time > 0.0 {
+                        (sq / time).sqrt()
+                    } else {
+                        f64::NAN
+                    }
+                })
+                .collect(),
         }
     }
 }

@@ -22,6 +22,7 @@ pub(super) struct Sample<'s> {
     pub gap: f64,
     pub energy: Energy,
     pub reactions: [[f64; 3]; 2],
+    pub vehicles: Option<crate::coupling::vehicles::VehicleObservation>,
 }
 
 /// The rows of `history.csv`.
@@ -58,6 +59,7 @@ impl History<'_> {
                 .map(|p| beam.displacement_at(s.a, p.x).w)
                 .collect(),
             reactions: s.reactions,
+            vehicles: s.vehicles.clone(),
         });
     }
 }

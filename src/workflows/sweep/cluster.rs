@@ -63,6 +63,15 @@ struct RecordSummary {
     probes: Vec<RecordProbe>,
     #[serde(skip_serializing_if = "Option::is_none")]
     disk: Option<RecordDisk>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    bodies: Vec<RecordBody>,
+}
+
+#[derive(Serialize, Deserialize)]
+struct RecordBody {
+    name: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    a_max: Option<f64>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -113,6 +122,14 @@ impl Record {
                         rn_max,
                         left_track_t: finite(left),
                     }),
+                    bodies: s
+                        .bodies
+                        .iter()
+                        .map(|(name, a)| RecordBody {
+                            name: name.clone(),
+                            a_max: finite(*a),
+                        })
+                        .collect(),
                 }),
                 None,
             ),
@@ -178,6 +195,11 @@ impl Record {
                     .disk
                     .as_ref()
                     .map(|d| (d.rn_min, d.rn_max, d.left_track_t.unwrap_or(f64::NAN))),
+                bodies: s
+                    .bodies
+                    .iter()
+                    .map(|b| (b.name.clone(), b.a_max.unwrap_or(f64::NAN)))
+                    .collect(),
             }),
             (None, Some(e)) => Err(e.clone()),
             (None, None) => Err("the record holds no outcome".into()),
@@ -500,7 +522,11 @@ pub fn rows(records: &[(String, Record)], keys: usize) -> Result<Vec<SweepRow>, 
             continue;
         };
         let names = |s: &RecordSummary| -> Vec<String> {
-            s.probes.iter().map(|p| p.name.clone()).collect()
+            s.probes
+                .iter()
+                .map(|p| p.name.clone())
+                .chain(s.bodies.iter().map(|b| b.name.clone()))
+                .collect()
         };
         if names(summary) != names(expected) || summary.disk.is_some() != expected.disk.is_some() {
             return Err(Error::Input(format!(

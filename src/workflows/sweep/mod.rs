@@ -201,11 +201,15 @@ pub struct Summary {
     pub probes: Vec<(String, f64, f64, f64, f64)>,
     /// With a disk: (rn_min, rn_max, left_track_t or NaN).
     pub disk: Option<(f64, f64, f64)>,
+    /// With vehicles: per body (`<vehicle>.<body>`, its largest |vertical acceleration|, or
+    /// NaN where the vehicle never came onto the deck).
+    pub bodies: Vec<(String, f64)>,
 }
 
 fn summarise(r: &Run) -> Summary {
     let mut probes = Vec::new();
     let mut disk = None;
+    let mut bodies = Vec::new();
     match r {
         Run::Beam(b) => {
             for (k, p) in b.setup.probes.iter().enumerate() {
@@ -215,6 +219,16 @@ fn summarise(r: &Run) -> Summary {
             }
             if let Some([rn, ..]) = b.extremes.disk {
                 disk = Some((rn.min, rn.max, b.left_track_t.unwrap_or(f64::NAN)));
+            }
+            for v in &b.vehicles {
+                for (name, range, _) in &v.bodies {
+                    let a = if range.seen() {
+                        range.largest_magnitude().0
+                    } else {
+                        f64::NAN
+                    };
+                    bodies.push((format!("{}.{name}", v.name), a));
+                }
             }
         }
         Run::Rolling(rr) => {
@@ -230,6 +244,7 @@ fn summarise(r: &Run) -> Summary {
         wall_s: r.header().stats.wall_s,
         probes,
         disk,
+        bodies,
     }
 }
 
@@ -385,6 +400,15 @@ pub fn write_grid(rows: &[SweepRow], settings: &[Setting], dir: &Path) -> Result
     }
 }
 
+/// The vehicles' bodies of the first case that ran, as `<vehicle>.<body>`.
+fn body_names(rows: &[SweepRow]) -> Vec<String> {
+    rows.iter()
+        .find_map(|r| r.outcome.as_ref().ok())
+        .map_or(Vec::new(), |s| {
+            s.bodies.iter().map(|b| b.0.clone()).collect()
+        })
+}
+
 /// The probes of the first case that ran.
 fn probe_names(rows: &[SweepRow]) -> Vec<String> {
     rows.iter()
@@ -415,6 +439,10 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
             ",{p}.w_min,{p}.w_max,{p}.w_amplitude_after_exit,{p}.a_max"
         );
     }
+    let bodies = body_names(rows);
+    for b in &bodies {
+        let _ = write!(csv, ",{b}.a_max");
+    }
     csv.push('\n');
     let cell = |v: f64| {
         if v.is_nan() {
@@ -440,6 +468,9 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
                 for p in &s.probes {
                     let _ = write!(csv, ",{},{},{},{}", p.1, p.2, cell(p.3), p.4);
                 }
+                for b in &s.bodies {
+                    let _ = write!(csv, ",{}", cell(b.1));
+                }
             }
             Err(e) => {
                 let _ = write!(csv, "{values},\"failed: {}\",,,,,", e.replace('"', "'"));
@@ -448,6 +479,9 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
                 }
                 for _ in probe_names {
                     csv.push_str(",,,,");
+                }
+                for _ in &bodies {
+                    csv.push(',');
                 }
             }
         }

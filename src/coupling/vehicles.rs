@@ -1,0 +1,729 @@
+//! Vehicles on the beam: each a set of bodies on spring–dampers over axles whose point wheels
+//! follow the deck and the profile on it (`crate::vehicle`). The unknowns are the beam's (on
+//! the mesh or its modes) followed by each vehicle's; the vehicles travel at their prescribed
+//! speeds and accelerations.
+//!
+//! Axle a of a vehicle is at X_a(t) on the deck; its wheel rides on the deck's axis averaged
+//! over a contact patch (as a moving-mass axle does: `beam::train`), so the track under it is
+//! d_a = gᵀq + r(X_a), with g the patch-averaged shape functions of w. It moves with
+//! ḋ_a = gᵀq̇ + V (g'ᵀq + r') and d̈_a = gᵀq̈ + 2V g'ᵀq̇ + V² g''ᵀq + A g'ᵀq + V² r'' + A r'.
+//! The wheel bears R_a = P_a + m_a d̈_a − S_a: its static load, the unsprung mass's inertia,
+//! less S_a = Σ (k e + c ė) of the springs on it (e the stretch from static). The beam feels
+//! −R_a through g; the bodies feel the springs.
+//!
+//! Energy: with the vehicles' kinetic energy (bodies and unsprung masses), the springs' ½ k e²
+//! and the weights' potential Σ P_a d_a beside the beam's, the balance closes on the dampers'
+//! Σ c ė² and the work of the drive that holds the prescribed horizontal motion against the
+//! wheels' forces on the slopes under them, Σ R_a V (g'ᵀq + r'). At a kink of a
+//! piecewise-linear profile an unsprung mass's velocity jumps, which the balance does not
+//! book: give such axles no mass, or put the mass in a body on a tyre spring.
+
+use std::borrow::Cow;
+use std::cell::{Cell, RefCell};
+use std::ops::Range;
+use std::rc::Rc;
+
+use crate::beam::dynamics::LoadedBeam;
+use crate::linalg::{self, Assembly, LowRank, Sparse, SparseLu, Woodbury};
+use crate::ode::second_order::{SecondOrderProblem, Structure};
+use crate::ode::EventSpec;
+use crate::rolling::StopReason;
+use crate::vehicle::profile::Profile;
+use crate::vehicle::{Part, Vehicle};
+
+/// A sparse row over the beam's unknowns of the model.
+type Row = Vec<(usize, f64)>;
+
+/// One wheel at one instant.
+pub struct Contact {
+    pub vehicle: usize,
+    pub axle: usize,
+    /// Where it is on the deck (m), its speed and acceleration.
+    pub x: f64,
+    pub speed: f64,
+    pub accel: f64,
+    /// gᵀ, g'ᵀ and g''ᵀ over the model's beam unknowns; empty off the deck.
+    pub rows: [Row; 3],
+    /// r, r', r'' of the profile under it.
+    pub r: [f64; 3],
+}
+
+/// The track under a wheel: d, ḋ and d̈ less gᵀq̈ (which the mass matrix carries).
+struct Track {
+    d: f64,
+    rate: f64,
+    convective: f64,
+}
+
+/// What the vehicles are doing at one instant.
+#[derive(Clone, Debug, Default)]
+pub struct VehicleObservation {
+    /// Per vehicle, its first axle's position.
+    pub x: Vec<f64>,
+    /// Per vehicle, per body: vertical displacement of the centre of mass, pitch (NaN where
+    /// it does not pitch), vertical acceleration.
+    pub bodies: Vec<Vec<[f64; 3]>>,
+    /// Per vehicle, per axle: the wheel's contact force (N).
+    pub rn: Vec<Vec<f64>>,
+}
+
+pub struct VehiclesOnBeam<'a> {
+    pub loaded: &'a LoadedBeam<'a>,
+    pub vehicles: &'a [Vehicle],
+    pub profile: &'a Profile,
+    /// The beam's unknowns.
+    n: usize,
+    /// Where each vehicle's unknowns start.
+    offsets: Vec<usize>,
+    dim: usize,
+    /// The beam's mass and the bodies', block-diagonal: the constant part of the mass.
+    base: Sparse,
+    base_lu: SparseLu,
+    /// The beam's damping and the dampers' with the axles held: constant.
+    damping: Option<Sparse>,
+    /// The springs' stiffness with the axles held.
+    rigid_track: Sparse,
+    /// Half-width of the patch a wheel rides on.
+    patch: f64,
+    /// Midpoint of the current stretch between breakpoints: which piece of the profile a
+    /// wheel on a kink is on.
+    segment: Cell<f64>,
+    contacts_at: RefCell<Option<(f64, Rc<[Contact]>)>>,
+    events: Vec<EventSpec<StopReason>>,
+}
+
+impl<'a> VehiclesOnBeam<'a> {
+    pub fn new(
+        loaded: &'a LoadedBeam<'a>,
+        vehicles: &'a [Vehicle],
+        profile: &'a Profile,
+        patch: f64,
+    ) -> Option<Self> {
+        let n = loaded.dim();
+        let mut offsets = Vec::with_capacity(vehicles.len());
+        let mut dim = n;
+        for v in vehicles {
+            offsets.push(dim);
+            dim += v.unknowns();
+        }
+        let mut mass = Assembly::new(dim);
+        mass.add_sparse(loaded.model_mass(), 1.0, 0, 0);
+        let mut stiff = Assembly::new(dim);
+        let mut damp = Assembly::new(dim);
+        let mut damped = false;
+        if let Some(c) = loaded.damping() {
+            damp.add_sparse(&c, 1.0, 0, 0);
+            damped = true;
+        }
+        for (v, &o) in vehicles.iter().zip(&offsets) {
+            for (i, m) in v.mass_diagonal().into_iter().enumerate() {
+                mass.add(o + i, o + i, m);
+            }
+            let (k, c) = (v.on_rigid_track(true), v.on_rigid_track(false));
+            for i in 0..v.unknowns() {
+                for j in 0..v.unknowns() {
+                    stiff.add(o + i, o + j, k[(i, j)]);
+                    damp.add(o + i, o + j, c[(i, j)]);
+                }
+            }
+            damped |= v.springs.iter().any(|s| s.c != 0.0);
+        }
+        let base = mass.build();
+        let base_lu = SparseLu::factor(&base, None)?;
+        let axles: usize = vehicles.iter().map(|v| v.axles.len()).sum();
+        Some(VehiclesOnBeam {
+            loaded,
+            vehicles,
+            profile,
+            n,
+            offsets,
+            dim,
+            base,
+            base_lu,
+            damping: damped.then(|| damp.build()),
+            rigid_track: stiff.build(),
+            patch,
+            segment: Cell::new(f64::NAN),
+            contacts_at: RefCell::new(None),
+            events: vec![
+                EventSpec {
+                    reason: StopReason::ContactLost,
+                    terminal: true,
+                };
+                axles
+            ],
+        })
+    }
+
+    /// The beam's unknowns: the first of z.
+    pub fn beam_unknowns(&self) -> usize {
+        self.n
+    }
+
+    /// Where vehicle i's unknowns start in z.
+    pub fn offset(&self, i: usize) -> usize {
+        self.offsets[i]
+    }
+
+    /// The state (z, ż) at the start: the beam at `q0` (the model's unknowns) and at rest,
+    /// every vehicle's bodies settled on its axles where the track under them puts them.
+    pub fn initial_state(&self, q0: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; 2 * self.dim];
+        y[..self.n].copy_from_slice(q0);
+        let still = vec![0.0; self.n];
+        let contacts = self.contacts(0.0);
+        let mut next = contacts.iter();
+        for (i, v) in self.vehicles.iter().enumerate() {
+            let under: Vec<f64> = v
+                .axles
+                .iter()
+                .map(|_| Self::track(next.next().expect("a contact per axle"), q0, &still).d)
+                .collect();
+            let o = self.offsets[i];
+            y[o..o + v.unknowns()].copy_from_slice(&v.settled_on(&under));
+        }
+        y
+    }
+
+    /// The wheels' static loads at t = 0 on the mesh's unknowns, spread over their patches,
+    /// for a start in static equilibrium.
+    pub fn add_weights_at_rest(&self, f: &mut [f64]) {
+        let beam = self.loaded.beam;
+        let (b, length) = (self.patch, beam.length);
+        for v in self.vehicles {
+            let x_first = v.travel(0.0).0;
+            for (a, axle) in v.axles.iter().enumerate() {
+                let x = x_first - axle.x;
+                if x > -b && x < length + b {
+                    for nb in beam.patch_basis_at(x, b) {
+                        if let Some(i) = nb.w {
+                            f[i] -= nb.d[0] * v.static_loads[a];
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// When the last wheel leaves the deck, if every vehicle does.
+    pub fn gone(&self) -> Option<f64> {
+        let length = self.loaded.beam.length;
+        self.vehicles
+            .iter()
+            .map(|v| {
+                v.axles
+                    .last()
+                    .and_then(|a| v.time_at(length + a.x + self.patch))
+            })
+            .try_fold(0.0_f64, |m, t| t.map(|t| m.max(t)))
+    }
+
+    /// When each vehicle's first wheel comes onto the deck (0 for one that starts on it;
+    /// `None` for one that never gets there).
+    pub fn arrives(&self) -> Vec<Option<f64>> {
+        self.vehicles
+            .iter()
+            .map(|v| {
+                if v.x0 >= -self.patch {
+                    Some(0.0)
+                } else {
+                    v.time_at(-self.patch)
+                }
+            })
+            .collect()
+    }
+
+    /// Every wheel at t.
+    pub fn contacts(&self, t: f64) -> Rc<[Contact]> {
+        if let Some((at, c)) = &*self.contacts_at.borrow() {
+            if *at == t {
+                return c.clone();
+            }
+        }
+        let c: Rc<[Contact]> = self.contacts_now(t).into();
+        *self.contacts_at.borrow_mut() = Some((t, c.clone()));
+        c
+    }
+
+    fn contacts_now(&self, t: f64) -> Vec<Contact> {
+        let beam = self.loaded.beam;
+        let (b, length) = (self.patch, beam.length);
+        let side_t = if self.segment.get().is_nan() {
+            t
+        } else {
+            self.segment.get()
+        };
+        let mut out = Vec::new();
+        for (i, v) in self.vehicles.iter().enumerate() {
+            let (x_first, speed, accel) = v.travel(t);
+            let x_side = v.travel(side_t).0;
+            for (a, axle) in v.axles.iter().enumerate() {
+                let x = x_first - axle.x;
+                let side = x_side - axle.x + if speed >= 0.0 { 1e-9 } else { -1e-9 };
+                let rows = if x > -b && x < length + b {
+                    let basis = beam.patch_basis_at(x, b);
+                    std::array::from_fn(|k| self.model_row(&basis, k))
+                } else {
+                    [Vec::new(), Vec::new(), Vec::new()]
+                };
+                out.push(Contact {
+                    vehicle: i,
+                    axle: a,
+                    x,
+                    speed,
+                    accel,
+                    rows,
+                    r: self.profile.at(x, side),
+                });
+            }
+        }
+        out
+    }
+
+    /// The k-th derivative along the axis of w under a patch, as a row over the model's
+    /// beam unknowns (on a modal beam, Φᵀ of the mesh's row).
+    fn model_row(&self, basis: &[crate::beam::NodeBasis], k: usize) -> Row {
+        let mesh = basis.iter().filter_map(|nb| nb.w.map(|i| (i, nb.d[k])));
+        match self.loaded.modal {
+            None => mesh.collect(),
+            Some(m) => {
+                let mut dense = vec![0.0; m.dim()];
+                mesh.for_each(|(i, g)| m.add_row(i, g, &mut dense));
+                dense.into_iter().enumerate().collect()
+            }
+        }
+    }
+
+    fn track(c: &Contact, q: &[f64], v: &[f64]) -> Track {
+        let dot = |row: &Row, y: &[f64]| -> f64 { row.iter().map(|&(i, g)| g * y[i]).sum() };
+        let (slope, vs) = (dot(&c.rows[1], q), dot(&c.rows[1], v));
+        let (vel, a) = (c.speed, c.accel);
+        Track {
+            d: dot(&c.rows[0], q) + c.r[0],
+            rate: dot(&c.rows[0], v) + vel * (slope + c.r[1]),
+            convective: 2.0 * vel * vs
+                + vel * vel * dot(&c.rows[2], q)
+                + a * slope
+                + vel * vel * c.r[2]
+                + a * c.r[1],
+        }
+    }
+
+    /// d and ḋ of a part of vehicle i at s (an axle's from the track under it).
+    fn part_motion(
+        &self,
+        i: usize,
+        part: Part,
+        s: f64,
+        z: &[f64],
+        zd: &[f64],
+        tracks: &[Track],
+    ) -> (f64, f64) {
+        match part {
+            Part::Axle(a) => (tracks[a].d, tracks[a].rate),
+            Part::Body(b) => {
+                self.vehicles[i]
+                    .lever(b, s)
+                    .iter()
+                    .fold((0.0, 0.0), |(d, r), &(j, l)| {
+                        let k = self.offsets[i] + j;
+                        (d + l * z[k], r + l * zd[k])
+                    })
+            }
+        }
+    }
+
+    /// Everything of the vehicles at (t, z, ż) in one pass: the tracks under the wheels, the
+    /// springs' (e, ė), and the wheels' spring forces S_a; per vehicle.
+    fn springs(&self, t: f64, z: &[f64], zd: &[f64]) -> Vec<VehicleState> {
+        let contacts = self.contacts(t);
+        let (q, v) = (&z[..self.n], &zd[..self.n]);
+        let mut next = contacts.iter();
+        self.vehicles
+            .iter()
+            .enumerate()
+            .map(|(i, veh)| {
+                let tracks: Vec<Track> = veh
+                    .axles
+                    .iter()
+                    .map(|_| Self::track(next.next().expect("a contact per axle"), q, v))
+                    .collect();
+                let mut on_axle = vec![0.0; veh.axles.len()];
+                let stretch = veh
+                    .springs
+                    .iter()
+                    .map(|s| {
+                        let (du, ru) = self.part_motion(i, s.upper, s.x, z, zd, &tracks);
+                        let (dl, rl) = self.part_motion(i, s.lower, s.x, z, zd, &tracks);
+                        let (e, ed) = (du - dl, ru - rl);
+                        if let Part::Axle(a) = s.lower {
+                            on_axle[a] += s.k * e + s.c * ed;
+                        }
+                        (e, ed)
+                    })
+                    .collect();
+                VehicleState {
+                    tracks,
+                    stretch,
+                    on_axle,
+                }
+            })
+            .collect()
+    }
+
+    /// The unsprung masses' m g gᵀ, and the train's moving masses'.
+    fn added_mass(&self, t: f64, z: &[f64]) -> LowRank {
+        let mut out = self
+            .loaded
+            .mass_split(t, &z[..self.n])
+            .map(|(_, l)| l)
+            .unwrap_or_default();
+        for c in self.contacts(t).iter() {
+            let m = self.vehicles[c.vehicle].axles[c.axle].mass;
+            if m > 0.0 && !c.rows[0].is_empty() {
+                out.push((m, c.rows[0].clone()));
+            }
+        }
+        out
+    }
+
+    fn unsprung(&self) -> bool {
+        self.vehicles
+            .iter()
+            .any(|v| v.axles.iter().any(|a| a.mass > 0.0))
+    }
+
+    /// z̈ at (t, z, ż).
+    pub fn acceleration(&self, t: f64, z: &[f64], zd: &[f64]) -> Vec<f64> {
+        let mut a = vec![0.0; self.dim];
+        self.force(t, z, zd, &mut a);
+        let added = self.added_mass(t, z);
+        if added.is_empty() {
+            self.base_lu.solve_in_place(&mut a);
+        } else {
+            match Woodbury::new(&self.base_lu, added) {
+                Some(w) => w.solve_in_place(&self.base_lu, &mut a),
+                None => a.fill(f64::NAN),
+            }
+        }
+        a
+    }
+
+    /// Each wheel's contact force R_a = P_a + m_a d̈_a − S_a at (t, z, ż) with z̈ = `zdd`, in
+    /// the order of the contacts.
+    pub fn contact_forces(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> Vec<f64> {
+        let contacts = self.contacts(t);
+        let states = self.springs(t, z, zd);
+        let mut out = Vec::with_capacity(contacts.len());
+        let mut next = contacts.iter();
+        for (veh, st) in self.vehicles.iter().zip(&states) {
+            for (a, axle) in veh.axles.iter().enumerate() {
+                let c = next.next().expect("a contact per axle");
+                let inertia = if axle.mass > 0.0 {
+                    let ga: f64 = c.rows[0].iter().map(|&(i, g)| g * zdd[i]).sum();
+                    axle.mass * (ga + st.tracks[a].convective)
+                } else {
+                    0.0
+                };
+                out.push(veh.static_loads[a] + inertia - st.on_axle[a]);
+            }
+        }
+        out
+    }
+
+    /// What the vehicles do at (t, z, ż, z̈).
+    pub fn observe(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> VehicleObservation {
+        let rn = self.contact_forces(t, z, zd, zdd);
+        let mut next = rn.into_iter();
+        let mut out = VehicleObservation::default();
+        for (i, v) in self.vehicles.iter().enumerate() {
+            out.x.push(v.travel(t).0);
+            out.bodies.push(
+                (0..v.bodies.len())
+                    .map(|b| {
+                        let k = self.offsets[i] + v.first(b);
+                        let theta = if v.bodies[b].pitches() {
+                            z[k + 1]
+                        } else {
+                            f64::NAN
+                        };
+                        [z[k], theta, zdd[k]]
+                    })
+                    .collect(),
+            );
+            out.rn.push(
+                v.axles
+                    .iter()
+                    .map(|_| next.next().unwrap_or(f64::NAN))
+                    .collect(),
+            );
+        }
+        out
+    }
+
+    /// The vehicles' energies at (t, z, ż): kinetic (bodies and unsprung masses), the
+    /// springs', and the weights' potential Σ P_a d_a.
+    pub fn energies(&self, t: f64, z: &[f64], zd: &[f64]) -> (f64, f64, f64) {
+        let states = self.springs(t, z, zd);
+        let (mut kinetic, mut spring, mut potential) = (0.0, 0.0, 0.0);
+        for ((i, v), st) in self.vehicles.iter().enumerate().zip(&states) {
+            let o = self.offsets[i];
+            kinetic += v
+                .mass_diagonal()
+                .iter()
+                .enumerate()
+                .map(|(j, m)| 0.5 * m * zd[o + j] * zd[o + j])
+                .sum::<f64>();
+            for (a, axle) in v.axles.iter().enumerate() {
+                kinetic += 0.5 * axle.mass * st.tracks[a].rate.powi(2);
+                potential += v.static_loads[a] * st.tracks[a].d;
+            }
+            spring += v
+                .springs
+                .iter()
+                .zip(&st.stretch)
+                .map(|(s, (e, _))| 0.5 * s.k * e * e)
+                .sum::<f64>();
+        }
+        (kinetic, spring, potential)
+    }
+
+    /// The power the dampers take at (t, z, ż): Σ c ė².
+    pub fn damper_power(&self, t: f64, z: &[f64], zd: &[f64]) -> f64 {
+        let states = self.springs(t, z, zd);
+        self.vehicles
+            .iter()
+            .zip(&states)
+            .flat_map(|(v, st)| v.springs.iter().zip(&st.stretch))
+            .map(|(s, (_, ed))| s.c * ed * ed)
+            .sum()
+    }
+
+    /// The drive's power at (t, z, ż, z̈): Σ R_a V (g'ᵀq + r'), what holds the vehicles'
+    /// horizontal motion against their wheels' forces on the slopes under them.
+    pub fn drive_power(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> f64 {
+        let rn = self.contact_forces(t, z, zd, zdd);
+        self.contacts(t)
+            .iter()
+            .zip(rn)
+            .map(|(c, r)| {
+                let slope: f64 = c.rows[1].iter().map(|&(i, g)| g * z[i]).sum();
+                r * c.speed * (slope + c.r[1])
+            })
+            .sum()
+    }
+
+    /// The wheels' forces on the beam (global, +Y up) at their places on the deck, for the
+    /// support reactions and the modal beam's static correction: −R_a on each wheel on it.
+    pub fn forces_on_beam(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> Vec<(f64, f64)> {
+        let rn = self.contact_forces(t, z, zd, zdd);
+        let length = self.loaded.beam.length;
+        self.contacts(t)
+            .iter()
+            .zip(rn)
+            .filter(|(c, _)| !c.rows[0].is_empty())
+            .map(|(c, r)| (c.x.clamp(0.0, length), -r))
+            .collect()
+    }
+
+    /// The wheel of contact index k: its vehicle's index and its axle's name.
+    pub fn wheel(&self, k: usize) -> (usize, String) {
+        let mut k = k;
+        for (i, v) in self.vehicles.iter().enumerate() {
+            if k < v.axles.len() {
+                return (i, v.axles[k].name.clone());
+            }
+            k -= v.axles.len();
+        }
+        (0, String::new())
+    }
+
+    /// The longest step at t: the beam's bound, and while a wheel is on the deck the time it
+    /// takes to cross an element (its load has a kink at each node).
+    fn step_bound(&self, t: f64) -> f64 {
+        let fastest = self
+            .contacts(t)
+            .iter()
+            .filter(|c| !c.rows[0].is_empty())
+            .map(|c| c.speed.abs())
+            .fold(0.0, f64::max);
+        let beam = self.loaded.load_step_bound(t);
+        if fastest > 0.0 {
+            beam.min(self.loaded.beam.element_length() / fastest)
+        } else {
+            beam
+        }
+    }
+}
+
+struct VehicleState {
+    tracks: Vec<Track>,
+    /// Per spring: (e, ė).
+    stretch: Vec<(f64, f64)>,
+    /// Per axle: S_a.
+    on_axle: Vec<f64>,
+}
+
+impl Structure for VehiclesOnBeam<'_> {
+    fn dim(&self) -> usize {
+        self.dim
+    }
+    fn mass(&self, t: f64, z: &[f64]) -> Cow<'_, Sparse> {
+        let added = self.added_mass(t, z);
+        if added.is_empty() {
+            return Cow::Borrowed(&self.base);
+        }
+        let mut a = Assembly::new(self.dim);
+        a.add_sparse(&self.base, 1.0, 0, 0);
+        for (w, g) in &added {
+            for &(i, gi) in g {
+                for &(j, gj) in g {
+                    a.add(i, j, w * gi * gj);
+                }
+            }
+        }
+        Cow::Owned(a.build())
+    }
+    fn mass_is_constant(&self) -> bool {
+        self.loaded.mass_is_constant() && !self.unsprung()
+    }
+    fn mass_split(&self, t: f64, z: &[f64]) -> Option<(&Sparse, LowRank)> {
+        (!self.mass_is_constant()).then(|| (&self.base, self.added_mass(t, z)))
+    }
+    fn mass_mul(&self, t: f64, z: &[f64], a: &[f64], out: &mut [f64]) {
+        linalg::mul(&self.base, a, out);
+        for (w, g) in self.added_mass(t, z) {
+            let ga = w * g.iter().map(|&(i, c)| c * a[i]).sum::<f64>();
+            g.iter().for_each(|&(i, c)| out[i] += c * ga);
+        }
+    }
+    fn force(&self, t: f64, z: &[f64], zd: &[f64], f: &mut [f64]) {
+        let n = self.n;
+        self.loaded.force(t, &z[..n], &zd[..n], &mut f[..n]);
+        f[n..].fill(0.0);
+        let states = self.springs(t, z, zd);
+        let contacts = self.contacts(t);
+        let mut next = contacts.iter();
+        for ((i, veh), st) in self.vehicles.iter().enumerate().zip(&states) {
+            let o = self.offsets[i];
+            for (s, &(e, ed)) in veh.springs.iter().zip(&st.stretch) {
+                let pull = s.k * e + s.c * ed;
+                for (part, sign) in [(s.upper, -1.0), (s.lower, 1.0)] {
+                    if let Part::Body(b) = part {
+                        for (j, l) in veh.lever(b, s.x) {
+                            f[o + j] += sign * pull * l;
+                        }
+                    }
+                }
+            }
+            for (a, axle) in veh.axles.iter().enumerate() {
+                let c = next.next().expect("a contact per axle");
+                let on_beam =
+                    -veh.static_loads[a] - axle.mass * st.tracks[a].convective + st.on_axle[a];
+                for &(j, g) in &c.rows[0] {
+                    f[j] += g * on_beam;
+                }
+            }
+        }
+    }
+    fn stiffness(&self, t: f64, z: &[f64]) -> Sparse {
+        let n = self.n;
+        let mut a = Assembly::new(self.dim);
+        a.add_sparse(&self.loaded.stiffness(t, &z[..n]), 1.0, 0, 0);
+        a.add_sparse(&self.rigid_track, 1.0, 0, 0);
+        let contacts = self.contacts(t);
+        let mut next = contacts.iter();
+        // Each spring on a wheel that is on the deck couples the beam under it to its body.
+        let mut wheels = Vec::new();
+        for veh in self.vehicles {
+            wheels.push(
+                veh.axles
+                    .iter()
+                    .map(|_| next.next().expect("a contact per axle"))
+                    .collect::<Vec<_>>(),
+            );
+        }
+        for (i, veh) in self.vehicles.iter().enumerate() {
+            let o = self.offsets[i];
+            for s in &veh.springs {
+                let (Part::Body(b), Part::Axle(ax)) = (s.upper, s.lower) else {
+                    continue;
+                };
+                let g = &wheels[i][ax].rows[0];
+                let lever = veh.lever(b, s.x);
+                for &(p, gp) in g {
+                    for &(r, gr) in g {
+                        a.add(p, r, s.k * gp * gr);
+                    }
+                    for &(j, l) in &lever {
+                        a.add(p, o + j, -s.k * gp * l);
+                        a.add(o + j, p, -s.k * gp * l);
+                    }
+                }
+            }
+        }
+        a.build()
+    }
+    fn damping(&self) -> Option<Cow<'_, Sparse>> {
+        self.damping.as_ref().map(Cow::Borrowed)
+    }
+    fn norm_groups(&self) -> Vec<Range<usize>> {
+        if self.dim > self.n {
+            vec![0..self.n, self.n..self.dim]
+        } else {
+            vec![0..self.n]
+        }
+    }
+    fn norm_weights(&self) -> Option<Vec<f64>> {
+        self.loaded.norm_weights().map(|mut w| {
+            w.resize(self.dim, 1.0);
+            w
+        })
+    }
+}
+
+impl SecondOrderProblem for VehiclesOnBeam<'_> {
+    type Event = StopReason;
+    fn max_step(&self, t: f64, _q: &[f64], _v: &[f64]) -> f64 {
+        self.step_bound(t)
+    }
+    /// The beam's, each wheel's arrival on and departure from the deck, its crossing of each
+    /// kink of the profile, and each vehicle's stop.
+    fn breakpoints(&self) -> Vec<f64> {
+        let length = self.loaded.beam.length;
+        let kinks = self.profile.kinks();
+        let mut out = self.loaded.breakpoints();
+        for v in self.vehicles {
+            out.extend(v.stops_at());
+            for a in &v.axles {
+                let places = [-self.patch, length + self.patch]
+                    .into_iter()
+                    .chain(kinks.iter().copied());
+                out.extend(places.filter_map(|x| v.time_at(x + a.x)));
+            }
+        }
+        out
+    }
+    fn enter_segment(&self, start: f64, end: f64) {
+        self.loaded.enter_segment(start, end);
+        self.segment.set(0.5 * (start + end));
+        *self.contacts_at.borrow_mut() = None;
+    }
+    fn events(&self) -> &[EventSpec<StopReason>] {
+        &self.events
+    }
+    fn event(&self, index: usize, t: f64, z: &[f64], zd: &[f64]) -> f64 {
+        let zdd = if self.unsprung() {
+            self.acceleration(t, z, zd)
+        } else {
+            Vec::new()
+        };
+        let rn = self.contact_forces(t, z, zd, &zdd);
+        let scale = self
+            .vehicles
+            .iter()
+            .flat_map(|v| v.static_loads.iter())
+            .fold(0.0_f64, |m, p| m.max(*p));
+        rn[index] / scale
+    }
+}

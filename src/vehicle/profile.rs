@@ -1,0 +1,141 @@
+//! The running surface's vertical irregularity r(x) (m, positive up), the same under every
+//! wheel: piecewise linear through given points and constant beyond them, or a random profile
+//! of an ISO 8608 class as a sum of cosines.
+//!
+//! ISO 8608 gives the displacement's one-sided power spectral density in the spatial frequency
+//! n (cycles/m) as G(n) = G(n₀) (n/n₀)⁻², n₀ = 0.1 cycles/m, with G(n₀) = 16·10⁻⁶ m³ for class
+//! A (the geometric mean of its band) and four times as much for each class after it. The
+//! profile is Σ_k √(2 G(n_k) Δn) cos(2π n_k x + φ_k) over equal steps Δn between the
+//! wavelengths asked for, the phases φ_k uniform and drawn from the seed.
+
+/// ISO 8608's classes, A (smoothest) to H.
+pub const ISO_CLASSES: &str = "ABCDEFGH";
+
+/// Cosines of a random profile: enough that the spectrum's shape holds between its limits.
+pub const ISO_TERMS: usize = 200;
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Profile {
+    /// Level: r ≡ 0.
+    Smooth,
+    /// Through these (x, r), x increasing.
+    Points(Vec<[f64; 2]>),
+    /// Σ a_k cos(κ_k x + φ_k): (a_k, κ_k rad/m, φ_k).
+    Cosines(Vec<[f64; 3]>),
+}
+
+impl Profile {
+    /// A random profile of ISO 8608 class `class` (A..H) with wavelengths in [shortest,
+    /// longest] m, the phases drawn from `seed`.
+    pub fn iso8608(class: char, seed: u64, shortest: f64, longest: f64) -> Option<Profile> {
+        let k = ISO_CLASSES.find(class)?;
+        let g0 = 16.0e-6 * 4.0_f64.powi(k as i32);
+        let n0 = 0.1;
+        let (lo, hi) = (1.0 / longest, 1.0 / shortest);
+        let dn = (hi - lo) / ISO_TERMS as f64;
+        let mut random = SplitMix(seed);
+        Some(Profile::Cosines(
+            (0..ISO_TERMS)
+                .map(|i| {
+                    let n = lo + (i as f64 + 0.5) * dn;
+                    let g = g0 * (n / n0).powi(-2);
+                    let phase = std::f64::consts::TAU * random.unit();
+                    [(2.0 * g * dn).sqrt(), std::f64::consts::TAU * n, phase]
+                })
+                .collect(),
+        ))
+    }
+
+    /// r, r' and r'' at x; on a piecewise-linear profile the slope is the one of the piece
+    /// that holds `side` (a point a little on the side the wheel is going), r'' is 0.
+    pub fn at(&self, x: f64, side: f64) -> [f64; 3] {
+        match self {
+            Profile::Smooth => [0.0; 3],
+            Profile::Points(p) => {
+                let last = p.len() - 1;
+                let slope = if side <= p[0][0] || side >= p[last][0] {
+                    0.0
+                } else {
+                    let i = p.partition_point(|q| q[0] <= side).clamp(1, last);
+                    (p[i][1] - p[i - 1][1]) / (p[i][0] - p[i - 1][0])
+                };
+                [linear(p, x), slope, 0.0]
+            }
+            Profile::Cosines(c) => c.iter().fold([0.0; 3], |[r, r1, r2], &[a, k, phi]| {
+                let (s, co) = (k * x + phi).sin_cos();
+                [r + a * co, r1 - a * k * s, r2 - a * k * k * co]
+            }),
+        }
+    }
+
+    /// Where the slope jumps: a wheel crossing one of these is a breakpoint.
+    pub fn kinks(&self) -> Vec<f64> {
+        match self {
+            Profile::Points(p) => p.iter().map(|q| q[0]).collect(),
+            _ => Vec::new(),
+        }
+    }
+}
+
+/// r at x on a piecewise-linear profile, constant beyond its ends.
+fn linear(p: &[[f64; 2]], x: f64) -> f64 {
+    let last = p.len() - 1;
+    if x <= p[0][0] {
+        return p[0][1];
+    }
+    if x >= p[last][0] {
+        return p[last][1];
+    }
+    let i = p.partition_point(|q| q[0] <= x).clamp(1, p.len() - 1);
+    let (a, b) = (p[i - 1], p[i]);
+    a[1] + (b[1] - a[1]) * (x - a[0]) / (b[0] - a[0])
+}
+
+/// Steele, Lea and Flood's SplitMix64: a seeded stream of uniform numbers, which is all a
+/// profile's phases need, reproducible on any machine.
+struct SplitMix(u64);
+
+impl SplitMix {
+    fn unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_ramp_is_linear_between_its_points_and_constant_beyond() {
+        let p = Profile::Points(vec![[0.0, 0.0], [10.0, 0.01], [20.0, 0.01]]);
+        assert_eq!(p.at(-5.0, -4.0), [0.0, 0.0, 0.0]);
+        let mid = p.at(5.0, 5.1);
+        assert!((mid[0] - 0.005).abs() < 1e-15 && (mid[1] - 0.001).abs() < 1e-15);
+        assert_eq!(p.at(10.0, 10.1)[1], 0.0);
+        assert!((p.at(10.0, 9.9)[1] - 0.001).abs() < 1e-15);
+        assert_eq!(p.at(25.0, 25.1), [0.01, 0.0, 0.0]);
+    }
+
+    /// The variance of a random profile is the integral of its spectrum: ∫ G(n) dn between
+    /// the limits, G(n₀) n₀² (1/n_lo − 1/n_hi), which the cosines' Σ a²/2 reproduces to the
+    /// midpoint rule's error; the mean square of the profile over a long stretch approaches it.
+    #[test]
+    fn an_iso_profile_carries_its_class_variance() {
+        let (lo, hi) = (1.0 / 50.0, 1.0 / 0.5);
+        let Some(Profile::Cosines(c)) = Profile::iso8608('C', 7, 0.5, 50.0) else {
+            panic!("class C is known");
+        };
+        let variance: f64 = c.iter().map(|t| 0.5 * t[0] * t[0]).sum();
+        let exact = 256.0e-6 * 0.01 * (1.0 / lo - 1.0 / hi);
+        assert!(
+            (variance / exact - 1.0).abs() < 0.05,
+            "{variance} against {exact}"
+        );
+        assert!(Profile::iso8608('I', 1, 0.5, 50.0).is_none());
+    }
+}
