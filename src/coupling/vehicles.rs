@@ -90,6 +90,10 @@ pub struct VehiclesOnBeam<'a> {
     segment: Cell<f64>,
     contacts_at: RefCell<Option<(f64, Rc<[Contact]>)>>,
     events: Vec<EventSpec<StopReason>>,
+    /// The wheels' contact forces at the last (t, z, ż) the events asked about: the driver
+    /// asks for each wheel's in turn at one state, and with unsprung masses each needs the
+    /// accelerations solved for.
+    forces_at: RefCell<Option<(f64, Vec<f64>, Vec<f64>)>>,
 }
 
 impl<'a> VehiclesOnBeam<'a> {
@@ -145,6 +149,7 @@ impl<'a> VehiclesOnBeam<'a> {
             patch,
             segment: Cell::new(f64::NAN),
             contacts_at: RefCell::new(None),
+            forces_at: RefCell::new(None),
             events: vec![
                 EventSpec {
                     reason: StopReason::ContactLost,
@@ -713,17 +718,25 @@ impl SecondOrderProblem for VehiclesOnBeam<'_> {
         &self.events
     }
     fn event(&self, index: usize, t: f64, z: &[f64], zd: &[f64]) -> f64 {
+        let scale = self
+            .vehicles
+            .iter()
+            .flat_map(|v| v.static_loads.iter())
+            .fold(0.0_f64, |m, p| m.max(*p));
+        if let Some((at, state, rn)) = &*self.forces_at.borrow() {
+            if *at == t && state[..z.len()] == *z && state[z.len()..] == *zd {
+                return rn[index] / scale;
+            }
+        }
         let zdd = if self.unsprung() {
             self.acceleration(t, z, zd)
         } else {
             Vec::new()
         };
         let rn = self.contact_forces(t, z, zd, &zdd);
-        let scale = self
-            .vehicles
-            .iter()
-            .flat_map(|v| v.static_loads.iter())
-            .fold(0.0_f64, |m, p| m.max(*p));
-        rn[index] / scale
+        let value = rn[index] / scale;
+        let state = z.iter().chain(zd).copied().collect();
+        *self.forces_at.borrow_mut() = Some((t, state, rn));
+        value
     }
 }

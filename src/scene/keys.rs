@@ -112,58 +112,16 @@ impl SceneSpec {
                 let Some((name, field)) = rest.split_once('.') else {
                     return Err(not_a_number(key));
                 };
-                let Some(v) = f
-                    .vehicles
-                    .as_mut()
-                    .and_then(|l| l.value.iter_mut().find(|v| v.value.name.value == name))
-                else {
+                // `*` sets the key on every vehicle: a train of vehicles runs at one speed.
+                let mut any = false;
+                for v in f.vehicles.iter_mut().flat_map(|l| l.value.iter_mut()) {
+                    if name == "*" || v.value.name.value == name {
+                        set_vehicle(&mut v.value, field, value, key)?;
+                        any = true;
+                    }
+                }
+                if !any {
                     return unset(&format!("vehicle named {}", quote(name)));
-                };
-                let v = &mut v.value;
-                match field.split('.').collect::<Vec<_>>()[..] {
-                    ["speed"] => number(&mut v.speed),
-                    ["x0"] => option(&mut v.x0),
-                    ["acceleration"] => option(&mut v.acceleration),
-                    ["springs", i, what @ ("k" | "c")] => {
-                        let Some(s) = i
-                            .parse::<usize>()
-                            .ok()
-                            .and_then(|i| v.springs.value.get_mut(i))
-                        else {
-                            return unset(&format!("spring {i} in vehicle {}", quote(name)));
-                        };
-                        match what {
-                            "k" => number(&mut s.value.k),
-                            _ => option(&mut s.value.c),
-                        }
-                    }
-                    [part, what @ ("mass" | "inertia")] => {
-                        if let Some(b) = v
-                            .bodies
-                            .value
-                            .iter_mut()
-                            .find(|b| b.value.name.value == part)
-                        {
-                            match what {
-                                "mass" => number(&mut b.value.mass),
-                                _ => option(&mut b.value.inertia),
-                            }
-                        } else if let Some(a) = v
-                            .axles
-                            .value
-                            .iter_mut()
-                            .find(|a| a.value.name.value == part && what == "mass")
-                        {
-                            option(&mut a.value.mass)
-                        } else {
-                            return unset(&format!(
-                                "body or axle {} with {what} in vehicle {}",
-                                quote(part),
-                                quote(name)
-                            ));
-                        }
-                    }
-                    _ => return Err(not_a_number(key)),
                 }
             }
             Some(("solver", field)) => {
@@ -360,6 +318,63 @@ impl SceneSpec {
 /// A value set rather than read: it has no line in the file.
 pub(super) fn given<T>(value: T) -> Spanned<T> {
     Spanned::new(value, Location::UNKNOWN, Location::UNKNOWN)
+}
+
+/// Set `field` (after `vehicles.<name>.`) of one vehicle to `value`.
+fn set_vehicle(v: &mut VehicleFile, field: &str, value: f64, key: &str) -> Result<(), Error> {
+    let name = v.name.value.clone();
+    let unset = |what: String| -> Result<(), Error> {
+        Err(Error::Input(format!(
+            "`{key}` cannot be set: vehicle {} has no {what}",
+            quote(&name)
+        )))
+    };
+    let option = |slot: &mut Option<Spanned<f64>>| match slot {
+        Some(s) => s.value = value,
+        None => *slot = Some(given(value)),
+    };
+    match field.split('.').collect::<Vec<_>>()[..] {
+        ["speed"] => v.speed.value = value,
+        ["x0"] => option(&mut v.x0),
+        ["acceleration"] => option(&mut v.acceleration),
+        ["springs", i, what @ ("k" | "c")] => {
+            let Some(s) = i
+                .parse::<usize>()
+                .ok()
+                .and_then(|i| v.springs.value.get_mut(i))
+            else {
+                return unset(format!("spring {i}"));
+            };
+            match what {
+                "k" => s.value.k.value = value,
+                _ => option(&mut s.value.c),
+            }
+        }
+        [part, what @ ("mass" | "inertia")] => {
+            if let Some(b) = v
+                .bodies
+                .value
+                .iter_mut()
+                .find(|b| b.value.name.value == part)
+            {
+                match what {
+                    "mass" => b.value.mass.value = value,
+                    _ => option(&mut b.value.inertia),
+                }
+            } else if let Some(a) = v
+                .axles
+                .value
+                .iter_mut()
+                .find(|a| a.value.name.value == part && what == "mass")
+            {
+                option(&mut a.value.mass)
+            } else {
+                return unset(format!("body or axle {} with {what}", quote(part)));
+            }
+        }
+        _ => return Err(not_a_number(key)),
+    }
+    Ok(())
 }
 
 pub(super) fn not_a_number(key: &str) -> Error {

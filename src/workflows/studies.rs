@@ -95,6 +95,7 @@ pub fn run_all(
     compare_parabola(&rolling, figures)?;
     bridge_speed_sweep(studies, figures)?;
     hslm_sweep(studies, out, figures)?;
+    railcar_sweep(studies, out, figures)?;
     if with_work_precision {
         work_precision(studies, out, figures)?;
     }
@@ -283,6 +284,138 @@ fn hslm_sweep(studies: &Path, out: &Path, figures: &Path) -> Result<(), Error> {
         std::fs::copy(dir.join(from), &to).map_err(|e| io_error(&to, e))?;
     }
     Ok(())
+}
+
+/// The train of railway cars over the HSLM bridge at every speed from 40 to 130 m/s, beside
+/// the moving-force and the moving-mass trains of the same axles and static axle loads: the
+/// deck's largest acceleration by each model, and the car bodies' largest acceleration against
+/// EN 1990's levels of comfort. `sweep.csv` of each model goes to `out/vehicle-railcar-sweep/`.
+fn railcar_sweep(studies: &Path, out: &Path, figures: &Path) -> Result<(), Error> {
+    let file = studies.join("vehicle-railcar.yaml");
+    if !file.is_file() {
+        return Ok(());
+    }
+    let spec = SceneSpec::load(&file)?;
+    let scene = Planner::default().plan(&spec)?;
+    let Some(beam) = scene.beam() else {
+        return Ok(());
+    };
+    let first = beam.vehicles.first().map_or(0.0, |v| v.x0);
+    let (axles, loads): (Vec<f64>, Vec<f64>) = beam
+        .vehicles
+        .iter()
+        .flat_map(|v| {
+            v.axles
+                .iter()
+                .zip(&v.static_loads)
+                .map(move |(a, p)| (first - v.x0 + a.x, *p))
+        })
+        .unzip();
+    let text = spec.to_yaml()?;
+    let (Some(cut), Some(rest)) = (text.find("\nvehicles:"), text.find("\noutput:")) else {
+        return Err(Error::Input(format!(
+            "{}: the railway study's vehicles must come before its output",
+            file.display()
+        )));
+    };
+    let train = |model: &str| -> Result<SceneSpec, Error> {
+        let text = format!(
+            "{}\ntrain: {{axles: {axles:?}, load: {loads:?}, speed: 100.0, model: {model}}}{}",
+            &text[..cut],
+            &text[rest..]
+        );
+        SceneSpec::parse(&text, &file.display().to_string(), "vehicle-railcar")
+    };
+    let started = std::time::Instant::now();
+    let dir = out.join("vehicle-railcar-sweep");
+    let mut deck = Vec::new();
+    let mut bodies = Vec::new();
+    for (label, swept, key) in [
+        ("vehicles", spec.clone(), "vehicles.*.speed"),
+        ("moving masses", train("moving-mass")?, "train.speed"),
+        ("moving forces", train("moving-force")?, "train.speed"),
+    ] {
+        let setting = Setting::parse(&format!("{key}=40:130:91"))?;
+        let rows = run_sweep(&swept, &setting, &Overrides::default(), true)?;
+        let name = label.replace(' ', "-");
+        super::sweep::write_sweep(&rows, &setting, &dir.join(&name))?;
+        // A run a wheel's lift-off stopped is not a crossing: its numbers stop short of one.
+        let ok = || {
+            rows.iter()
+                .filter_map(|r| Some((r.value, r.outcome.as_ref().ok()?)))
+                .filter(|(_, s)| s.stop == "end")
+        };
+        let lifted = rows
+            .iter()
+            .filter(|r| r.outcome.as_ref().is_ok_and(|s| s.stop == "contact-lost"))
+            .map(|r| r.value)
+            .fold(f64::INFINITY, f64::min);
+        let label = if lifted.is_finite() {
+            format!("{label} (from {lifted} m/s a wheel lifts off the deck)")
+        } else {
+            label.to_string()
+        };
+        deck.push((
+            format!("deck at midspan: {label}"),
+            ok().filter_map(|(v, s)| Some((v, s.probes.first()?.4)))
+                .collect::<Vec<_>>(),
+        ));
+        if key.starts_with("vehicles") {
+            bodies.push((
+                "largest over the car bodies".to_string(),
+                ok().map(|(v, s)| {
+                    let body = s
+                        .bodies
+                        .iter()
+                        .filter(|b| b.0.ends_with(".body"))
+                        .fold(0.0_f64, |m, b| m.max(b.1));
+                    (v, body)
+                })
+                .collect::<Vec<_>>(),
+            ));
+        }
+    }
+    say!(
+        "{:<14} 3 × 91 speeds in {:.1} s; wrote {}",
+        "vehicle-railcar",
+        started.elapsed().as_secs_f64(),
+        dir.display()
+    );
+    let deck: Vec<(&str, Vec<(f64, f64)>)> =
+        deck.iter().map(|(n, p)| (n.as_str(), p.clone())).collect();
+    plots::line_chart(
+        &figures.join("vehicle-railcar-deck.svg"),
+        "four railway cars over the 15 m HSLM bridge: the deck's largest acceleration",
+        "speed (m/s)",
+        "max |a| at midspan (m/s²)",
+        &deck,
+    )?;
+    let largest = bodies
+        .iter()
+        .flat_map(|(_, p)| p.iter())
+        .fold(0.0_f64, |m, p| m.max(p.1));
+    let levels: Vec<(String, Vec<(f64, f64)>)> = output::beam::COMFORT_LEVELS
+        .iter()
+        .enumerate()
+        .filter(|(k, (level, _))| *k == 0 || *level <= largest)
+        .map(|(_, (level, label))| (label.to_string(), vec![(40.0, *level), (130.0, *level)]))
+        .collect();
+    let bodies: Vec<(&str, Vec<(f64, f64)>)> = bodies
+        .iter()
+        .map(|(n, p)| (n.as_str(), p.clone()))
+        .collect();
+    let levels: Vec<(&str, Vec<(f64, f64)>)> = levels
+        .iter()
+        .map(|(n, p)| (n.as_str(), p.clone()))
+        .collect();
+    plots::line_chart_with_references(
+        &figures.join("vehicle-railcar-comfort.svg"),
+        "the same crossings: the car bodies' largest vertical acceleration",
+        "speed (m/s)",
+        "max |a| of a car body (m/s²)",
+        &bodies,
+        &levels,
+    )
 }
 
 /// Compute every study's work–precision reference again, two at a time, and store each beside

@@ -46,6 +46,10 @@ pub(super) struct Ledger<'a> {
     /// Pieces of the step under way, (midpoint, end) each with its state, booked by Simpson's
     /// rule as the run passes their ends.
     pending: std::collections::VecDeque<Piece>,
+    /// The moving loads' power at the end of the step just taken, read on that step's side
+    /// of its breakpoints: where a vehicle's wheel crosses a kink of the profile the drive's
+    /// power jumps, and by the time the step is booked the run has entered the next stretch.
+    end_power: Option<(f64, f64)>,
     pub check: EnergyCheck,
 }
 
@@ -113,6 +117,7 @@ impl<'a> Ledger<'a> {
             damped: (0.0, Self::damping_power(phase, 0.0, y0), 0.0),
             impact: 0.0,
             pending: std::collections::VecDeque::new(),
+            end_power: None,
             check,
         };
         ledger.at_loads = ledger.at_loads(phase, y0);
@@ -250,9 +255,21 @@ impl<'a> Ledger<'a> {
         self.t = t;
         self.at_loads = now;
         let power = Self::moving_power(phase, t, y);
-        self.moving = (t, power, self.moving_work(t, power));
+        let end = match self.end_power.take() {
+            Some((te, p)) if te == t => p,
+            _ => power,
+        };
+        self.moving = (t, power, self.moving_work(t, end));
         let (dissipated, power) = self.dissipated(phase, t, y);
         self.damped = (t, power, dissipated);
+    }
+
+    /// The step just taken ends at (t, y), read on its own stretch (with vehicles only: see
+    /// `end_power`).
+    pub fn step_ends(&mut self, phase: &Phase, t: f64, y: &[f64]) {
+        if phase.vehicles.is_some() {
+            self.end_power = Some((t, Self::moving_power(phase, t, y)));
+        }
     }
 
     /// Book the step under way by Simpson's rule on these pieces, each as the run passes its

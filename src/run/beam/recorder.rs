@@ -464,6 +464,7 @@ impl Observer for Recorder<'_> {
     }
 
     fn span(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
+        self.ledger.step_ends(&self.phase, t1, &dense.at(t1));
         // A step longer than two watched samples books the work and the damping on the way,
         // by Simpson's rule on pieces at most a sample long: the trapezoidal rule over the
         // step alone would miss what the modes below the cutoff do within it.
