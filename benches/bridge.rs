@@ -22,6 +22,10 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use rollbeam::run::{run, Overrides};
 use rollbeam::scene::{Model, Scene};
 
+#[path = "d44.rs"]
+mod d44;
+use d44::{d44_text_without, d44_without};
+
 fn d44() -> Scene {
     let mut scene =
         Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/bridge-d44.yaml"))
@@ -63,32 +67,6 @@ fn at_a_tenth_of_a_percent(c: &mut Criterion) {
         b.iter(|| run(&scene, &over, false).expect("runs"))
     });
     group.finish();
-}
-
-/// D44 with the lines that start with `keys` left out, as a user would write it.
-fn d44_without(keys: &[&str]) -> Scene {
-    d44_text_without(keys, 1.0)
-}
-
-/// The same, with the shear modulus multiplied by `shear`.
-fn d44_text_without(keys: &[&str], shear: f64) -> Scene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/bridge-d44.yaml");
-    let text = std::fs::read_to_string(&path)
-        .expect("D44 is readable")
-        .replace("G: 81.0e9", &format!("G: {:e}", 81.0e9 * shear));
-    let kept: String = text
-        .lines()
-        .filter(|l| !keys.iter().any(|k| l.trim_start().starts_with(k)))
-        .map(|l| {
-            if l == "solver:" && keys.contains(&"method:") {
-                "solver: {}"
-            } else {
-                l
-            }
-        })
-        .map(|l| format!("{l}\n"))
-        .collect();
-    Scene::parse(&kept, "D44 with defaults", "bridge-d44").expect("D44 is valid")
 }
 
 fn with_the_defaults(c: &mut Criterion) {

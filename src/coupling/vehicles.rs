@@ -210,6 +210,12 @@ impl<'a> VehiclesOnBeam<'a> {
         }
     }
 
+    /// The stretch between breakpoints the run is in, by its midpoint (NaN outside a run):
+    /// which side of a kink of the profile the wheels read.
+    pub fn stretch(&self) -> f64 {
+        self.segment.get()
+    }
+
     /// When the last wheel leaves the deck, if every vehicle does.
     pub fn gone(&self) -> Option<f64> {
         let length = self.loaded.beam.length;
@@ -326,15 +332,12 @@ impl<'a> VehiclesOnBeam<'a> {
     ) -> (f64, f64) {
         match part {
             Part::Axle(a) => (tracks[a].d, tracks[a].rate),
-            Part::Body(b) => {
-                self.vehicles[i]
-                    .lever(b, s)
-                    .iter()
-                    .fold((0.0, 0.0), |(d, r), &(j, l)| {
-                        let k = self.offsets[i] + j;
-                        (d + l * z[k], r + l * zd[k])
-                    })
-            }
+            Part::Body(b) => self.vehicles[i]
+                .lever(b, s)
+                .fold((0.0, 0.0), |(d, r), (j, l)| {
+                    let k = self.offsets[i] + j;
+                    (d + l * z[k], r + l * zd[k])
+                }),
         }
     }
 
@@ -655,7 +658,7 @@ impl Structure for VehiclesOnBeam<'_> {
                     continue;
                 };
                 let g = &wheels[i][ax].rows[0];
-                let lever = veh.lever(b, s.x);
+                let lever: Vec<(usize, f64)> = veh.lever(b, s.x).collect();
                 for &(p, gp) in g {
                     for &(r, gr) in g {
                         a.add(p, r, s.k * gp * gr);

@@ -138,13 +138,10 @@ impl Vehicle {
     }
 
     /// The lever of body b at s over the vehicle's unknowns: how a unit of each moves the point.
-    pub fn lever(&self, b: usize, s: f64) -> Vec<(usize, f64)> {
+    pub fn lever(&self, b: usize, s: f64) -> impl Iterator<Item = (usize, f64)> {
         let body = &self.bodies[b];
-        let mut out = vec![(self.first[b], 1.0)];
-        if body.pitches() {
-            out.push((self.first[b] + 1, body.x - s));
-        }
-        out
+        let first = self.first[b];
+        std::iter::once((first, 1.0)).chain(body.pitches().then_some((first + 1, body.x - s)))
     }
 
     /// The vehicle's own mass matrix, diagonal: each body's mass, and its inertia where it
@@ -257,11 +254,7 @@ impl Vehicle {
         for s in &self.springs {
             let Part::Axle(a) = s.lower else { continue };
             let Part::Body(b) = s.upper else { continue };
-            let stretch: f64 = self
-                .lever(b, s.x)
-                .iter()
-                .map(|&(i, l)| l * settled[i])
-                .sum();
+            let stretch: f64 = self.lever(b, s.x).map(|(i, l)| l * settled[i]).sum();
             loads[a] -= s.k * stretch;
         }
         if let Some(a) = loads.iter().position(|p| !(*p > 0.0) && gravity > 0.0) {

@@ -49,7 +49,7 @@ pub(super) struct Ledger<'a> {
     /// The moving loads' power at the end of the step just taken, read on that step's side
     /// of its breakpoints: where a vehicle's wheel crosses a kink of the profile the drive's
     /// power jumps, and by the time the step is booked the run has entered the next stretch.
-    end_power: Option<(f64, f64)>,
+    end_power: Option<(f64, f64, f64)>,
     pub check: EnergyCheck,
 }
 
@@ -254,10 +254,14 @@ impl<'a> Ledger<'a> {
         self.done += work_since(self.loads, self.t, t, &self.at_loads, &now);
         self.t = t;
         self.at_loads = now;
-        let power = Self::moving_power(phase, t, y);
-        let end = match self.end_power.take() {
-            Some((te, p)) if te == t => p,
-            _ => power,
+        let stretch = phase.vehicles.map(|v| v.stretch());
+        let (end, power) = match self.end_power.take() {
+            Some((te, on, p)) if te == t && Some(on) == stretch => (p, p),
+            Some((te, _, p)) if te == t => (p, Self::moving_power(phase, t, y)),
+            _ => {
+                let p = Self::moving_power(phase, t, y);
+                (p, p)
+            }
         };
         self.moving = (t, power, self.moving_work(t, end));
         let (dissipated, power) = self.dissipated(phase, t, y);
@@ -267,8 +271,8 @@ impl<'a> Ledger<'a> {
     /// The step just taken ends at (t, y), read on its own stretch (with vehicles only: see
     /// `end_power`).
     pub fn step_ends(&mut self, phase: &Phase, t: f64, y: &[f64]) {
-        if phase.vehicles.is_some() {
-            self.end_power = Some((t, Self::moving_power(phase, t, y)));
+        if let Some(v) = phase.vehicles {
+            self.end_power = Some((t, v.stretch(), Self::moving_power(phase, t, y)));
         }
     }
 

@@ -56,6 +56,7 @@ impl<'a> Phase<'a> {
         t: f64,
         y: &'y [f64],
         disk: Option<&DiskObservation>,
+        rate: Option<&[f64]>,
     ) -> Cow<'y, [f64]> {
         let n = self.loaded.dim();
         let q = self.loaded.to_mesh(&y[..n]);
@@ -68,7 +69,7 @@ impl<'a> Phase<'a> {
             let (z, zd) = self.split(y);
             c.add_contact_force_on_beam(t, z, zd, d, &mut f);
         }
-        for (x, p) in self.wheel_forces(t, y) {
+        for (x, p) in self.wheel_forces(t, y, rate) {
             self.beam.add_point_load(x, [0.0, p], 0.0, &mut f);
         }
         let mut q = q.into_owned();
@@ -101,12 +102,16 @@ impl<'a> Phase<'a> {
     }
 
     /// The vehicles' wheels' forces on the beam at (t, y) (global Y, at their places on it).
-    fn wheel_forces(&self, t: f64, y: &[f64]) -> Vec<(f64, f64)> {
+    /// With `rate` (the dense output's ẏ) the accelerations are read off it, not solved for.
+    fn wheel_forces(&self, t: f64, y: &[f64], rate: Option<&[f64]>) -> Vec<(f64, f64)> {
         let Some(v) = self.vehicles else {
             return Vec::new();
         };
         let (z, zd) = self.split(y);
-        v.forces_on_beam(t, z, zd, &v.acceleration(t, z, zd))
+        match rate {
+            Some(yp) => v.forces_on_beam(t, z, zd, self.split(yp).1),
+            None => v.forces_on_beam(t, z, zd, &v.acceleration(t, z, zd)),
+        }
     }
 
     /// The vehicles at (t, y), their accelerations from `rate` (the dense output's ẏ) where
@@ -185,7 +190,7 @@ impl<'a> Phase<'a> {
                 .map(|(x, f)| (x, f, 0.0)),
         );
         acting.extend(
-            self.wheel_forces(t, y)
+            self.wheel_forces(t, y, None)
                 .into_iter()
                 .map(|(x, p)| (x, [0.0, p], 0.0)),
         );

@@ -101,7 +101,7 @@ impl Recorder<'_> {
     ) -> Snapshot {
         let phase = &self.phase;
         let (disk, gap) = phase.disk(t, y);
-        let q = phase.displaced(t, y, disk.as_ref());
+        let q = phase.displaced(t, y, disk.as_ref(), rate);
         // The beam alone takes its accelerations from the dense output, without a solve for
         // them. With the disk on, the observation has solved for them already, and the
         // contact force, which the beam's acceleration under the disk enters, is sensitive
@@ -405,7 +405,7 @@ impl Observer for Recorder<'_> {
         let phase = &self.phase;
         let (disk, gap) = phase.disk(t, y);
         let energy = self.ledger.at_output(phase, t, y, disk.as_ref());
-        let q = phase.displaced(t, y, disk.as_ref());
+        let q = phase.displaced(t, y, disk.as_ref(), None);
         let a = phase.acceleration(t, y);
         let reactions = phase.reactions(t, y, &q, &a, disk.as_ref());
         let along = phase.beam.displacements(&self.stations, &q);
@@ -488,7 +488,7 @@ impl Observer for Recorder<'_> {
         means.record_span(t0, t1, |t| {
             let y = dense.at(t);
             let (disk, _) = phase.disk(t, &y);
-            let q = phase.displaced(t, &y, disk.as_ref());
+            let q = phase.displaced(t, &y, disk.as_ref(), None);
             history
                 .probes
                 .iter()
