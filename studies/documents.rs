@@ -27,6 +27,31 @@ fn the_readme_scene_runs() {
     assert!(r.amplitude_after_exit(0).is_some_and(|a| a > 0.0));
 }
 
+/// The README's vehicle, put in the first scene in place of its train as the README says,
+/// crosses the deck and reports its body's largest acceleration.
+#[test]
+fn the_readme_vehicle_replaces_the_train() {
+    let readme = read("README.md");
+    let blocks: Vec<&str> = readme
+        .split("```yaml\n")
+        .skip(1)
+        .map(|b| &b[..b.find("```").expect("its end")])
+        .collect();
+    let (scene, vehicle) = (blocks[0], blocks[1]);
+    let train = scene
+        .lines()
+        .find(|l| l.starts_with("train:"))
+        .expect("the first scene's train");
+    let text = scene.replace(&format!("{train}\n"), vehicle);
+    let scene = Scene::parse(&text, "README.md", "bridge").expect("the vehicle scene is valid");
+    let r = run::run(&scene, &Overrides::default(), false)
+        .expect("it runs")
+        .beam()
+        .expect("a beam scene");
+    assert_eq!(r.header.stop.name(), "end");
+    assert!(r.vehicles[0].bodies[0].1.largest_magnitude().0 > 0.0);
+}
+
 /// Every image REPORT.md and README.md link, `](path.svg)` or `](path.png)`, is in the
 /// repository.
 #[test]

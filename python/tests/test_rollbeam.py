@@ -122,6 +122,45 @@ def test_with_values_returns_a_changed_copy_and_checks_it():
         scene.with_values({"disk.no_such_key": 1.0})
 
 
+def test_vehicles_from_a_dict_run_and_are_checked_as_files_are(tmp_path):
+    """A vehicle given as a dict is the scene the command line reads from YAML: its summary's
+    vehicle block and history columns are the same numbers; a flawed vehicle is refused in
+    one sentence naming the key."""
+    sprung = rollbeam.Scene.from_yaml(STUDIES / "vehicle-sprung.yaml")
+    as_dict = {
+        "name": "vehicle-sprung",
+        "duration": 1.0,
+        "track": {
+            "beam": {
+                "from": [0.0, 0.0], "to": [25.0, 0.0], "E": 2.87e9, "G": 1.0e12,
+                "rho": 2.303, "A": 1000.0, "Av": 1000.0, "I": 2.9, "depth": 0.01,
+                "supports": {"from": "pinned", "to": "roller"},
+            }
+        },
+        "vehicles": [{
+            "name": "car", "speed": 27.78,
+            "bodies": [{"name": "body", "mass": 5750.0}],
+            "axles": [{"name": "wheel", "x": 0.0}],
+            "springs": [{"upper": "body", "lower": "wheel", "x": 0.0, "k": 1595.0e3}],
+        }],
+        "output": {"probes": [{"name": "mid", "x": 12.5}]},
+    }
+    ours = rollbeam.run(rollbeam.Scene(as_dict))
+    theirs = rollbeam.run(sprung)
+    assert without_wall(ours.summary) == without_wall(theirs.summary)
+    assert ours.summary["vehicles"]["car"]["bodies"]["body"]["a_max"] > 0.0
+    assert np.array_equal(ours.history["car.body.a"], theirs.history["car.body.a"])
+    car = as_dict["vehicles"][0]
+    for flaw, key in [
+        ({"springs": [{**car["springs"][0], "lower": "nowhere"}]}, "vehicles.springs.lower"),
+        ({"bodies": [{"name": "body", "mass": -1.0}]}, "vehicles.bodies.mass"),
+        ({"axles": []}, "vehicles.axles"),
+    ]:
+        with pytest.raises(rollbeam.SceneError) as e:
+            rollbeam.Scene({**as_dict, "vehicles": [{**car, **flaw}]})
+        assert e.value.key == key
+
+
 def test_scenes_pickle():
     scene = rollbeam.Scene.from_yaml(STUDIES / "bridge-d44.yaml").with_values({"disk.omega0": -30})
     back = pickle.loads(pickle.dumps(scene))

@@ -486,19 +486,22 @@ fn vehicle_figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
         .flat_map(|(_, s)| s.iter())
         .fold(0.0_f64, |m, p| m.max(p.1.abs()));
     let t_end = r.rows.last().map_or(0.0, |row| row.t);
-    for (level, label) in COMFORT_LEVELS.iter().filter(|(l, _)| *l <= largest) {
-        bodies.push((label.to_string(), vec![(0.0, *level), (t_end, *level)]));
-    }
+    let levels: Vec<(&str, Vec<(f64, f64)>)> = COMFORT_LEVELS
+        .iter()
+        .filter(|(l, _)| *l <= largest)
+        .map(|(level, label)| (*label, vec![(0.0, *level), (t_end, *level)]))
+        .collect();
     let bodies: Vec<(&str, Vec<(f64, f64)>)> = bodies
         .iter()
         .map(|(n, p)| (n.as_str(), p.clone()))
         .collect();
-    line_chart(
+    super::plots::line_chart_with_references(
         &dir.join("vehicles.svg"),
         &format!("{name}: vertical acceleration of the vehicles' bodies"),
         "t (s)",
         "a (m/s²)",
         &bodies,
+        &levels,
     )?;
     let wheels: Vec<(&str, Vec<(f64, f64)>)> = wheels
         .iter()
