@@ -697,6 +697,45 @@ fn disk_in_plot(r: &BeamRun, t: f64, along: &[crate::beam::PointDisplacement]) -
 }
 
 /// The deformed axis at the requested times, displacements magnified, over the undeformed axis.
+/// The vehicles' wheels on the deck at shape time t, on the magnified shape `disp` over the
+/// axis points `axis` (at the envelope's stations).
+fn wheels_in_plot(
+    r: &BeamRun,
+    t: f64,
+    disp: &[crate::beam::PointDisplacement],
+    axis: &[[f64; 2]],
+    mag: f64,
+) -> Vec<(f64, f64)> {
+    let Some(obs) = r
+        .rows
+        .iter()
+        .find(|row| (row.t - t).abs() < 1e-9)
+        .and_then(|row| row.vehicles.as_ref())
+    else {
+        return Vec::new();
+    };
+    let (xs, length) = (&r.envelope.x, r.beam.length);
+    if xs.len() < 2 {
+        return Vec::new();
+    }
+    r.setup
+        .vehicles
+        .iter()
+        .enumerate()
+        .flat_map(|(i, v)| v.axles.iter().map(move |a| obs.x[i] - a.x))
+        .filter(|x| (0.0..=length).contains(x))
+        .map(|x| {
+            let k = xs.partition_point(|s| *s < x).clamp(1, xs.len() - 1);
+            let f = (x - xs[k - 1]) / (xs[k] - xs[k - 1]);
+            let lerp = |a: f64, b: f64| a + f * (b - a);
+            (
+                lerp(axis[k - 1][0], axis[k][0]) + mag * lerp(disp[k - 1].u, disp[k].u),
+                lerp(axis[k - 1][1], axis[k][1]) + mag * lerp(disp[k - 1].w, disp[k].w),
+            )
+        })
+        .collect()
+}
+
 fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
     let err =
         |e: &dyn std::fmt::Display| Error::Output(format!("cannot draw {}: {e}", path.display()));
@@ -721,6 +760,11 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
         .shapes
         .iter()
         .map(|(t, disp)| disk_in_plot(r, *t, disp))
+        .collect();
+    let wheels: Vec<Vec<(f64, f64)>> = r
+        .shapes
+        .iter()
+        .map(|(t, disp)| wheels_in_plot(r, *t, disp, &axis, mag))
         .collect();
     let circle = |c: [f64; 2]| -> Vec<(f64, f64)> {
         (0..=48)
@@ -797,6 +841,9 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
                     .draw_series(LineSeries::new(circle(c), color.stroke_width(2)))
                     .map_err(|e| err(&e))?;
             }
+            chart
+                .draw_series(wheels[i].iter().map(|&p| Circle::new(p, 4, color.filled())))
+                .map_err(|e| err(&e))?;
         }
         chart
             .configure_series_labels()

@@ -91,6 +91,7 @@ pub(super) fn beam_scene(
     };
     let vehicles = vehicles(c, raw, &beam, gravity)?;
     let profile = profile(c, raw, &raw.track.value)?;
+    wheel_breakpoints(c, raw, &vehicles, &profile)?;
     // With a train or vehicles `duration` is the free vibration after the last axle has left
     // (or the last vehicle has stopped).
     let crossing = train.as_ref().map_or(0.0, |t| t.gone(length)).max(

@@ -10,6 +10,35 @@ pub(super) const MAX_VEHICLES: usize = 100;
 pub(super) const MAX_PARTS: usize = 200;
 /// Most points a piecewise-linear profile may hold (every one is a breakpoint per axle).
 pub(super) const MAX_PROFILE_POINTS: usize = 10_000;
+/// Most breakpoints the wheels make: each wheel's arrival, departure and crossing of every
+/// kink of the profile ends a step, and the driver holds them all.
+pub(super) const MAX_WHEEL_BREAKPOINTS: usize = 1_000_000;
+
+/// The wheels' breakpoints within [`MAX_WHEEL_BREAKPOINTS`].
+pub(super) fn wheel_breakpoints(
+    c: &Checker,
+    raw: &SceneFile,
+    vehicles: &[Vehicle],
+    profile: &Profile,
+) -> Result<(), Error> {
+    let wheels: usize = vehicles.iter().map(|v| v.axles.len()).sum();
+    let kinks = profile.kinks().len();
+    let count = wheels.saturating_mul(kinks + 2);
+    if count > MAX_WHEEL_BREAKPOINTS {
+        let line = raw
+            .track
+            .value
+            .profile
+            .as_ref()
+            .map_or(0, |p| p.referenced.line());
+        return c.err(
+            line,
+            "track.profile",
+            format!("has {kinks} kinks under {wheels} wheels: {count} crossings, each ending a step, and at most {MAX_WHEEL_BREAKPOINTS} are held; use fewer points or fewer wheels"),
+        );
+    }
+    Ok(())
+}
 
 #[derive(Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
