@@ -431,3 +431,20 @@ fn a_quarter_car_over_a_sine_follows_its_transmissibility() {
         "steady amplitude {steady:e} against {expected:e}: {off:.2e}"
     );
 }
+
+/// `exact-modal` integrates uncoupled modes under a force of time alone: a vehicle couples
+/// its bodies to the deck, so the plan refuses it in one sentence (an input error, exit 1),
+/// rather than letting the solver fail.
+#[test]
+fn exact_modal_is_refused_with_vehicles() {
+    let over = rollbeam::run::Overrides {
+        method: Some(Method::ExactModal),
+        ..Default::default()
+    };
+    let err = match rollbeam::run::run(&load("vehicle-sprung.yaml"), &over, false) {
+        Err(e) => e,
+        Ok(_) => panic!("exact-modal ran with a vehicle"),
+    };
+    assert!(matches!(err, rollbeam::error::Error::Input(_)), "{err}");
+    assert!(err.to_string().contains("this scene has vehicles"), "{err}");
+}

@@ -128,6 +128,8 @@ impl BeamScene {
     pub fn exact_modal_refusal(&self) -> Option<String> {
         let what = if self.disk.is_some() {
             "a disk".to_string()
+        } else if !self.vehicles.is_empty() {
+            "vehicles".to_string()
         } else if self
             .train
             .as_ref()
