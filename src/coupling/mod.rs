@@ -158,15 +158,15 @@ pub struct DiskOnBeam<'a> {
 }
 
 /// A value kept with the time and state (t, y) it was formed at, until another is asked.
-struct LastEvaluation<T>(RefCell<Option<(f64, Vec<f64>, Rc<T>)>>);
+pub(crate) struct LastEvaluation<T>(RefCell<Option<(f64, Vec<f64>, Rc<T>)>>);
 
 impl<T> LastEvaluation<T> {
-    fn new() -> Self {
+    pub(crate) fn new() -> Self {
         LastEvaluation(RefCell::new(None))
     }
 
     /// The value at (t, the parts of y in order), formed by `form` unless it is the one kept.
-    fn at(&self, t: f64, y: &[&[f64]], form: impl FnOnce() -> T) -> Rc<T> {
+    pub(crate) fn at(&self, t: f64, y: &[&[f64]], form: impl FnOnce() -> T) -> Rc<T> {
         let mut kept = self.0.borrow_mut();
         let same = |k: &[f64]| {
             k.len() == y.iter().map(|p| p.len()).sum::<usize>()

@@ -19,10 +19,11 @@
 //! book: give such axles no mass, or put the mass in a body on a tyre spring.
 
 use std::borrow::Cow;
-use std::cell::{Cell, RefCell};
+use std::cell::Cell;
 use std::ops::Range;
 use std::rc::Rc;
 
+use super::LastEvaluation;
 use crate::beam::dynamics::LoadedBeam;
 use crate::linalg::{self, Assembly, LowRank, Sparse, SparseLu, Woodbury};
 use crate::ode::second_order::{SecondOrderProblem, Structure};
@@ -88,12 +89,13 @@ pub struct VehiclesOnBeam<'a> {
     /// Midpoint of the current stretch between breakpoints: which piece of the profile a
     /// wheel on a kink is on.
     segment: Cell<f64>,
-    contacts_at: RefCell<Option<(f64, Rc<[Contact]>)>>,
+    /// The wheels at the last time asked, on the side of the stretch then.
+    contacts_at: LastEvaluation<Vec<Contact>>,
     events: Vec<EventSpec<StopReason>>,
     /// The wheels' contact forces at the last (t, z, ż) the events asked about: the driver
     /// asks for each wheel's in turn at one state, and with unsprung masses each needs the
     /// accelerations solved for.
-    forces_at: RefCell<Option<(f64, Vec<f64>, Vec<f64>)>>,
+    forces_at: LastEvaluation<Vec<f64>>,
 }
 
 impl<'a> VehiclesOnBeam<'a> {
@@ -148,8 +150,8 @@ impl<'a> VehiclesOnBeam<'a> {
             rigid_track: stiff.build(),
             patch,
             segment: Cell::new(f64::NAN),
-            contacts_at: RefCell::new(None),
-            forces_at: RefCell::new(None),
+            contacts_at: LastEvaluation::new(),
+            forces_at: LastEvaluation::new(),
             events: vec![
                 EventSpec {
                     reason: StopReason::ContactLost,
@@ -245,15 +247,9 @@ impl<'a> VehiclesOnBeam<'a> {
     }
 
     /// Every wheel at t.
-    pub fn contacts(&self, t: f64) -> Rc<[Contact]> {
-        if let Some((at, c)) = &*self.contacts_at.borrow() {
-            if *at == t {
-                return c.clone();
-            }
-        }
-        let c: Rc<[Contact]> = self.contacts_now(t).into();
-        *self.contacts_at.borrow_mut() = Some((t, c.clone()));
-        c
+    pub fn contacts(&self, t: f64) -> Rc<Vec<Contact>> {
+        let stretch = [self.segment.get()];
+        self.contacts_at.at(t, &[&stretch], || self.contacts_now(t))
     }
 
     fn contacts_now(&self, t: f64) -> Vec<Contact> {
@@ -715,7 +711,6 @@ impl SecondOrderProblem for VehiclesOnBeam<'_> {
     fn enter_segment(&self, start: f64, end: f64) {
         self.loaded.enter_segment(start, end);
         self.segment.set(0.5 * (start + end));
-        *self.contacts_at.borrow_mut() = None;
     }
     fn events(&self) -> &[EventSpec<StopReason>] {
         &self.events
@@ -726,20 +721,15 @@ impl SecondOrderProblem for VehiclesOnBeam<'_> {
             .iter()
             .flat_map(|v| v.static_loads.iter())
             .fold(0.0_f64, |m, p| m.max(*p));
-        if let Some((at, state, rn)) = &*self.forces_at.borrow() {
-            if *at == t && state[..z.len()] == *z && state[z.len()..] == *zd {
-                return rn[index] / scale;
-            }
-        }
-        let zdd = if self.unsprung() {
-            self.acceleration(t, z, zd)
-        } else {
-            Vec::new()
-        };
-        let rn = self.contact_forces(t, z, zd, &zdd);
-        let value = rn[index] / scale;
-        let state = z.iter().chain(zd).copied().collect();
-        *self.forces_at.borrow_mut() = Some((t, state, rn));
-        value
+        let stretch = [self.segment.get()];
+        let rn = self.forces_at.at(t, &[z, zd, &stretch], || {
+            let zdd = if self.unsprung() {
+                self.acceleration(t, z, zd)
+            } else {
+                Vec::new()
+            };
+            self.contact_forces(t, z, zd, &zdd)
+        });
+        rn[index] / scale
     }
 }

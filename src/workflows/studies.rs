@@ -286,17 +286,25 @@ fn hslm_sweep(studies: &Path, out: &Path, figures: &Path) -> Result<(), Error> {
     Ok(())
 }
 
+/// A study's scene as read and as planned, where the studies folder holds it.
+fn planned(file: &Path) -> Result<Option<(SceneSpec, Scene)>, Error> {
+    if !file.is_file() {
+        return Ok(None);
+    }
+    let spec = SceneSpec::load(file)?;
+    let scene = Planner::default().plan(&spec)?;
+    Ok(Some((spec, scene)))
+}
+
 /// The train of railway cars over the HSLM bridge at every speed from 40 to 130 m/s, beside
 /// the moving-force and the moving-mass trains of the same axles and static axle loads: the
 /// deck's largest acceleration by each model, and the car bodies' largest acceleration against
 /// EN 1990's levels of comfort. `sweep.csv` of each model goes to `out/vehicle-railcar-sweep/`.
 fn railcar_sweep(studies: &Path, out: &Path, figures: &Path) -> Result<(), Error> {
     let file = studies.join("vehicle-railcar.yaml");
-    if !file.is_file() {
+    let Some((spec, scene)) = planned(&file)? else {
         return Ok(());
-    }
-    let spec = SceneSpec::load(&file)?;
-    let scene = Planner::default().plan(&spec)?;
+    };
     let Some(beam) = scene.beam() else {
         return Ok(());
     };
@@ -514,11 +522,9 @@ const SPEED_SWEEP_RTOL: f64 = 1e-4;
 /// closed form for the moving force.
 fn bridge_speed_sweep(studies: &Path, figures: &Path) -> Result<(), Error> {
     let file = studies.join("bridge-d44.yaml");
-    if !file.is_file() {
+    let Some((spec, scene)) = planned(&file)? else {
         return Ok(());
-    }
-    let spec = SceneSpec::load(&file)?;
-    let scene = Planner::default().plan(&spec)?;
+    };
     let Some(beam) = scene.beam() else {
         return Ok(());
     };
