@@ -330,7 +330,10 @@ fn the_energy_balance_closes_with_dampers_a_profile_and_braking() {
 }
 
 /// A bump of 5 cm over 0.5 m at 30 m/s throws the two-axle truck's rear wheel off the deck
-/// (its stiffer tyre): the run stops at the loss of contact, says so, and names the wheel.
+/// (its stiffer tyre): the run stops at the loss of contact, says so, and names the wheel. Its
+/// 50 kg wheels take a vertical impulse at each of the bump's kinks, whose energy the drive
+/// delivers: booked with the drive's work, the balance closes to a hundredth of the accuracy
+/// (measured 5.3·10⁻⁶; unbooked, the impulses left 3·10⁻²).
 #[test]
 fn a_wheel_that_lifts_off_stops_the_run_and_is_named() {
     let text = BRIDGE.replace(
@@ -347,6 +350,8 @@ fn a_wheel_that_lifts_off_stops_the_run_and_is_named() {
     assert!(matches!(lost, Some("rear")), "{lost:?}");
     let summary = rollbeam::output::beam::summary_yaml(&r).expect("a summary");
     assert!(summary.contains("contact_lost: rear"), "{summary}");
+    let drift = r.header.energy.max_rel_drift();
+    assert!(drift < 1e-5, "the balance drifts by {drift:.2e}");
 }
 
 /// The truck over the raised deck (`studies/vehicle-truck.yaml`): its massless wheels cross

@@ -15,8 +15,8 @@
 //! and the weights' potential Σ P_a d_a beside the beam's, the balance closes on the dampers'
 //! Σ c ė² and the work of the drive that holds the prescribed horizontal motion against the
 //! wheels' forces on the slopes under them, Σ R_a V (g'ᵀq + r'). At a kink of a
-//! piecewise-linear profile an unsprung mass's velocity jumps, which the balance does not
-//! book: give such axles no mass, or put the mass in a body on a tyre spring.
+//! piecewise-linear profile an unsprung mass's vertical velocity jumps: the drive delivers
+//! that impulse's energy, which the run's ledger books with its work.
 
 use std::borrow::Cow;
 use std::cell::Cell;

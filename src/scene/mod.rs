@@ -182,19 +182,8 @@ impl BeamScene {
 
     /// What the results depend on beyond the accuracy asked, one sentence each.
     pub fn warnings(&self) -> Vec<String> {
-        let mut out = self
-            .patch_sensitivity()
-            .map_or_else(Vec::new, |s| s.warnings(self.accuracy));
-        let kinked = matches!(self.profile, crate::vehicle::profile::Profile::Points(_));
-        let unsprung = self
-            .vehicles
-            .iter()
-            .flat_map(|v| v.axles.iter())
-            .any(|a| a.mass > 0.0);
-        if kinked && unsprung {
-            out.push("axles with mass ride a piecewise-linear profile: at each kink a wheel's vertical velocity jumps, and the energy balance does not book the impulse; give the axles no mass and put it in a hub body on a tyre spring, for a balance that closes".into());
-        }
-        out
+        self.patch_sensitivity()
+            .map_or_else(Vec::new, |s| s.warnings(self.accuracy))
     }
 }
 

@@ -46,11 +46,23 @@ pub(super) struct Ledger<'a> {
     /// Pieces of the step under way, (midpoint, end) each with its state, booked by Simpson's
     /// rule as the run passes their ends.
     pending: std::collections::VecDeque<Piece>,
-    /// The moving loads' power at the end of the step just taken, read on that step's side
-    /// of its breakpoints: where a vehicle's wheel crosses a kink of the profile the drive's
-    /// power jumps, and by the time the step is booked the run has entered the next stretch.
-    end_power: Option<(f64, f64, f64)>,
+    /// The end of the step just taken read on that step's side of its breakpoints: where a
+    /// vehicle's wheel crosses a kink of the profile the drive's power jumps, and so does the
+    /// vertical speed of its unsprung mass, and by the time the step is booked the run has
+    /// entered the next stretch. (t, the stretch, the moving loads' power, the vehicles'
+    /// kinetic energy.)
+    end_power: Option<StepEnd>,
     pub check: EnergyCheck,
+}
+
+/// The end of a step on its own stretch (`Ledger::end_power`).
+struct StepEnd {
+    t: f64,
+    stretch: f64,
+    power: f64,
+    /// The damping's power: the dampers' ė jumps with the track's speed.
+    damping: f64,
+    kinetic: f64,
 }
 
 /// A piece of a long step, read when the step is taken (the loads on the beam are those of
@@ -255,24 +267,40 @@ impl<'a> Ledger<'a> {
         self.t = t;
         self.at_loads = now;
         let stretch = phase.vehicles.map(|v| v.stretch());
-        let (end, power) = match self.end_power.take() {
-            Some((te, on, p)) if te == t && Some(on) == stretch => (p, p),
-            Some((te, _, p)) if te == t => (p, Self::moving_power(phase, t, y)),
-            _ => {
+        // Across a kink the wheel's track turns at once: its unsprung mass takes a vertical
+        // impulse, whose energy the drive delivers through the wheel's contact, booked with
+        // the drive's work.
+        let end = self.end_power.take().filter(|e| e.t == t);
+        let (end_power, power, kick) = match &end {
+            Some(e) if Some(e.stretch) == stretch => (e.power, e.power, 0.0),
+            Some(e) => (
+                e.power,
+                Self::moving_power(phase, t, y),
+                Self::vehicle_energies(phase, t, y).0 - e.kinetic,
+            ),
+            None => {
                 let p = Self::moving_power(phase, t, y);
-                (p, p)
+                (p, p, 0.0)
             }
         };
-        self.moving = (t, power, self.moving_work(t, end));
-        let (dissipated, power) = self.dissipated(phase, t, y);
-        self.damped = (t, power, dissipated);
+        self.moving = (t, power, self.moving_work(t, end_power) + kick);
+        let now = Self::damping_power(phase, t, y);
+        let (t0, p0, done) = self.damped;
+        let p1 = end.as_ref().map_or(now, |e| e.damping);
+        self.damped = (t, now, done + 0.5 * (p0 + p1) * (t - t0));
     }
 
     /// The step just taken ends at (t, y), read on its own stretch (with vehicles only: see
     /// `end_power`).
     pub fn step_ends(&mut self, phase: &Phase, t: f64, y: &[f64]) {
         if let Some(v) = phase.vehicles {
-            self.end_power = Some((t, v.stretch(), Self::moving_power(phase, t, y)));
+            self.end_power = Some(StepEnd {
+                t,
+                stretch: v.stretch(),
+                power: Self::moving_power(phase, t, y),
+                damping: Self::damping_power(phase, t, y),
+                kinetic: Self::vehicle_energies(phase, t, y).0,
+            });
         }
     }
 
