@@ -125,8 +125,49 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
             animate("y2", &ry),
         );
     }
+    // Each wheel a dot on the magnified axis while it is on the deck.
+    let wheels = frames.first().map_or(0, |f| f.wheels.len());
+    for j in 0..wheels {
+        let at: Vec<Option<[f64; 2]>> = frames
+            .iter()
+            .zip(&shapes)
+            .map(|(f, pts)| on_axis(&r.envelope.x, pts, r.beam.length, f.wheels[j]))
+            .collect();
+        let first = at.iter().flatten().next().copied().unwrap_or([x0, y0]);
+        let placed: Vec<(f64, f64)> = at.iter().map(|p| to_svg(p.unwrap_or(first))).collect();
+        let cx: Vec<String> = placed.iter().map(|p| format!("{:.1}", p.0)).collect();
+        let cy: Vec<String> = placed.iter().map(|p| format!("{:.1}", p.1)).collect();
+        let shown: Vec<String> = at
+            .iter()
+            .map(|p| if p.is_some() { "1" } else { "0" }.to_string())
+            .collect();
+        let _ = writeln!(
+            svg,
+            r##"<circle r="5" cx="{}" cy="{}" fill="#333" opacity="{}">{}{}{}</circle>"##,
+            cx[0],
+            cy[0],
+            shown[0],
+            animate("cx", &cx),
+            animate("cy", &cy),
+            animate("opacity", &shown),
+        );
+    }
     svg.push_str("</svg>\n");
     write(path, &svg)
+}
+
+/// The point of the magnified axis `pts` (at the stations `xs`) at material point x, while x
+/// is on a beam of `length`.
+fn on_axis(xs: &[f64], pts: &[[f64; 2]], length: f64, x: f64) -> Option<[f64; 2]> {
+    if !(0.0..=length).contains(&x) || xs.len() < 2 {
+        return None;
+    }
+    let k = xs.partition_point(|&s| s < x).clamp(1, xs.len() - 1);
+    let g = ((x - xs[k - 1]) / (xs[k] - xs[k - 1])).clamp(0.0, 1.0);
+    Some([
+        pts[k - 1][0] + g * (pts[k][0] - pts[k - 1][0]),
+        pts[k - 1][1] + g * (pts[k][1] - pts[k - 1][1]),
+    ])
 }
 
 /// The magnified axis in each frame, and the disk's centre and turned angle on it (or over
@@ -153,12 +194,7 @@ fn frame_geometry(r: &BeamRun) -> (Vec<Vec<[f64; 2]>>, Vec<Option<([f64; 2], f64
         .zip(&shapes)
         .map(|(f, pts)| {
             f.disk.map(|(s, turned, gap)| {
-                let k = xs.partition_point(|&x| x < s).clamp(1, xs.len() - 1);
-                let g = ((s - xs[k - 1]) / (xs[k] - xs[k - 1])).clamp(0.0, 1.0);
-                let p = [
-                    pts[k - 1][0] + g * (pts[k][0] - pts[k - 1][0]),
-                    pts[k - 1][1] + g * (pts[k][1] - pts[k - 1][1]),
-                ];
+                let p = on_axis(xs, pts, f64::INFINITY, s.max(0.0)).unwrap_or(pts[0]);
                 // A flying disk's gap is a displacement from the track: magnified with it.
                 let lift = radius + mag * gap;
                 ([p[0] - lift * sn, p[1] + lift * cs], turned)

@@ -63,6 +63,8 @@ pub struct Frame {
     /// Contact point s (in flight, the nearest point), the angle the disk has turned through,
     /// and its gap to the beam (0 while it rolls), while it is on or over the beam.
     pub disk: Option<(f64, f64, f64)>,
+    /// Where every vehicle's every wheel is along the beam (on the deck or off it).
+    pub wheels: Vec<f64>,
 }
 
 #[derive(Clone, Debug)]

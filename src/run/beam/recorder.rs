@@ -556,6 +556,11 @@ pub(super) fn recorder<'a>(
             shapes: Vec::new(),
             frames: Vec::new(),
             turned: (0.0, setup.disk.as_ref().map_or(0.0, |d| d.omega0), 0.0),
+            wheel_offsets: setup
+                .vehicles
+                .iter()
+                .map(|v| v.axles.iter().map(|a| a.x).collect())
+                .collect(),
         },
         means: over
             .windowed_means

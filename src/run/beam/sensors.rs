@@ -143,6 +143,8 @@ pub(super) struct Pictures<'a> {
     pub frames: Vec<Frame>,
     /// (t, Ω, angle) at the last row with the disk on the beam.
     pub turned: (f64, f64, f64),
+    /// Per vehicle, its wheels' distances behind its first axle.
+    pub wheel_offsets: Vec<Vec<f64>>,
 }
 
 impl Pictures<'_> {
@@ -160,6 +162,12 @@ impl Pictures<'_> {
                 t,
                 along: s.along.to_vec(),
                 disk: s.disk.map(|d| (d.s, self.turned.2, s.gap)),
+                wheels: s.vehicles.as_ref().map_or_else(Vec::new, |v| {
+                    v.x.iter()
+                        .zip(&self.wheel_offsets)
+                        .flat_map(|(x, offsets)| offsets.iter().map(move |d| x - d))
+                        .collect()
+                }),
             });
         }
         if self.shape_times.iter().any(|&st| (st - t).abs() < 1e-9) {
