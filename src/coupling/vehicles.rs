@@ -30,7 +30,12 @@ use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::EventSpec;
 use crate::rolling::StopReason;
 use crate::vehicle::profile::Profile;
-use crate::vehicle::{Part, Vehicle};
+use crate::vehicle::{Part, Vehicle, Wheel};
+
+/// Points a disk wheel's reach is scanned at before its contact is refined, where Newton's
+/// method has not found it in [`DISK_NEWTON`] steps.
+const DISK_SCAN: usize = 16;
+const DISK_NEWTON: usize = 8;
 
 /// A sparse row over the beam's unknowns of the model.
 type Row = Vec<(usize, f64)>;
@@ -47,6 +52,20 @@ pub struct Contact {
     pub rows: [Row; 3],
     /// r, r', r'' of the profile under it.
     pub r: [f64; 3],
+    /// A disk wheel's contact: how fast its centre rises per metre it travels, ∂H/∂X, with
+    /// H(X) = max over the contact x of the track there plus √(a² − (x − X)²), and the part of
+    /// its centre's rise not in gᵀq (the profile and the disk's shape at the contact, less a).
+    pub disk: Option<DiskContact>,
+}
+
+/// Where a disk wheel of radius a touches the track: at the x that lifts its centre highest.
+/// By that maximum the centre's height H moves with the deck as gᵀ at the contact does (the
+/// contact's own shift moves H by nothing to first order), and with the centre's travel X by
+/// (x − X)/√(a² − (x − X)²).
+#[derive(Clone, Copy, Debug)]
+pub struct DiskContact {
+    pub rise: f64,
+    pub rest: f64,
 }
 
 /// The track under a wheel: d, ḋ and d̈ less gᵀq̈ (which the mass matrix carries).
@@ -178,7 +197,7 @@ impl<'a> VehiclesOnBeam<'a> {
         let mut y = vec![0.0; 2 * self.dim];
         y[..self.n].copy_from_slice(q0);
         let still = vec![0.0; self.n];
-        let contacts = self.contacts(0.0);
+        let contacts = self.contacts(0.0, q0);
         let mut next = contacts.iter();
         for (i, v) in self.vehicles.iter().enumerate() {
             let under: Vec<f64> = v
@@ -218,6 +237,16 @@ impl<'a> VehiclesOnBeam<'a> {
         self.segment.get()
     }
 
+    /// How far from a wheel's centre its contact can touch the deck: the patch, and a disk's
+    /// radius.
+    fn reach(&self, v: &Vehicle) -> f64 {
+        self.patch
+            + match v.wheel {
+                Wheel::Point => 0.0,
+                Wheel::Disk { radius } => radius,
+            }
+    }
+
     /// When the last wheel leaves the deck, if every vehicle does.
     pub fn gone(&self) -> Option<f64> {
         let length = self.loaded.beam.length;
@@ -226,7 +255,7 @@ impl<'a> VehiclesOnBeam<'a> {
             .map(|v| {
                 v.axles
                     .last()
-                    .and_then(|a| v.time_at(length + a.x + self.patch))
+                    .and_then(|a| v.time_at(length + a.x + self.reach(v)))
             })
             .try_fold(0.0_f64, |m, t| t.map(|t| m.max(t)))
     }
@@ -237,22 +266,135 @@ impl<'a> VehiclesOnBeam<'a> {
         self.vehicles
             .iter()
             .map(|v| {
-                if v.x0 >= -self.patch {
+                if v.x0 >= -self.reach(v) {
                     Some(0.0)
                 } else {
-                    v.time_at(-self.patch)
+                    v.time_at(-self.reach(v))
                 }
             })
             .collect()
     }
 
-    /// Every wheel at t.
-    pub fn contacts(&self, t: f64) -> Rc<Vec<Contact>> {
+    /// Every wheel at t, the beam at q (where a disk wheel touches depends on its shape).
+    pub fn contacts(&self, t: f64, q: &[f64]) -> Rc<Vec<Contact>> {
         let stretch = [self.segment.get()];
-        self.contacts_at.at(t, &[&stretch], || self.contacts_now(t))
+        let shape: &[f64] = if self.disks() { q } else { &[] };
+        self.contacts_at
+            .at(t, &[&stretch, shape], || self.contacts_now(t, q))
     }
 
-    fn contacts_now(&self, t: f64) -> Vec<Contact> {
+    fn disks(&self) -> bool {
+        self.vehicles
+            .iter()
+            .any(|v| matches!(v.wheel, Wheel::Disk { .. }))
+    }
+
+    /// The track's height at x (the deck at q, on the mesh, averaged over the patch, and the
+    /// profile) with its slope and curvature along x.
+    fn surface(&self, x: f64, mesh: &[f64]) -> [f64; 3] {
+        let beam = self.loaded.beam;
+        let (b, length) = (self.patch, beam.length);
+        let mut out = self.profile.at(x, x);
+        if x > -b && x < length + b {
+            for nb in beam.patch_basis_at(x, b) {
+                if let Some(i) = nb.w {
+                    (0..3).for_each(|k| out[k] += nb.d[k] * mesh[i]);
+                }
+            }
+        }
+        out
+    }
+
+    /// Where a disk of radius `a` centred over X touches the track, and how it rises there:
+    /// the x that lifts its centre highest, H(x) = f(x) + √(a² − (x − X)²). Newton's method on
+    /// H' from x = X finds it in a few steps on a smooth track (H'' < 0 wherever the track
+    /// bends less than the disk); where it does not settle (the disk on a corner of a
+    /// piecewise-linear profile), a scan of the disk's reach and golden-section search about
+    /// its best, to a billionth of the radius.
+    /// `toward` (±1) is the side of the stretch the run is in: where the disk rests on two faces
+    /// at once (in a hollow, at a breakpoint) the face it is going onto or coming off.
+    fn disk_contact(&self, at: f64, toward: f64, a: f64, mesh: &[f64]) -> (f64, DiskContact) {
+        let centre = at + toward * 1e-9 * a;
+        let height = |x: f64| -> f64 {
+            let u = (x - centre) / a;
+            self.surface(x, mesh)[0] + a * (1.0 - u * u).max(0.0).sqrt()
+        };
+        let newton = |start: f64| -> Option<f64> {
+            let mut x = start;
+            for _ in 0..DISK_NEWTON {
+                let [_, f1, f2] = self.surface(x, mesh);
+                let u = (x - centre) / a;
+                let root = (1.0 - u * u).max(1e-12).sqrt();
+                let (h1, h2) = (f1 - u / root, f2 - 1.0 / (a * root * root * root));
+                if !(h2 < 0.0) {
+                    return None;
+                }
+                let next =
+                    (x - h1 / h2).clamp(centre - a * (1.0 - 1e-9), centre + a * (1.0 - 1e-9));
+                let moved = (next - x).abs();
+                x = next;
+                if moved < 1e-10 * a {
+                    return Some(x);
+                }
+            }
+            None
+        };
+        // Each face of a piecewise-linear profile within reach holds its own maximum, and each
+        // corner may be where the disk rests: every one is a candidate, from the centre's.
+        let corners: Vec<f64> = self
+            .profile
+            .kinks()
+            .into_iter()
+            .filter(|k| (k - centre).abs() < a)
+            .collect();
+        let mut candidates: Vec<f64> = newton(centre).into_iter().collect();
+        for &k in &corners {
+            candidates.push(k);
+            for side in [-1.0, 1.0] {
+                candidates.extend(newton(k + side * 1e-6 * a));
+            }
+        }
+        let mut x = candidates
+            .iter()
+            .copied()
+            .max_by(|&p, &q| height(p).total_cmp(&height(q)))
+            .unwrap_or(centre);
+        if candidates.is_empty() || height(x) < height(centre) {
+            let reach = DISK_SCAN as f64;
+            let at = |k: usize| centre + a * (2.0 * k as f64 / reach - 1.0) * (1.0 - 1e-12);
+            let best = (0..=DISK_SCAN)
+                .max_by(|&i, &j| height(at(i)).total_cmp(&height(at(j))))
+                .unwrap_or(DISK_SCAN / 2);
+            let (mut lo, mut hi) = (at(best.saturating_sub(1)), at((best + 1).min(DISK_SCAN)));
+            let golden = 0.5 * (5.0_f64.sqrt() - 1.0);
+            while hi - lo > 1e-9 * a {
+                let (m1, m2) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
+                if height(m1) < height(m2) {
+                    lo = m1;
+                } else {
+                    hi = m2;
+                }
+            }
+            x = 0.5 * (lo + hi);
+        }
+        let u = (x - at) / a;
+        let root = (1.0 - u * u).max(1e-12).sqrt();
+        let profile = self.profile.at(x, x)[0];
+        (
+            x,
+            DiskContact {
+                rise: u / root,
+                rest: profile + a * (root - 1.0),
+            },
+        )
+    }
+
+    fn contacts_now(&self, t: f64, q: &[f64]) -> Vec<Contact> {
+        let mesh = if self.disks() {
+            self.loaded.to_mesh(q).into_owned()
+        } else {
+            Vec::new()
+        };
         let beam = self.loaded.beam;
         let (b, length) = (self.patch, beam.length);
         let side_t = if self.segment.get().is_nan() {
@@ -265,8 +407,16 @@ impl<'a> VehiclesOnBeam<'a> {
             let (x_first, speed, accel) = v.travel(t);
             let x_side = v.travel(side_t).0;
             for (a, axle) in v.axles.iter().enumerate() {
-                let x = x_first - axle.x;
+                let centre = x_first - axle.x;
                 let side = x_side - axle.x + if speed >= 0.0 { 1e-9 } else { -1e-9 };
+                let (x, disk) = match v.wheel {
+                    Wheel::Point => (centre, None),
+                    Wheel::Disk { radius } => {
+                        let toward = if side >= centre { 1.0 } else { -1.0 };
+                        let (x, d) = self.disk_contact(centre, toward, radius, &mesh);
+                        (x, Some(d))
+                    }
+                };
                 let rows = if x > -b && x < length + b {
                     let basis = beam.patch_basis_at(x, b);
                     std::array::from_fn(|k| self.model_row(&basis, k))
@@ -281,6 +431,7 @@ impl<'a> VehiclesOnBeam<'a> {
                     accel,
                     rows,
                     r: self.profile.at(x, side),
+                    disk,
                 });
             }
         }
@@ -303,6 +454,14 @@ impl<'a> VehiclesOnBeam<'a> {
 
     fn track(c: &Contact, q: &[f64], v: &[f64]) -> Track {
         let dot = |row: &Row, y: &[f64]| -> f64 { row.iter().map(|&(i, g)| g * y[i]).sum() };
+        if let Some(d) = c.disk {
+            // Disk wheels carry no unsprung mass (the scene refuses it), so no d̈ is read.
+            return Track {
+                d: dot(&c.rows[0], q) + d.rest,
+                rate: dot(&c.rows[0], v) + c.speed * d.rise,
+                convective: 0.0,
+            };
+        }
         let (slope, vs) = (dot(&c.rows[1], q), dot(&c.rows[1], v));
         let (vel, a) = (c.speed, c.accel);
         Track {
@@ -340,7 +499,7 @@ impl<'a> VehiclesOnBeam<'a> {
     /// Everything of the vehicles at (t, z, ż) in one pass: the tracks under the wheels, the
     /// springs' (e, ė), and the wheels' spring forces S_a; per vehicle.
     fn springs(&self, t: f64, z: &[f64], zd: &[f64]) -> Vec<VehicleState> {
-        let contacts = self.contacts(t);
+        let contacts = self.contacts(t, &z[..self.n]);
         let (q, v) = (&z[..self.n], &zd[..self.n]);
         let mut next = contacts.iter();
         self.vehicles
@@ -382,7 +541,7 @@ impl<'a> VehiclesOnBeam<'a> {
             .mass_split(t, &z[..self.n])
             .map(|(_, l)| l)
             .unwrap_or_default();
-        for c in self.contacts(t).iter() {
+        for c in self.contacts(t, &z[..self.n]).iter() {
             let m = self.vehicles[c.vehicle].axles[c.axle].mass;
             if m > 0.0 && !c.rows[0].is_empty() {
                 out.push((m, c.rows[0].clone()));
@@ -416,7 +575,7 @@ impl<'a> VehiclesOnBeam<'a> {
     /// Each wheel's contact force R_a = P_a + m_a d̈_a − S_a at (t, z, ż) with z̈ = `zdd`, in
     /// the order of the contacts.
     pub fn contact_forces(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> Vec<f64> {
-        let contacts = self.contacts(t);
+        let contacts = self.contacts(t, &z[..self.n]);
         let states = self.springs(t, z, zd);
         let mut out = Vec::with_capacity(contacts.len());
         let mut next = contacts.iter();
@@ -507,12 +666,15 @@ impl<'a> VehiclesOnBeam<'a> {
     /// horizontal motion against their wheels' forces on the slopes under them.
     pub fn drive_power(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> f64 {
         let rn = self.contact_forces(t, z, zd, zdd);
-        self.contacts(t)
+        self.contacts(t, &z[..self.n])
             .iter()
             .zip(rn)
             .map(|(c, r)| {
-                let slope: f64 = c.rows[1].iter().map(|&(i, g)| g * z[i]).sum();
-                r * c.speed * (slope + c.r[1])
+                let rise = match c.disk {
+                    Some(d) => d.rise,
+                    None => c.rows[1].iter().map(|&(i, g)| g * z[i]).sum::<f64>() + c.r[1],
+                };
+                r * c.speed * rise
             })
             .sum()
     }
@@ -522,7 +684,7 @@ impl<'a> VehiclesOnBeam<'a> {
     pub fn forces_on_beam(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> Vec<(f64, f64)> {
         let rn = self.contact_forces(t, z, zd, zdd);
         let length = self.loaded.beam.length;
-        self.contacts(t)
+        self.contacts(t, &z[..self.n])
             .iter()
             .zip(rn)
             .filter(|(c, _)| !c.rows[0].is_empty())
@@ -544,9 +706,9 @@ impl<'a> VehiclesOnBeam<'a> {
 
     /// The longest step at t: the beam's bound, and while a wheel is on the deck the time it
     /// takes to cross an element (its load has a kink at each node).
-    fn step_bound(&self, t: f64) -> f64 {
+    fn step_bound(&self, t: f64, q: &[f64]) -> f64 {
         let fastest = self
-            .contacts(t)
+            .contacts(t, q)
             .iter()
             .filter(|c| !c.rows[0].is_empty())
             .map(|c| c.speed.abs())
@@ -606,7 +768,7 @@ impl Structure for VehiclesOnBeam<'_> {
         self.loaded.force(t, &z[..n], &zd[..n], &mut f[..n]);
         f[n..].fill(0.0);
         let states = self.springs(t, z, zd);
-        let contacts = self.contacts(t);
+        let contacts = self.contacts(t, &z[..self.n]);
         let mut next = contacts.iter();
         for ((i, veh), st) in self.vehicles.iter().enumerate().zip(&states) {
             let o = self.offsets[i];
@@ -635,7 +797,7 @@ impl Structure for VehiclesOnBeam<'_> {
         let mut a = Assembly::new(self.dim);
         a.add_sparse(&self.loaded.stiffness(t, &z[..n]), 1.0, 0, 0);
         a.add_sparse(&self.rigid_track, 1.0, 0, 0);
-        let contacts = self.contacts(t);
+        let contacts = self.contacts(t, &z[..self.n]);
         let mut next = contacts.iter();
         // Each spring on a wheel that is on the deck couples the beam under it to its body.
         let mut wheels = Vec::new();
@@ -689,7 +851,7 @@ impl Structure for VehiclesOnBeam<'_> {
 impl SecondOrderProblem for VehiclesOnBeam<'_> {
     type Event = StopReason;
     fn max_step(&self, t: f64, _q: &[f64], _v: &[f64]) -> f64 {
-        self.step_bound(t)
+        self.step_bound(t, _q)
     }
     /// The beam's, each wheel's arrival on and departure from the deck, its crossing of each
     /// kink of the profile, and each vehicle's stop.
@@ -699,10 +861,33 @@ impl SecondOrderProblem for VehiclesOnBeam<'_> {
         let mut out = self.loaded.breakpoints();
         for v in self.vehicles {
             out.extend(v.stops_at());
-            for a in &v.axles {
-                let places = [-self.patch, length + self.patch]
+            let reach = self.reach(v);
+            // A point wheel's track turns at each kink. A disk pivots over a crest from where
+            // its contact reaches the corner to where it leaves it, X = x − a s/√(1 + s²) for
+            // each face's slope s; in a hollow it rests on both faces at one place, where its
+            // contact jumps from one to the other: there, with the centre at the height a disk
+            // on either face has, line + a √(1 + s²). The drive's power turns at each.
+            let turns: Vec<f64> = match v.wheel {
+                Wheel::Point => kinks.clone(),
+                Wheel::Disk { radius } => self
+                    .profile
+                    .corners()
                     .into_iter()
-                    .chain(kinks.iter().copied());
+                    .flat_map(|(x, left, right)| {
+                        let lean = |s: f64| s / (1.0 + s * s).sqrt();
+                        if right > left {
+                            let lift = |s: f64| (1.0 + s * s).sqrt();
+                            vec![x + radius * (lift(right) - lift(left)) / (left - right)]
+                        } else {
+                            vec![x - radius * lean(left), x - radius * lean(right)]
+                        }
+                    })
+                    .collect(),
+            };
+            for a in &v.axles {
+                let places = [-reach, length + reach]
+                    .into_iter()
+                    .chain(turns.iter().copied());
                 out.extend(places.filter_map(|x| v.time_at(x + a.x)));
             }
         }

@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::vehicle::profile::{Profile, ISO_CLASSES};
-use crate::vehicle::{Axle, Body, Part, Spring, Vehicle};
+use crate::vehicle::{Axle, Body, Part, Spring, Vehicle, Wheel};
 
 /// Most vehicles a scene may carry, and parts (bodies, axles, springs) of each: every part is
 /// read at every evaluation, and a vehicle's stiffness is formed dense.
@@ -10,6 +10,8 @@ pub(super) const MAX_VEHICLES: usize = 100;
 pub(super) const MAX_PARTS: usize = 200;
 /// Most points a piecewise-linear profile may hold (every one is a breakpoint per axle).
 pub(super) const MAX_PROFILE_POINTS: usize = 10_000;
+/// Largest radius of a disk wheel (m).
+pub(super) const MAX_WHEEL_RADIUS: f64 = 10.0;
 /// Most breakpoints the wheels make: each wheel's arrival, departure and crossing of every
 /// kink of the profile ends a step, and the driver holds them all.
 pub(super) const MAX_WHEEL_BREAKPOINTS: usize = 1_000_000;
@@ -112,7 +114,11 @@ pub(super) struct IsoFile {
 /// stop before that, when it stops.
 pub(super) fn vehicle_gone(v: &Vehicle, length: f64, patch: f64) -> f64 {
     let last = v.axles.last().map_or(0.0, |a| a.x);
-    v.time_at(length + last + patch)
+    let radius = match v.wheel {
+        Wheel::Point => 0.0,
+        Wheel::Disk { radius } => radius,
+    };
+    v.time_at(length + last + patch + radius)
         .or(v.stops_at())
         .unwrap_or(0.0)
 }
@@ -210,29 +216,43 @@ fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
         .acceleration
         .as_ref()
         .map_or(Ok(0.0), |a| c.finite(a, "vehicles.acceleration"))?;
-    match v.wheel.as_ref().map(|w| w.value.as_str()) {
-        None | Some("point") => {}
-        Some("disk") => {
-            let w = v.wheel.as_ref().expect("matched");
-            return c.err(
-                w.referenced.line(),
-                "vehicles.wheel",
-                if v.radius.is_none() {
-                    "is disk, which needs the disk's `radius`; disk wheels are not built yet either: use point"
-                } else {
-                    "is disk: disk wheels on vehicles are not built yet; use point"
-                },
-            );
+    let wheel = match v.wheel.as_ref().map(|w| (w, w.value.as_str())) {
+        None | Some((_, "point")) => {
+            if let Some(r) = &v.radius {
+                return c.err(
+                    r.referenced.line(),
+                    "vehicles.radius",
+                    "is a disk wheel's: give `wheel: disk` with it, or leave it out",
+                );
+            }
+            Wheel::Point
         }
-        Some(other) => {
-            let w = v.wheel.as_ref().expect("matched");
+        Some((w, "disk")) => {
+            let Some(r) = &v.radius else {
+                return c.err(
+                    w.referenced.line(),
+                    "vehicles.wheel",
+                    "is disk, which needs the disk's `radius` (m)",
+                );
+            };
+            let radius = c.positive(r, "vehicles.radius")?;
+            if radius > MAX_WHEEL_RADIUS {
+                return c.err(
+                    r.referenced.line(),
+                    "vehicles.radius",
+                    format!("= {radius} m is more than a wheel is: at most {MAX_WHEEL_RADIUS} m"),
+                );
+            }
+            Wheel::Disk { radius }
+        }
+        Some((w, other)) => {
             return c.err(
                 w.referenced.line(),
                 "vehicles.wheel",
                 format!("is {}; a wheel is point or disk", quote(other)),
             );
         }
-    }
+    };
     for (list, key, count) in [
         (
             v.bodies.referenced.line(),
@@ -398,7 +418,14 @@ fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
                 .map_or(Ok(0.0), |d| non_negative(c, d, "vehicles.springs.c"))?,
         });
     }
-    Vehicle::new(
+    if let (Wheel::Disk { .. }, Some(a)) = (wheel, axles.iter().find(|a| a.mass > 0.0)) {
+        return c.err(
+            v.wheel.as_ref().map_or(0, |w| w.referenced.line()),
+            "vehicles.wheel",
+            format!("is disk, and axle {} has mass: a disk wheel carries no unsprung mass; put it in a hub body on a tyre spring", quote(&a.name)),
+        );
+    }
+    let mut vehicle = Vehicle::new(
         vname,
         x0,
         speed,
@@ -408,7 +435,9 @@ fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
         springs,
         gravity,
     )
-    .or_else(|why| c.err(v.name.referenced.line(), "vehicles", why))
+    .or_else(|why| c.err(v.name.referenced.line(), "vehicles", why))?;
+    vehicle.wheel = wheel;
+    Ok(vehicle)
 }
 
 /// The running surface's profile; refused where no vehicle rides on it.

@@ -63,6 +63,9 @@ pub struct Spring {
 pub enum Wheel {
     /// At one point.
     Point,
+    /// A rigid disk of this radius (m) resting on the track where it lifts its centre highest:
+    /// it bridges what is shorter than itself and rounds the kinks it rolls over.
+    Disk { radius: f64 },
 }
 
 #[derive(Clone, Debug)]

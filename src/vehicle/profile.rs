@@ -68,6 +68,23 @@ impl Profile {
         }
     }
 
+    /// Each kink with the slopes on its two sides: (x, left, right).
+    pub fn corners(&self) -> Vec<(f64, f64, f64)> {
+        let Profile::Points(p) = self else {
+            return Vec::new();
+        };
+        let slope = |i: usize| -> f64 {
+            if i == 0 || i >= p.len() {
+                0.0
+            } else {
+                (p[i][1] - p[i - 1][1]) / (p[i][0] - p[i - 1][0])
+            }
+        };
+        (0..p.len())
+            .map(|i| (p[i][0], slope(i), slope(i + 1)))
+            .collect()
+    }
+
     /// Where the slope jumps: a wheel crossing one of these is a breakpoint.
     pub fn kinks(&self) -> Vec<f64> {
         match self {
