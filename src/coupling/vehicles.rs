@@ -741,13 +741,7 @@ impl Structure for VehiclesOnBeam<'_> {
         }
         let mut a = Assembly::new(self.dim);
         a.add_sparse(&self.base, 1.0, 0, 0);
-        for (w, g) in &added {
-            for &(i, gi) in g {
-                for &(j, gj) in g {
-                    a.add(i, j, w * gi * gj);
-                }
-            }
-        }
+        linalg::low_rank_entries(&added).for_each(|(i, j, v)| a.add(i, j, v));
         Cow::Owned(a.build())
     }
     fn mass_is_constant(&self) -> bool {
