@@ -87,7 +87,7 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
     };
     match lost {
         Some((vehicle, axle)) => say!(
-            "{}: the wheel of axle {axle} of vehicle {vehicle} lost contact with the deck at t = {:.6} s (its contact force fell to zero; contact-lost)",
+            "{}: the wheel of axle {axle} of vehicle {vehicle} lost contact with the deck at t = {:.6} s (its contact force fell to zero; contact-lost): a disk wheel (`wheel: disk`) on an axle with mass flies and lands instead",
             scene.name,
             h.t_end
         ),

@@ -179,6 +179,11 @@ impl<T> LastEvaluation<T> {
         *kept = Some((t, y.concat(), v.clone()));
         v
     }
+
+    /// Forget the value kept: what it depends on beside (t, y) has changed.
+    pub(crate) fn forget(&self) {
+        self.0.borrow_mut().take();
+    }
 }
 
 impl<'a> DiskOnBeam<'a> {

@@ -17,9 +17,15 @@
 //! wheels' forces on the slopes under them, Σ R_a V (g'ᵀq + r'). At a kink of a
 //! piecewise-linear profile an unsprung mass's vertical velocity jumps: the drive delivers
 //! that impulse's energy, which the run's ledger books with its work.
+//!
+//! A disk wheel with an unsprung mass flies where R_a falls to zero: its axle's height h_a
+//! is then an unknown of its own, m_a ḧ_a = S_a − P_a, its springs pull on it instead of on
+//! the track, and the run watches its gap to where the disk would rest. It lands plastically
+//! (`VehiclesOnBeam::land`). A point wheel, or a disk on a massless axle, has no motion of its
+//! own to fly with: the run stops there.
 
 use std::borrow::Cow;
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 use std::ops::Range;
 use std::rc::Rc;
 
@@ -28,7 +34,6 @@ use crate::beam::dynamics::LoadedBeam;
 use crate::linalg::{self, Assembly, LowRank, Sparse, SparseLu, Woodbury};
 use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::EventSpec;
-use crate::rolling::StopReason;
 use crate::vehicle::profile::Profile;
 use crate::vehicle::{Part, Vehicle, Wheel};
 
@@ -44,6 +49,8 @@ type Row = Vec<(usize, f64)>;
 pub struct Contact {
     pub vehicle: usize,
     pub axle: usize,
+    /// Its index among all the vehicles' wheels.
+    pub wheel: usize,
     /// Where it is on the deck (m), its speed and acceleration.
     pub x: f64,
     pub speed: f64,
@@ -66,6 +73,8 @@ pub struct Contact {
 pub struct DiskContact {
     pub rise: f64,
     pub rest: f64,
+    /// The disk rests on a corner of the profile, its contact held there as it pivots.
+    pub pivot: bool,
 }
 
 /// The track under a wheel: d, ḋ and d̈ less gᵀq̈ (which the mass matrix carries).
@@ -110,11 +119,17 @@ pub struct VehiclesOnBeam<'a> {
     segment: Cell<f64>,
     /// The wheels at the last time asked, on the side of the stretch then.
     contacts_at: LastEvaluation<Vec<Contact>>,
-    events: Vec<EventSpec<StopReason>>,
+    /// Per wheel: its contact force falling to zero, or, flying, its gap closing.
+    events: Vec<EventSpec<usize>>,
     /// The wheels' contact forces at the last (t, z, ż) the events asked about: the driver
     /// asks for each wheel's in turn at one state, and with unsprung masses each needs the
     /// accelerations solved for.
     forces_at: LastEvaluation<Vec<f64>>,
+    /// Per wheel (in the order of the contacts), the unknown its axle's height is while it
+    /// flies: a disk wheel's with unsprung mass. Held at rest while the wheel is on the track.
+    hops: Vec<Option<usize>>,
+    /// Per wheel, whether it flies now.
+    airborne: RefCell<Vec<bool>>,
 }
 
 impl<'a> VehiclesOnBeam<'a> {
@@ -130,6 +145,17 @@ impl<'a> VehiclesOnBeam<'a> {
         for v in vehicles {
             offsets.push(dim);
             dim += v.unknowns();
+        }
+        // A disk wheel with an unsprung mass can fly: its axle's height is then an unknown.
+        let mut hops = Vec::new();
+        for v in vehicles {
+            for axle in &v.axles {
+                let flies = matches!(v.wheel, Wheel::Disk { .. }) && axle.mass > 0.0;
+                hops.push(flies.then(|| {
+                    dim += 1;
+                    dim - 1
+                }));
+            }
         }
         let mut mass = Assembly::new(dim);
         mass.add_sparse(loaded.model_mass(), 1.0, 0, 0);
@@ -153,9 +179,15 @@ impl<'a> VehiclesOnBeam<'a> {
             }
             damped |= v.springs.iter().any(|s| s.c != 0.0);
         }
+        let wheels = vehicles.iter().flat_map(|v| v.axles.iter());
+        for (axle, h) in wheels.zip(&hops) {
+            if let Some(h) = *h {
+                mass.add(h, h, axle.mass);
+            }
+        }
         let base = mass.build();
         let base_lu = SparseLu::factor(&base, None)?;
-        let axles: usize = vehicles.iter().map(|v| v.axles.len()).sum();
+        let axles = hops.len();
         Some(VehiclesOnBeam {
             loaded,
             vehicles,
@@ -171,13 +203,14 @@ impl<'a> VehiclesOnBeam<'a> {
             segment: Cell::new(f64::NAN),
             contacts_at: LastEvaluation::new(),
             forces_at: LastEvaluation::new(),
-            events: vec![
-                EventSpec {
-                    reason: StopReason::ContactLost,
+            events: (0..axles)
+                .map(|k| EventSpec {
+                    reason: k,
                     terminal: true,
-                };
-                axles
-            ],
+                })
+                .collect(),
+            hops,
+            airborne: RefCell::new(vec![false; axles]),
         })
     }
 
@@ -203,7 +236,10 @@ impl<'a> VehiclesOnBeam<'a> {
             let under: Vec<f64> = v
                 .axles
                 .iter()
-                .map(|_| Self::track(next.next().expect("a contact per axle"), q0, &still).d)
+                .map(|_| {
+                    self.track(next.next().expect("a contact per axle"), q0, &still)
+                        .d
+                })
                 .collect();
             let o = self.offsets[i];
             y[o..o + v.unknowns()].copy_from_slice(&v.settled_on(&under));
@@ -385,6 +421,7 @@ impl<'a> VehiclesOnBeam<'a> {
             DiskContact {
                 rise: u / root,
                 rest: profile + a * (root - 1.0),
+                pivot: corners.contains(&x),
             },
         )
     }
@@ -426,6 +463,7 @@ impl<'a> VehiclesOnBeam<'a> {
                 out.push(Contact {
                     vehicle: i,
                     axle: a,
+                    wheel: out.len(),
                     x,
                     speed,
                     accel,
@@ -452,14 +490,27 @@ impl<'a> VehiclesOnBeam<'a> {
         }
     }
 
-    fn track(c: &Contact, q: &[f64], v: &[f64]) -> Track {
+    fn track(&self, c: &Contact, q: &[f64], v: &[f64]) -> Track {
         let dot = |row: &Row, y: &[f64]| -> f64 { row.iter().map(|&(i, g)| g * y[i]).sum() };
-        if let Some(d) = c.disk {
-            // Disk wheels carry no unsprung mass (the scene refuses it), so no d̈ is read.
+        if let (Some(d), Wheel::Disk { radius }) = (c.disk, self.vehicles[c.vehicle].wheel) {
+            // H = f(x*) + √(a² − (x* − X)²) at the contact x*, where H' = 0. By that, Ḣ =
+            // gᵀq̇ + V ∂H/∂X, and Ḣ's rate adds the contact's travel ẋ* along g' and the
+            // change of ∂H/∂X = u/√(1 − u²), u = (x* − X)/a, by (ẋ* − V)/(a (1 − u²)^{3/2}).
+            // Differentiating H' = 0 gives ẋ* (f'' − κ) = −g'ᵀq̇ − V κ, κ = 1/(a (1 − u²)^{3/2});
+            // a disk pivoting on a corner holds its contact there (ẋ* = 0).
+            let (vel, acc) = (c.speed, c.accel);
+            let kappa = (1.0 + d.rise * d.rise).powf(1.5) / radius;
+            let turning = dot(&c.rows[1], v);
+            let travel = if d.pivot {
+                0.0
+            } else {
+                let bend = dot(&c.rows[2], q) + c.r[2];
+                (turning + vel * kappa) / (kappa - bend)
+            };
             return Track {
                 d: dot(&c.rows[0], q) + d.rest,
-                rate: dot(&c.rows[0], v) + c.speed * d.rise,
-                convective: 0.0,
+                rate: dot(&c.rows[0], v) + vel * d.rise,
+                convective: travel * turning + acc * d.rise + vel * kappa * (travel - vel),
             };
         }
         let (slope, vs) = (dot(&c.rows[1], q), dot(&c.rows[1], v));
@@ -509,7 +560,17 @@ impl<'a> VehiclesOnBeam<'a> {
                 let tracks: Vec<Track> = veh
                     .axles
                     .iter()
-                    .map(|_| Self::track(next.next().expect("a contact per axle"), q, v))
+                    .map(|_| {
+                        let c = next.next().expect("a contact per axle");
+                        match self.flying(c.wheel) {
+                            Some(h) => Track {
+                                d: z[h],
+                                rate: zd[h],
+                                convective: 0.0,
+                            },
+                            None => self.track(c, q, v),
+                        }
+                    })
                     .collect();
                 let mut on_axle = vec![0.0; veh.axles.len()];
                 let stretch = veh
@@ -543,7 +604,7 @@ impl<'a> VehiclesOnBeam<'a> {
             .unwrap_or_default();
         for c in self.contacts(t, &z[..self.n]).iter() {
             let m = self.vehicles[c.vehicle].axles[c.axle].mass;
-            if m > 0.0 && !c.rows[0].is_empty() {
+            if m > 0.0 && !c.rows[0].is_empty() && self.flying(c.wheel).is_none() {
                 out.push((m, c.rows[0].clone()));
             }
         }
@@ -560,16 +621,21 @@ impl<'a> VehiclesOnBeam<'a> {
     pub fn acceleration(&self, t: f64, z: &[f64], zd: &[f64]) -> Vec<f64> {
         let mut a = vec![0.0; self.dim];
         self.force(t, z, zd, &mut a);
+        self.solve_mass(t, z, &mut a);
+        a
+    }
+
+    /// M(t, z)⁻¹ b, in place.
+    fn solve_mass(&self, t: f64, z: &[f64], b: &mut [f64]) {
         let added = self.added_mass(t, z);
         if added.is_empty() {
-            self.base_lu.solve_in_place(&mut a);
+            self.base_lu.solve_in_place(b);
         } else {
             match Woodbury::new(&self.base_lu, added) {
-                Some(w) => w.solve_in_place(&self.base_lu, &mut a),
-                None => a.fill(f64::NAN),
+                Some(w) => w.solve_in_place(&self.base_lu, b),
+                None => b.fill(f64::NAN),
             }
         }
-        a
     }
 
     /// Each wheel's contact force R_a = P_a + m_a d̈_a − S_a at (t, z, ż) with z̈ = `zdd`, in
@@ -582,6 +648,10 @@ impl<'a> VehiclesOnBeam<'a> {
         for (veh, st) in self.vehicles.iter().zip(&states) {
             for (a, axle) in veh.axles.iter().enumerate() {
                 let c = next.next().expect("a contact per axle");
+                if self.flying(c.wheel).is_some() {
+                    out.push(0.0);
+                    continue;
+                }
                 let inertia = if axle.mass > 0.0 {
                     let ga: f64 = c.rows[0].iter().map(|&(i, g)| g * zdd[i]).sum();
                     axle.mass * (ga + st.tracks[a].convective)
@@ -704,6 +774,91 @@ impl<'a> VehiclesOnBeam<'a> {
         (0, String::new())
     }
 
+    /// How many wheels the vehicles have.
+    pub fn wheels(&self) -> usize {
+        self.hops.len()
+    }
+
+    /// Whether wheel k can fly: a disk wheel with an unsprung mass (a massless axle has no
+    /// motion of its own to fly with).
+    pub fn can_fly(&self, k: usize) -> bool {
+        self.hops[k].is_some()
+    }
+
+    /// The unknown of wheel k's axle height while it flies; `None` on the track.
+    fn flying(&self, k: usize) -> Option<usize> {
+        self.hops[k].filter(|_| self.airborne.borrow()[k])
+    }
+
+    /// Whether wheel k flies now.
+    pub fn flies(&self, k: usize) -> bool {
+        self.flying(k).is_some()
+    }
+
+    /// Wheel k's gap to the track in radii (its axle at z[h] above where the disk would rest
+    /// at t), less a billionth: the landing is watched for from just below the lift-off's
+    /// zero, so that round-off at the lift-off does not land the wheel again at once.
+    fn gap(&self, k: usize, t: f64, z: &[f64], h: usize) -> f64 {
+        let c = &self.contacts(t, &z[..self.n])[k];
+        let Wheel::Disk { radius } = self.vehicles[c.vehicle].wheel else {
+            return 1.0;
+        };
+        let still = vec![0.0; self.n];
+        let rest = self.track(c, &z[..self.n], &still).d;
+        (z[h] - rest) / radius + 1e-9
+    }
+
+    /// Wheel k lifts off at t from y = (z, ż): its axle moves on as the track moved it.
+    pub fn lift(&self, k: usize, t: f64, y: &mut [f64]) {
+        let Some(h) = self.hops[k] else { return };
+        let (z, zd) = y.split_at_mut(self.dim);
+        let c = &self.contacts(t, &z[..self.n])[k];
+        let track = self.track(c, &z[..self.n], &zd[..self.n]);
+        (z[h], zd[h]) = (track.d, track.rate);
+        self.airborne.borrow_mut()[k] = true;
+        self.forces_at.forget();
+    }
+
+    /// Wheel k lands at t on y = (z, ż): a plastic impact. The generalized momentum the
+    /// wheel's contact holds is kept: with g the track's row under the wheel and c its
+    /// convective rate, M⁺ ż⁺ = M⁻ ż⁻ + g m (ḣ − c), M⁺ the mass with the wheel on the track;
+    /// the axle's unknown is at rest again. The impulse Λ = m (ḣ⁺ − ḣ⁻) stops the wheel's
+    /// approach w⁻ = ḣ − gᵀq̇ − c at a rate linear in it, so it takes −Λ w⁻ / 2; the rest of
+    /// the change of energy is the drive's work against the impulse's horizontal part.
+    /// Returns (what the impact took, the drive's work).
+    pub fn land(&self, k: usize, t: f64, y: &mut [f64]) -> (f64, f64) {
+        let Some(h) = self.flying(k) else {
+            return (0.0, 0.0);
+        };
+        let energy = |y: &[f64]| -> f64 {
+            let (z, zd) = y.split_at(self.dim);
+            let (kinetic, spring, potential) = self.energies(t, z, zd);
+            kinetic + spring + potential + self.loaded.energies(&z[..self.n], &zd[..self.n]).0
+        };
+        let before = energy(y);
+        let (z, zd) = y.split_at_mut(self.dim);
+        let mut p = vec![0.0; self.dim];
+        self.mass_mul(t, z, zd, &mut p);
+        let c = &self.contacts(t, &z[..self.n])[k];
+        let m = self.vehicles[c.vehicle].axles[c.axle].mass;
+        let still = vec![0.0; self.n];
+        let convective = self.track(c, &z[..self.n], &still).rate;
+        let deck = |v: &[f64]| -> f64 { c.rows[0].iter().map(|&(i, g)| g * v[i]).sum() };
+        let (fall, approach) = (zd[h], zd[h] - deck(zd) - convective);
+        c.rows[0]
+            .iter()
+            .for_each(|&(i, g)| p[i] += g * m * (fall - convective));
+        self.airborne.borrow_mut()[k] = false;
+        self.forces_at.forget();
+        p[h] = 0.0;
+        self.solve_mass(t, z, &mut p);
+        zd.copy_from_slice(&p);
+        let impulse = m * (deck(zd) + convective - fall);
+        (z[h], zd[h]) = (0.0, 0.0);
+        let lost = -0.5 * impulse * approach;
+        (lost, energy(y) - before + lost)
+    }
+
     /// The longest step at t: the beam's bound, and while a wheel is on the deck the time it
     /// takes to cross an element (its load has a kink at each node).
     fn step_bound(&self, t: f64, q: &[f64]) -> f64 {
@@ -778,6 +933,10 @@ impl Structure for VehiclesOnBeam<'_> {
             }
             for (a, axle) in veh.axles.iter().enumerate() {
                 let c = next.next().expect("a contact per axle");
+                if let Some(h) = self.flying(c.wheel) {
+                    f[h] = st.on_axle[a] - veh.static_loads[a];
+                    continue;
+                }
                 let on_beam =
                     -veh.static_loads[a] - axle.mass * st.tracks[a].convective + st.on_axle[a];
                 for &(j, g) in &c.rows[0] {
@@ -809,7 +968,15 @@ impl Structure for VehiclesOnBeam<'_> {
                 let (Part::Body(b), Part::Axle(ax)) = (s.upper, s.lower) else {
                     continue;
                 };
-                let g = &wheels[i][ax].rows[0];
+                let c = wheels[i][ax];
+                let hop;
+                let g = match self.flying(c.wheel) {
+                    Some(h) => {
+                        hop = vec![(h, 1.0)];
+                        &hop
+                    }
+                    None => &c.rows[0],
+                };
                 let lever: Vec<(usize, f64)> = veh.lever(b, s.x).collect();
                 for &(p, gp) in g {
                     for &(r, gr) in g {
@@ -825,7 +992,32 @@ impl Structure for VehiclesOnBeam<'_> {
         a.build()
     }
     fn damping(&self) -> Option<Cow<'_, Sparse>> {
-        self.damping.as_ref().map(Cow::Borrowed)
+        let base = self.damping.as_ref()?;
+        let airborne = self.airborne.borrow();
+        if !airborne.iter().any(|&a| a) {
+            return Some(Cow::Borrowed(base));
+        }
+        // A flying axle's dampers act between it and the bodies above it.
+        let mut a = Assembly::new(self.dim);
+        a.add_sparse(base, 1.0, 0, 0);
+        let mut k = 0;
+        for (i, veh) in self.vehicles.iter().enumerate() {
+            for s in &veh.springs {
+                let (Part::Body(b), Part::Axle(ax)) = (s.upper, s.lower) else {
+                    continue;
+                };
+                if let Some(h) = self.flying(k + ax) {
+                    a.add(h, h, s.c);
+                    for (j, l) in veh.lever(b, s.x) {
+                        let o = self.offsets[i] + j;
+                        a.add(h, o, -s.c * l);
+                        a.add(o, h, -s.c * l);
+                    }
+                }
+            }
+            k += veh.axles.len();
+        }
+        Some(Cow::Owned(a.build()))
     }
     fn norm_groups(&self) -> Vec<Range<usize>> {
         if self.dim > self.n {
@@ -843,7 +1035,8 @@ impl Structure for VehiclesOnBeam<'_> {
 }
 
 impl SecondOrderProblem for VehiclesOnBeam<'_> {
-    type Event = StopReason;
+    /// The wheel whose contact force fell to zero, or which, flying, touched the track.
+    type Event = usize;
     fn max_step(&self, t: f64, _q: &[f64], _v: &[f64]) -> f64 {
         self.step_bound(t, _q)
     }
@@ -891,10 +1084,13 @@ impl SecondOrderProblem for VehiclesOnBeam<'_> {
         self.loaded.enter_segment(start, end);
         self.segment.set(0.5 * (start + end));
     }
-    fn events(&self) -> &[EventSpec<StopReason>] {
+    fn events(&self) -> &[EventSpec<usize>] {
         &self.events
     }
     fn event(&self, index: usize, t: f64, z: &[f64], zd: &[f64]) -> f64 {
+        if let Some(h) = self.flying(index) {
+            return self.gap(index, t, z, h);
+        }
         let scale = self
             .vehicles
             .iter()

@@ -267,6 +267,9 @@ struct AxleSummary {
     rn_min_t: f64,
     rn_max: f64,
     rn_max_t: f64,
+    /// A disk wheel's flights, where it flew.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    flights: Vec<crate::run::beam::AxleFlight>,
 }
 
 fn vehicle_summaries(r: &BeamRun) -> BTreeMap<String, VehicleSummary> {
@@ -290,13 +293,15 @@ fn vehicle_summaries(r: &BeamRun) -> BTreeMap<String, VehicleSummary> {
             let axles = v
                 .axles
                 .iter()
-                .filter(|(_, range)| range.seen())
-                .map(|(name, range)| {
+                .zip(&v.flights)
+                .filter(|((_, range), _)| range.seen())
+                .map(|((name, range), flights)| {
                     let axle = AxleSummary {
                         rn_min: range.min,
                         rn_min_t: range.min_t,
                         rn_max: range.max,
                         rn_max_t: range.max_t,
+                        flights: flights.clone(),
                     };
                     (name.clone(), axle)
                 })
@@ -457,6 +462,42 @@ pub const COMFORT_LEVELS: [(f64, &str); 3] = [
     (1.3, "good"),
     (2.0, "acceptable"),
 ];
+
+/// The bodies' largest vertical accelerations against a swept value (each series a body's
+/// points), with the comfort levels: very good always, the others where a body reaches them.
+pub fn comfort_chart(
+    path: &Path,
+    title: &str,
+    x_desc: &str,
+    bodies: &[(String, Vec<(f64, f64)>)],
+) -> Result<(), Error> {
+    let points = || bodies.iter().flat_map(|(_, p)| p.iter());
+    let largest = points().fold(0.0_f64, |m, p| m.max(p.1));
+    let (from, to) = points().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+        (lo.min(p.0), hi.max(p.0))
+    });
+    if !(from <= to) {
+        return Ok(());
+    }
+    let levels: Vec<(&str, Vec<(f64, f64)>)> = COMFORT_LEVELS
+        .iter()
+        .enumerate()
+        .filter(|(k, (level, _))| *k == 0 || *level <= largest)
+        .map(|(_, (level, label))| (*label, vec![(from, *level), (to, *level)]))
+        .collect();
+    let bodies: Vec<(&str, Vec<(f64, f64)>)> = bodies
+        .iter()
+        .map(|(n, p)| (n.as_str(), p.clone()))
+        .collect();
+    super::plots::line_chart_with_references(
+        path,
+        title,
+        x_desc,
+        "max |a| of a body (m/s²)",
+        &bodies,
+        &levels,
+    )
+}
 
 /// The vehicles' body accelerations against time, with the comfort levels where they reach
 /// them, and their wheels' contact forces.

@@ -418,13 +418,6 @@ fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
                 .map_or(Ok(0.0), |d| non_negative(c, d, "vehicles.springs.c"))?,
         });
     }
-    if let (Wheel::Disk { .. }, Some(a)) = (wheel, axles.iter().find(|a| a.mass > 0.0)) {
-        return c.err(
-            v.wheel.as_ref().map_or(0, |w| w.referenced.line()),
-            "vehicles.wheel",
-            format!("is disk, and axle {} has mass: a disk wheel carries no unsprung mass; put it in a hub body on a tyre spring", quote(&a.name)),
-        );
-    }
     let mut vehicle = Vehicle::new(
         vname,
         x0,

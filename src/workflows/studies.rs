@@ -398,31 +398,11 @@ fn railcar_sweep(studies: &Path, out: &Path, figures: &Path) -> Result<(), Error
         "max |a| at midspan (m/s²)",
         &deck,
     )?;
-    let largest = bodies
-        .iter()
-        .flat_map(|(_, p)| p.iter())
-        .fold(0.0_f64, |m, p| m.max(p.1));
-    let levels: Vec<(String, Vec<(f64, f64)>)> = output::beam::COMFORT_LEVELS
-        .iter()
-        .enumerate()
-        .filter(|(k, (level, _))| *k == 0 || *level <= largest)
-        .map(|(_, (level, label))| (label.to_string(), vec![(40.0, *level), (130.0, *level)]))
-        .collect();
-    let bodies: Vec<(&str, Vec<(f64, f64)>)> = bodies
-        .iter()
-        .map(|(n, p)| (n.as_str(), p.clone()))
-        .collect();
-    let levels: Vec<(&str, Vec<(f64, f64)>)> = levels
-        .iter()
-        .map(|(n, p)| (n.as_str(), p.clone()))
-        .collect();
-    plots::line_chart_with_references(
+    output::beam::comfort_chart(
         &figures.join("vehicle-railcar-comfort.svg"),
         "the same crossings: the car bodies' largest vertical acceleration",
         "speed (m/s)",
-        "max |a| of a car body (m/s²)",
         &bodies,
-        &levels,
     )
 }
 

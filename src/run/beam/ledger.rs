@@ -403,6 +403,21 @@ impl<'a> Ledger<'a> {
         self.impact += lost;
     }
 
+    /// A vehicle's wheel lands at t: the impact took `lost`, and the drive, holding the
+    /// wheel's horizontal motion against the impulse, did `work`.
+    pub fn wheel_lands(&mut self, lost: f64, work: f64) {
+        self.impact += lost;
+        self.moving.2 += work;
+    }
+
+    /// The run goes on at t from y, where a wheel's law changed (it lifted off or landed):
+    /// the powers booked from here are those after the change.
+    pub fn restart(&mut self, phase: &Phase, t: f64, y: &[f64]) {
+        self.moving = (t, Self::moving_power(phase, t, y), self.moving.2);
+        self.damped = (t, Self::damping_power(phase, t, y), self.damped.2);
+        self.end_power = None;
+    }
+
     /// The disk bounces off the beam at t: the impact took `lost` of the kinetic energy, and
     /// the disk flies off again with `disk` (kinetic, potential), which the budget holds
     /// constant while it flies.

@@ -162,6 +162,20 @@ pub struct VehicleReport {
     pub stopped_t: Option<f64>,
     /// The axle whose wheel lost contact and stopped the run.
     pub lost_contact: Option<String>,
+    /// Per axle, its disk wheel's flights.
+    pub flights: Vec<Vec<AxleFlight>>,
+}
+
+/// One flight of a vehicle's disk wheel (`summary.yaml`, `vehicles.<name>.axles.<axle>.flights`):
+/// when and where (the wheel's centre along the beam) it lifted off and landed, and the energy
+/// the plastic landing took (J); a flight the run ends in has no landing.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct AxleFlight {
+    pub lift_off_t: f64,
+    pub lift_off_x: f64,
+    pub land_t: Option<f64>,
+    pub land_x: Option<f64>,
+    pub energy_lost: Option<f64>,
 }
 
 /// The extremes over the run of what the summary reports, each located on the solution
@@ -383,6 +397,19 @@ struct Ridden {
     then: Then,
     /// The vehicle and axle whose wheel lost contact, where one did.
     lost_contact: Option<(usize, String)>,
+    /// The vehicles' wheels' flights.
+    wheel_flights: Vec<WheelFlight>,
+}
+
+/// One flight of a vehicle's disk wheel (index among all the wheels), from lift-off to
+/// landing.
+#[derive(Clone, Copy, Debug)]
+struct WheelFlight {
+    wheel: usize,
+    lift_off_t: f64,
+    land_t: Option<f64>,
+    /// What the landing took (J).
+    energy_lost: Option<f64>,
 }
 
 /// How the run goes on after the riders' phase.
@@ -464,6 +491,7 @@ pub fn run(
                 v: vec![0.0; loaded.dim()],
             },
             lost_contact: None,
+            wheel_flights: Vec::new(),
         },
     };
     let (t_end, y_end) = match &ridden.then {
@@ -641,6 +669,7 @@ fn ride<'a>(
             flights,
             then: Then::Ended { t, y },
             lost_contact: None,
+            wheel_flights: Vec::new(),
         });
     }
 }
@@ -666,7 +695,9 @@ fn vehicles_on<'a>(
 }
 
 /// Integrate the vehicles on the beam over the whole run: on the deck, and on the rigid
-/// approaches before and after it, until the end or a wheel loses contact.
+/// approaches before and after it, until the end or a wheel that cannot fly loses contact. A
+/// disk wheel with an unsprung mass flies where its contact force falls to zero and lands,
+/// plastically, where it touches the track again; the run goes on from each.
 fn drive<'a>(
     scene: &Scene,
     v: &'a VehiclesOnBeam<'a>,
@@ -677,31 +708,61 @@ fn drive<'a>(
     stats: &mut Stats,
 ) -> Result<Ridden, Error> {
     let n = v.dim();
-    let out = integrate(
-        v,
-        0.0,
-        &y0[..n],
-        &y0[n..],
-        scene.duration,
-        outputs,
-        opts,
-        rec,
-    )
-    .map_err(|e| solver_error(scene, e))?;
-    stats.add(&out.stats);
-    let (t, y) = (out.t, out.y);
-    let stop = match out.stopped_by {
-        Some(hit) => Stop::Event(hit.reason),
-        None => Stop::End,
+    let (mut t, mut y) = (0.0, y0.to_vec());
+    let mut flights: Vec<WheelFlight> = Vec::new();
+    let (stop, lost_contact) = loop {
+        let ahead: Vec<f64> = outputs
+            .iter()
+            .copied()
+            .filter(|&o| t == 0.0 || o > t)
+            .collect();
+        let out = integrate(v, t, &y[..n], &y[n..], scene.duration, &ahead, opts, rec)
+            .map_err(|e| solver_error(scene, e))?;
+        stats.add(&out.stats);
+        (t, y) = (out.t, out.y);
+        let Some(hit) = out.stopped_by else {
+            break (Stop::End, None);
+        };
+        let k = hit.reason;
+        if !v.can_fly(k) {
+            break (Stop::Event(StopReason::ContactLost), Some(v.wheel(k)));
+        }
+        if rec.history.rows.last().is_none_or(|r| r.t < t) {
+            rec.output(t, &y);
+        }
+        rec.restart();
+        if v.flies(k) {
+            let (lost, work) = v.land(k, t, &mut y);
+            rec.ledger.wheel_lands(lost, work);
+            if let Some(f) = flights.iter_mut().rev().find(|f| f.wheel == k) {
+                f.land_t = Some(t);
+                f.energy_lost = Some(f.energy_lost.unwrap_or(0.0) + lost);
+            }
+            // Landed with the body pulling the axle up: it flies on at the track's speed.
+            let (z, zd) = y.split_at(n);
+            if v.contact_forces(t, z, zd, &v.acceleration(t, z, zd))[k] < 0.0 {
+                v.lift(k, t, &mut y);
+                if let Some(f) = flights.iter_mut().rev().find(|f| f.wheel == k) {
+                    f.land_t = None;
+                }
+            }
+        } else {
+            if flights.len() >= MAX_FLIGHTS {
+                return Err(Error::Solver(format!(
+                    "scene {}: the vehicles' wheels lifted off {MAX_FLIGHTS} times by t = {t:.6} s; the run stops rather than count more flights",
+                    scene.name
+                )));
+            }
+            v.lift(k, t, &mut y);
+            flights.push(WheelFlight {
+                wheel: k,
+                lift_off_t: t,
+                land_t: None,
+                energy_lost: None,
+            });
+        }
+        rec.ledger.restart(&rec.phase, t, &y);
     };
-    let lost_contact = matches!(stop, Stop::Event(StopReason::ContactLost)).then(|| {
-        let (z, zd) = y.split_at(n);
-        let rn = v.contact_forces(t, z, zd, &v.acceleration(t, z, zd));
-        let k = (0..rn.len())
-            .min_by(|&a, &b| rn[a].total_cmp(&rn[b]))
-            .unwrap_or(0);
-        v.wheel(k)
-    });
     if rec.history.rows.last().is_none_or(|r| r.t < t) {
         rec.output(t, &y);
     }
@@ -711,6 +772,7 @@ fn drive<'a>(
         flights: Vec::new(),
         then: Then::Ended { t, y },
         lost_contact,
+        wheel_flights: flights,
     })
 }
 
@@ -730,6 +792,7 @@ fn left_beam(
         flights,
         then: Then::Alone { t, q, v },
         lost_contact: None,
+        wheel_flights: Vec::new(),
     }
 }
 
@@ -800,6 +863,7 @@ fn collect(
             &recorded.extremes.vehicles,
             &recorded.vehicle_rms,
             ridden.lost_contact,
+            &ridden.wheel_flights,
             t_end,
             beam.length,
         ),
@@ -814,18 +878,35 @@ fn vehicle_reports(
     ranges: &[Range],
     rms: &[f64],
     lost: Option<(usize, String)>,
+    wheel_flights: &[WheelFlight],
     t_end: f64,
     length: f64,
 ) -> Vec<VehicleReport> {
     let patch = crate::coupling::patch::dispersed_half_width(setup.beam.depth);
     let (mut r, mut b) = (ranges.iter(), rms.iter());
+    let mut first_wheel = 0;
     setup
         .vehicles
         .iter()
         .enumerate()
         .map(|(i, v)| {
             let last = v.axles.last().map_or(0.0, |a| a.x);
+            let wheels = first_wheel..first_wheel + v.axles.len();
+            first_wheel = wheels.end;
+            let mut flights = vec![Vec::new(); v.axles.len()];
+            for f in wheel_flights.iter().filter(|f| wheels.contains(&f.wheel)) {
+                let a = f.wheel - wheels.start;
+                let at = |t: f64| v.travel(t).0 - v.axles[a].x;
+                flights[a].push(AxleFlight {
+                    lift_off_t: f.lift_off_t,
+                    lift_off_x: at(f.lift_off_t),
+                    land_t: f.land_t,
+                    land_x: f.land_t.map(at),
+                    energy_lost: f.energy_lost,
+                });
+            }
             VehicleReport {
+                flights,
                 name: v.name.clone(),
                 bodies: v
                     .bodies

@@ -303,6 +303,13 @@ impl Recorder<'_> {
         self.last = Some((t1, end));
     }
 
+    /// The run goes on from a state that jumped (a wheel landed, or its law changed as it
+    /// lifted off): the steps before it are not joined to those after.
+    pub(super) fn restart(&mut self) {
+        self.last = None;
+        self.before = None;
+    }
+
     /// Take in a sample at t of the beam alone, on its own (a short step's end): with the
     /// two before it, the parabola through the three.
     pub(super) fn sampled(&mut self, end: Snapshot, t: f64) {

@@ -387,6 +387,7 @@ pub fn write_grid(rows: &[SweepRow], settings: &[Setting], dir: &Path) -> Result
     let probe_names = probe_names(rows);
     let keys: Vec<String> = settings.iter().map(|s| s.key.clone()).collect();
     write(&dir.join("sweep.csv"), &sweep_csv(rows, &keys))?;
+    comfort(rows, settings, dir)?;
     match settings {
         [speed, names] | [names, speed]
             if matches!(speed.sweep, Sweep::Range { .. })
@@ -398,6 +399,47 @@ pub fn write_grid(rows: &[SweepRow], settings: &[Setting], dir: &Path) -> Result
         }
         _ => sweep_chart(rows, &settings[0], &probe_names, dir),
     }
+}
+
+/// With vehicles, `comfort.svg`: each body's largest vertical acceleration against the first
+/// key swept over a range (over a grid, one series per value of the others), with EN 1990's
+/// comfort levels.
+fn comfort(rows: &[SweepRow], settings: &[Setting], dir: &Path) -> Result<(), Error> {
+    let x = settings
+        .iter()
+        .position(|s| matches!(s.sweep, Sweep::Range { .. }));
+    let Some(x) = x.filter(|_| !body_names(rows).is_empty()) else {
+        return Ok(());
+    };
+    let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for r in rows {
+        let (Ok(s), Value::Number(value)) = (r.outcome.as_ref(), &r.values[x]) else {
+            continue;
+        };
+        let others: Vec<String> = (0..settings.len())
+            .filter(|&k| k != x)
+            .map(|k| format!("{} = {}", settings[k].key, r.values[k]))
+            .collect();
+        let others = others.join(", ");
+        for (name, a) in s.bodies.iter().filter(|(_, a)| a.is_finite()) {
+            let label = if others.is_empty() {
+                name.clone()
+            } else {
+                format!("{name} ({others})")
+            };
+            match series.iter_mut().find(|(n, _)| *n == label) {
+                Some((_, points)) => points.push((*value, *a)),
+                None => series.push((label, vec![(*value, *a)])),
+            }
+        }
+    }
+    let key = &settings[x].key;
+    crate::output::beam::comfort_chart(
+        &dir.join("comfort.svg"),
+        &format!("the vehicles' bodies over {key}"),
+        &with_unit(key),
+        &series,
+    )
 }
 
 /// The vehicles' bodies of the first case that ran, as `<vehicle>.<body>`.
