@@ -305,9 +305,25 @@ impl SceneSpec {
                     _ => text(&mut b.value.initial),
                 }
             }
+            _ if key.starts_with("vehicles.") && key.ends_with(".wheel") => {
+                let name = &key["vehicles.".len()..key.len() - ".wheel".len()];
+                let mut any = false;
+                for v in f.vehicles.iter_mut().flat_map(|l| l.value.iter_mut()) {
+                    if name == "*" || v.value.name.value == name {
+                        text(&mut v.value.wheel);
+                        any = true;
+                    }
+                }
+                if !any {
+                    return Err(Error::Input(format!(
+                        "`{key}` cannot be set: the scene has no vehicle named {}",
+                        quote(name)
+                    )));
+                }
+            }
             _ => {
                 return Err(Error::Input(format!(
-                    "`{key}` does not take a name (a number key is swept as `{key}=FROM:TO:COUNT`); the keys that take names are name, disk.coupling, disk.formulation, disk.contact_loss, solver.method, train.hslm, train.model, track.beam.model, track.beam.quadrature, track.beam.initial and track.beam.self_weight"
+                    "`{key}` does not take a name (a number key is swept as `{key}=FROM:TO:COUNT`); the keys that take names are name, disk.coupling, disk.formulation, disk.contact_loss, solver.method, train.hslm, train.model, track.beam.model, track.beam.quadrature, track.beam.initial, track.beam.self_weight and vehicles.<name>.wheel"
                 )))
             }
         }
@@ -337,6 +353,7 @@ fn set_vehicle(v: &mut VehicleFile, field: &str, value: f64, key: &str) -> Resul
         ["speed"] => v.speed.value = value,
         ["x0"] => option(&mut v.x0),
         ["acceleration"] => option(&mut v.acceleration),
+        ["radius"] => option(&mut v.radius),
         ["springs", i, what @ ("k" | "c")] => {
             let Some(s) = i
                 .parse::<usize>()
