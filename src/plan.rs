@@ -49,6 +49,7 @@ impl Planner {
             rtol_given,
             atol_given,
             rho_inf_given,
+            method_given,
         } = checked;
         let Model::Beam(b) = &mut scene.model else {
             return scene;
@@ -98,6 +99,10 @@ impl Planner {
             b.rho_inf_chosen = Some(why);
         }
         b.response = response_size(&b.beam, &b.loads, weight, &xs);
+        if !method_given && b.exact_modal_refusal().is_none() {
+            scene.solver.method = crate::ode::Method::ExactModal;
+            scene.solver.method_chosen = Some(EXACT_MODAL.to_string());
+        }
         if !rtol_given {
             let solver = &mut scene.solver;
             let (rtol, why) = rtol_for(b);
@@ -114,6 +119,9 @@ impl Planner {
         scene
     }
 }
+
+/// Why the plan integrates a modal beam under moving forces and loads exactly.
+const EXACT_MODAL: &str = "exact-modal: the modal beam under moving forces and loads is uncoupled damped oscillators under a force of time alone, which it integrates in closed form between the axles' crossings of the nodes: exact whatever rtol, where a time-stepped run carries the error of every step into what it reports after the loads have moved along";
 
 /// What rides on the beam, as the static load the mesh and model are chosen for: the disk's
 /// weight, or the heaviest of a train's axles and the vehicles' wheels, standing at each probe.

@@ -1,4 +1,4 @@
-//! The three beam models (issue 16) against one another and against closed forms.
+//! The three beam models against one another and against closed forms.
 //!
 //! - The linear and the modal beam against the exact one on the steel studies (D44, D50, B1,
 //!   C1–C3), with the modes chosen from the accuracy: the bridges' peak deflections and the
@@ -57,7 +57,7 @@ fn with_model(file: &str, model: &str, more: &[Set]) -> Scene {
 /// The bridges are compared in the peaks of the crossing. The sudden loads (B1, C1–C3) are
 /// compared in the tip's or the load point's Hann-windowed mean over the first, loaded second
 /// ([`hann_mean`]): their peak over the whole run is ill-conditioned (the mesh's highest modes
-/// ride on it, the finding of issue 15; adding modes moved C2's modal beam away from the
+/// ride on it; adding modes moved C2's modal beam away from the
 /// exact one, 12 modes 1.1e-3, 16 modes 1.9e-3, while its linear beam stayed at 1.0e-4), and
 /// three seconds of it took most of this test's three minutes.
 /// Where the automatic choice (accuracy 1e-3) reduces the beam, the linear and the modal beam

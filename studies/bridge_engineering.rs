@@ -1,4 +1,4 @@
-//! The bridge engineer's workflow (issue 17), verified: Rayleigh damping on every beam model,
+//! The bridge engineer's workflow, verified: Rayleigh damping on every beam model,
 //! the beam's own weight, and the deck acceleration.
 //!
 //! - The damped moving force on the bridge (Euler–Bernoulli limit) against Frýba's series with

@@ -570,7 +570,7 @@ fn patch_width_from_the_section_and_its_shear_kink() {
     assert!(d.deflection < 1e-3 && d.kink_angle < 1e-4, "{d:?}");
 }
 
-/// Mesh convergence of the rubber beam and the zip-line (issue 15): the Hann-windowed mean of
+/// Mesh convergence of the rubber beam and the zip-line: the Hann-windowed mean of
 /// the midspan deflection over the crossing (the rubber until 1.5 s, before the disk lifts off
 /// at 1.61 s; the zip-line until 3.4 s, before the disk leaves the rope at 3.5 s), under
 /// h-refinement at a fixed degree against degree 4 on the finest mesh, at rtol 10⁻⁷ so that

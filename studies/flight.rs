@@ -1,4 +1,4 @@
-//! Lift-off, flight and landing on rigid curves (issue 18), against closed forms.
+//! Lift-off, flight and landing on rigid curves, against closed forms.
 //!
 //! - A run that flies is, up to the lift-off, the run that stops there, bit for bit: the
 //!   same integration, the same event.

@@ -1,4 +1,4 @@
-//! Hostile input (issue 14), one test per finding of the fuzzing campaign, each driving the
+//! Hostile input, one test per finding of the fuzzing campaign, each driving the
 //! binary as a user would. The contract checked every time: exit 0 with only finite numbers in
 //! every table and summary written, or exit 1/2 with one sentence on stderr; never a panic, an
 //! abort, a hang (each case has a wall-clock bound far above its normal cost), or a file

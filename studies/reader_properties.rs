@@ -1,4 +1,4 @@
-//! A bounded, deterministic property test of reading, planning and `check` (issue 14): scenes
+//! A bounded, deterministic property test of reading, planning and `check`: scenes
 //! made by mutating every study scene (a value replaced by a hostile one, a line dropped or
 //! repeated, text spliced in) must each end, within a time bound, either accepted with every
 //! number the model derives finite, or refused with one sentence that names where (a line or

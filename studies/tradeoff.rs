@@ -392,7 +392,7 @@ fn stored_references_serve_and_reproduce() {
     }
 }
 
-/// The stored windowed means (issue 15's 10⁻⁶): a setting none of them was made with lands
+/// The stored windowed means: a setting none of them was made with lands
 /// within 10⁻⁶ of each, on the sudden loads (REPORT.md, "Work–precision"). It is ESDIRK4 at rtol 10⁻⁴ on the grid's coarsest mesh: measured, it lands
 /// 0.5–58·10⁻⁹ away, and the means' references resolve 1.6·10⁻⁹–8.9·10⁻⁸, so at least a
 /// tenfold margin stands between the target and both. The extremes of the same runs lie

@@ -1,4 +1,4 @@
-//! The disk off the beam and back on it (issue 18): where a flying disk is against the track
+//! The disk off the beam and back on it: where a flying disk is against the track
 //! it would roll on, and what a landing does to the disk and the beam.
 //!
 //! **Gap.** The track is the patch-averaged axis the consistent coupling rolls the disk on,

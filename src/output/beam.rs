@@ -195,6 +195,8 @@ struct Chosen {
     atol: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     rho_inf: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    method: Option<String>,
 }
 
 #[derive(Serialize)]
@@ -921,13 +923,23 @@ fn chosen(r: &BeamRun) -> Option<Chosen> {
         .rho_inf_chosen
         .clone()
         .filter(|_| r.header.method == Method::GenAlpha);
-    (beam.is_some() || mesh.is_some() || rtol.is_some() || atol.is_some() || rho_inf.is_some())
-        .then(|| Chosen {
-            accuracy: r.setup.accuracy,
-            beam,
-            mesh,
-            rtol,
-            atol,
-            rho_inf,
-        })
+    let method = solver
+        .method_chosen
+        .clone()
+        .filter(|_| r.header.method == solver.method);
+    (beam.is_some()
+        || mesh.is_some()
+        || rtol.is_some()
+        || atol.is_some()
+        || rho_inf.is_some()
+        || method.is_some())
+    .then(|| Chosen {
+        accuracy: r.setup.accuracy,
+        beam,
+        mesh,
+        rtol,
+        atol,
+        rho_inf,
+        method,
+    })
 }

@@ -77,6 +77,8 @@ pub struct SolverSettings {
     pub atol_scale: Option<f64>,
     /// Why, where it was.
     pub atol_chosen: Option<String>,
+    /// Why the method is what it is, where the scene left it out and the planner chose it.
+    pub method_chosen: Option<String>,
 }
 
 /// A disk on a rigid curve.
@@ -251,6 +253,8 @@ pub struct Checked {
     pub atol_given: bool,
     /// The scene gives generalized-α's ρ∞ (the plan chooses it otherwise).
     pub rho_inf_given: bool,
+    /// The scene names its method (the plan chooses it otherwise).
+    pub method_given: bool,
 }
 
 /// Largest scene file read: a curve or profile of a million points, with room to spare.
@@ -341,6 +345,7 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
         rtol_chosen: None,
         atol_scale: None,
         atol_chosen: None,
+        method_chosen: None,
     };
     let (mut rtol_given, mut atol_given) = (false, false);
     if let Some(s) = &raw.solver {
@@ -411,6 +416,7 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
         rtol_given,
         atol_given,
         rho_inf_given: raw.solver.as_ref().is_some_and(|s| s.rho_inf.is_some()),
+        method_given: raw.solver.as_ref().is_some_and(|s| s.method.is_some()),
     })
 }
 
