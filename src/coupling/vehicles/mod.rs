@@ -24,6 +24,9 @@
 //! (`VehiclesOnBeam::land`). A point wheel, or a disk on a massless axle, has no motion of its
 //! own to fly with: the run stops there.
 
+mod disk_wheel;
+mod hops;
+
 use std::borrow::Cow;
 use std::cell::{Cell, RefCell};
 use std::ops::Range;
@@ -36,11 +39,7 @@ use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::EventSpec;
 use crate::vehicle::profile::Profile;
 use crate::vehicle::{Part, Vehicle, Wheel};
-
-/// Points a disk wheel's reach is scanned at before its contact is refined, where Newton's
-/// method has not found it in [`DISK_NEWTON`] steps.
-const DISK_SCAN: usize = 16;
-const DISK_NEWTON: usize = 8;
+pub use disk_wheel::DiskContact;
 
 /// A sparse row over the beam's unknowns of the model.
 type Row = Vec<(usize, f64)>;
@@ -63,18 +62,6 @@ pub struct Contact {
     /// H(X) = max over the contact x of the track there plus √(a² − (x − X)²), and the part of
     /// its centre's rise not in gᵀq (the profile and the disk's shape at the contact, less a).
     pub disk: Option<DiskContact>,
-}
-
-/// Where a disk wheel of radius a touches the track: at the x that lifts its centre highest.
-/// By that maximum the centre's height H moves with the deck as gᵀ at the contact does (the
-/// contact's own shift moves H by nothing to first order), and with the centre's travel X by
-/// (x − X)/√(a² − (x − X)²).
-#[derive(Clone, Copy, Debug)]
-pub struct DiskContact {
-    pub rise: f64,
-    pub rest: f64,
-    /// The disk rests on a corner of the profile, its contact held there as it pivots.
-    pub pivot: bool,
 }
 
 /// The track under a wheel: d, ḋ and d̈ less gᵀq̈ (which the mass matrix carries).
@@ -323,107 +310,6 @@ impl<'a> VehiclesOnBeam<'a> {
         self.vehicles
             .iter()
             .any(|v| matches!(v.wheel, Wheel::Disk { .. }))
-    }
-
-    /// The track's height at x (the deck at q, on the mesh, averaged over the patch, and the
-    /// profile) with its slope and curvature along x.
-    fn surface(&self, x: f64, mesh: &[f64]) -> [f64; 3] {
-        let beam = self.loaded.beam;
-        let (b, length) = (self.patch, beam.length);
-        let mut out = self.profile.at(x, x);
-        if x > -b && x < length + b {
-            for nb in beam.patch_basis_at(x, b) {
-                if let Some(i) = nb.w {
-                    (0..3).for_each(|k| out[k] += nb.d[k] * mesh[i]);
-                }
-            }
-        }
-        out
-    }
-
-    /// Where a disk of radius `a` centred over X touches the track, and how it rises there:
-    /// the x that lifts its centre highest, H(x) = f(x) + √(a² − (x − X)²). Newton's method on
-    /// H' from x = X finds it in a few steps on a smooth track (H'' < 0 wherever the track
-    /// bends less than the disk); where it does not settle (the disk on a corner of a
-    /// piecewise-linear profile), a scan of the disk's reach and golden-section search about
-    /// its best, to a billionth of the radius.
-    /// `toward` (±1) is the side of the stretch the run is in: where the disk rests on two faces
-    /// at once (in a hollow, at a breakpoint) the face it is going onto or coming off.
-    fn disk_contact(&self, at: f64, toward: f64, a: f64, mesh: &[f64]) -> (f64, DiskContact) {
-        let centre = at + toward * 1e-9 * a;
-        let height = |x: f64| -> f64 {
-            let u = (x - centre) / a;
-            self.surface(x, mesh)[0] + a * (1.0 - u * u).max(0.0).sqrt()
-        };
-        let newton = |start: f64| -> Option<f64> {
-            let mut x = start;
-            for _ in 0..DISK_NEWTON {
-                let [_, f1, f2] = self.surface(x, mesh);
-                let u = (x - centre) / a;
-                let root = (1.0 - u * u).max(1e-12).sqrt();
-                let (h1, h2) = (f1 - u / root, f2 - 1.0 / (a * root * root * root));
-                if !(h2 < 0.0) {
-                    return None;
-                }
-                let next =
-                    (x - h1 / h2).clamp(centre - a * (1.0 - 1e-9), centre + a * (1.0 - 1e-9));
-                let moved = (next - x).abs();
-                x = next;
-                if moved < 1e-10 * a {
-                    return Some(x);
-                }
-            }
-            None
-        };
-        // Each face of a piecewise-linear profile within reach holds its own maximum, and each
-        // corner may be where the disk rests: every one is a candidate, from the centre's.
-        let corners: Vec<f64> = self
-            .profile
-            .kinks()
-            .into_iter()
-            .filter(|k| (k - centre).abs() < a)
-            .collect();
-        let mut candidates: Vec<f64> = newton(centre).into_iter().collect();
-        for &k in &corners {
-            candidates.push(k);
-            for side in [-1.0, 1.0] {
-                candidates.extend(newton(k + side * 1e-6 * a));
-            }
-        }
-        let mut x = candidates
-            .iter()
-            .copied()
-            .max_by(|&p, &q| height(p).total_cmp(&height(q)))
-            .unwrap_or(centre);
-        if candidates.is_empty() || height(x) < height(centre) {
-            let reach = DISK_SCAN as f64;
-            let at = |k: usize| centre + a * (2.0 * k as f64 / reach - 1.0) * (1.0 - 1e-12);
-            let best = (0..=DISK_SCAN)
-                .max_by(|&i, &j| height(at(i)).total_cmp(&height(at(j))))
-                .unwrap_or(DISK_SCAN / 2);
-            let (mut lo, mut hi) = (at(best.saturating_sub(1)), at((best + 1).min(DISK_SCAN)));
-            let golden = 0.5 * (5.0_f64.sqrt() - 1.0);
-            while hi - lo > 1e-9 * a {
-                let (m1, m2) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
-                if height(m1) < height(m2) {
-                    lo = m1;
-                } else {
-                    hi = m2;
-                }
-            }
-            x = 0.5 * (lo + hi);
-        }
-        let u = (x - at) / a;
-        let root = (1.0 - u * u).max(1e-12).sqrt();
-        let profile = self.profile.at(x, x)[0];
-        (
-            x,
-            DiskContact {
-                rise: u / root,
-                rest: profile + a * (root - 1.0),
-                pivot: corners.contains(&x),
-            },
-        )
     }
 
     fn contacts_now(&self, t: f64, q: &[f64]) -> Vec<Contact> {
@@ -772,91 +658,6 @@ impl<'a> VehiclesOnBeam<'a> {
             k -= v.axles.len();
         }
         (0, String::new())
-    }
-
-    /// How many wheels the vehicles have.
-    pub fn wheels(&self) -> usize {
-        self.hops.len()
-    }
-
-    /// Whether wheel k can fly: a disk wheel with an unsprung mass (a massless axle has no
-    /// motion of its own to fly with).
-    pub fn can_fly(&self, k: usize) -> bool {
-        self.hops[k].is_some()
-    }
-
-    /// The unknown of wheel k's axle height while it flies; `None` on the track.
-    fn flying(&self, k: usize) -> Option<usize> {
-        self.hops[k].filter(|_| self.airborne.borrow()[k])
-    }
-
-    /// Whether wheel k flies now.
-    pub fn flies(&self, k: usize) -> bool {
-        self.flying(k).is_some()
-    }
-
-    /// Wheel k's gap to the track in radii (its axle at z[h] above where the disk would rest
-    /// at t), less a billionth: the landing is watched for from just below the lift-off's
-    /// zero, so that round-off at the lift-off does not land the wheel again at once.
-    fn gap(&self, k: usize, t: f64, z: &[f64], h: usize) -> f64 {
-        let c = &self.contacts(t, &z[..self.n])[k];
-        let Wheel::Disk { radius } = self.vehicles[c.vehicle].wheel else {
-            return 1.0;
-        };
-        let still = vec![0.0; self.n];
-        let rest = self.track(c, &z[..self.n], &still).d;
-        (z[h] - rest) / radius + 1e-9
-    }
-
-    /// Wheel k lifts off at t from y = (z, ż): its axle moves on as the track moved it.
-    pub fn lift(&self, k: usize, t: f64, y: &mut [f64]) {
-        let Some(h) = self.hops[k] else { return };
-        let (z, zd) = y.split_at_mut(self.dim);
-        let c = &self.contacts(t, &z[..self.n])[k];
-        let track = self.track(c, &z[..self.n], &zd[..self.n]);
-        (z[h], zd[h]) = (track.d, track.rate);
-        self.airborne.borrow_mut()[k] = true;
-        self.forces_at.forget();
-    }
-
-    /// Wheel k lands at t on y = (z, ż): a plastic impact. The generalized momentum the
-    /// wheel's contact holds is kept: with g the track's row under the wheel and c its
-    /// convective rate, M⁺ ż⁺ = M⁻ ż⁻ + g m (ḣ − c), M⁺ the mass with the wheel on the track;
-    /// the axle's unknown is at rest again. The impulse Λ = m (ḣ⁺ − ḣ⁻) stops the wheel's
-    /// approach w⁻ = ḣ − gᵀq̇ − c at a rate linear in it, so it takes −Λ w⁻ / 2; the rest of
-    /// the change of energy is the drive's work against the impulse's horizontal part.
-    /// Returns (what the impact took, the drive's work).
-    pub fn land(&self, k: usize, t: f64, y: &mut [f64]) -> (f64, f64) {
-        let Some(h) = self.flying(k) else {
-            return (0.0, 0.0);
-        };
-        let energy = |y: &[f64]| -> f64 {
-            let (z, zd) = y.split_at(self.dim);
-            let (kinetic, spring, potential) = self.energies(t, z, zd);
-            kinetic + spring + potential + self.loaded.energies(&z[..self.n], &zd[..self.n]).0
-        };
-        let before = energy(y);
-        let (z, zd) = y.split_at_mut(self.dim);
-        let mut p = vec![0.0; self.dim];
-        self.mass_mul(t, z, zd, &mut p);
-        let c = &self.contacts(t, &z[..self.n])[k];
-        let m = self.vehicles[c.vehicle].axles[c.axle].mass;
-        let still = vec![0.0; self.n];
-        let convective = self.track(c, &z[..self.n], &still).rate;
-        let deck = |v: &[f64]| -> f64 { c.rows[0].iter().map(|&(i, g)| g * v[i]).sum() };
-        let (fall, approach) = (zd[h], zd[h] - deck(zd) - convective);
-        c.rows[0]
-            .iter()
-            .for_each(|&(i, g)| p[i] += g * m * (fall - convective));
-        self.airborne.borrow_mut()[k] = false;
-        self.forces_at.forget();
-        p[h] = 0.0;
-        self.solve_mass(t, z, &mut p);
-        zd.copy_from_slice(&p);
-        let impulse = m * (deck(zd) + convective - fall);
-        (z[h], zd[h]) = (0.0, 0.0);
-        let lost = -0.5 * impulse * approach;
-        (lost, energy(y) - before + lost)
     }
 
     /// The longest step at t: the beam's bound, and while a wheel is on the deck the time it

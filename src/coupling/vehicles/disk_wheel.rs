@@ -1,0 +1,131 @@
+//! Where a disk wheel touches the track: the place under it that lifts its centre highest, on
+//! the deck's patch-averaged axis plus the profile, with the corners of a piecewise-linear
+//! profile as candidates.
+
+use super::VehiclesOnBeam;
+
+/// Points a disk wheel's reach is scanned at before its contact is refined, where Newton's
+/// method has not found it in [`DISK_NEWTON`] steps.
+const DISK_SCAN: usize = 16;
+const DISK_NEWTON: usize = 8;
+
+/// Where a disk wheel of radius a touches the track: at the x that lifts its centre highest.
+/// By that maximum the centre's height H moves with the deck as gᵀ at the contact does (the
+/// contact's own shift moves H by nothing to first order), and with the centre's travel X by
+/// (x − X)/√(a² − (x − X)²).
+#[derive(Clone, Copy, Debug)]
+pub struct DiskContact {
+    pub rise: f64,
+    pub rest: f64,
+    /// The disk rests on a corner of the profile, its contact held there as it pivots.
+    pub pivot: bool,
+}
+
+impl VehiclesOnBeam<'_> {
+    /// The track's height at x (the deck at q, on the mesh, averaged over the patch, and the
+    /// profile) with its slope and curvature along x.
+    pub(super) fn surface(&self, x: f64, mesh: &[f64]) -> [f64; 3] {
+        let beam = self.loaded.beam;
+        let (b, length) = (self.patch, beam.length);
+        let mut out = self.profile.at(x, x);
+        if x > -b && x < length + b {
+            for nb in beam.patch_basis_at(x, b) {
+                if let Some(i) = nb.w {
+                    (0..3).for_each(|k| out[k] += nb.d[k] * mesh[i]);
+                }
+            }
+        }
+        out
+    }
+
+    /// Where a disk of radius `a` centred over X touches the track, and how it rises there:
+    /// the x that lifts its centre highest, H(x) = f(x) + √(a² − (x − X)²). Newton's method on
+    /// H' from x = X finds it in a few steps on a smooth track (H'' < 0 wherever the track
+    /// bends less than the disk); where it does not settle (the disk on a corner of a
+    /// piecewise-linear profile), a scan of the disk's reach and golden-section search about
+    /// its best, to a billionth of the radius.
+    /// `toward` (±1) is the side of the stretch the run is in: where the disk rests on two faces
+    /// at once (in a hollow, at a breakpoint) the face it is going onto or coming off.
+    pub(super) fn disk_contact(
+        &self,
+        at: f64,
+        toward: f64,
+        a: f64,
+        mesh: &[f64],
+    ) -> (f64, DiskContact) {
+        let centre = at + toward * 1e-9 * a;
+        let height = |x: f64| -> f64 {
+            let u = (x - centre) / a;
+            self.surface(x, mesh)[0] + a * (1.0 - u * u).max(0.0).sqrt()
+        };
+        let newton = |start: f64| -> Option<f64> {
+            let mut x = start;
+            for _ in 0..DISK_NEWTON {
+                let [_, f1, f2] = self.surface(x, mesh);
+                let u = (x - centre) / a;
+                let root = (1.0 - u * u).max(1e-12).sqrt();
+                let (h1, h2) = (f1 - u / root, f2 - 1.0 / (a * root * root * root));
+                if !(h2 < 0.0) {
+                    return None;
+                }
+                let next =
+                    (x - h1 / h2).clamp(centre - a * (1.0 - 1e-9), centre + a * (1.0 - 1e-9));
+                let moved = (next - x).abs();
+                x = next;
+                if moved < 1e-10 * a {
+                    return Some(x);
+                }
+            }
+            None
+        };
+        // Each face of a piecewise-linear profile within reach holds its own maximum, and each
+        // corner may be where the disk rests: every one is a candidate, from the centre's.
+        let corners: Vec<f64> = self
+            .profile
+            .kinks()
+            .into_iter()
+            .filter(|k| (k - centre).abs() < a)
+            .collect();
+        let mut candidates: Vec<f64> = newton(centre).into_iter().collect();
+        for &k in &corners {
+            candidates.push(k);
+            for side in [-1.0, 1.0] {
+                candidates.extend(newton(k + side * 1e-6 * a));
+            }
+        }
+        let mut x = candidates
+            .iter()
+            .copied()
+            .max_by(|&p, &q| height(p).total_cmp(&height(q)))
+            .unwrap_or(centre);
+        if candidates.is_empty() || height(x) < height(centre) {
+            let reach = DISK_SCAN as f64;
+            let at = |k: usize| centre + a * (2.0 * k as f64 / reach - 1.0) * (1.0 - 1e-12);
+            let best = (0..=DISK_SCAN)
+                .max_by(|&i, &j| height(at(i)).total_cmp(&height(at(j))))
+                .unwrap_or(DISK_SCAN / 2);
+            let (mut lo, mut hi) = (at(best.saturating_sub(1)), at((best + 1).min(DISK_SCAN)));
+            let golden = 0.5 * (5.0_f64.sqrt() - 1.0);
+            while hi - lo > 1e-9 * a {
+                let (m1, m2) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
+                if height(m1) < height(m2) {
+                    lo = m1;
+                } else {
+                    hi = m2;
+                }
+            }
+            x = 0.5 * (lo + hi);
+        }
+        let u = (x - at) / a;
+        let root = (1.0 - u * u).max(1e-12).sqrt();
+        let profile = self.profile.at(x, x)[0];
+        (
+            x,
+            DiskContact {
+                rise: u / root,
+                rest: profile + a * (root - 1.0),
+                pivot: corners.contains(&x),
+            },
+        )
+    }
+}
