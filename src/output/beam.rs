@@ -473,32 +473,44 @@ pub fn comfort_chart(
     x_desc: &str,
     bodies: &[(String, Vec<(f64, f64)>)],
 ) -> Result<(), Error> {
-    let points = || bodies.iter().flat_map(|(_, p)| p.iter());
-    let largest = points().fold(0.0_f64, |m, p| m.max(p.1));
-    let (from, to) = points().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-        (lo.min(p.0), hi.max(p.0))
-    });
+    let (from, to) = bodies
+        .iter()
+        .flat_map(|(_, p)| p.iter())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.0), hi.max(p.0))
+        });
     if !(from <= to) {
         return Ok(());
     }
+    let axes = (x_desc, "max |a| of a body (m/s²)");
+    with_comfort_levels(path, title, axes, bodies, (from, to), true)
+}
+
+/// Series of body accelerations with EN 1990's comfort levels drawn across `span`: those the
+/// series reach, and very good always where `always_very_good`.
+fn with_comfort_levels(
+    path: &Path,
+    title: &str,
+    (x_desc, y_desc): (&str, &str),
+    series: &[(String, Vec<(f64, f64)>)],
+    (from, to): (f64, f64),
+    always_very_good: bool,
+) -> Result<(), Error> {
+    let largest = series
+        .iter()
+        .flat_map(|(_, s)| s.iter())
+        .fold(0.0_f64, |m, p| m.max(p.1.abs()));
     let levels: Vec<(&str, Vec<(f64, f64)>)> = COMFORT_LEVELS
         .iter()
         .enumerate()
-        .filter(|(k, (level, _))| *k == 0 || *level <= largest)
+        .filter(|(k, (level, _))| (*k == 0 && always_very_good) || *level <= largest)
         .map(|(_, (level, label))| (*label, vec![(from, *level), (to, *level)]))
         .collect();
-    let bodies: Vec<(&str, Vec<(f64, f64)>)> = bodies
+    let series: Vec<(&str, Vec<(f64, f64)>)> = series
         .iter()
         .map(|(n, p)| (n.as_str(), p.clone()))
         .collect();
-    super::plots::line_chart_with_references(
-        path,
-        title,
-        x_desc,
-        "max |a| of a body (m/s²)",
-        &bodies,
-        &levels,
-    )
+    super::plots::line_chart_with_references(path, title, x_desc, y_desc, &series, &levels)
 }
 
 /// The vehicles' body accelerations against time, with the comfort levels where they reach
@@ -524,27 +536,14 @@ fn vehicle_figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             wheels.push((format!("{} {}", v.name, axle.name), of(&|o| o.rn[i][a])));
         }
     }
-    let largest = bodies
-        .iter()
-        .flat_map(|(_, s)| s.iter())
-        .fold(0.0_f64, |m, p| m.max(p.1.abs()));
     let t_end = r.rows.last().map_or(0.0, |row| row.t);
-    let levels: Vec<(&str, Vec<(f64, f64)>)> = COMFORT_LEVELS
-        .iter()
-        .filter(|(l, _)| *l <= largest)
-        .map(|(level, label)| (*label, vec![(0.0, *level), (t_end, *level)]))
-        .collect();
-    let bodies: Vec<(&str, Vec<(f64, f64)>)> = bodies
-        .iter()
-        .map(|(n, p)| (n.as_str(), p.clone()))
-        .collect();
-    super::plots::line_chart_with_references(
+    with_comfort_levels(
         &dir.join("vehicles.svg"),
         &format!("{name}: vertical acceleration of the vehicles' bodies"),
-        "t (s)",
-        "a (m/s²)",
+        ("t (s)", "a (m/s²)"),
         &bodies,
-        &levels,
+        (0.0, t_end),
+        false,
     )?;
     let wheels: Vec<(&str, Vec<(f64, f64)>)> = wheels
         .iter()
