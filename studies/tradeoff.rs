@@ -512,3 +512,68 @@ fn a_stored_history_cut_or_replaced_is_stale() {
         _ => panic!("a device served as a history"),
     }
 }
+
+/// Each study as a user meets it with an empty solver block (method, tolerances and ρ∞ left
+/// to the plan; the scene's mesh kept) lands within the accuracy asked of its stored
+/// reference, in the reference's own measure: the headlines read on the output grid, each
+/// against the largest of its family. Measured at most 8.9·10⁻⁴ (the rubber beam's
+/// three-quarter point), 3.4·10⁻⁴ on B1–B3 and C1–C3, 2.9·10⁻⁴ on D44 and D50, 10⁻⁷ on the
+/// HSLM bridge (integrated exactly). The vehicle studies likewise.
+fn land_within_their_references_at_the_defaults(names: &[&str]) {
+    let references = stored_references();
+    for name in names {
+        let (scene, _, stored) = references
+            .iter()
+            .find(|(s, _, _)| s.name == *name)
+            .expect("the study");
+        let Stored::Usable(reference) = stored else {
+            panic!("{name}: no usable stored reference");
+        };
+        let file = common::studies_dir().join(format!("{name}.yaml"));
+        let mut spec = rollbeam::scene::SceneSpec::load(&file).expect("the study");
+        for key in [
+            "solver.method",
+            "solver.rtol",
+            "solver.atol",
+            "solver.rho_inf",
+        ] {
+            spec.unset(key).expect("a solver key");
+        }
+        let planned = rollbeam::plan::Planner::default()
+            .plan(&spec)
+            .expect("planned");
+        let accuracy = scene.beam().expect("a beam study").accuracy;
+        let r = run::run(&planned, &Overrides::default(), false).expect("the run");
+        let error = tradeoff::headline_error(&tradeoff::headlines(&r), &reference.headlines);
+        eprintln!("{name}: {error:.1e} of its reference at the defaults");
+        assert!(error <= accuracy, "{name}: {error:.1e} from its reference");
+    }
+}
+
+#[test]
+fn the_sudden_loads_land_within_their_references_at_the_defaults() {
+    land_within_their_references_at_the_defaults(&["beam-b1", "beam-b2", "beam-b3"]);
+}
+
+#[test]
+fn the_cantilevers_land_within_their_references_at_the_defaults() {
+    land_within_their_references_at_the_defaults(&[
+        "cantilever-c1",
+        "cantilever-c2",
+        "cantilever-c3",
+    ]);
+}
+
+#[test]
+fn the_bridges_and_ropes_land_within_their_references_at_the_defaults() {
+    land_within_their_references_at_the_defaults(&[
+        "bridge-d44",
+        "bridge-d50",
+        "hslm-15m",
+        "rubber",
+        "zipline",
+        "vehicle-sprung",
+        "vehicle-truck",
+        "vehicle-railcar",
+    ]);
+}
