@@ -216,7 +216,28 @@ fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
         .acceleration
         .as_ref()
         .map_or(Ok(0.0), |a| c.finite(a, "vehicles.acceleration"))?;
-    let wheel = match v.wheel.as_ref().map(|w| (w, w.value.as_str())) {
+    let wheel = wheel_of(c, v)?;
+    within_bounds(c, v, &vname)?;
+    let (bodies, axles) = bodies_and_axles(c, v, &vname)?;
+    let springs = springs_of(c, v, &vname, &bodies, &axles)?;
+    let mut vehicle = Vehicle::new(
+        vname,
+        x0,
+        speed,
+        acceleration,
+        bodies,
+        axles,
+        springs,
+        gravity,
+    )
+    .or_else(|why| c.err(v.name.referenced.line(), "vehicles", why))?;
+    vehicle.wheel = wheel;
+    Ok(vehicle)
+}
+
+/// The vehicle's wheel: a point, or a disk of a radius within [`MAX_WHEEL_RADIUS`].
+fn wheel_of(c: &Checker, v: &VehicleFile) -> Result<Wheel, Error> {
+    Ok(match v.wheel.as_ref().map(|w| (w, w.value.as_str())) {
         None | Some((_, "point")) => {
             if let Some(r) = &v.radius {
                 return c.err(
@@ -252,7 +273,11 @@ fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
                 format!("is {}; a wheel is point or disk", quote(other)),
             );
         }
-    };
+    })
+}
+
+/// At most [`MAX_PARTS`] bodies, axles and springs, and an axle to rest on.
+fn within_bounds(c: &Checker, v: &VehicleFile, vname: &str) -> Result<(), Error> {
     for (list, key, count) in [
         (
             v.bodies.referenced.line(),
@@ -282,9 +307,18 @@ fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
         return c.err(
             v.axles.referenced.line(),
             "vehicles.axles",
-            format!("is empty: vehicle {} has no axle to rest on", quote(&vname)),
+            format!("is empty: vehicle {} has no axle to rest on", quote(vname)),
         );
     }
+    Ok(())
+}
+
+/// The bodies and axles, each name once, the axles from 0 behind the first and increasing.
+fn bodies_and_axles(
+    c: &Checker,
+    v: &VehicleFile,
+    vname: &str,
+) -> Result<(Vec<Body>, Vec<Axle>), Error> {
     let mut names: Vec<String> = Vec::new();
     let mut fresh = |n: &Spanned<String>, key: &str| -> Result<String, Error> {
         let s = name(c, n, key)?;
@@ -295,7 +329,7 @@ fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
                 format!(
                     "= {} names two parts of vehicle {}",
                     quote(&s),
-                    quote(&vname)
+                    quote(vname)
                 ),
             );
         }
@@ -338,6 +372,18 @@ fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
                 .map_or(Ok(0.0), |m| non_negative(c, m, "vehicles.axles.mass"))?,
         });
     }
+    Ok((bodies, axles))
+}
+
+/// The spring–dampers, each between a body and a body or an axle, within the vehicle's
+/// reach, one on an axle acting at it.
+fn springs_of(
+    c: &Checker,
+    v: &VehicleFile,
+    vname: &str,
+    bodies: &[Body],
+    axles: &[Axle],
+) -> Result<Vec<Spring>, Error> {
     let part = |n: &Spanned<String>, key: &str| -> Result<Part, Error> {
         if let Some(b) = bodies.iter().position(|b| b.name == n.value) {
             return Ok(Part::Body(b));
@@ -351,7 +397,7 @@ fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
             format!(
                 "= {} names no body or axle of vehicle {}",
                 quote(&n.value),
-                quote(&vname)
+                quote(vname)
             ),
         )
     };
@@ -402,7 +448,7 @@ fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
                 "vehicles.springs.x",
                 format!(
                     "= {x} lies outside vehicle {} (its axles and bodies reach from {} to {} m)",
-                    quote(&vname),
+                    quote(vname),
                     reach.0,
                     reach.1
                 ),
@@ -418,19 +464,7 @@ fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
                 .map_or(Ok(0.0), |d| non_negative(c, d, "vehicles.springs.c"))?,
         });
     }
-    let mut vehicle = Vehicle::new(
-        vname,
-        x0,
-        speed,
-        acceleration,
-        bodies,
-        axles,
-        springs,
-        gravity,
-    )
-    .or_else(|why| c.err(v.name.referenced.line(), "vehicles", why))?;
-    vehicle.wheel = wheel;
-    Ok(vehicle)
+    Ok(springs)
 }
 
 /// The running surface's profile; refused where no vehicle rides on it.
