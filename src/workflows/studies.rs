@@ -308,6 +308,61 @@ fn railcar_sweep(studies: &Path, out: &Path, figures: &Path) -> Result<(), Error
     let Some(beam) = scene.beam() else {
         return Ok(());
     };
+    let (masses, forces) = trains_of_the_cars(&file, &spec, beam)?;
+    // The wheels as what they are, rigid disks of 0.46 m (920 mm wheels): they round the kink
+    // the deck's end rotation makes at each abutment, and fly where they lift off.
+    let mut on_disks = spec.clone();
+    on_disks.set_name("vehicles.*.wheel", "disk")?;
+    on_disks.set("vehicles.*.radius", 0.46)?;
+    let started = std::time::Instant::now();
+    let dir = out.join("vehicle-railcar-sweep");
+    let mut deck = Vec::new();
+    let mut bodies = Vec::new();
+    for (label, swept, key) in [
+        ("vehicles", spec.clone(), "vehicles.*.speed"),
+        ("vehicles on disk wheels", on_disks, "vehicles.*.speed"),
+        ("moving masses", masses, "train.speed"),
+        ("moving forces", forces, "train.speed"),
+    ] {
+        let setting = Setting::parse(&format!("{key}=40:130:91"))?;
+        let rows = run_sweep(&swept, &setting, &Overrides::default(), true)?;
+        super::sweep::write_sweep(&rows, &setting, &dir.join(label.replace(' ', "-")))?;
+        let (on_deck, in_bodies) = railcar_series(label, &rows);
+        deck.push(on_deck);
+        if key.starts_with("vehicles") {
+            bodies.push(in_bodies);
+        }
+    }
+    say!(
+        "{:<14} 4 × 91 speeds in {:.1} s; wrote {}",
+        "vehicle-railcar",
+        started.elapsed().as_secs_f64(),
+        dir.display()
+    );
+    let deck: Vec<(&str, Vec<(f64, f64)>)> =
+        deck.iter().map(|(n, p)| (n.as_str(), p.clone())).collect();
+    plots::line_chart(
+        &figures.join("vehicle-railcar-deck.svg"),
+        "four railway cars over the 15 m HSLM bridge: the deck's largest acceleration",
+        "speed (m/s)",
+        "max |a| at midspan (m/s²)",
+        &deck,
+    )?;
+    output::beam::comfort_chart(
+        &figures.join("vehicle-railcar-comfort.svg"),
+        "the same crossings: the car bodies' largest vertical acceleration",
+        "speed (m/s)",
+        &bodies,
+    )
+}
+
+/// The moving-mass and moving-force trains of the cars' static axle loads, in the study's
+/// scene with its vehicles replaced.
+fn trains_of_the_cars(
+    file: &Path,
+    spec: &SceneSpec,
+    beam: &crate::scene::BeamScene,
+) -> Result<(SceneSpec, SceneSpec), Error> {
     let first = beam.vehicles.first().map_or(0.0, |v| v.x0);
     let (axles, loads): (Vec<f64>, Vec<f64>) = beam
         .vehicles
@@ -334,81 +389,47 @@ fn railcar_sweep(studies: &Path, out: &Path, figures: &Path) -> Result<(), Error
         );
         SceneSpec::parse(&text, &file.display().to_string(), "vehicle-railcar")
     };
-    // The wheels as what they are, rigid disks of 0.46 m (920 mm wheels): they round the kink
-    // the deck's end rotation makes at each abutment, and fly where they lift off.
-    let mut on_disks = spec.clone();
-    on_disks.set_name("vehicles.*.wheel", "disk")?;
-    on_disks.set("vehicles.*.radius", 0.46)?;
-    let started = std::time::Instant::now();
-    let dir = out.join("vehicle-railcar-sweep");
-    let mut deck = Vec::new();
-    let mut bodies = Vec::new();
-    for (label, swept, key) in [
-        ("vehicles", spec.clone(), "vehicles.*.speed"),
-        ("vehicles on disk wheels", on_disks, "vehicles.*.speed"),
-        ("moving masses", train("moving-mass")?, "train.speed"),
-        ("moving forces", train("moving-force")?, "train.speed"),
-    ] {
-        let setting = Setting::parse(&format!("{key}=40:130:91"))?;
-        let rows = run_sweep(&swept, &setting, &Overrides::default(), true)?;
-        let name = label.replace(' ', "-");
-        super::sweep::write_sweep(&rows, &setting, &dir.join(&name))?;
-        // A run a wheel's lift-off stopped is not a crossing: its numbers stop short of one.
-        let ok = || {
-            rows.iter()
-                .filter_map(|r| Some((r.value, r.outcome.as_ref().ok()?)))
-                .filter(|(_, s)| s.stop == "end")
-        };
-        let lifted = rows
-            .iter()
-            .filter(|r| r.outcome.as_ref().is_ok_and(|s| s.stop == "contact-lost"))
-            .map(|r| r.value)
-            .fold(f64::INFINITY, f64::min);
-        let shown = if lifted.is_finite() {
-            format!("{label} (from {lifted} m/s a wheel lifts off the deck)")
-        } else {
-            label.to_string()
-        };
-        deck.push((
-            format!("deck at midspan: {shown}"),
-            ok().filter_map(|(v, s)| Some((v, s.probes.first()?.4)))
-                .collect::<Vec<_>>(),
-        ));
-        if key.starts_with("vehicles") {
-            bodies.push((
-                format!("largest over the car bodies: {label}"),
-                ok().map(|(v, s)| {
-                    let body = s
-                        .bodies
-                        .iter()
-                        .filter(|b| b.0.ends_with(".body"))
-                        .fold(0.0_f64, |m, b| m.max(b.1));
-                    (v, body)
-                })
-                .collect::<Vec<_>>(),
-            ));
-        }
-    }
-    say!(
-        "{:<14} 4 × 91 speeds in {:.1} s; wrote {}",
-        "vehicle-railcar",
-        started.elapsed().as_secs_f64(),
-        dir.display()
-    );
-    let deck: Vec<(&str, Vec<(f64, f64)>)> =
-        deck.iter().map(|(n, p)| (n.as_str(), p.clone())).collect();
-    plots::line_chart(
-        &figures.join("vehicle-railcar-deck.svg"),
-        "four railway cars over the 15 m HSLM bridge: the deck's largest acceleration",
-        "speed (m/s)",
-        "max |a| at midspan (m/s²)",
-        &deck,
-    )?;
-    output::beam::comfort_chart(
-        &figures.join("vehicle-railcar-comfort.svg"),
-        "the same crossings: the car bodies' largest vertical acceleration",
-        "speed (m/s)",
-        &bodies,
+    Ok((train("moving-mass")?, train("moving-force")?))
+}
+
+/// A labelled line of a chart.
+type Series = (String, Vec<(f64, f64)>);
+
+/// One model's deck series (its largest midspan acceleration against speed, labelled with
+/// the speed from which a wheel lifts off, if one does) and its car bodies' largest
+/// acceleration; a run a wheel's lift-off stopped is not a crossing, and is left out.
+fn railcar_series(label: &str, rows: &[super::sweep::SweepRow]) -> (Series, Series) {
+    let ok = || {
+        rows.iter()
+            .filter_map(|r| Some((r.value, r.outcome.as_ref().ok()?)))
+            .filter(|(_, s)| s.stop == "end")
+    };
+    let lifted = rows
+        .iter()
+        .filter(|r| r.outcome.as_ref().is_ok_and(|s| s.stop == "contact-lost"))
+        .map(|r| r.value)
+        .fold(f64::INFINITY, f64::min);
+    let shown = if lifted.is_finite() {
+        format!("{label} (from {lifted} m/s a wheel lifts off the deck)")
+    } else {
+        label.to_string()
+    };
+    let deck = ok()
+        .filter_map(|(v, s)| Some((v, s.probes.first()?.4)))
+        .collect();
+    let bodies = ok()
+        .map(|(v, s)| {
+            let body = s
+                .bodies
+                .iter()
+                .filter(|b| b.0.ends_with(".body"))
+                .fold(0.0_f64, |m, b| m.max(b.1));
+            (v, body)
+        })
+        .collect();
+    (
+        (format!("deck at midspan: {shown}"), deck),
+        (format!("largest over the car bodies: {label}"), bodies),
     )
 }
 
