@@ -370,7 +370,7 @@ fn profile(p: &crate::vehicle::profile::Profile) -> String {
             pts[0][0],
             pts[pts.len() - 1][0]
         ),
-        Profile::Cosines(c) => format!("ISO 8608 random profile, {} cosines", c.len()),
+        Profile::Cosines(c) => format!("ISO 8608 random profile, {} cosines", c.terms.len()),
     }
 }
 
