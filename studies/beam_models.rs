@@ -136,12 +136,13 @@ fn run_modal(scene: &Scene, corrected: bool) -> BeamRun {
 /// The moving force crossing the bridge (D44's speed), the modal beam with 2…32 modes against
 /// the linear beam on the same mesh. Without the correction the error at the peak is the
 /// static deflection the left-out modes would carry under the patch-spread force: measured
-/// falling as K⁻²·² (2 modes 1.4e-2 … 32 modes 2.9e-5), asserted steeper than K⁻¹·⁵. With
+/// falling as K⁻²·² (2 modes 1.4e-2 … 32 modes 2.1e-5), asserted steeper than K⁻¹·⁵. With
 /// the correction what is left is the left-out modes' dynamic response, a quasi-static mode's
 /// (load frequency / ω_k)² of its static part: 45 times smaller at 2 modes, 20 at 8, and from
-/// 8 modes on at the floor of about 2e-5 that the integration (rtol 1e-8) and the output grid
+/// 8 modes on at the floor of 1–2e-5 that the integration (rtol 1e-8) and the output grid
 /// leave, where 16 and 32 modes no longer differ. Asserted: the correction divides the error
-/// by at least 3 at every count, and keeps it under 1e-4 of the peak from 4 modes on.
+/// by at least 3 wherever the error without it is five times that floor (up to 16 modes;
+/// at 32 both are at the floor), and keeps it under 1e-4 of the peak from 4 modes on.
 #[test]
 fn modal_truncation_with_and_without_the_static_correction() {
     let base = [
@@ -162,7 +163,7 @@ fn modal_truncation_with_and_without_the_static_correction() {
     }
     for &(modes, with, without) in &rows {
         assert!(
-            3.0 * with < without,
+            without < 1e-4 || 3.0 * with < without,
             "{modes} modes: the correction does not help ({with:.2e} against {without:.2e})"
         );
         if modes >= 4.0 {

@@ -146,7 +146,7 @@ fn at(series: &[(f64, f64)], t: f64) -> f64 {
 /// (10⁻³ of each one's largest value) over the crossing and the free vibration after it.
 /// What separates the two besides integration is the finite-element modes against the sine
 /// modes (the planner's mesh holds the static deflection to 2.5·10⁻⁴) and the wheel's
-/// patch of ±6 mm. Measured: 4.7·10⁻⁴ in the deflection, 1.1·10⁻⁴ in the body's displacement.
+/// patch of ±6 mm. Measured: 2.6·10⁻⁴ in the deflection, 9.7·10⁻⁵ in the body's displacement.
 #[test]
 fn the_sprung_mass_agrees_with_the_same_system_written_directly() {
     let r = at_defaults(&load("vehicle-sprung.yaml"));
@@ -304,7 +304,7 @@ fn truck(x0: f64, speed: f64, extra: &str) -> String {
 /// deck. Kinetic, strain, spring and weight energy less the drive's work plus what the
 /// dampers took stays at its start within the integration's error, which shrinks as rtol
 /// does: from 10⁻⁶ to 10⁻⁸ the steps shrink by 100^(1/3) and the second-order method's error
-/// by about 20 (measured 2.6·10⁻⁴ to 1.3·10⁻⁵).
+/// by about 20 (measured 8.1·10⁻⁵ to 3.9·10⁻⁶).
 #[test]
 fn the_energy_balance_closes_with_dampers_a_profile_and_braking() {
     let text = BRIDGE.replace(
@@ -333,7 +333,7 @@ fn the_energy_balance_closes_with_dampers_a_profile_and_braking() {
 /// (its stiffer tyre): the run stops at the loss of contact, says so, and names the wheel. Its
 /// 50 kg wheels take a vertical impulse at each of the bump's kinks, whose energy the drive
 /// delivers: booked with the drive's work, the balance closes to a hundredth of the accuracy
-/// (measured 5.3·10⁻⁶; unbooked, the impulses left 3·10⁻²).
+/// (measured 3.1·10⁻⁶; unbooked, the impulses left 3·10⁻²).
 #[test]
 fn a_wheel_that_lifts_off_stops_the_run_and_is_named() {
     let text = BRIDGE.replace(
@@ -357,7 +357,7 @@ fn a_wheel_that_lifts_off_stops_the_run_and_is_named() {
 /// The truck over the raised deck (`studies/vehicle-truck.yaml`): its massless wheels cross
 /// the profile's four kinks, where the drive's power jumps; each step's work is booked on its
 /// own side of them, and the balance closes at the defaults within a hundredth of the
-/// accuracy (measured 5.8·10⁻⁶; read on the next stretch's side, it drifted by 2.5·10⁻³).
+/// accuracy (measured 2.6·10⁻⁶; read on the next stretch's side, it drifted by 2.5·10⁻³).
 #[test]
 fn the_energy_balance_closes_over_the_kinks_of_a_raised_deck() {
     let r = at_defaults(&load("vehicle-truck.yaml"));
@@ -390,7 +390,7 @@ fn a_train_of_vehicles_is_swept_at_one_speed() {
 /// The railway cars on 0.46 m disk wheels at their resonance, 121 m/s: where point wheels
 /// lift off at the far abutment (the deck's end rotation against the rigid approach), a
 /// wheelset hops there and lands within a metre (measured 0.26–0.62 m), and the run goes on to the end with the balance closed to
-/// the accuracy's order (measured 4.1·10⁻⁵ at the defaults).
+/// the accuracy's order (measured 9.6·10⁻⁶ at the defaults).
 #[test]
 fn railway_cars_on_disk_wheels_hop_at_the_abutment_and_ride_on() {
     let mut spec =
@@ -491,9 +491,8 @@ fn exact_modal_is_refused_with_vehicles() {
 /// order in the radius, with or without an unsprung mass (whose inertia then follows the
 /// disk's centre). The sprung mass over an ISO 8608 class A profile (wavelengths from 0.5 m),
 /// at rtol 10⁻⁸: the body's largest acceleration differs from the point wheel's by a tenth as
-/// much at each tenth of the radius, and by less than 10⁻⁴ at 3 mm (measured 5.2·10⁻⁴,
-/// 5.0·10⁻⁵, 7.9·10⁻⁶ without; at the defaults with 700 kg, 6.9·10⁻⁴, 6.6·10⁻⁵, 6.7·10⁻⁶ at
-/// 0.4, 0.04, 0.004 m).
+/// much at each tenth of the radius, and by less than 10⁻⁴ at 3 mm (measured 4.3·10⁻⁴,
+/// 4.2·10⁻⁵, 3.8·10⁻⁶ without, 4.3·10⁻⁴, 4.2·10⁻⁵, 3.1·10⁻⁶ with 700 kg).
 #[test]
 fn disk_wheels_become_the_point_wheel_as_their_radius_shrinks() {
     let bridge = BRIDGE.replace(
@@ -529,7 +528,7 @@ fn disk_wheels_become_the_point_wheel_as_their_radius_shrinks() {
 
 /// Disk wheels of 0.5 m on the truck over the raised deck: they pivot over the crests and
 /// change faces in the hollows at breakpoints, and the balance closes as the point wheels'
-/// does (measured 5.2·10⁻⁶ at the defaults).
+/// does (measured 2.6·10⁻⁶ at the defaults).
 #[test]
 fn the_energy_balance_closes_for_disk_wheels_over_kinks() {
     let path = common::studies_dir().join("vehicle-truck.yaml");
@@ -608,7 +607,7 @@ output:\n  probes: [{{name: mid, x: 12.5}}]\n",
 /// ISO 8608 class B profile: the wheel hops, lands on the deck and the impact moves the beam
 /// through the wheel's row; the balance, with what the landings took and the drive's work
 /// against their impulses, shrinks with rtol as a second-order method's error does (measured
-/// 1.3·10⁻⁵ at 10⁻⁷, 2.9·10⁻⁶ at 10⁻⁸).
+/// 1.9·10⁻⁵ at 10⁻⁷, 4.2·10⁻⁶ at 10⁻⁸).
 #[test]
 fn the_energy_balance_closes_through_wheel_hops_on_the_deck() {
     let bridge = BRIDGE.replace(
@@ -677,7 +676,7 @@ fn a_vehicle_sweep_charts_the_bodies_against_the_comfort_levels() {
 /// reports of its vehicles, not only the deck's: the truck over the raised deck (ramps, a
 /// pitching body on hubs on tyres) at the defaults against the same scene at rtol 10⁻¹⁰, each
 /// body's largest acceleration and root mean square against its own converged value, each
-/// wheel's extreme contact forces against its static load (measured at most 5.8·10⁻⁴, the
+/// wheel's extreme contact forces against its static load (measured at most 6.3·10⁻⁴, the
 /// body's a_rms).
 #[test]
 fn every_vehicle_number_holds_the_accuracy_asked() {

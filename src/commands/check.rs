@@ -45,6 +45,13 @@ impl fmt::Display for Described<'_> {
         if let (Some(b), Some(why)) = (scene.beam(), &scene.solver.method_chosen) {
             writeln!(f, "  method chosen for accuracy {:e}: {why}", b.accuracy)?;
         }
+        if let (Some(b), Some(why)) = (scene.beam(), &scene.solver.free_vibration_chosen) {
+            writeln!(
+                f,
+                "  free vibration integrated for accuracy {:e}: {why}",
+                b.accuracy
+            )?;
+        }
         if let (Some(b), Method::GenAlpha) = (scene.beam(), scene.solver.method) {
             if let Some(why) = &b.rho_inf_chosen {
                 writeln!(f, "  rho_inf chosen for accuracy {:e}: {why}", b.accuracy)?;

@@ -197,6 +197,8 @@ struct Chosen {
     rho_inf: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     method: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    free_vibration: Option<String>,
 }
 
 #[derive(Serialize)]
@@ -926,12 +928,17 @@ fn chosen(r: &BeamRun) -> Option<Chosen> {
         .method_chosen
         .clone()
         .filter(|_| r.header.method == solver.method);
+    let free_vibration = solver
+        .free_vibration_chosen
+        .clone()
+        .filter(|_| r.header.method == solver.method);
     (beam.is_some()
         || mesh.is_some()
         || rtol.is_some()
         || atol.is_some()
         || rho_inf.is_some()
-        || method.is_some())
+        || method.is_some()
+        || free_vibration.is_some())
     .then(|| Chosen {
         accuracy: r.setup.accuracy,
         beam,
@@ -940,5 +947,6 @@ fn chosen(r: &BeamRun) -> Option<Chosen> {
         atol,
         rho_inf,
         method,
+        free_vibration,
     })
 }

@@ -79,6 +79,9 @@ pub struct SolverSettings {
     pub atol_chosen: Option<String>,
     /// Why the method is what it is, where the scene left it out and the planner chose it.
     pub method_chosen: Option<String>,
+    /// Why the beam's free vibration after its riders leave is integrated exactly, where the
+    /// scene left the method out and the planner chose so.
+    pub free_vibration_chosen: Option<String>,
 }
 
 /// A disk on a rigid curve.
@@ -146,6 +149,16 @@ impl BeamScene {
         Some(format!(
             "exact-modal integrates a modal beam (`model: modal`) under moving forces, point loads or its weight; this scene has {what}: use genalpha"
         ))
+    }
+
+    /// Whether the beam alone, once every rider has left it, is uncoupled linear oscillators
+    /// under a force of time: a modal beam with no moving masses.
+    pub fn free_vibration_is_modal(&self) -> bool {
+        matches!(self.beam.model, BeamModel::Modal { .. })
+            && !self
+                .train
+                .as_ref()
+                .is_some_and(|t| t.model == TrainModel::MovingMass)
     }
 
     /// Whether a load is switched on or off during the run, the beam's own weight included
@@ -346,6 +359,7 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
         atol_scale: None,
         atol_chosen: None,
         method_chosen: None,
+        free_vibration_chosen: None,
     };
     let (mut rtol_given, mut atol_given) = (false, false);
     if let Some(s) = &raw.solver {

@@ -436,6 +436,12 @@ pub fn run(
         setup.train.as_ref(),
     )
     .resolving(lowest);
+    let filter = AccelerationFilter::new(&beam, &loaded, setup.acceleration_cutoff_hz);
+    let loaded = loaded.reporting_accelerations_below(
+        filter
+            .as_ref()
+            .map_or(0.0, |f| std::f64::consts::TAU * f.cutoff_hz),
+    );
     let coupled = setup
         .disk
         .clone()
@@ -473,7 +479,16 @@ pub fn run(
         vehicles: vehicles.as_ref(),
     };
     let y0 = initial_state(&loaded, coupled.as_ref(), vehicles.as_ref(), &start);
-    let mut rec = recorder(scene, setup, over, phase, &y0, outputs.len(), show_progress);
+    let mut rec = recorder(
+        scene,
+        setup,
+        over,
+        phase,
+        filter,
+        &y0,
+        outputs.len(),
+        show_progress,
+    );
 
     let mut stats = Stats::default();
     let ridden = match (&coupled, &vehicles) {
@@ -807,6 +822,13 @@ fn vibrate_alone(
     stats: &mut Stats,
 ) -> Result<(f64, Vec<f64>), Error> {
     rec.phase.free();
+    let exact = ode::Options {
+        method: Method::ExactModal,
+        ..opts.clone()
+    };
+    let planned_exact =
+        scene.solver.free_vibration_chosen.is_some() && opts.method == scene.solver.method;
+    let opts = if planned_exact { &exact } else { opts };
     // The output times from here on that no phase has recorded yet: a run without a disk
     // records its start here, after the disk left its leaving time is recorded.
     let rest: Vec<f64> = outputs

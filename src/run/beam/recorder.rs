@@ -11,6 +11,10 @@ pub(super) const SAMPLES_PER_CUTOFF_PERIOD: f64 = 32.0;
 /// contact patch's half-width.
 pub(super) const SAMPLES_PER_PATCH: f64 = 20.0;
 
+/// The most samples of the envelope's stations one step takes (a bound on a step far longer
+/// than the cutoff's period, whose stations are then sampled at this many points).
+const MAX_ALONG_SAMPLES: f64 = 4096.0;
+
 /// What the watches see of the run at one time: each probe's (u, w, φ, a); the disk's (rn,
 /// rt, μ needed, w under it, gap) while it is on or over the beam; and when asked, the
 /// envelope's stations' (u, w, φ, a) and the stretch of the axis.
@@ -92,6 +96,8 @@ pub(super) struct Recorder<'a> {
     /// The probes and the disk at the last two step ends watched while a disk is on or over
     /// the beam: then every step is.
     pub(super) trail: Vec<Trailed>,
+    /// The envelope's stations at the last two times they were sampled.
+    pub(super) along_trail: Vec<(f64, Vec<f64>)>,
     /// When the last load left the beam: from then on the residual vibration is watched.
     pub(super) exit_t: Option<f64>,
     pub(super) progress: Option<Progress>,
@@ -242,17 +248,14 @@ impl Recorder<'_> {
         }
         let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0, 0));
         let last = self.last.take();
-        let before = self.before.take();
+        let fresh = self.along_trail.is_empty();
         let flying = self.phase.flying.is_some();
         let after = self.exit_t.is_some_and(|te| t0 >= te);
         let see =
             |t: f64, along: bool| self.snapshot(t, &dense.at(t), dense.rate(t).as_deref(), along);
-        // The stations are watched on the step ends alone, the parabola through the last
-        // three (`before`, t0, t1): on every station at the middle too, they would cost more
-        // than the rest of the run.
-        let (start, before) = match last {
-            Some((t, s)) if t == t0 => (s, before),
-            _ => ((see(t0, true)), None),
+        let start = match last {
+            Some((t, s)) if t == t0 => s,
+            _ => see(t0, fresh),
         };
         let tm = 0.5 * (t0 + t1);
         let (middle, end) = (see(tm, false), see(t1, true));
@@ -267,15 +270,6 @@ impl Recorder<'_> {
                 .record_step(t, [&s0.vehicles, &s1.vehicles, &s2.vehicles], |tt| {
                     see(tt, false).vehicles
                 });
-        }
-        match before {
-            Some((tb, b)) => {
-                w.along
-                    .record_step([tb, t0, t1], [&b.along, &s0.along, &s2.along], |_| {
-                        Vec::new()
-                    })
-            }
-            None => w.along.record_point(t1, &s2.along),
         }
         if after {
             w.after_exit.record_step(
@@ -308,6 +302,25 @@ impl Recorder<'_> {
             }
         }
         self.watches = w;
+        if self.watch_along {
+            // The stations are sampled every `spacing` at most, the parabola through the last
+            // three taken as it is: on a long step's ends alone (an exact step may span a
+            // sixteenth of the lowest period) it overshot HSLM's largest deck acceleration by
+            // 3·10⁻³. Each sample of every station costs about what a step of the beam does,
+            // so they are not taken at the steps' middles.
+            if fresh {
+                self.trail_along(t0, start.along.clone());
+            }
+            let n = ((t1 - t0) / spacing).ceil().clamp(1.0, MAX_ALONG_SAMPLES) as usize;
+            for k in 1..n {
+                let tk = t0 + (t1 - t0) * k as f64 / n as f64;
+                let along = self
+                    .snapshot(tk, &dense.at(tk), dense.rate(tk).as_deref(), true)
+                    .along;
+                self.trail_along(tk, along);
+            }
+            self.trail_along(t1, end.along.clone());
+        }
         if !start.vehicles.is_empty() {
             self.add_squares(
                 (t0, t1),
@@ -326,6 +339,21 @@ impl Recorder<'_> {
             .collect();
         self.before = Some((t0, start));
         self.last = Some((t1, end));
+    }
+
+    /// Take in the envelope's stations at t: with the two samples before it, the parabola
+    /// through the three.
+    fn trail_along(&mut self, t: f64, along: Vec<f64>) {
+        match &self.along_trail[..] {
+            [(ta, a), (tb, b)] => {
+                self.watches
+                    .along
+                    .record_parabola([*ta, *tb, t], [a, b, &along]);
+                self.along_trail.remove(0);
+            }
+            _ => self.watches.along.record_point(t, &along),
+        }
+        self.along_trail.push((t, along));
     }
 
     /// Take in the probes and the disk at the end t of a short step: with the two step ends
@@ -374,6 +402,7 @@ impl Recorder<'_> {
         self.last = None;
         self.before = None;
         self.trail.clear();
+        self.along_trail.clear();
     }
 
     /// Take in a sample at t of the beam alone, on its own (a short step's end): with the
@@ -395,8 +424,6 @@ impl Recorder<'_> {
                     w.probes
                         .record_parabola(times, [&a.probes, &b.probes, &end.probes]);
                 }
-                w.along
-                    .record_parabola(times, [&a.along, &b.along, &end.along]);
                 if !end.vehicles.is_empty() {
                     w.vehicles
                         .record_parabola(times, [&a.vehicles, &b.vehicles, &end.vehicles]);
@@ -413,13 +440,15 @@ impl Recorder<'_> {
                 if !trailed {
                     w.probes.record_point(t, &end.probes);
                 }
-                w.along.record_point(t, &end.along);
                 w.vehicles.record_point(t, &end.vehicles);
                 self.before = last;
             }
         }
         if after {
             w.after_exit.record_point(t, &end.deflections());
+        }
+        if self.watch_along {
+            self.trail_along(t, end.along.clone());
         }
         self.last = Some((t, end));
     }
@@ -590,6 +619,7 @@ pub(super) fn recorder<'a>(
     setup: &'a BeamScene,
     over: &Overrides,
     phase: Phase<'a>,
+    filter: Option<AccelerationFilter>,
     y0: &[f64],
     rows: usize,
     show_progress: bool,
@@ -598,7 +628,6 @@ pub(super) fn recorder<'a>(
     let xs: Vec<f64> = (0..SAMPLES)
         .map(|k| beam.length * k as f64 / (SAMPLES - 1) as f64)
         .collect();
-    let filter = AccelerationFilter::new(beam, phase.loaded, setup.acceleration_cutoff_hz);
     let spacing = filter
         .as_ref()
         .map_or(0.0, |f| 1.0 / (SAMPLES_PER_CUTOFF_PERIOD * f.cutoff_hz));
@@ -643,6 +672,7 @@ pub(super) fn recorder<'a>(
         last: None,
         before: None,
         trail: Vec::new(),
+        along_trail: Vec::new(),
         spacing,
         exit_t,
         arrivals,
