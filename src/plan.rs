@@ -77,10 +77,7 @@ impl Planner {
                 b.beam, b.loads, b.accuracy, b.start
             );
             let (model, why) = kept(&self.models, key, || {
-                let thesis = b
-                    .disk
-                    .as_ref()
-                    .is_some_and(|d| d.coupling == Coupling::Thesis);
+                let thesis = b.disks.iter().any(|d| d.coupling == Coupling::Thesis);
                 let c = model_choice::choose(
                     &b.beam, given, &b.loads, weight, &xs, b.accuracy, b.start, thesis,
                 );
@@ -139,7 +136,9 @@ fn riding_weight(b: &BeamScene) -> Option<f64> {
         .fold(None, |m: Option<f64>, p| {
             Some(m.unwrap_or(0.0).max(p.abs()))
         });
-    b.disk.as_ref().map(|d| d.disk.mass * d.gravity).or(axles)
+    let disks =
+        (!b.disks.is_empty()).then(|| b.disks.iter().map(|d| d.disk.mass * d.gravity).sum::<f64>());
+    disks.or(axles)
 }
 
 /// Where the probes are along the beam: where the mesh, the model and ρ∞ are judged.

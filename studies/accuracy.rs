@@ -122,8 +122,8 @@ fn grid_moves_no_extreme(base: &[Set<'static>]) {
     }
     let weight = 1500.0 * 9.81;
     let (d, e) = (
-        coarse.extremes.disk.expect("a disk"),
-        fine.extremes.disk.expect("a disk"),
+        coarse.extremes.disk().expect("a disk"),
+        fine.extremes.disk().expect("a disk"),
     );
     for k in [0, 1] {
         same("a contact force's minimum", d[k].min, e[k].min, weight);
@@ -302,7 +302,7 @@ fn a_disk_set_down_on_a_beam_at_rest_is_said_to_ring_with_the_mesh() {
             .warnings()
             .iter()
             .any(|w| w.contains("at rest"));
-        let disk = at_defaults(&scene).extremes.disk.expect("a disk");
+        let disk = at_defaults(&scene).extremes.disk().expect("a disk");
         (disk[0].min, disk[0].max, warned)
     };
     let (coarse, fine) = (on("rest", 10.0), on("rest", 20.0));

@@ -1108,3 +1108,60 @@ fn vehicles_refused_with_one_sentence() {
         rejected(name, &text, needles);
     }
 }
+
+/// Several disks: each is checked as `disk` is and named by its place in the list; `disk` and
+/// `disks` together, an empty list, the thesis coupling among several, and a list on a rigid
+/// curve or beside a train are refused with the reason.
+#[test]
+fn bad_disk_lists() {
+    let one = "{mass: 100, radius: 0.2, s0: 1.0, omega0: -10}";
+    rejected(
+        "disks-second-bad",
+        &beam_scene(
+            &[],
+            &format!("disks:\n  - {one}\n  - {{mass: -1, radius: 0.2, s0: 2.0}}\n"),
+        ),
+        &["`disks[2].mass` must be positive"],
+    );
+    rejected(
+        "disks-off-beam",
+        &beam_scene(
+            &[],
+            &format!("disks:\n  - {one}\n  - {{mass: 1, radius: 0.2, s0: 9.0}}\n"),
+        ),
+        &["disks[2].s0", "off the beam"],
+    );
+    rejected(
+        "disk-and-disks",
+        &beam_scene(&[], &format!("disk: {one}\ndisks: [{one}]\n")),
+        &["`disk`", "`disks` are both given"],
+    );
+    rejected(
+        "disks-empty",
+        &beam_scene(&[], "disks: []\n"),
+        &["`disks`", "1 to 100 disks"],
+    );
+    rejected(
+        "disks-thesis",
+        &beam_scene(
+            &[],
+            &format!(
+                "disks:\n  - {one}\n  - {{mass: 100, radius: 0.2, s0: 2.0, omega0: -10, coupling: thesis}}\n"
+            ),
+        ),
+        &["disks[2].coupling", "one disk"],
+    );
+    rejected(
+        "disks-on-curve",
+        &format!("duration: 1\n{PARABOLA}disks: [{one}]\n"),
+        &["`disks`", "beam tracks only"],
+    );
+    rejected(
+        "disks-and-train",
+        &beam_scene(
+            &[],
+            &format!("disks: [{one}]\ntrain: {{axles: [0.0], load: 1.0e3, speed: 10.0}}\n"),
+        ),
+        &["`disks`", "`train` are both given"],
+    );
+}

@@ -269,8 +269,8 @@ fn a_disk_flies_over_a_bearing_lands_and_the_energy_balance_closes() {
             break;
         }
         assert_eq!(
-            (a.t, a.probes[0].w, a.disk.map(|d| d.rn)),
-            (b.t, b.probes[0].w, b.disk.map(|d| d.rn))
+            (a.t, a.probes[0].w, a.disk().map(|d| d.rn)),
+            (b.t, b.probes[0].w, b.disk().map(|d| d.rn))
         );
     }
     let land_s = first.land_s.expect("it lands");
@@ -283,7 +283,7 @@ fn a_disk_flies_over_a_bearing_lands_and_the_energy_balance_closes() {
         .iter()
         .filter(|r| r.t > first.lift_off_t && r.t < first.land_t.unwrap());
     for r in in_air {
-        let d = r.disk.expect("the flying disk is observed");
+        let d = r.disk().expect("the flying disk is observed");
         assert!(d.rn == 0.0 && r.gap >= 0.0);
     }
     let after = flown
@@ -291,7 +291,7 @@ fn a_disk_flies_over_a_bearing_lands_and_the_energy_balance_closes() {
         .iter()
         .find(|r| r.t > first.land_t.unwrap() + 0.01)
         .expect("rows after the landing");
-    assert!(after.disk.expect("on the beam").rn > 0.0 && after.impact == lost);
+    assert!(after.disk().expect("on the beam").rn > 0.0 && after.impact == lost);
     let tight = flown.header.energy.max_rel_drift();
     let loose = run_beam(&continuous("fly"), Method::GenAlpha, 1e-5, 1e-9)
         .header
@@ -338,7 +338,7 @@ fn a_landing_on_a_free_beam_keeps_the_momenta() {
     let setup = free_free();
     let beam = Beam::new(setup.beam.clone());
     let loaded = LoadedBeam::new(&beam, &setup.loads, None, None, None);
-    let c = DiskOnBeam::new(&loaded, setup.disk.clone().expect("a disk"));
+    let c = DiskOnBeam::new(&loaded, setup.disks.clone());
     let n = beam.dim();
     let (q, v) = moving(n);
     let (velocity, omega) = ([2.0, -3.0], 5.0);
@@ -430,7 +430,7 @@ fn a_bounce_on_a_free_beam_reverses_the_normal_speed_and_keeps_the_momentum() {
     let setup = free_free();
     let beam = Beam::new(setup.beam.clone());
     let loaded = LoadedBeam::new(&beam, &setup.loads, None, None, None);
-    let c = DiskOnBeam::new(&loaded, setup.disk.clone().expect("a disk"));
+    let c = DiskOnBeam::new(&loaded, setup.disks.clone());
     let n = beam.dim();
     let (q, v) = moving(n);
     let (velocity, omega, s, e) = ([2.0, -3.0], 5.0, 1.7, 0.6);
@@ -482,7 +482,7 @@ fn a_bounce_on_a_free_beam_reverses_the_normal_speed_and_keeps_the_momentum() {
 fn bounces_on_a_beam_halve_and_the_balance_closes() {
     let mut scene = continuous("fly");
     if let rollbeam::scene::Model::Beam(b) = &mut scene.model {
-        if let Some(d) = &mut b.disk {
+        if let Some(d) = b.disks.first_mut() {
             d.contact_loss = rollbeam::rolling::ContactLoss::Fly { restitution: 0.5 };
         }
     }

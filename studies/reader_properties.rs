@@ -132,7 +132,7 @@ fn derived_numbers(scene: &rollbeam::scene::Scene) -> Vec<f64> {
                     .iter()
                     .flat_map(|l| [l.x, l.force[0], l.force[1], l.mz]),
             );
-            if let Some(d) = &b.disk {
+            if let Some(d) = b.disk() {
                 v.extend([
                     d.disk.mass,
                     d.disk.radius,

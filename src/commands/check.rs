@@ -188,31 +188,41 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
     if setup.profile != crate::vehicle::profile::Profile::Smooth {
         writeln!(f, "  profile: {}", profile(&setup.profile))?;
     }
-    match (&setup.disk, &setup.train) {
-        (None, Some(t)) => train(f, t, b.length)?,
-        (None, None) if !setup.vehicles.is_empty() => {}
-        (None, None) => writeln!(f, "  disk: none (no disk unknowns)")?,
-        (Some(d), _) => writeln!(
-            f,
-            "  disk: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}){}",
-            d.disk.mass,
-            d.disk.radius,
-            d.s0,
-            d.omega0,
-            d.coupling.name(),
-            if d.coupling.rolls() {
-                "1 more unknown: the contact point s"
-            } else {
-                "prescribed travel, no disk unknowns"
-            },
-            d.mu.map_or(String::new(), |m| format!(", mu = {m}"))
-        )?,
-    }
-    if let Some(d) = &setup.disk {
-        if d.coupling.rolls() {
-            writeln!(f, "  {}", contact_loss(d.contact_loss))?;
+    match (setup.disks.is_empty(), &setup.train) {
+        (true, Some(t)) => train(f, t, b.length)?,
+        (true, None) if !setup.vehicles.is_empty() => {}
+        (true, None) => writeln!(f, "  disk: none (no disk unknowns)")?,
+        (false, _) => {
+            for (k, d) in setup.disks.iter().enumerate() {
+                let name = if setup.disks.len() == 1 {
+                    "disk".to_string()
+                } else {
+                    format!("disk{}", k + 1)
+                };
+                writeln!(
+                    f,
+                    "  {name}: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}){}",
+                    d.disk.mass,
+                    d.disk.radius,
+                    d.s0,
+                    d.omega0,
+                    d.coupling.name(),
+                    if d.coupling.rolls() {
+                        "1 more unknown: the contact point s"
+                    } else {
+                        "prescribed travel, no disk unknowns"
+                    },
+                    d.mu.map_or(String::new(), |m| format!(", mu = {m}"))
+                )?;
+                if d.coupling.rolls() {
+                    writeln!(f, "  {}", contact_loss(d.contact_loss))?;
+                }
+                patch(f, setup, d)?;
+            }
+            for w in setup.warnings() {
+                writeln!(f, "  warning: {w}")?;
+            }
         }
-        patch(f, setup, d)?;
     }
     writeln!(
         f,
@@ -294,15 +304,13 @@ fn patch(f: &mut fmt::Formatter<'_>, setup: &BeamScene, d: &DiskOnBeamSpec) -> f
             ", the depth of the rectangle with the section's A and I"
         },
     )?;
-    if let Some(s) = setup.patch_sensitivity() {
+    {
+        let s = setup.patch_sensitivity_of(d);
         writeln!(
             f,
             "  patch sensitivity: the axis kinks by P/(G Av) = {:.2e} rad under the disk; deflection ~{:.1e} of the response, contact force ~{:.1e} of the weight",
             s.kink_angle, s.deflection, s.contact_force
         )?;
-    }
-    for w in setup.warnings() {
-        writeln!(f, "  warning: {w}")?;
     }
     Ok(())
 }

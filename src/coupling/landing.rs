@@ -51,13 +51,13 @@ impl DiskOnBeam<'_> {
     /// unknowns), its nearest point searched from `s`.
     pub fn gap(&self, q: &[f64], centre: [f64; 2], s: f64) -> BeamGap {
         let beam = self.beam();
-        let a = self.spec.disk.radius;
+        let a = self.spec().disk.radius;
         let origin = beam.spec.from;
         let c = beam.to_local([centre[0] - origin[0], centre[1] - origin[1]]);
         let q = self.loaded.to_mesh(q);
         let still = vec![0.0; q.len()];
         let length = beam.length;
-        let at = |s: f64| AxisPoint::at(beam, &q, &still, s, 0.0, self.spec.patch);
+        let at = |s: f64| AxisPoint::at(beam, &q, &still, s, 0.0, self.spec().patch);
         let mut s = s.clamp(0.0, length);
         for _ in 0..NEAREST_ITERATIONS {
             let p = at(s);
@@ -105,13 +105,13 @@ impl DiskOnBeam<'_> {
         velocity: [f64; 2],
         omega: f64,
     ) -> Option<Landing> {
-        if self.spec.coupling != Coupling::Consistent {
+        if self.spec().coupling != Coupling::Consistent {
             return None;
         }
         let n = self.n;
         let z: Vec<f64> = q.iter().copied().chain([s]).collect();
         let still: Vec<f64> = v.iter().copied().chain([0.0]).collect();
-        let added = self.added_mass(&self.contact(t, &z, &still));
+        let added = self.added_mass(&self.disks[0], &self.contact(0, t, &z, &still));
         let local = self.beam().to_local(velocity);
         let disk = [local[0], local[1], omega];
         let mut momenta = vec![0.0; n + 1];
@@ -124,7 +124,7 @@ impl DiskOnBeam<'_> {
         }
         let mut zd = momenta.clone();
         SparseLu::factor(&self.mass_matrix(&added), None)?.solve_in_place(&mut zd);
-        let (m, c) = (self.spec.disk.mass, self.spec.disk.inertia());
+        let (m, c) = (self.spec().disk.mass, self.spec().disk.inertia());
         let before = beam_kinetic
             + 0.5 * m * (velocity[0] * velocity[0] + velocity[1] * velocity[1])
             + 0.5 * c * omega * omega;
@@ -162,9 +162,9 @@ impl DiskOnBeam<'_> {
         velocity: [f64; 2],
         omega: f64,
     ) -> [f64; 2] {
-        let a = self.spec.disk.radius;
+        let a = self.spec().disk.radius;
         let (q, v) = (self.loaded.to_mesh(q), self.loaded.to_mesh(v));
-        let at = AxisPoint::at(self.beam(), &q, &v, s, 0.0, self.spec.patch);
+        let at = AxisPoint::at(self.beam(), &q, &v, s, 0.0, self.spec().patch);
         let (t, n) = (at.tangent(), at.normal());
         let track = at.material_velocity();
         let rel = [
@@ -179,7 +179,7 @@ impl DiskOnBeam<'_> {
     fn beam_kick(&self, q: &[f64], s: f64, j: [f64; 2], mass: &SparseLu) -> Vec<f64> {
         let mesh = self.loaded.to_mesh(q);
         let still = vec![0.0; mesh.len()];
-        let at = AxisPoint::at(self.beam(), &mesh, &still, s, 0.0, self.spec.patch);
+        let at = AxisPoint::at(self.beam(), &mesh, &still, s, 0.0, self.spec().patch);
         let mut f = vec![0.0; mesh.len()];
         at.spread(j, &mut f);
         let mut dv = match self.loaded.modal {
@@ -218,9 +218,9 @@ impl DiskOnBeam<'_> {
         let n = self.n;
         let beam = self.beam();
         let (m, a, c) = (
-            self.spec.disk.mass,
-            self.spec.disk.radius,
-            self.spec.disk.inertia(),
+            self.spec().disk.mass,
+            self.spec().disk.radius,
+            self.spec().disk.inertia(),
         );
         let came = self.relative(q, v, s, beam.to_local(velocity), omega)[1];
         let plastic = self.observe(t, &landing.z, &landing.zd);
@@ -229,7 +229,7 @@ impl DiskOnBeam<'_> {
         let rel = self.relative(q, v_plastic, s, disk_plastic, plastic.omega);
         let mesh = self.loaded.to_mesh(q);
         let still = vec![0.0; mesh.len()];
-        let at = AxisPoint::at(beam, &mesh, &still, s, 0.0, self.spec.patch);
+        let at = AxisPoint::at(beam, &mesh, &still, s, 0.0, self.spec().patch);
         let (tg, nm) = (at.tangent(), at.normal());
         // W, column by column: the relative velocity a unit impulse along t, then n, makes.
         let mut w = [[0.0; 2]; 2];

@@ -34,7 +34,7 @@ pub mod thesis_system;
 pub mod vehicles;
 
 use std::borrow::Cow;
-use std::cell::{OnceCell, RefCell};
+use std::cell::{Cell, OnceCell, RefCell};
 use std::ops::Range;
 use std::rc::Rc;
 
@@ -107,6 +107,8 @@ impl DiskOnBeamSpec {
     }
 }
 
+/// What a rolling disk watches for, in the order of its events: the far end, the near end,
+/// the normal force, the fit of the disk in the curvature, and (with μ) slip.
 const EVENTS: [EventSpec<StopReason>; 5] = [
     EventSpec {
         reason: StopReason::LeftTrack,
@@ -130,32 +132,52 @@ const EVENTS: [EventSpec<StopReason>; 5] = [
     },
 ];
 
-pub struct DiskOnBeam<'a> {
-    pub loaded: &'a LoadedBeam<'a>,
-    pub spec: DiskOnBeamSpec,
-    /// The coupling law, and the disk as it sees it.
+/// One disk on the beam: its law, the disk as the law sees it, where its contact coordinate
+/// sits among z, and what is kept of its contact between evaluations.
+struct Mounted {
+    spec: DiskOnBeamSpec,
     law: Box<dyn Law>,
     rider: Rider,
-    n: usize,
-    /// The last observation and its acceleration, keyed by (t, s, ṡ): every event function
-    /// of one state needs it, and so does the output row.
-    cache: RefCell<Option<([f64; 3], DiskObservation, Option<Vec<f64>>)>>,
-    /// `base_mass`, factorised once.
-    lu: RefCell<Option<SparseLu>>,
-    /// The beam's mass and a unit mass on the contact coordinate.
-    base_mass: Sparse,
-    /// The patch-averaged shape functions at the last contact point: a step evaluates the
+    /// The index of its contact coordinate s in z, where its path is an unknown.
+    slot: Option<usize>,
+    /// The patch-averaged shape functions at its last contact point: a step evaluates the
     /// force and the mass at one s several times.
     basis: RefCell<Option<(f64, Vec<NodeBasis>)>>,
-    /// The beam's tangent bordered by the contact coordinate, found at its first assembly.
-    stiffness_pattern: OnceCell<AssemblyPattern>,
-    /// The rider's inertia at the last state asked: Newton takes the mass product, and the
-    /// next step its split, at the state its force was evaluated at.
-    inertia: LastEvaluation<AddedMass>,
     /// The contact at the last state observed: an output row reads it for the disk, the
     /// reactions, the static correction and the energy.
     observed: LastEvaluation<AxisPoint>,
+    /// It has left the beam: it no longer acts on it, and its contact coordinate rests.
+    gone: Cell<bool>,
 }
+
+/// The disks on the beam: each with its own law, unknown, events and energy, assembled into
+/// the beam's equations together.
+pub struct DiskOnBeam<'a> {
+    pub loaded: &'a LoadedBeam<'a>,
+    disks: Vec<Mounted>,
+    /// The beam's unknowns (the disks' contact coordinates follow).
+    n: usize,
+    /// Every rolling disk's events, disk by disk, and for each the disk and which of
+    /// [`EVENTS`] it is.
+    events: Vec<EventSpec<StopReason>>,
+    event_of: Vec<(usize, usize)>,
+    /// The last observations and their acceleration, keyed by (t, z's and ż's last
+    /// entries): every event function of one state needs them, and so does the output row.
+    cache: RefCell<Option<ObservedAt>>,
+    /// `base_mass`, factorised once.
+    lu: RefCell<Option<SparseLu>>,
+    /// The beam's mass and a unit mass on each contact coordinate.
+    base_mass: Sparse,
+    /// The beam's tangent bordered by the contact coordinates, found at its first assembly.
+    stiffness_pattern: OnceCell<AssemblyPattern>,
+    /// The riders' inertia at the last state asked: Newton takes the mass product, and the
+    /// next step its split, at the state its force was evaluated at.
+    inertia: LastEvaluation<AddedMass>,
+}
+
+/// The disks observed at a state (`None` for one that has left), and the acceleration the
+/// observation was made from.
+type ObservedAt = ([f64; 3], Vec<Option<DiskObservation>>, Option<Vec<f64>>);
 
 /// A value kept with the time and state (t, y) it was formed at, until another is asked.
 pub(crate) struct LastEvaluation<T>(RefCell<Option<(f64, Vec<f64>, Rc<T>)>>);
@@ -187,49 +209,132 @@ impl<T> LastEvaluation<T> {
 }
 
 impl<'a> DiskOnBeam<'a> {
-    pub fn new(loaded: &'a LoadedBeam<'a>, spec: DiskOnBeamSpec) -> Self {
-        let gravity = loaded.beam.to_local([0.0, -spec.gravity]);
+    /// The disks `specs` on the beam, in the scene's order; the rolling ones' contact
+    /// coordinates follow the beam's unknowns in that order.
+    pub fn new(loaded: &'a LoadedBeam<'a>, specs: Vec<DiskOnBeamSpec>) -> Self {
         let n = loaded.dim();
-        let law: Box<dyn Law> = match spec.coupling {
-            Coupling::Consistent => Box::new(consistent::Consistent),
-            Coupling::Thesis => Box::new(thesis::Thesis),
-            Coupling::MovingMass => Box::new(moving_mass::MovingMass),
-            Coupling::MovingForce => Box::new(moving_force::MovingForce),
-        };
-        let nz = n + law.unknowns();
-        let mut base = Assembly::new(nz);
+        let mut next = n;
+        let mut events = Vec::new();
+        let mut event_of = Vec::new();
+        let disks: Vec<Mounted> = specs
+            .into_iter()
+            .enumerate()
+            .map(|(k, spec)| {
+                let law: Box<dyn Law> = match spec.coupling {
+                    Coupling::Consistent => Box::new(consistent::Consistent),
+                    Coupling::Thesis => Box::new(thesis::Thesis),
+                    Coupling::MovingMass => Box::new(moving_mass::MovingMass),
+                    Coupling::MovingForce => Box::new(moving_force::MovingForce),
+                };
+                let slot = (law.unknowns() == 1).then(|| {
+                    next += 1;
+                    next - 1
+                });
+                if slot.is_some() {
+                    let watched = if spec.mu.is_some() { 5 } else { 4 };
+                    events.extend_from_slice(&EVENTS[..watched]);
+                    event_of.extend((0..watched).map(|e| (k, e)));
+                }
+                Mounted {
+                    rider: Rider {
+                        disk: spec.disk,
+                        gravity: loaded.beam.to_local([0.0, -spec.gravity]),
+                        n: loaded.beam.dim(),
+                        omega0: spec.omega0,
+                    },
+                    spec,
+                    law,
+                    slot,
+                    basis: RefCell::new(None),
+                    observed: LastEvaluation::new(),
+                    gone: Cell::new(false),
+                }
+            })
+            .collect();
+        let mut base = Assembly::new(next);
         base.add_sparse(loaded.model_mass(), 1.0, 0, 0);
-        if nz > n {
-            base.add(n, n, 1.0);
+        for i in n..next {
+            base.add(i, i, 1.0);
         }
         DiskOnBeam {
             base_mass: base.build(),
             n,
             loaded,
-            law,
-            rider: Rider {
-                disk: spec.disk,
-                gravity,
-                n: loaded.beam.dim(),
-                omega0: spec.omega0,
-            },
-            spec,
+            disks,
+            events,
+            event_of,
             cache: RefCell::new(None),
             lu: RefCell::new(None),
             stiffness_pattern: OnceCell::new(),
-            basis: RefCell::new(None),
             inertia: LastEvaluation::new(),
-            observed: LastEvaluation::new(),
         }
     }
 
-    /// A row over the mesh's unknowns and the contact coordinate (as the laws write it, s at
-    /// the mesh's count) as a row over z: on a modal beam the mesh's part through Φᵀ.
-    fn reduce(&self, row: Row) -> Row {
+    /// How many disks the scene put on the beam (those that have left included).
+    pub fn count(&self) -> usize {
+        self.disks.len()
+    }
+
+    /// Disk k as the scene gave it.
+    pub fn spec_of(&self, k: usize) -> &DiskOnBeamSpec {
+        &self.disks[k].spec
+    }
+
+    /// The first disk as the scene gave it: the disk, where it is alone. Flight, landing and
+    /// the literal thesis system are for a lone disk.
+    pub fn spec(&self) -> &DiskOnBeamSpec {
+        self.spec_of(0)
+    }
+
+    /// The disks still on the beam, with their indices.
+    fn on(&self) -> impl Iterator<Item = (usize, &Mounted)> {
+        self.disks.iter().enumerate().filter(|(_, d)| !d.gone.get())
+    }
+
+    /// Whether disk k has left the beam.
+    pub fn has_left(&self, k: usize) -> bool {
+        self.disks[k].gone.get()
+    }
+
+    /// Disk k leaves the beam at the state (z, ż), which it takes out of the equations from
+    /// here: its contact coordinate rests where it left. What was kept of the riders is
+    /// forgotten.
+    pub fn leave(&self, k: usize, zd: &mut [f64]) {
+        let d = &self.disks[k];
+        d.gone.set(true);
+        if let Some(i) = d.slot {
+            zd[i] = 0.0;
+        }
+        self.cache.borrow_mut().take();
+        self.inertia.forget();
+        d.observed.forget();
+    }
+
+    /// Every disk has left the beam.
+    pub fn all_left(&self) -> bool {
+        self.on().next().is_none()
+    }
+
+    /// The rolling disk on the beam nearest an end at z: the one a left-track event at z
+    /// stopped.
+    pub fn at_an_end(&self, z: &[f64]) -> Option<usize> {
+        let l = self.beam().length;
+        self.on()
+            .filter_map(|(k, d)| d.slot.map(|i| (k, z[i].min(l - z[i]))))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(k, _)| k)
+    }
+
+    /// A row over the mesh's unknowns and disk `d`'s contact coordinate (as the laws write
+    /// it, s at the mesh's count) as a row over z: on a modal beam the mesh's part through Φᵀ.
+    fn reduce(&self, d: &Mounted, row: Row) -> Row {
+        let mesh = d.rider.n;
         let Some(modal) = self.loaded.modal else {
-            return row;
+            return row
+                .into_iter()
+                .map(|(i, v)| (if i < mesh { i } else { d.slot.unwrap_or(i) }, v))
+                .collect();
         };
-        let mesh = self.rider.n;
         let mut dense = vec![0.0; self.n];
         let mut out = Vec::with_capacity(self.n + 1);
         let mut on_s = 0.0;
@@ -242,102 +347,112 @@ impl<'a> DiskOnBeam<'a> {
         }
         out.extend(dense.into_iter().enumerate().filter(|(_, v)| *v != 0.0));
         if on_s != 0.0 {
-            out.push((self.n, on_s));
+            out.push((d.slot.expect("a row on s is a rolling disk's"), on_s));
         }
         out
     }
 
-    /// (q, s) on the mesh from z, as the laws read a state at the contact `at`: on a modal
-    /// beam q = Φ η, formed only under the patch, where the laws read it.
-    fn on_mesh<'y>(&self, at: &AxisPoint, z: &'y [f64]) -> Cow<'y, [f64]> {
+    /// (q, s) on the mesh from z for disk `d`, as its law reads a state at the contact `at`:
+    /// on a modal beam q = Φ η, formed only under the patch, where the laws read it.
+    fn on_mesh<'y>(&self, d: &Mounted, at: &AxisPoint, z: &'y [f64]) -> Cow<'y, [f64]> {
+        let own = |mut q: Vec<f64>| {
+            q.extend(d.slot.map(|i| z[i]));
+            Cow::Owned(q)
+        };
         match self.loaded.modal {
-            None => Cow::Borrowed(z),
+            None if d.slot.is_none_or(|i| i == self.n) => Cow::Borrowed(z),
+            None => own(z[..self.n].to_vec()),
             Some(modal) => {
-                let mut out = vec![0.0; self.rider.n];
+                let mut out = vec![0.0; d.rider.n];
                 let under = at
                     .nodes
                     .iter()
                     .flat_map(|nb| [nb.u, nb.w, nb.phi])
                     .flatten();
                 modal.expand_at(under, &z[..self.n], &mut out);
-                out.extend_from_slice(&z[self.n..]);
-                Cow::Owned(out)
+                own(out)
             }
         }
-    }
-
-    /// The disk's path is an unknown: z = (q, s).
-    fn rolls(&self) -> bool {
-        self.law.unknowns() == 1
     }
 
     pub fn beam(&self) -> &Beam {
         self.loaded.beam
     }
 
-    /// (z, ż) at t = 0: the beam at rest in displacements q0 (on the mesh), the disk at s0
-    /// rolling at Ω0.
+    /// (z, ż) at t = 0: the beam at rest in displacements q0 (on the mesh), each rolling disk
+    /// at its s0 rolling at its Ω0.
     pub fn initial_state(&self, q0: &[f64]) -> (Vec<f64>, Vec<f64>) {
         let nz = self.dim();
         let mut z = vec![0.0; nz];
         let mut zd = vec![0.0; nz];
         z[..self.n].copy_from_slice(&self.loaded.from_mesh(q0));
-        if self.rolls() {
-            z[self.n] = self.spec.s0;
+        for d in &self.disks {
+            let Some(i) = d.slot else { continue };
+            z[i] = d.spec.s0;
             let at = AxisPoint::at(
                 self.beam(),
                 q0,
                 &vec![0.0; q0.len()],
-                self.spec.s0,
+                d.spec.s0,
                 0.0,
-                self.spec.patch,
+                d.spec.patch,
             );
             // θ̇ = (ψ_s − |r'|/a) ṡ on the beam at rest; the thesis' v_x = ṡ (|r'| − a ψ_s) is
             // the same condition.
-            zd[self.n] = self.spec.v0() / (at.rp.v - self.spec.disk.radius * at.psi_s.v);
+            zd[i] = d.spec.v0() / (at.rp.v - d.spec.disk.radius * at.psi_s.v);
         }
         (z, zd)
     }
 
-    /// Where the prescribed load is at time t, and how fast it moves.
-    fn travel(&self, t: f64) -> (f64, f64) {
-        let v0 = self.spec.v0();
-        (self.spec.s0 + v0 * t, v0)
+    /// Where a prescribed load is at time t, and how fast it moves.
+    fn travel(d: &Mounted, t: f64) -> (f64, f64) {
+        let v0 = d.spec.v0();
+        (d.spec.s0 + v0 * t, v0)
     }
 
-    /// The time a prescribed load leaves the beam, if it does.
-    pub fn exit_time(&self) -> Option<f64> {
-        if self.rolls() {
+    /// The time disk k, a prescribed load, leaves the beam, if it does.
+    fn exit_time_of(&self, d: &Mounted) -> Option<f64> {
+        if d.slot.is_some() {
             return None;
         }
-        let v0 = self.spec.v0();
+        let v0 = d.spec.v0();
         let l = self.beam().length;
         if v0 > 0.0 {
-            Some((l - self.spec.s0) / v0)
+            Some((l - d.spec.s0) / v0)
         } else if v0 < 0.0 {
-            Some(-self.spec.s0 / v0)
+            Some(-d.spec.s0 / v0)
         } else {
             None
         }
     }
 
-    /// The axis at the contact for the state (z, ż).
-    pub fn contact(&self, t: f64, z: &[f64], zd: &[f64]) -> AxisPoint {
-        let (s, sdot) = if self.rolls() {
-            (z[self.n], zd[self.n])
-        } else {
-            self.travel(t)
+    /// The next time a prescribed load on the beam leaves it, and which.
+    pub fn next_exit(&self) -> Option<(f64, usize)> {
+        self.on()
+            .filter_map(|(k, d)| self.exit_time_of(d).map(|t| (t, k)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+    }
+
+    /// The axis at disk k's contact for the state (z, ż).
+    pub fn contact(&self, k: usize, t: f64, z: &[f64], zd: &[f64]) -> AxisPoint {
+        self.contact_of(&self.disks[k], t, z, zd)
+    }
+
+    fn contact_of(&self, d: &Mounted, t: f64, z: &[f64], zd: &[f64]) -> AxisPoint {
+        let (s, sdot) = match d.slot {
+            Some(i) => (z[i], zd[i]),
+            None => Self::travel(d, t),
         };
-        let mut basis = self.basis.borrow_mut();
+        let mut basis = d.basis.borrow_mut();
         if basis.as_ref().is_none_or(|(at, _)| *at != s) {
-            *basis = Some((s, self.beam().patch_basis_at(s, self.spec.patch)));
+            *basis = Some((s, self.beam().patch_basis_at(s, d.spec.patch)));
         }
         let nodes = basis.as_ref().expect("filled above").1.clone();
         match self.loaded.modal {
             None => AxisPoint::on(nodes, &z[..self.n], &zd[..self.n], s, sdot),
             Some(modal) => {
                 // Only the unknowns under the patch are read.
-                let mesh = self.rider.n;
+                let mesh = d.rider.n;
                 let (mut q, mut v) = (vec![0.0; mesh], vec![0.0; mesh]);
                 let under = || nodes.iter().flat_map(|nb| [nb.u, nb.w, nb.phi]).flatten();
                 modal.expand_at(under(), &z[..self.n], &mut q);
@@ -349,49 +464,72 @@ impl<'a> DiskOnBeam<'a> {
 
     /// [`Self::contact`] at a state that is observed, kept for the next reading of the same
     /// state.
-    fn observed_contact(&self, t: f64, z: &[f64], zd: &[f64]) -> Rc<AxisPoint> {
-        self.observed.at(t, &[z, zd], || self.contact(t, z, zd))
+    fn observed_contact(&self, d: &Mounted, t: f64, z: &[f64], zd: &[f64]) -> Rc<AxisPoint> {
+        d.observed.at(t, &[z, zd], || self.contact_of(d, t, z, zd))
     }
 
-    /// The generalised force of the disk on z (beam rows, and s for the rolling couplings).
+    /// The generalised force of the disks on z (beam rows, and s for the rolling couplings).
     fn force_row(&self, t: f64, z: &[f64], zd: &[f64]) -> Row {
-        let at = self.contact(t, z, zd);
-        // Newton's next mass product is at this z: its inertia is formed from this contact
-        // rather than from a second one at zero velocity.
-        self.inertia.at(t, &[z], || self.added_mass(&at));
-        self.force_at(&at)
-    }
-
-    /// [`Self::force_row`] at the contact `at`.
-    fn force_at(&self, at: &AxisPoint) -> Row {
-        let mut force = Vec::new();
-        self.law.force(&self.rider, at, &mut force);
-        self.reduce(force)
-    }
-
-    /// The rider's inertia as z feels it at (t, z), which the velocity does not enter.
-    fn inertia_at(&self, t: f64, z: &[f64]) -> Rc<AddedMass> {
+        let contacts: Vec<(&Mounted, AxisPoint)> = self
+            .on()
+            .map(|(_, d)| (d, self.contact_of(d, t, z, zd)))
+            .collect();
+        // Newton's next mass product is at this z: its inertia is formed from these contacts
+        // rather than from second ones at zero velocity.
         self.inertia.at(t, &[z], || {
-            self.added_mass(&self.contact(t, z, &vec![0.0; z.len()]))
-        })
-    }
-
-    /// The rider's inertia as z feels it.
-    fn added_mass(&self, at: &AxisPoint) -> AddedMass {
-        self.law
-            .added_mass(&self.rider, at)
-            .into_iter()
-            .map(|(w, row)| (w, self.reduce(row)))
+            contacts
+                .iter()
+                .flat_map(|(d, at)| self.added_mass(d, at))
+                .collect()
+        });
+        contacts
+            .iter()
+            .flat_map(|(d, at)| self.force_at(d, at))
             .collect()
     }
 
-    /// The beam's mass and the rider's inertia on the pattern of where the rider is now: only
+    /// Disk `d`'s generalised force at its contact `at`.
+    fn force_at(&self, d: &Mounted, at: &AxisPoint) -> Row {
+        let mut force = Vec::new();
+        d.law.force(&d.rider, at, &mut force);
+        self.reduce(d, force)
+    }
+
+    /// The riders' inertia as z feels it at (t, z), which the velocity does not enter.
+    fn inertia_at(&self, t: f64, z: &[f64]) -> Rc<AddedMass> {
+        self.inertia.at(t, &[z], || {
+            let still = vec![0.0; z.len()];
+            self.on()
+                .flat_map(|(_, d)| self.added_mass(d, &self.contact_of(d, t, z, &still)))
+                .collect()
+        })
+    }
+
+    /// Disk `d`'s inertia as z feels it.
+    fn added_mass(&self, d: &Mounted, at: &AxisPoint) -> AddedMass {
+        d.law
+            .added_mass(&d.rider, at)
+            .into_iter()
+            .map(|(w, row)| (w, self.reduce(d, row)))
+            .collect()
+    }
+
+    /// The beam's mass and the riders' inertia on the pattern of where they are now: only
     /// what needs the whole of M (a first acceleration, an explicit method's derivative) asks
     /// for it; the implicit methods factorise its split ([`Structure::mass_split`]).
     fn mass_matrix(&self, added: &AddedMass) -> Sparse {
         let mut m = Assembly::new(self.dim());
         m.add_sparse(self.loaded.model_mass(), 1.0, 0, 0);
         linalg::low_rank_entries(added).for_each(|(i, j, v)| m.add(i, j, v));
+        // A disk that has left keeps its contact coordinate at rest under a unit mass.
+        for i in self
+            .disks
+            .iter()
+            .filter(|d| d.gone.get())
+            .filter_map(|d| d.slot)
+        {
+            m.add(i, i, 1.0);
+        }
         m.build()
     }
 
@@ -399,8 +537,13 @@ impl<'a> DiskOnBeam<'a> {
     /// split of M (see [`SecondOrderProblem::mass_split`]) with its constant part factorised
     /// once.
     fn acceleration(&self, t: f64, z: &[f64], zd: &[f64]) -> Option<Vec<f64>> {
-        let at = self.observed_contact(t, z, zd);
-        let force = self.force_at(&at);
+        let mut force = Vec::new();
+        let mut added = AddedMass::new();
+        for (_, d) in self.on() {
+            let at = self.observed_contact(d, t, z, zd);
+            force.extend(self.force_at(d, &at));
+            added.extend(self.added_mass(d, &at));
+        }
         let mut y = vec![0.0; self.dim()];
         self.force_from(t, z, zd, &force, &mut y);
         if self.lu.borrow().is_none() {
@@ -408,41 +551,46 @@ impl<'a> DiskOnBeam<'a> {
         }
         let lu = self.lu.borrow();
         let lu = lu.as_ref().expect("factorised above");
-        Woodbury::new(lu, self.low_rank_mass(self.added_mass(&at)))?.solve_in_place(lu, &mut y);
+        Woodbury::new(lu, self.low_rank_mass(added))?.solve_in_place(lu, &mut y);
         y.iter().all(|v| v.is_finite()).then_some(y)
     }
 
-    /// M(z) − B for the constant part B: the disk's inertia as seen by z, and the unit mass
-    /// B puts on the contact coordinate taken back out.
+    /// M(z) − B for the constant part B: the disks' inertia as seen by z, and the unit masses
+    /// B puts on the contact coordinates of the disks on the beam taken back out (one that
+    /// has left keeps its coordinate at rest under B's).
     fn low_rank_mass(&self, mut added: AddedMass) -> LowRank {
-        if self.dim() > self.n {
-            added.push((-1.0, vec![(self.n, 1.0)]));
-        }
+        added.extend(
+            self.on()
+                .filter_map(|(_, d)| d.slot)
+                .map(|i| (-1.0, vec![(i, 1.0)])),
+        );
         added
     }
 
-    /// Add to f the force of the disk resting at s0 on the beam displaced by q (both on the
-    /// mesh): its weight, passed on as the coupling passes it (through the contact patch when
-    /// it rolls).
+    /// Add to f the force of every disk resting at its s0 on the beam displaced by q (both on
+    /// the mesh): its weight, passed on as its coupling passes it (through the contact patch
+    /// when it rolls).
     pub fn add_weight_at_rest(&self, q: &[f64], f: &mut [f64]) {
-        let at = AxisPoint::at(
-            self.beam(),
-            q,
-            &vec![0.0; q.len()],
-            self.spec.s0,
-            0.0,
-            self.spec.patch,
-        );
-        let mut force = Vec::new();
-        self.law.force(&self.rider, &at, &mut force);
-        for (i, v) in force {
-            if i < self.rider.n {
-                f[i] += v;
+        for d in &self.disks {
+            let at = AxisPoint::at(
+                self.beam(),
+                q,
+                &vec![0.0; q.len()],
+                d.spec.s0,
+                0.0,
+                d.spec.patch,
+            );
+            let mut force = Vec::new();
+            d.law.force(&d.rider, &at, &mut force);
+            for (i, v) in force {
+                if i < d.rider.n {
+                    f[i] += v;
+                }
             }
         }
     }
 
-    /// Add the disk's generalised force on the beam's unknowns (not on s) to f.
+    /// Add the disks' generalised force on the beam's unknowns (not on s) to f.
     pub fn add_disk_force_on_beam(&self, t: f64, z: &[f64], zd: &[f64], f: &mut [f64]) {
         for (i, v) in self.force_row(t, z, zd) {
             if i < self.n {
@@ -454,80 +602,99 @@ impl<'a> DiskOnBeam<'a> {
     fn force_from(&self, t: f64, z: &[f64], zd: &[f64], force: &Row, f: &mut [f64]) {
         self.loaded
             .force(t, &z[..self.n], &zd[..self.n], &mut f[..self.n]);
-        if f.len() > self.n {
-            f[self.n] = 0.0;
-        }
+        f[self.n..].fill(0.0);
         for &(i, v) in force {
             f[i] += v;
         }
     }
 
-    /// What the run reports of the disk at a state (global axes).
+    /// What the run reports of the first disk at a state (global axes): the disk, where it
+    /// is alone.
     pub fn observe(&self, t: f64, z: &[f64], zd: &[f64]) -> DiskObservation {
+        self.observe_all(t, z, zd)[0].expect("the lone disk is on the beam")
+    }
+
+    /// What the run reports of each disk at a state (`None` for one that has left).
+    pub fn observe_all(&self, t: f64, z: &[f64], zd: &[f64]) -> Vec<Option<DiskObservation>> {
         self.observe_with_acceleration(t, z, zd).0
     }
 
-    /// The observation with the true acceleration it was made from, which the support
-    /// reactions need too: one Woodbury solve for both.
+    /// The observations with the true acceleration they were made from, which the support
+    /// reactions need too: one Woodbury solve for all.
     pub fn observe_with_acceleration(
         &self,
         t: f64,
         z: &[f64],
         zd: &[f64],
-    ) -> (DiskObservation, Option<Vec<f64>>) {
-        let key = [t, z[self.n.min(z.len() - 1)], zd[self.n.min(zd.len() - 1)]];
+    ) -> (Vec<Option<DiskObservation>>, Option<Vec<f64>>) {
+        let key = [t, z[z.len() - 1], zd[zd.len() - 1]];
         if let Some((k, o, a)) = self.cache.borrow().as_ref() {
             if *k == key {
-                return (*o, a.clone());
+                return (o.clone(), a.clone());
             }
         }
         let zdd = self.acceleration(t, z, zd);
-        let obs = self.observe_with(
-            t,
-            z,
-            zd,
-            zdd.as_deref().unwrap_or(&vec![f64::NAN; self.dim()]),
-        );
-        *self.cache.borrow_mut() = Some((key, obs, zdd.clone()));
+        let unknown = vec![f64::NAN; self.dim()];
+        let obs: Vec<Option<DiskObservation>> = self
+            .disks
+            .iter()
+            .map(|d| {
+                (!d.gone.get())
+                    .then(|| self.observe_with(d, t, z, zd, zdd.as_deref().unwrap_or(&unknown)))
+            })
+            .collect();
+        *self.cache.borrow_mut() = Some((key, obs.clone(), zdd.clone()));
         (obs, zdd)
     }
 
-    /// The disk's kinetic and potential energy at (t, z, ż). The energy ledger reads them
-    /// at every step; unlike the observation's forces they need no acceleration, so the
-    /// solve for it is left out.
+    /// The kinetic and potential energy at (t, z, ż) of the disks on the beam that belong to
+    /// the system (the rolling ones). The energy ledger reads them at every step; unlike the
+    /// observation's forces they need no acceleration, so the solve for it is left out.
     pub fn energies(&self, t: f64, z: &[f64], zd: &[f64]) -> (f64, f64) {
-        let at = self.observed_contact(t, z, zd);
-        // An unknown acceleration, given on the mesh as the law reads it: on a modal beam
-        // not expanded from the modes under the patch at every step.
-        let unknown = vec![f64::NAN; self.rider.n + zd.len() - self.n];
-        let motion = self
-            .law
-            .motion(&self.rider, &at, &self.on_mesh(&at, zd), &unknown);
-        let centre = self.beam().to_global(motion.centre);
-        (motion.kinetic, self.potential(&motion, centre))
+        let mut total = (0.0, 0.0);
+        for (_, d) in self.on().filter(|(_, d)| d.slot.is_some()) {
+            let at = self.observed_contact(d, t, z, zd);
+            // An unknown acceleration, given on the mesh as the law reads it: on a modal beam
+            // not expanded from the modes under the patch at every step.
+            let unknown = vec![f64::NAN; d.rider.n + 1];
+            let motion = d
+                .law
+                .motion(&d.rider, &at, &self.on_mesh(d, &at, zd), &unknown);
+            let centre = self.beam().to_global(motion.centre);
+            total.0 += motion.kinetic;
+            total.1 += self.potential(d, &motion, centre);
+        }
+        total
     }
 
-    fn motion(&self, at: &AxisPoint, zd: &[f64], zdd: &[f64]) -> law::Motion {
-        self.law.motion(
-            &self.rider,
+    fn motion(&self, d: &Mounted, at: &AxisPoint, zd: &[f64], zdd: &[f64]) -> law::Motion {
+        d.law.motion(
+            &d.rider,
             at,
-            &self.on_mesh(at, zd),
-            &self.on_mesh(at, zdd),
+            &self.on_mesh(d, at, zd),
+            &self.on_mesh(d, at, zdd),
         )
     }
 
-    /// The disk's potential energy in gravity, unless its law keeps its own; `centre` is the
+    /// A disk's potential energy in gravity, unless its law keeps its own; `centre` is the
     /// motion's centre turned to global axes.
-    fn potential(&self, motion: &law::Motion, centre: [f64; 2]) -> f64 {
+    fn potential(&self, d: &Mounted, motion: &law::Motion, centre: [f64; 2]) -> f64 {
         let height = self.beam().spec.from[1] + centre[1];
         motion
             .potential
-            .unwrap_or(self.spec.disk.mass * self.spec.gravity * height)
+            .unwrap_or(d.spec.disk.mass * d.spec.gravity * height)
     }
 
-    fn observe_with(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> DiskObservation {
-        let at = self.observed_contact(t, z, zd);
-        let motion = self.motion(&at, zd, zdd);
+    fn observe_with(
+        &self,
+        d: &Mounted,
+        t: f64,
+        z: &[f64],
+        zd: &[f64],
+        zdd: &[f64],
+    ) -> DiskObservation {
+        let at = self.observed_contact(d, t, z, zd);
+        let motion = self.motion(d, &at, zd, zdd);
         let tg = at.tangent();
         let nm = at.normal();
         let beam = self.beam();
@@ -536,10 +703,9 @@ impl<'a> DiskOnBeam<'a> {
         let vg = beam.to_global(motion.velocity);
         let contact = motion.contact;
         DiskObservation {
-            s: if self.rolls() {
-                z[self.n]
-            } else {
-                self.travel(t).0
+            s: match d.slot {
+                Some(i) => z[i],
+                None => Self::travel(d, t).0,
             },
             x: origin[0] + cg[0],
             y: origin[1] + cg[1],
@@ -550,62 +716,74 @@ impl<'a> DiskOnBeam<'a> {
             rt: contact[0] * tg[0] + contact[1] * tg[1],
             rn: contact[0] * nm[0] + contact[1] * nm[1],
             kinetic: motion.kinetic,
-            potential: self.potential(&motion, cg),
+            potential: self.potential(d, &motion, cg),
         }
     }
 
-    /// Add the force the disk, observed as `d`, exerts on the beam at (t, z, ż), spread over
-    /// the contact patch, to `f` on the mesh's unknowns.
+    /// Add the force each disk on the beam, observed as `disks`, exerts on it at (t, z, ż),
+    /// spread over its contact patch, to `f` on the mesh's unknowns.
     pub fn add_contact_force_on_beam(
         &self,
         t: f64,
         z: &[f64],
         zd: &[f64],
-        d: &DiskObservation,
+        disks: &[Option<DiskObservation>],
         f: &mut [f64],
     ) {
-        let at = self.observed_contact(t, z, zd);
-        let (tg, nm) = (at.tangent(), at.normal());
-        let on_disk = [d.rt * tg[0] + d.rn * nm[0], d.rt * tg[1] + d.rn * nm[1]];
-        at.spread([-on_disk[0], -on_disk[1]], f);
+        for (d, o) in self.disks.iter().zip(disks) {
+            let Some(o) = o.filter(|_| !d.gone.get()) else {
+                continue;
+            };
+            let at = self.observed_contact(d, t, z, zd);
+            let (tg, nm) = (at.tangent(), at.normal());
+            let on_disk = [o.rt * tg[0] + o.rn * nm[0], o.rt * tg[1] + o.rn * nm[1]];
+            at.spread([-on_disk[0], -on_disk[1]], f);
+        }
     }
 
-    /// Tangent and normal of the axis at the contact, global axes.
-    pub fn contact_frame(&self, t: f64, z: &[f64], zd: &[f64]) -> [[f64; 2]; 2] {
-        let at = self.observed_contact(t, z, zd);
+    /// Tangent and normal of the axis at disk k's contact, global axes.
+    pub fn contact_frame(&self, k: usize, t: f64, z: &[f64], zd: &[f64]) -> [[f64; 2]; 2] {
+        let at = self.observed_contact(&self.disks[k], t, z, zd);
         [
             self.beam().to_global(at.tangent()),
             self.beam().to_global(at.normal()),
         ]
     }
 
-    /// Power of the prescribed moving load on the beam (zero for the rolling couplings, whose
-    /// disk belongs to the system): F_beam · ∂r/∂t at s.
+    /// Power of the prescribed moving loads on the beam (the rolling disks belong to the
+    /// system and do none): F_beam · ∂r/∂t at each one's s.
     pub fn power_on_beam(&self, t: f64, z: &[f64], zd: &[f64]) -> f64 {
-        if self.rolls() {
+        if self.on().all(|(_, d)| d.slot.is_some()) {
             return 0.0;
         }
-        let obs = self.observe(t, z, zd);
-        let at = self.observed_contact(t, z, zd);
-        let tg = at.tangent();
-        let nm = at.normal();
-        let on_disk = [
-            obs.rt * tg[0] + obs.rn * nm[0],
-            obs.rt * tg[1] + obs.rn * nm[1],
-        ];
-        let vm = at.material_velocity();
-        -(on_disk[0] * vm[0] + on_disk[1] * vm[1])
+        let obs = self.observe_all(t, z, zd);
+        self.on()
+            .filter(|(_, d)| d.slot.is_none())
+            .map(|(k, d)| {
+                let o = obs[k].expect("observed on the beam");
+                let at = self.observed_contact(d, t, z, zd);
+                let (tg, nm) = (at.tangent(), at.normal());
+                let on_disk = [o.rt * tg[0] + o.rn * nm[0], o.rt * tg[1] + o.rn * nm[1]];
+                let vm = at.material_velocity();
+                -(on_disk[0] * vm[0] + on_disk[1] * vm[1])
+            })
+            .sum()
     }
 
-    /// The disk's energy belongs to the system's budget.
+    /// Disk k's energy belongs to the system's budget (its path is an unknown).
+    pub fn in_system(&self, k: usize) -> bool {
+        self.disks[k].slot.is_some()
+    }
+
+    /// Some disk's energy belongs to the system's budget.
     pub fn disk_in_system(&self) -> bool {
-        self.rolls()
+        self.disks.iter().any(|d| d.slot.is_some())
     }
 }
 
 impl Structure for DiskOnBeam<'_> {
     fn dim(&self) -> usize {
-        self.n + self.law.unknowns()
+        self.n + self.disks.iter().filter(|d| d.slot.is_some()).count()
     }
 
     fn mass(&self, t: f64, q: &[f64]) -> Cow<'_, Sparse> {
@@ -616,8 +794,8 @@ impl Structure for DiskOnBeam<'_> {
         false
     }
 
-    /// The beam's mass, with a unit mass standing in on the contact coordinate that the
-    /// low-rank part takes back out, plus the disk's inertia as seen by z.
+    /// The beam's mass, with a unit mass standing in on each contact coordinate that the
+    /// low-rank part takes back out, plus the disks' inertia as seen by z.
     fn mass_split(&self, t: f64, q: &[f64]) -> Option<(&Sparse, LowRank)> {
         let added = (*self.inertia_at(t, q)).clone();
         Some((&self.base_mass, self.low_rank_mass(added)))
@@ -625,9 +803,7 @@ impl Structure for DiskOnBeam<'_> {
 
     fn mass_mul(&self, t: f64, q: &[f64], a: &[f64], out: &mut [f64]) {
         linalg::mul(self.loaded.model_mass(), &a[..self.n], &mut out[..self.n]);
-        if out.len() > self.n {
-            out[self.n] = 0.0;
-        }
+        out[self.n..].fill(0.0);
         for (w, row) in self.inertia_at(t, q).iter() {
             let ga = w * dot(row, a);
             for &(i, gi) in row {
@@ -651,7 +827,7 @@ impl Structure for DiskOnBeam<'_> {
         self.stiffness_pattern.get_or_init(|| a.pattern()).build(&a)
     }
 
-    /// The beam's damping; the contact coordinate is not damped.
+    /// The beam's damping; the contact coordinates are not damped.
     fn damping(&self) -> Option<Cow<'_, Sparse>> {
         let c = self.loaded.damping()?;
         if self.dim() == self.n {
@@ -685,12 +861,12 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
     /// step moves a rolling disk by at most b/2, so the contact-loss event sees every crest.
     /// A prescribed load crosses at most one element a step (`LoadedBeam::load_step_bound`).
     fn max_step(&self, t: f64, _q: &[f64], v: &[f64]) -> f64 {
-        let own = if self.rolls() {
-            0.5 * self.spec.patch / v[self.n].abs()
-        } else {
-            self.beam().element_length() / self.spec.v0().abs()
-        };
-        own.min(self.loaded.load_step_bound(t))
+        self.on()
+            .map(|(_, d)| match d.slot {
+                Some(i) => 0.5 * d.spec.patch / v[i].abs(),
+                None => self.beam().element_length() / d.spec.v0().abs(),
+            })
+            .fold(self.loaded.load_step_bound(t), f64::min)
     }
 
     fn breakpoints(&self) -> Vec<f64> {
@@ -702,29 +878,29 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
     }
 
     fn events(&self) -> &[EventSpec<StopReason>] {
-        if !self.rolls() {
-            return &[];
-        }
-        if self.spec.mu.is_some() {
-            &EVENTS
-        } else {
-            &EVENTS[..4]
-        }
+        &self.events
     }
 
+    /// Disk k's events, each zero where it is met; a disk that has left meets none.
     fn event(&self, index: usize, t: f64, q: &[f64], v: &[f64]) -> f64 {
-        let s = q[self.n];
-        match index {
+        let (k, which) = self.event_of[index];
+        let d = &self.disks[k];
+        if d.gone.get() {
+            return 1.0;
+        }
+        let s = q[d.slot.expect("events watch rolling disks")];
+        let observed = || self.observe_all(t, q, v)[k].expect("on the beam");
+        match which {
             0 => self.beam().length - s,
             1 => s,
-            2 => self.observe(t, q, v).rn,
+            2 => observed().rn,
             3 => {
-                let at = self.contact(t, q, v);
-                1.0 - self.spec.disk.radius * at.psi_s.v / at.rp.v - FIT_MARGIN
+                let at = self.contact_of(d, t, q, v);
+                1.0 - d.spec.disk.radius * at.psi_s.v / at.rp.v - FIT_MARGIN
             }
             _ => {
-                let o = self.observe(t, q, v);
-                self.spec.mu.unwrap_or(f64::INFINITY) * o.rn - o.rt.abs()
+                let o = observed();
+                d.spec.mu.unwrap_or(f64::INFINITY) * o.rn - o.rt.abs()
             }
         }
     }

@@ -35,7 +35,7 @@ impl ThesisSystem<'_> {
         let o = self.coupled.observe(0.0, &z, &zd);
         let mut y = vec![0.0; 2 * n + 6];
         y[..n].copy_from_slice(q0);
-        let spec = &self.coupled.spec;
+        let spec = self.coupled.spec();
         y[2 * n..].copy_from_slice(&[o.x, o.y, spec.v0(), spec.s0, 0.0, spec.omega0]);
         y
     }
@@ -59,8 +59,8 @@ impl ThesisSystem<'_> {
         z.push(s);
         let mut zd = y[n..2 * n].to_vec();
         zd.push(0.0);
-        let at = self.coupled.contact(t, &z, &zd);
-        vx / (at.rp.v - self.coupled.spec.disk.radius * at.psi_s.v)
+        let at = self.coupled.contact(0, t, &z, &zd);
+        vx / (at.rp.v - self.coupled.spec().disk.radius * at.psi_s.v)
     }
 }
 
@@ -79,8 +79,8 @@ impl Dynamics for ThesisSystem<'_> {
             .force(t, &y[..n], &y[n..2 * n], &mut f[n..2 * n]);
         self.coupled
             .add_disk_force_on_beam(t, z, zd, &mut f[n..2 * n]);
-        let spec = &self.coupled.spec;
-        let at = self.coupled.contact(t, z, zd);
+        let spec = self.coupled.spec();
+        let at = self.coupled.contact(0, t, z, zd);
         let e_t = self.coupled.beam().to_global(at.tangent());
         let (m, a) = (spec.disk.mass, spec.disk.radius);
         let d = &y[2 * n..];
@@ -91,9 +91,9 @@ impl Dynamics for ThesisSystem<'_> {
         let n = self.n();
         let r = self.reduced(t, y);
         let (z, zd) = r.split_at(n + 1);
-        let at = self.coupled.contact(t, z, zd);
+        let at = self.coupled.contact(0, t, z, zd);
         let e_t = self.coupled.beam().to_global(at.tangent());
-        let spec = &self.coupled.spec;
+        let spec = self.coupled.spec();
         let (m, a, c) = (spec.disk.mass, spec.disk.radius, spec.disk.inertia());
         let mut mm = Assembly::new(2 * n + 6);
         (0..n).for_each(|i| mm.add(i, i, 1.0));

@@ -22,7 +22,7 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
         )));
     }
     let mag = r.setup.magnify;
-    let radius = r.setup.disk.as_ref().map_or(0.0, |d| d.disk.radius);
+    let radius = r.setup.disk().map_or(0.0, |d| d.disk.radius);
     let (shapes, disks) = frame_geometry(r);
     let [x0, x1, y0, y1] = bounds(&shapes, &disks, radius);
     let k = (WIDTH - 2.0 * MARGIN) / (x1 - x0).max(1e-9);
@@ -102,7 +102,7 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
         points[0],
         animate("points", &points)
     );
-    if r.setup.disk.is_some() {
+    if r.setup.disk().is_some() {
         let r_px = radius * k;
         let (cx, cy) = (coord(|p| p.0), coord(|p| p.1));
         let (rx, ry) = (rim(|p| p.0), rim(|p| p.1));
@@ -176,7 +176,7 @@ fn on_axis(xs: &[f64], pts: &[[f64; 2]], length: f64, x: f64) -> Option<[f64; 2]
 fn frame_geometry(r: &BeamRun) -> (Vec<Vec<[f64; 2]>>, Vec<Option<([f64; 2], f64)>>) {
     let frames = &r.frames;
     let mag = r.setup.magnify;
-    let radius = r.setup.disk.as_ref().map_or(0.0, |d| d.disk.radius);
+    let radius = r.setup.disk().map_or(0.0, |d| d.disk.radius);
     let xs = &r.envelope.x;
     let (sn, cs) = r.beam.angle.sin_cos();
     let shape = |along: &[crate::beam::PointDisplacement]| -> Vec<[f64; 2]> {

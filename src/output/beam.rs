@@ -22,6 +22,9 @@ struct Summary {
     energy: super::summary::Energy,
     #[serde(skip_serializing_if = "Option::is_none")]
     disk: Option<BeamDiskSummary>,
+    /// Several disks, each as `disk` is for one.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    disks: Vec<BeamDiskSummary>,
     probes: BTreeMap<String, ProbeSummary>,
     #[serde(skip_serializing_if = "BTreeMap::is_empty")]
     vehicles: BTreeMap<String, VehicleSummary>,
@@ -56,10 +59,15 @@ struct PatchSummary {
     contact_force_sensitivity: f64,
 }
 
-fn disk_summary(r: &BeamRun) -> Option<BeamDiskSummary> {
-    let spec = r.setup.disk.as_ref()?;
-    let last = r.rows.iter().filter_map(|row| row.disk).last()?;
-    let [rn, rt, mu, w_under] = r.extremes.disk?;
+/// Disk k's summary, if it was ever observed on or over the beam.
+fn disk_summary(r: &BeamRun, k: usize) -> Option<BeamDiskSummary> {
+    let spec = r.setup.disks.get(k)?;
+    let last = r
+        .rows
+        .iter()
+        .filter_map(|row| row.disks.get(k).copied().flatten())
+        .last()?;
+    let [rn, rt, mu, w_under] = (*r.extremes.disks.get(k)?)?;
     let mu_needed_max = mu.seen().then_some(mu.max);
     Some(BeamDiskSummary {
         coupling: spec.coupling.name(),
@@ -75,13 +83,13 @@ fn disk_summary(r: &BeamRun) -> Option<BeamDiskSummary> {
             rt_min: rt.min,
             rt_max: rt.max,
             mu_needed_max,
-            left_track_t: r.left_track_t,
+            left_track_t: r.disks_left_t.get(k).copied().flatten(),
             flights: r.flights.clone(),
         },
         w_under_min: w_under.min,
         w_under_min_t: w_under.min_t,
         patch: {
-            let s = r.setup.patch_sensitivity()?;
+            let s = r.setup.patch_sensitivity_of(spec);
             PatchSummary {
                 half_width: spec.patch,
                 depth: r.setup.beam.depth,
@@ -341,7 +349,7 @@ pub fn summary_yaml(r: &BeamRun) -> Result<String, Error> {
             modes: r.beam.spec.model.modes(),
             damping: r.damping,
             unknowns: r.header.unknowns,
-            coupling: r.setup.disk.as_ref().map(|d| d.coupling.name()),
+            coupling: r.setup.disk().map(|d| d.coupling.name()),
             elements: r.beam.spec.elements,
             order: r.beam.spec.order,
             quadrature: r.beam.spec.quadrature.name(),
@@ -350,7 +358,16 @@ pub fn summary_yaml(r: &BeamRun) -> Result<String, Error> {
         },
         solver: super::summary::Solver::of(&r.header),
         energy: super::summary::Energy::of(&r.header),
-        disk: disk_summary(r),
+        disk: (r.setup.disks.len() == 1)
+            .then(|| disk_summary(r, 0))
+            .flatten(),
+        disks: if r.setup.disks.len() > 1 {
+            (0..r.setup.disks.len())
+                .filter_map(|k| disk_summary(r, k))
+                .collect()
+        } else {
+            Vec::new()
+        },
         probes: (0..r.setup.probes.len())
             .map(|k| (r.setup.probes[k].name.clone(), probe_summary(r, k)))
             .collect(),
@@ -362,16 +379,34 @@ pub fn summary_yaml(r: &BeamRun) -> Result<String, Error> {
     yaml(&summary)
 }
 
-/// The disk's columns of history.csv, after `disk.`.
-const DISK_COLUMNS: [&str; 9] = ["s", "x", "y", "vx", "vy", "omega", "rt", "rn", "mu_needed"];
+/// The disk's columns of history.csv, after `disk.` (`disk1.`, `disk2.`, … for several).
+const DISK_COLUMNS: [&str; 10] = [
+    "s",
+    "x",
+    "y",
+    "vx",
+    "vy",
+    "omega",
+    "rt",
+    "rn",
+    "mu_needed",
+    "gap",
+];
+
+/// The disks' names in history.csv: `disk` alone, `disk1`, `disk2`, … for several.
+fn disk_names(r: &BeamRun) -> Vec<String> {
+    match r.setup.disks.len() {
+        1 => vec!["disk".to_string()],
+        n => (1..=n).map(|k| format!("disk{k}")).collect(),
+    }
+}
 
 /// The text of `history.csv`.
 pub fn csv(r: &BeamRun) -> String {
     let mut head = vec!["t".to_string()];
-    let disk = r.setup.disk.is_some();
-    if disk {
-        head.extend(DISK_COLUMNS.iter().map(|c| format!("disk.{c}")));
-        head.push("disk.gap".into());
+    let disks = r.setup.disks.len();
+    for name in disk_names(r) {
+        head.extend(DISK_COLUMNS.iter().map(|c| format!("{name}.{c}")));
     }
     for p in &r.setup.probes {
         head.extend(["u", "w", "phi", "a"].map(|c| format!("{}.{c}", p.name)));
@@ -405,26 +440,28 @@ pub fn csv(r: &BeamRun) -> String {
     out.push('\n');
     for row in &r.rows {
         let mut v = vec![row.t];
-        if disk {
-            // After the disk has left the beam its columns stay empty.
-            v.extend(row.disk.as_ref().map_or([f64::NAN; 9], |d| {
-                [
-                    d.s,
-                    d.x,
-                    d.y,
-                    d.vx,
-                    d.vy,
-                    d.omega,
-                    d.rt,
-                    d.rn,
-                    d.mu_needed().unwrap_or(f64::NAN),
-                ]
-            }));
-            v.push(if row.disk.is_some() {
-                row.gap
-            } else {
-                f64::NAN
-            });
+        for k in 0..disks {
+            // After a disk has left the beam its columns stay empty.
+            v.extend(
+                row.disks
+                    .get(k)
+                    .copied()
+                    .flatten()
+                    .map_or([f64::NAN; 10], |d| {
+                        [
+                            d.s,
+                            d.x,
+                            d.y,
+                            d.vx,
+                            d.vy,
+                            d.omega,
+                            d.rt,
+                            d.rn,
+                            d.mu_needed().unwrap_or(f64::NAN),
+                            row.gap,
+                        ]
+                    }),
+            );
         }
         for (d, a) in row.probes.iter().zip(&row.accelerations) {
             v.extend([d.u, d.w, d.phi, *a]);
@@ -666,46 +703,62 @@ fn figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             ],
         )?;
     }
-    if r.setup.disk.is_some() {
+    if r.setup.disk().is_some() {
         disk_figures(r, dir)?;
     }
     shapes(r, &dir.join("shapes.svg"))
 }
 
-/// The disk's quantities while it is on the beam (thesis figures 31, 34, 38, 42).
+/// The disks' quantities while they are on the beam (thesis figures 31, 34, 38, 42), each
+/// disk's series named after it where there are several.
 fn disk_figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
     let name = &r.header.scene.name;
-    let on: Vec<(f64, crate::rolling::DiskObservation)> = r
-        .rows
-        .iter()
-        .filter_map(|row| row.disk.map(|d| (row.t, d)))
-        .collect();
-    let series = |f: fn(&crate::rolling::DiskObservation) -> f64| -> Vec<(f64, f64)> {
-        on.iter().map(|(t, d)| (*t, f(d))).collect()
+    let names = disk_names(r);
+    let series = |f: fn(&crate::rolling::DiskObservation) -> f64, label: &str| {
+        names
+            .iter()
+            .enumerate()
+            .map(|(k, disk)| {
+                let label = if names.len() == 1 {
+                    label.to_string()
+                } else {
+                    format!("{disk} {label}")
+                };
+                let points = r
+                    .rows
+                    .iter()
+                    .filter_map(|row| row.disks.get(k).copied().flatten().map(|d| (row.t, f(&d))))
+                    .collect::<Vec<_>>();
+                (label, points)
+            })
+            .collect::<Vec<_>>()
     };
+    let velocities = [series(|d| d.vx, "v_X"), series(|d| d.vy, "v_Y")].concat();
     line_chart(
         &dir.join("disk-velocity.svg"),
         &format!("{name}: centre velocity of the disk"),
         "t (s)",
         "v (m/s)",
-        &[("v_X", series(|d| d.vx)), ("v_Y", series(|d| d.vy))],
+        &borrowed(&velocities),
     )?;
     line_chart(
         &dir.join("disk-omega.svg"),
         &format!("{name}: angular velocity of the disk"),
         "t (s)",
         "Ω (1/s)",
-        &[("Ω", series(|d| d.omega))],
+        &borrowed(&series(|d| d.omega, "Ω")),
     )?;
     let forces = [
-        ("R_n (normal)", series(|d| d.rn)),
-        ("R_t (tangential)", series(|d| d.rt)),
-    ];
+        series(|d| d.rn, "R_n (normal)"),
+        series(|d| d.rt, "R_t (tangential)"),
+    ]
+    .concat();
+    let forces = borrowed(&forces);
     let gap = [(
         "gap",
         r.rows
             .iter()
-            .filter(|row| row.disk.is_some())
+            .filter(|row| row.disks.first().is_some_and(Option::is_some))
             .map(|row| (row.t, row.gap))
             .collect::<Vec<_>>(),
     )];
@@ -719,10 +772,15 @@ fn disk_figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
     stacked_chart(&dir.join("disk-forces.svg"), "t (s)", &panels)
 }
 
+/// Named series as the charts take them.
+fn borrowed(v: &[(String, Vec<(f64, f64)>)]) -> Vec<(&str, Vec<(f64, f64)>)> {
+    v.iter().map(|(l, p)| (l.as_str(), p.clone())).collect()
+}
+
 /// Where the disk stood on the magnified axis at time t: its centre in plot coordinates.
 fn disk_in_plot(r: &BeamRun, t: f64, along: &[crate::beam::PointDisplacement]) -> Option<[f64; 2]> {
     let row = r.rows.iter().find(|row| (row.t - t).abs() < 1e-9)?;
-    let s = row.disk?.s;
+    let s = row.disks.first().copied().flatten()?.s;
     let gap = row.gap;
     let xs = &r.envelope.x;
     let k = xs.partition_point(|&x| x < s).clamp(1, xs.len() - 1);
@@ -733,7 +791,7 @@ fn disk_in_plot(r: &BeamRun, t: f64, along: &[crate::beam::PointDisplacement]) -
     );
     let p = r.beam.reference_point(s);
     let mag = r.setup.magnify;
-    let a = r.setup.disk.as_ref()?.disk.radius;
+    let a = r.setup.disk()?.disk.radius;
     let (sn, cs) = r.beam.angle.sin_cos();
     // A flying disk's gap is a displacement from the track: magnified with it.
     let lift = a + mag * gap;
@@ -799,7 +857,7 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
             )
         })
         .collect();
-    let radius = r.setup.disk.as_ref().map_or(0.0, |d| d.disk.radius);
+    let radius = r.setup.disk().map_or(0.0, |d| d.disk.radius);
     let disks: Vec<Option<[f64; 2]>> = r
         .shapes
         .iter()

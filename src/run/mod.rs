@@ -238,7 +238,7 @@ impl Run {
         const DISK_ON_BEAM: [&str; 4] = ["disk-velocity", "disk-omega", "disk-forces", "animation"];
         match self {
             Run::Rolling(_) => vec!["track", "velocities", "omega", "reactions", "energy"],
-            Run::Beam(b) if b.setup.disk.is_some() => {
+            Run::Beam(b) if b.setup.disk().is_some() => {
                 BEAM.iter().chain(&DISK_ON_BEAM).copied().collect()
             }
             Run::Beam(b) if !b.setup.vehicles.is_empty() => BEAM

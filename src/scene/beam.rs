@@ -1,5 +1,5 @@
-//! A beam track: its section, supports, mesh, damping, model, start, loads, probes, and the disk
-//! that rides it.
+//! A beam track: its section, supports, mesh, damping, model, start, loads, probes, and the disks
+//! that ride it.
 
 use super::*;
 
@@ -17,6 +17,13 @@ pub(super) fn refuse_beam_keys(c: &Checker, raw: &SceneFile) -> Result<(), Error
             v.referenced.line(),
             "vehicles",
             "ride beam tracks only; on a rigid curve give a disk",
+        );
+    }
+    if let Some(d) = &raw.disks {
+        return c.err(
+            d.referenced.line(),
+            "disks",
+            "ride beam tracks only; a rigid curve carries one disk, as `disk`",
         );
     }
     if let Some(p) = &raw.track.value.profile {
@@ -130,10 +137,7 @@ pub(super) fn beam_scene(
             v
         }
     };
-    let disk = match &raw.disk {
-        None => None,
-        Some(d) => Some(disk_on_beam(c, d, &beam, length, gravity)?),
-    };
+    let disks = disks_on_beam(c, raw, &beam, length, gravity)?;
     let accuracy = match raw.solver.as_ref().and_then(|s| s.accuracy.as_ref()) {
         None => DEFAULT_ACCURACY,
         Some(a) => {
@@ -165,7 +169,7 @@ pub(super) fn beam_scene(
     let scene = BeamScene {
         beam,
         start,
-        disk,
+        disks,
         train,
         vehicles,
         profile,
@@ -752,20 +756,67 @@ pub(super) fn outputs(
     Ok((probes, shapes, magnify))
 }
 
-/// The disk of a beam scene: checked against the beam it rolls on.
+/// The most disks a scene may put on one beam.
+pub(super) const MAX_DISKS: usize = 100;
+
+/// The disks of a beam scene, `disk:` or `disks: [...]`, each checked against the beam it
+/// rolls on.
+fn disks_on_beam(
+    c: &Checker,
+    raw: &SceneFile,
+    beam: &BeamSpec,
+    length: f64,
+    gravity: f64,
+) -> Result<Vec<DiskOnBeamSpec>, Error> {
+    let list =
+        match (&raw.disk, &raw.disks) {
+            (None, None) => return Ok(Vec::new()),
+            (Some(d), None) => return Ok(vec![disk_on_beam(c, d, "disk", beam, length, gravity)?]),
+            (Some(d), Some(_)) => return c.err(
+                d.referenced.line(),
+                "disk",
+                "and `disks` are both given: write one disk as `disk`, several as the list `disks`",
+            ),
+            (None, Some(list)) => list,
+        };
+    if list.value.is_empty() || list.value.len() > MAX_DISKS {
+        return c.err(
+            list.referenced.line(),
+            "disks",
+            format!("must list 1 to {MAX_DISKS} disks"),
+        );
+    }
+    let disks = list
+        .value
+        .iter()
+        .enumerate()
+        .map(|(k, d)| disk_on_beam(c, d, &format!("disks[{}]", k + 1), beam, length, gravity))
+        .collect::<Result<Vec<_>, _>>()?;
+    if disks.len() > 1 {
+        if let Some(k) = disks.iter().position(|d| d.coupling == Coupling::Thesis) {
+            let line = list.value[k].referenced.line();
+            return c.err(line, &format!("disks[{}].coupling", k + 1), "is thesis: the thesis coupling transcribes the published system, which carries one disk; give the disks the consistent coupling, or ride this one alone");
+        }
+    }
+    Ok(disks)
+}
+
+/// A disk of a beam scene (`at` names it in messages: `disk` or `disks[k]`), checked
+/// against the beam it rolls on.
 pub(super) fn disk_on_beam(
     c: &Checker,
     file: &Spanned<DiskFile>,
+    at: &str,
     beam: &BeamSpec,
     length: f64,
     gravity: f64,
 ) -> Result<DiskOnBeamSpec, Error> {
     let d = &file.value;
-    let disk = c.disk(d, gravity)?;
+    let disk = c.disk(d, gravity, at)?;
     if let Some(f) = &d.formulation {
         return c.err(
             f.referenced.line(),
-            "disk.formulation",
+            &format!("{at}.formulation"),
             "applies to rigid curves only; on a beam choose `coupling`",
         );
     }
@@ -775,7 +826,7 @@ pub(super) fn disk_on_beam(
             || {
                 c.err(
                     cp.referenced.line(),
-                    "disk.coupling",
+                    &format!("{at}.coupling"),
                     format!(
                         "is {}; use one of {}",
                         quote(&cp.value),
@@ -793,15 +844,15 @@ pub(super) fn disk_on_beam(
         .or(d.restitution.as_ref().map(|e| e.referenced.line()))
         .unwrap_or(file.referenced.line());
     let key = if d.contact_loss.is_some() {
-        "disk.contact_loss"
+        format!("{at}.contact_loss")
     } else {
-        "disk.restitution"
+        format!("{at}.restitution")
     };
-    let contact_loss = match (contact_loss(c, d)?, coupling) {
+    let contact_loss = match (contact_loss(c, d, at)?, coupling) {
         (Some(_), Coupling::MovingForce | Coupling::MovingMass) => {
             return c.err(
                 line,
-                key,
+                &key,
                 format!(
                     "applies to a disk that can leave the beam; the {} coupling's load is held to the beam and never leaves it",
                     coupling.name()
@@ -811,7 +862,7 @@ pub(super) fn disk_on_beam(
         (Some(ContactLoss::Fly { .. }), Coupling::Thesis) => {
             return c.err(
                 line,
-                key,
+                &key,
                 "asks the disk to fly off the beam, which only the consistent coupling does: the thesis coupling rolls the disk on the axis as if it were frozen, which gives a landing no meaning; write `contact_loss: stop` or use `coupling: consistent`",
             );
         }
@@ -823,13 +874,13 @@ pub(super) fn disk_on_beam(
         d.s0.as_ref()
             .map_or(file.referenced.line(), |s| s.referenced.line());
     let s0 = match &d.s0 {
-        Some(s) => c.finite(s, "disk.s0")?,
+        Some(s) => c.finite(s, &format!("{at}.s0"))?,
         None => 0.0,
     };
     if !(0.0..=length).contains(&s0) {
         return c.err(
             s0_line,
-            "disk.s0",
+            &format!("{at}.s0"),
             format!("= {s0} is off the beam, which runs over x in [0, {length}]"),
         );
     }
@@ -838,13 +889,13 @@ pub(super) fn disk_on_beam(
         .as_ref()
         .map_or(file.referenced.line(), |s| s.referenced.line());
     let omega0 = match &d.omega0 {
-        Some(w) => c.finite(w, "disk.omega0")?,
+        Some(w) => c.finite(w, &format!("{at}.omega0"))?,
         None => 0.0,
     };
     if !coupling.rolls() && omega0 == 0.0 {
         return c.err(
             omega_line,
-            "disk.omega0",
+            &format!("{at}.omega0"),
             format!(
                 "is 0: a {} travels at the constant speed −radius × omega0, so it needs a non-zero omega0",
                 coupling.name()
@@ -857,25 +908,25 @@ pub(super) fn disk_on_beam(
     if (s0 == 0.0 && v0 < 0.0) || (s0 == length && v0 > 0.0) {
         return c.err(
             omega_line,
-            "disk.omega0",
+            &format!("{at}.omega0"),
             format!("= {omega0} rolls the disk off the end of the beam it starts on (s0 = {s0}); Ω < 0 rolls towards +x"),
         );
     }
     if (s0 == 0.0 || s0 == length) && v0 == 0.0 {
         return c.err(
             s0_line,
-            "disk.s0",
+            &format!("{at}.s0"),
             format!("= {s0} puts the disk at rest on the end support, where it would load only the support and never move onto the beam; give it a speed (omega0) or start it inside"),
         );
     }
     let mu = match &d.mu {
-        Some(m) => Some(c.positive(m, "disk.mu")?),
+        Some(m) => Some(c.positive(m, &format!("{at}.mu"))?),
         None => None,
     };
     let patch = match &d.patch {
         Some(p) => c.part_of_length(
             p,
-            "disk.patch",
+            &format!("{at}.patch"),
             length,
             "a contact that short is a point, on which the disk's contact force is not defined (see REPORT.md, \"What depends on the patch\")",
             (

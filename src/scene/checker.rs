@@ -103,28 +103,28 @@ impl Checker<'_> {
     }
 
     /// The disk of a scene, its mass, radius and what the model derives from them.
-    pub(super) fn disk(&self, d: &DiskFile, gravity: f64) -> Result<Disk, Error> {
+    pub(super) fn disk(&self, d: &DiskFile, gravity: f64, at: &str) -> Result<Disk, Error> {
         let disk = Disk {
-            mass: self.positive(&d.mass, "disk.mass")?,
-            radius: self.positive(&d.radius, "disk.radius")?,
+            mass: self.positive(&d.mass, &format!("{at}.mass"))?,
+            radius: self.positive(&d.radius, &format!("{at}.radius"))?,
         };
         let line = d.radius.referenced.line();
         self.derived(
             line,
-            "disk.radius",
+            &format!("{at}.radius"),
             "the disk's moment of inertia C = m a²/2",
             disk.inertia(),
         )?;
         self.derived(
             line,
-            "disk.radius",
+            &format!("{at}.radius"),
             "the disk's rolling mass m + C/a²",
             disk.rolling_mass(),
         )?;
         if gravity != 0.0 {
             self.derived(
                 d.mass.referenced.line(),
-                "disk.mass",
+                &format!("{at}.mass"),
                 "the disk's weight m |g|",
                 disk.mass * gravity.abs(),
             )?;

@@ -14,6 +14,8 @@ pub(super) struct SceneFile {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub(super) disk: Option<Spanned<DiskFile>>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    pub(super) disks: Option<Spanned<Vec<Spanned<DiskFile>>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub(super) train: Option<Spanned<TrainFile>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub(super) vehicles: Option<Spanned<Vec<Spanned<VehicleFile>>>>,

@@ -96,8 +96,8 @@ pub struct RollingScene {
 pub struct BeamScene {
     pub beam: BeamSpec,
     pub start: BeamStart,
-    /// A disk riding on the beam, if the scene has one.
-    pub disk: Option<DiskOnBeamSpec>,
+    /// The disks riding on the beam, in the scene's order (`disk:` is a list of one).
+    pub disks: Vec<DiskOnBeamSpec>,
     /// A train of axle loads crossing the beam, if the scene has one (never with a disk).
     pub train: Option<Train>,
     /// Vehicles crossing the beam (never with a disk).
@@ -128,10 +128,15 @@ pub struct BeamScene {
 }
 
 impl BeamScene {
+    /// The disk, where the scene has one; the first, where it has several.
+    pub fn disk(&self) -> Option<&DiskOnBeamSpec> {
+        self.disks.first()
+    }
+
     /// Why `exact-modal` cannot integrate this scene, if it cannot: it takes a modal beam under
     /// moving forces, point loads or its weight, and nothing that rides with inertia.
     pub fn exact_modal_refusal(&self) -> Option<String> {
-        let what = if self.disk.is_some() {
+        let what = if !self.disks.is_empty() {
             "a disk".to_string()
         } else if !self.vehicles.is_empty() {
             "vehicles".to_string()
@@ -176,39 +181,55 @@ const MIN_PATCH_PER_LENGTH: f64 = 1e-6;
 impl BeamScene {
     /// How much the disk's results depend on its contact patch (see `coupling::patch`): its
     /// weight's kink in the axis, at the fastest it can roll (its start speed, plus what the
-    /// drop of the axis from its start can add), against the response size.
+    /// drop of the axis from its start can add), against the response size. Of the first
+    /// disk, where there are several ([`Self::patch_sensitivity_of`] for each).
     pub fn patch_sensitivity(&self) -> Option<patch::Sensitivity> {
-        let d = self.disk.as_ref()?;
+        Some(self.patch_sensitivity_of(self.disk()?))
+    }
+
+    /// [`Self::patch_sensitivity`] of the disk `d`.
+    pub fn patch_sensitivity_of(&self, d: &DiskOnBeamSpec) -> patch::Sensitivity {
         let weight = d.disk.mass * d.gravity;
         let (from, to) = (self.beam.from, self.beam.to);
         let length = (to[0] - from[0]).hypot(to[1] - from[1]);
         let start_y = from[1] + (to[1] - from[1]) * d.s0 / length;
         let drop = (start_y - from[1].min(to[1])).max(0.0);
         let speed = (d.v0() * d.v0() + 2.0 * d.gravity * drop).sqrt();
-        Some(patch::Sensitivity::of(
+        patch::Sensitivity::of(
             &self.beam.section,
             weight,
             d.gravity,
             speed,
             d.patch,
             self.response.unwrap_or(f64::INFINITY),
-        ))
+        )
     }
 
     /// What the results depend on beyond the accuracy asked, one sentence each.
     pub fn warnings(&self) -> Vec<String> {
-        let mut out = self
-            .patch_sensitivity()
-            .map_or_else(Vec::new, |s| s.warnings(self.accuracy));
+        let mut out: Vec<String> = self
+            .disks
+            .iter()
+            .flat_map(|d| self.patch_sensitivity_of(d).warnings(self.accuracy))
+            .collect();
+        out.dedup();
         // Measured on D44 (consistent disk, exact beam, started at rest): the least and largest
         // contact force 11.4 / 6.2 / 2.3 kN and 17.1 / 19.0 / 20.2 kN on 5 / 10 / 20 elements,
         // all within a millisecond of the start; started static, 12.9–13.0 and 16.53–16.54 kN.
         let rider = self
-            .disk
-            .as_ref()
-            .filter(|d| d.coupling != crate::coupling::Coupling::MovingForce);
-        if rider.is_some() && self.start == BeamStart::Rest {
+            .disks
+            .iter()
+            .any(|d| d.coupling != crate::coupling::Coupling::MovingForce);
+        if rider && self.start == BeamStart::Rest {
             out.push("the disk is set down at t = 0 on a beam at rest (`track.beam.initial: rest`), a sudden load: its contact force rings from that touch in every mode the beam holds, and its extremes there depend on the mesh and the modes kept; `initial: static` starts the beam carrying the disk".to_string());
+        }
+        if self.disks.len() > 1
+            && self
+                .disks
+                .iter()
+                .any(|d| matches!(d.contact_loss, crate::rolling::ContactLoss::Fly { .. }))
+        {
+            out.push("of several disks, one that loses contact ends the run (`contact-lost`): their flight is modelled for a lone disk".to_string());
         }
         out
     }
@@ -417,7 +438,7 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
         }
     }
     if let (Model::Beam(b), Some(s)) = (&model, &raw.solver) {
-        if let (Some(d), Some(m)) = (&b.disk, &s.method) {
+        if let (Some(d), Some(m)) = (b.disk(), &s.method) {
             if d.coupling == Coupling::Thesis
                 && solver.method != Method::GenAlpha
                 && b.beam.model != BeamModel::Exact

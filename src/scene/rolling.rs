@@ -3,14 +3,18 @@
 use super::*;
 
 /// `disk.contact_loss` and `disk.restitution`, checked; `None` where the scene gives neither.
-pub(super) fn contact_loss(c: &Checker, d: &DiskFile) -> Result<Option<ContactLoss>, Error> {
+pub(super) fn contact_loss(
+    c: &Checker,
+    d: &DiskFile,
+    at: &str,
+) -> Result<Option<ContactLoss>, Error> {
     let restitution = match &d.restitution {
         Some(e) => {
-            let v = c.finite(e, "disk.restitution")?;
+            let v = c.finite(e, &format!("{at}.restitution"))?;
             if !(0.0..=1.0).contains(&v) {
                 return c.err(
                     e.referenced.line(),
-                    "disk.restitution",
+                    &format!("{at}.restitution"),
                     format!("= {v} is outside [0, 1]: the share of the normal speed a landing gives back (0 plastic, 1 elastic)"),
                 );
             }
@@ -28,14 +32,14 @@ pub(super) fn contact_loss(c: &Checker, d: &DiskFile) -> Result<Option<ContactLo
             "stop" => match e {
                 Some((_, line)) => c.err(
                     line,
-                    "disk.restitution",
+                    &format!("{at}.restitution"),
                     "acts at a landing, and with `contact_loss: stop` the disk never lands; leave it out or fly",
                 ),
                 None => Ok(Some(ContactLoss::Stop)),
             },
             other => c.err(
                 k.referenced.line(),
-                "disk.contact_loss",
+                &format!("{at}.contact_loss"),
                 format!("is {}; use fly or stop", quote(other)),
             ),
         },
@@ -59,7 +63,7 @@ pub(super) fn rolling_scene(
         );
     };
     let d = &disk_file.value;
-    let disk = c.disk(d, gravity)?;
+    let disk = c.disk(d, gravity, "disk")?;
     let s0 = match &d.s0 {
         Some(s) => c.finite(s, "disk.s0")?,
         None => 0.0,
@@ -116,7 +120,8 @@ pub(super) fn rolling_scene(
         }
     }
     let mut rolling = Rolling::new(curve, disk, gravity, s0, omega0, mu);
-    rolling.contact_loss = contact_loss(c, d)?.unwrap_or(ContactLoss::Fly { restitution: 0.0 });
+    rolling.contact_loss =
+        contact_loss(c, d, "disk")?.unwrap_or(ContactLoss::Fly { restitution: 0.0 });
     if let Some(s) = rolling.first_unfit_point() {
         let kappa = rolling.curve.at(s).curvature();
         if !kappa.is_finite() {

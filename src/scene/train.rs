@@ -30,10 +30,15 @@ pub(super) fn train(
     gravity: f64,
 ) -> Result<Train, Error> {
     let t = &file.value;
-    if let Some(d) = &raw.disk {
+    if let Some((line, key)) = raw
+        .disk
+        .as_ref()
+        .map(|d| (d.referenced.line(), "disk"))
+        .or(raw.disks.as_ref().map(|d| (d.referenced.line(), "disks")))
+    {
         return c.err(
-            d.referenced.line(),
-            "disk",
+            line,
+            key,
             "and `train` are both given: a scene has one rider, a disk or a train",
         );
     }

@@ -134,10 +134,15 @@ pub(super) fn vehicles(
         return Ok(Vec::new());
     };
     let line = list.referenced.line();
-    if let Some(d) = &raw.disk {
+    if let Some((line, key)) = raw
+        .disk
+        .as_ref()
+        .map(|d| (d.referenced.line(), "disk"))
+        .or(raw.disks.as_ref().map(|d| (d.referenced.line(), "disks")))
+    {
         return c.err(
-            d.referenced.line(),
-            "disk",
+            line,
+            key,
             "and `vehicles` are both given: a beam carries vehicles or a disk",
         );
     }

@@ -87,7 +87,7 @@ pub fn static_solution(scene: &Scene, setup: &BeamScene) -> Result<StaticFile, E
         .map(|l| (l.x, l.force, l.mz))
         .chain(
             setup
-                .disk
+                .disks
                 .iter()
                 .map(|d| (d.s0, [0.0, -d.disk.mass * d.gravity], 0.0)),
         )

@@ -56,7 +56,7 @@ pub fn run_all(
         let dir = out.join(&scene.name);
         output::write_all(&result, &dir, true)?;
         if let Run::Beam(b) = &result {
-            if b.setup.disk.is_some() {
+            if b.setup.disk().is_some() {
                 output::animation::write_animation(b, &dir.join("animation.svg"))?;
             }
         }
@@ -218,7 +218,7 @@ pub fn study_plan(scene: &Scene) -> tradeoff::Plan {
         if scene.name == DEEP_NONLINEAR {
             plan.points = vec![finer_point(b, 1e-8)];
         }
-    } else if let Some(b) = scene.beam().filter(|b| b.disk.is_some()) {
+    } else if let Some(b) = scene.beam().filter(|b| b.disk().is_some()) {
         // An undamped bridge under a rolling disk (D44, D50). At rtol 1e-6 no run of the exact
         // or linear beam comes within the step budget on the grid's meshes, and the modal ones
         // stay at their truncation's 10⁻⁴; the windowed means on the scene's mesh stop at
@@ -535,7 +535,7 @@ fn bridge_speed_sweep(studies: &Path, figures: &Path) -> Result<(), Error> {
     let Some(beam) = scene.beam() else {
         return Ok(());
     };
-    let Some(disk) = &beam.disk else {
+    let Some(disk) = beam.disk() else {
         return Ok(());
     };
     let section = &beam.beam.section;

@@ -31,7 +31,7 @@ impl FlyingDisk<'_> {
         let v = self.flight.velocity(t);
         let near = self.coupled.gap(q, c, self.s.get());
         self.s.set(near.s);
-        let disk = self.coupled.spec.disk;
+        let disk = self.coupled.spec().disk;
         let omega = self.flight.omega;
         let observation = DiskObservation {
             s: near.s,
@@ -45,7 +45,7 @@ impl FlyingDisk<'_> {
             rn: 0.0,
             kinetic: 0.5 * disk.mass * (v[0] * v[0] + v[1] * v[1])
                 + 0.5 * disk.inertia() * omega * omega,
-            potential: disk.mass * self.coupled.spec.gravity * c[1],
+            potential: disk.mass * self.coupled.spec().gravity * c[1],
         };
         (observation, near.gap.max(0.0))
     }
@@ -121,7 +121,7 @@ impl SecondOrderProblem for BeneathFlight<'_> {
         &EVENTS
     }
     fn event(&self, index: usize, t: f64, q: &[f64], _v: &[f64]) -> f64 {
-        let a = self.disk.coupled.spec.disk.radius;
+        let a = self.disk.coupled.spec().disk.radius;
         match EVENTS[index].reason {
             FlightEvent::Lands => {
                 let near = self

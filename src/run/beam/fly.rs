@@ -37,7 +37,7 @@ pub(super) fn lift_off(c: &DiskOnBeam, rec: &mut Recorder, t: f64, y: &[f64]) ->
             centre: [d.x, d.y],
             velocity: [d.vx, d.vy],
             omega: d.omega,
-            gravity: c.spec.gravity,
+            gravity: c.spec().gravity,
         },
         s: d.s,
     };
@@ -66,7 +66,7 @@ pub(super) fn fly<'a>(
     flights: &mut Vec<FlightRecord>,
 ) -> Result<FlightEnd, Error> {
     let n = loaded.dim();
-    let restitution = match c.spec.contact_loss {
+    let restitution = match c.spec().contact_loss {
         ContactLoss::Fly { restitution } => restitution,
         ContactLoss::Stop => 0.0,
     };
@@ -159,10 +159,11 @@ pub(super) fn fly<'a>(
         } else {
             None
         };
-        let gravity_n = c.spec.gravity * c.contact_frame(t, &landing.z, &landing.zd)[1][1];
+        let gravity_n = c.spec().gravity * c.contact_frame(0, t, &landing.z, &landing.zd)[1][1];
         if let Some(b) = bounce.filter(|b| {
             gravity_n <= 0.0
-                || b.leaving * b.leaving / (2.0 * gravity_n) >= RESOLVED_BOUNCE * c.spec.disk.radius
+                || b.leaving * b.leaving / (2.0 * gravity_n)
+                    >= RESOLVED_BOUNCE * c.spec().disk.radius
         }) {
             record.energy_lost = Some(b.energy_lost);
             let after = c.observe(t, &landing.z, &landing.zd);
@@ -175,9 +176,9 @@ pub(super) fn fly<'a>(
                     stop: Stop::Event(StopReason::Slip),
                 });
             }
-            let m = c.spec.disk.mass;
+            let m = c.spec().disk.mass;
             let kinetic = 0.5 * m * (b.velocity[0].powi(2) + b.velocity[1].powi(2))
-                + 0.5 * c.spec.disk.inertia() * b.omega * b.omega;
+                + 0.5 * c.spec().disk.inertia() * b.omega * b.omega;
             rec.ledger
                 .disk_bounces(b.energy_lost, (kinetic, after.potential));
             launch = Launch {
@@ -189,7 +190,7 @@ pub(super) fn fly<'a>(
                     centre: [after.x, after.y],
                     velocity: b.velocity,
                     omega: b.omega,
-                    gravity: c.spec.gravity,
+                    gravity: c.spec().gravity,
                 },
                 s: near.s,
             };
@@ -238,11 +239,11 @@ pub(super) fn slips(
     before: [f64; 2],
     after: [f64; 2],
 ) -> bool {
-    let Some(mu) = c.spec.mu else {
+    let Some(mu) = c.spec().mu else {
         return false;
     };
-    let [tg, nm] = c.contact_frame(t, &landing.z, &landing.zd);
-    let m = c.spec.disk.mass;
+    let [tg, nm] = c.contact_frame(0, t, &landing.z, &landing.zd);
+    let m = c.spec().disk.mass;
     let dv = [after[0] - before[0], after[1] - before[1]];
     let jt = m * (dv[0] * tg[0] + dv[1] * tg[1]);
     let jn = m * (dv[0] * nm[0] + dv[1] * nm[1]);

@@ -11,6 +11,7 @@
 use super::phase::Phase;
 use crate::beam::load::PointLoad;
 use crate::beam::{Beam, PointDisplacement};
+use crate::coupling::DiskOnBeam;
 use crate::ode::second_order::Structure;
 use crate::rolling::DiskObservation;
 use crate::run::EnergyCheck;
@@ -35,7 +36,8 @@ pub(super) struct Ledger<'a> {
     at_loads: Vec<PointDisplacement>,
     /// Work of a moving load, by the trapezoidal rule over the steps: (t, power, work).
     moving: (f64, f64, f64),
-    /// The disk's energy when it left (it leaves the model with it): (kinetic, potential).
+    /// The energy of the disks that have left, as they left (they leave the model with it),
+    /// or of the disk flying: (kinetic, potential).
     left_with: (f64, f64),
     /// The beam's weight dotted with the start's displacements.
     weight0: f64,
@@ -107,12 +109,7 @@ impl<'a> Ledger<'a> {
         let mut moving = (0.0, 0.0, 0.0);
         if let Some(c) = phase.coupled {
             let (z0, zd0) = phase.split(y0);
-            let first = c.observe(0.0, z0, zd0);
-            let (dk, dp) = if c.disk_in_system() {
-                (first.kinetic, first.potential)
-            } else {
-                (0.0, 0.0)
-            };
+            let (dk, dp) = Self::in_system(c, &c.observe_all(0.0, z0, zd0));
             check = EnergyCheck::new(dk + dp + strain0, dk + dp.abs() + strain0);
         }
         moving.1 = Self::moving_power(phase, 0.0, y0);
@@ -163,13 +160,24 @@ impl<'a> Ledger<'a> {
         load_displacements(phase.beam, self.loads, &q)
     }
 
-    /// The disk's kinetic and potential energy, as far as it belongs to the system.
-    fn disk_energies(&self, phase: &Phase, disk: Option<&DiskObservation>) -> (f64, f64) {
-        match (disk, phase.coupled) {
-            (Some(d), Some(c)) if c.disk_in_system() => (d.kinetic, d.potential),
-            (Some(_), Some(_)) => (0.0, 0.0),
-            _ => self.left_with,
-        }
+    /// The kinetic and potential energy of the disks observed as `disks` that belong to the
+    /// system (the rolling ones on the beam).
+    fn in_system(c: &DiskOnBeam, disks: &[Option<DiskObservation>]) -> (f64, f64) {
+        disks
+            .iter()
+            .enumerate()
+            .filter(|&(k, _)| c.in_system(k))
+            .filter_map(|(_, d)| d.as_ref())
+            .fold((0.0, 0.0), |(k, p), d| (k + d.kinetic, p + d.potential))
+    }
+
+    /// The disks' kinetic and potential energy, as far as it belongs to the system: those on
+    /// the beam as observed in `disks`, and what those that left took with them.
+    fn disk_energies(&self, phase: &Phase, disks: &[Option<DiskObservation>]) -> (f64, f64) {
+        let (k, p) = phase
+            .coupled
+            .map_or((0.0, 0.0), |c| Self::in_system(c, disks));
+        (k + self.left_with.0, p + self.left_with.1)
     }
 
     /// The work of the beam's own weight since the start.
@@ -231,11 +239,11 @@ impl<'a> Ledger<'a> {
         phase: &Phase,
         t: f64,
         y: &[f64],
-        disk: Option<&DiskObservation>,
+        disks: &[Option<DiskObservation>],
     ) -> Energy {
         self.catch_up(t);
         let (kinetic, strain) = Self::beam_energies(phase, y);
-        let (disk_kinetic, potential) = self.disk_energies(phase, disk);
+        let (disk_kinetic, potential) = self.disk_energies(phase, disks);
         let (vk, vs, vp) = Self::vehicle_energies(phase, t, y);
         let (kinetic, strain, potential) =
             (kinetic + disk_kinetic + vk, strain + vs, potential + vp);
@@ -360,14 +368,17 @@ impl<'a> Ledger<'a> {
         self.catch_up(t);
         self.book(phase, t, y);
         let (kinetic, strain) = Self::beam_energies(phase, y);
-        let (disk_kinetic, potential) = match phase.coupled {
-            Some(c) if c.disk_in_system() => {
-                let (z, zd) = phase.split(y);
-                c.energies(t, z, zd)
-            }
-            Some(_) => (0.0, 0.0),
-            None => self.left_with,
-        };
+        let (on, left) = (
+            match phase.coupled {
+                Some(c) if c.disk_in_system() => {
+                    let (z, zd) = phase.split(y);
+                    c.energies(t, z, zd)
+                }
+                _ => (0.0, 0.0),
+            },
+            self.left_with,
+        );
+        let (disk_kinetic, potential) = (on.0 + left.0, on.1 + left.1);
         let (vk, vs, vp) = Self::vehicle_energies(phase, t, y);
         let (kinetic, strain, potential) =
             (kinetic + disk_kinetic + vk, strain + vs, potential + vp);
@@ -380,20 +391,29 @@ impl<'a> Ledger<'a> {
         );
     }
 
-    /// The disk leaves the beam at t, in the state y of the coupled phase: it takes its energy
-    /// with it, and a moving load's work is closed.
+    /// The last disks leave the beam at t, in the state y of the coupled phase: they take
+    /// their energy with them, and the moving loads' work is closed.
     pub fn disk_leaves(&mut self, phase: &Phase, t: f64, y: &[f64]) {
         if let Some(c) = phase.coupled {
             let (z, zd) = phase.split(y);
-            let d = c.observe(t, z, zd);
-            self.left_with = if c.disk_in_system() {
-                (d.kinetic, d.potential)
-            } else {
-                (0.0, 0.0)
-            };
+            let (k, p) = Self::in_system(c, &c.observe_all(t, z, zd));
+            self.left_with = (self.left_with.0 + k, self.left_with.1 + p);
         }
         self.done += self.moving.2;
         self.moving = (t, 0.0, 0.0);
+    }
+
+    /// Disk k leaves the beam at t, in the state y of the coupled phase, while others ride
+    /// on: it takes its energy with it. The powers are read again once it has left
+    /// ([`Self::restart`]).
+    pub fn one_disk_leaves(&mut self, phase: &Phase, t: f64, y: &[f64], k: usize) {
+        let Some(c) = phase.coupled else { return };
+        if c.in_system(k) {
+            let (z, zd) = phase.split(y);
+            if let Some(d) = c.observe_all(t, z, zd)[k] {
+                self.left_with = (self.left_with.0 + d.kinetic, self.left_with.1 + d.potential);
+            }
+        }
     }
 
     /// The disk lands on the beam at t and rides on it again, the landing having taken

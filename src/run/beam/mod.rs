@@ -72,10 +72,11 @@ pub struct BeamRow {
     pub t: f64,
     /// One per probe, in the scene's order.
     pub probes: Vec<PointDisplacement>,
-    /// While the disk is on the beam.
-    pub disk: Option<DiskObservation>,
-    /// Deflection w of the beam under the disk (NaN without one).
-    pub w_under: f64,
+    /// Each disk, while it is on or over the beam (`None` once it has left; empty without
+    /// disks, or once they have all left).
+    pub disks: Vec<Option<DiskObservation>>,
+    /// Deflection w of the beam under each disk (NaN while it is not on the beam).
+    pub w_under: Vec<f64>,
     pub kinetic: f64,
     pub strain: f64,
     /// The disk's gravity potential (zero without a disk in the system).
@@ -97,6 +98,16 @@ pub struct BeamRow {
 }
 
 impl BeamRow {
+    /// The first disk (the disk, where it is alone) while it is on or over the beam.
+    pub fn disk(&self) -> Option<DiskObservation> {
+        self.disks.first().copied().flatten()
+    }
+
+    /// The deflection under the first disk (NaN while it is not on the beam).
+    pub fn w_under_disk(&self) -> f64 {
+        self.w_under.first().copied().unwrap_or(f64::NAN)
+    }
+
     pub fn total(&self) -> f64 {
         self.kinetic + self.strain + self.potential - self.work + self.dissipated + self.impact
     }
@@ -133,8 +144,10 @@ pub struct BeamRun {
     pub windowed_means: Vec<f64>,
     /// The extremes of what the run reports, located on the solution.
     pub extremes: Extremes,
-    /// When the disk left the beam, if it did.
+    /// When the last disk left the beam, if it did.
     pub left_track_t: Option<f64>,
+    /// When each disk left the beam, if it did.
+    pub disks_left_t: Vec<Option<f64>>,
     /// The disk's flights over the beam.
     pub flights: Vec<FlightRecord>,
     /// (q, v) at the end of the run.
@@ -186,12 +199,20 @@ pub struct Extremes {
     pub probes: Vec<[Range; 4]>,
     /// Per probe: w after the last load left the beam (the disk, or a train's last axle).
     pub after_exit: Option<Vec<Range>>,
-    /// The disk's normal and tangential contact force, the friction coefficient its rolling
-    /// needs and the deflection under it, while it is on or over the beam.
-    pub disk: Option<[Range; 4]>,
+    /// Per disk, its normal and tangential contact force, the friction coefficient its
+    /// rolling needs and the deflection under it, while it is on or over the beam (`None`
+    /// for a disk never watched there).
+    pub disks: Vec<Option<[Range; 4]>>,
     /// Per vehicle, each body's vertical acceleration then each axle's contact force, from
     /// the time the vehicle came onto the deck.
     pub vehicles: Vec<Range>,
+}
+
+impl Extremes {
+    /// The first disk's (the disk's, where it is alone), if it was watched on the beam.
+    pub fn disk(&self) -> Option<[Range; 4]> {
+        self.disks.first().copied().flatten()
+    }
 }
 
 impl BeamRun {
@@ -336,8 +357,8 @@ fn integrate_coupled(
     stats: &mut Stats,
 ) -> Result<CoupledEnd, Error> {
     let until = c
-        .exit_time()
-        .map_or(scene.duration, |te| te.min(scene.duration));
+        .next_exit()
+        .map_or(scene.duration, |(te, _)| te.min(scene.duration));
     if let Some((t0, z0, zd0)) = from {
         let ahead: Vec<f64> = outputs.iter().copied().filter(|&o| o > t0).collect();
         let out = integrate(c, t0, &z0, &zd0, until, &ahead, opts, rec)
@@ -393,6 +414,8 @@ fn coupled_end(
 struct Ridden {
     stop: Stop,
     left_track_t: Option<f64>,
+    /// When each disk left the beam.
+    disks_left: Vec<Option<f64>>,
     flights: Vec<FlightRecord>,
     then: Then,
     /// The vehicle and axle whose wheel lost contact, where one did.
@@ -442,10 +465,7 @@ pub fn run(
             .as_ref()
             .map_or(0.0, |f| std::f64::consts::TAU * f.cutoff_hz),
     );
-    let coupled = setup
-        .disk
-        .clone()
-        .map(|spec| DiskOnBeam::new(&loaded, spec));
+    let coupled = (!setup.disks.is_empty()).then(|| DiskOnBeam::new(&loaded, setup.disks.clone()));
     let vehicles = vehicles_on(scene, setup, &loaded)?;
     let mut opts = ode::Options {
         rho_inf: setup.rho_inf,
@@ -499,6 +519,7 @@ pub fn run(
         (None, None) => Ridden {
             stop: Stop::End,
             left_track_t: None,
+            disks_left: Vec::new(),
             flights: Vec::new(),
             then: Then::Alone {
                 t: 0.0,
@@ -567,7 +588,7 @@ fn thesis_system(
     coupled: Option<&DiskOnBeam>,
     opts: &ode::Options,
 ) -> Result<bool, Error> {
-    let literal = coupled.is_some_and(|c| c.spec.coupling == Coupling::Thesis)
+    let literal = coupled.is_some_and(|c| c.spec().coupling == Coupling::Thesis)
         && opts.method != Method::GenAlpha;
     if literal && setup.beam.model != BeamModel::Exact {
         return Err(Error::Input(format!(
@@ -604,8 +625,8 @@ fn initial_state(
     }
 }
 
-/// Integrate while the disk is on the beam: rolling, and flying and landing where it loses
-/// contact and flies, until it leaves the beam, stops, or the run ends.
+/// Integrate while a disk is on the beam: rolling, and flying and landing where a lone disk
+/// loses contact and flies, until the last leaves the beam, one stops, or the run ends.
 #[allow(clippy::too_many_arguments)]
 fn ride<'a>(
     scene: &Scene,
@@ -622,7 +643,8 @@ fn ride<'a>(
     let n = loaded.dim();
     let mut flights = Vec::new();
     let mut from = None;
-    let flies = matches!(c.spec.contact_loss, ContactLoss::Fly { .. });
+    let mut left = vec![None; c.count()];
+    let flies = c.count() == 1 && matches!(c.spec().contact_loss, ContactLoss::Fly { .. });
     loop {
         let end = integrate_coupled(
             scene,
@@ -662,16 +684,28 @@ fn ride<'a>(
                         from = Some((t, z, zd));
                         continue;
                     }
-                    FlightEnd::Leaves { t, q, v } => return Ok(left_beam(rec, t, q, v, flights)),
+                    FlightEnd::Leaves { t, q, v } => {
+                        return Ok(left_beam(rec, t, q, v, flights, vec![Some(t)]))
+                    }
                     FlightEnd::Stops { t, y, stop } => (t, y, stop),
                 }
             }
             CoupledEnd::Stopped { t, y, stop } => (t, y, stop),
             CoupledEnd::Left { t, y } => {
+                let k = leaving(c, t, rec.phase.split(&y).0);
+                let on = (0..c.count()).filter(|&j| !c.has_left(j)).count();
+                if on > 1 {
+                    from = Some(one_leaves(c, k, rec, t, y));
+                    left[k] = Some(t);
+                    continue;
+                }
                 rec.ledger.disk_leaves(&rec.phase, t, &y);
                 let (z, zd) = rec.phase.split(&y);
                 let (q, v) = (z[..n].to_vec(), zd[..n].to_vec());
-                return Ok(left_beam(rec, t, q, v, flights));
+                for l in left.iter_mut().filter(|l| l.is_none()) {
+                    *l = Some(t);
+                }
+                return Ok(left_beam(rec, t, q, v, flights, left));
             }
         };
         // The run stops between output times: its last row is the stop itself.
@@ -681,12 +715,42 @@ fn ride<'a>(
         return Ok(Ridden {
             stop,
             left_track_t: None,
+            disks_left: left,
             flights,
             then: Then::Ended { t, y },
             lost_contact: None,
             wheel_flights: Vec::new(),
         });
     }
+}
+
+/// Which disk left the beam at (t, z): a prescribed load that reached its exit then, or else
+/// the rolling disk a left-track event stopped at an end.
+fn leaving(c: &DiskOnBeam, t: f64, z: &[f64]) -> usize {
+    match c.next_exit() {
+        Some((te, k)) if (te - t).abs() <= 1e-12 * te.max(1.0) => k,
+        _ => c
+            .at_an_end(z)
+            .expect("a left-track event stops a rolling disk on the beam"),
+    }
+}
+
+/// Disk k leaves the beam at t, in the state y, while others ride on: the state they go on
+/// from, with its contact coordinate at rest.
+fn one_leaves(
+    c: &DiskOnBeam,
+    k: usize,
+    rec: &mut Recorder,
+    t: f64,
+    y: Vec<f64>,
+) -> (f64, Vec<f64>, Vec<f64>) {
+    rec.ledger.one_disk_leaves(&rec.phase, t, &y, k);
+    let (z, zd) = rec.phase.split(&y);
+    let (z, mut zd) = (z.to_vec(), zd.to_vec());
+    c.leave(k, &mut zd);
+    let y: Vec<f64> = z.iter().chain(&zd).copied().collect();
+    rec.ledger.restart(&rec.phase, t, &y);
+    (t, z, zd)
 }
 
 /// The vehicles on the beam, where the scene has them.
@@ -784,6 +848,7 @@ fn drive<'a>(
     Ok(Ridden {
         stop,
         left_track_t: None,
+        disks_left: Vec::new(),
         flights: Vec::new(),
         then: Then::Ended { t, y },
         lost_contact,
@@ -791,19 +856,21 @@ fn drive<'a>(
     })
 }
 
-/// The disk left the beam at t, the beam in (q, v): from then on the residual vibration is
-/// watched.
+/// The last disk left the beam at t, the beam in (q, v): from then on the residual vibration
+/// is watched. `disks_left`: when each disk left.
 fn left_beam(
     rec: &mut Recorder,
     t: f64,
     q: Vec<f64>,
     v: Vec<f64>,
     flights: Vec<FlightRecord>,
+    disks_left: Vec<Option<f64>>,
 ) -> Ridden {
     rec.exit_t = Some(t);
     Ridden {
         stop: Stop::End,
         left_track_t: Some(t),
+        disks_left,
         flights,
         then: Then::Alone { t, q, v },
         lost_contact: None,
@@ -876,6 +943,7 @@ fn collect(
         frames: recorded.frames,
         windowed_means: recorded.windowed_means,
         left_track_t: ridden.left_track_t,
+        disks_left_t: ridden.disks_left,
         flights: ridden.flights,
         y_end: recorded.y_end,
         acceleration: recorded.acceleration,

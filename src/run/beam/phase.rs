@@ -17,7 +17,7 @@ use crate::rolling::DiskObservation;
 pub(super) struct Phase<'a> {
     pub beam: &'a Beam,
     pub loaded: &'a LoadedBeam<'a>,
-    /// The disk while it is on the beam.
+    /// The disks while one is on the beam.
     pub coupled: Option<&'a DiskOnBeam<'a>>,
     /// Unknowns of the phase's z.
     pub nz: usize,
@@ -49,13 +49,13 @@ impl<'a> Phase<'a> {
     }
 
     /// The mesh's displacements as the outputs read them: on a modal beam Φ η plus the static
-    /// response of the modes left out to what acts on the beam at t (its loads and the disk's
-    /// contact force).
+    /// response of the modes left out to what acts on the beam at t (its loads and the disks'
+    /// contact forces, the disks as observed in `disks`).
     pub fn displaced<'y>(
         &self,
         t: f64,
         y: &'y [f64],
-        disk: Option<&DiskObservation>,
+        disks: &[Option<DiskObservation>],
         rate: Option<&[f64]>,
     ) -> Cow<'y, [f64]> {
         let n = self.loaded.dim();
@@ -65,9 +65,9 @@ impl<'a> Phase<'a> {
         };
         let mut f = vec![0.0; self.beam.dim()];
         self.loaded.external(t, &mut f);
-        if let (Some(c), Some(d)) = (self.coupled, disk) {
+        if let Some(c) = self.coupled {
             let (z, zd) = self.split(y);
-            c.add_contact_force_on_beam(t, z, zd, d, &mut f);
+            c.add_contact_force_on_beam(t, z, zd, disks, &mut f);
         }
         for (x, p) in self.wheel_forces(t, y, rate) {
             self.beam.add_point_load(x, [0.0, p], 0.0, &mut f);
@@ -83,15 +83,20 @@ impl<'a> Phase<'a> {
         self.nz = self.loaded.dim();
     }
 
-    /// The disk as it is at (t, y), while it is on the beam or flies over it, and its gap to
-    /// the beam (0 while it rolls or has left).
-    pub fn disk(&self, t: f64, y: &[f64]) -> (Option<DiskObservation>, f64) {
+    /// Each disk as it is at (t, y) while it is on the beam or flies over it (`None` once it
+    /// has left), and the flying disk's gap to the beam (0 while it rolls or has left); no
+    /// disks once they have all left.
+    pub fn disks(&self, t: f64, y: &[f64]) -> (Vec<Option<DiskObservation>>, f64) {
         if let Some(f) = &self.flying {
             let (d, gap) = f.observe(t, &y[..self.loaded.dim()]);
-            return (Some(d), gap);
+            return (vec![Some(d)], gap);
         }
         let (z, zd) = self.split(y);
-        (self.coupled.map(|c| c.observe(t, z, zd)), 0.0)
+        (
+            self.coupled
+                .map_or_else(Vec::new, |c| c.observe_all(t, z, zd)),
+            0.0,
+        )
     }
 
     /// The disk rides on the beam again.
@@ -165,17 +170,16 @@ impl<'a> Phase<'a> {
     }
 
     /// What the supports exert on the beam at (t, y), global (fx, fy, mz) at `from` and at
-    /// `to`: the loads acting then, a train's axles, the disk's contact force, and the beam's
-    /// inertia. `q` is
-    /// the mesh's displacements as [`Phase::displaced`] reads them, `a` the model's
-    /// accelerations.
+    /// `to`: the loads acting then, a train's axles, the disks' contact forces, and the
+    /// beam's inertia. `q` is the mesh's displacements as [`Phase::displaced`] reads them, `a`
+    /// the model's accelerations, `disks` the disks as observed.
     pub fn reactions(
         &self,
         t: f64,
         y: &[f64],
         q: &[f64],
         a: &[f64],
-        disk: Option<&DiskObservation>,
+        disks: &[Option<DiskObservation>],
     ) -> [[f64; 3]; 2] {
         let mut acting: Vec<(f64, [f64; 2], f64)> = self
             .loaded
@@ -195,14 +199,16 @@ impl<'a> Phase<'a> {
                 .map(|(x, p)| (x, [0.0, p], 0.0)),
         );
         if let Some(c) = self.coupled {
-            let d = disk.expect("observed while coupled");
             let (z, zd) = self.split(y);
-            let at_s = c.contact_frame(t, z, zd);
-            let on_disk = [
-                d.rt * at_s[0][0] + d.rn * at_s[1][0],
-                d.rt * at_s[0][1] + d.rn * at_s[1][1],
-            ];
-            acting.push((d.s, [-on_disk[0], -on_disk[1]], 0.0));
+            for (k, d) in disks.iter().enumerate() {
+                let Some(d) = d else { continue };
+                let at_s = c.contact_frame(k, t, z, zd);
+                let on_disk = [
+                    d.rt * at_s[0][0] + d.rn * at_s[1][0],
+                    d.rt * at_s[0][1] + d.rn * at_s[1][1],
+                ];
+                acting.push((d.s, [-on_disk[0], -on_disk[1]], 0.0));
+            }
         }
         self.beam
             .support_reactions(q, &acting, Some(&self.loaded.to_mesh(a)))

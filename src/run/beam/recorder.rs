@@ -15,12 +15,13 @@ pub(super) const SAMPLES_PER_PATCH: f64 = 20.0;
 /// than the cutoff's period, whose stations are then sampled at this many points).
 const MAX_ALONG_SAMPLES: f64 = 4096.0;
 
-/// What the watches see of the run at one time: each probe's (u, w, φ, a); the disk's (rn,
-/// rt, μ needed, w under it, gap) while it is on or over the beam; and when asked, the
-/// envelope's stations' (u, w, φ, a) and the stretch of the axis.
+/// What the watches see of the run at one time: each probe's (u, w, φ, a); each disk's (rn,
+/// rt, μ needed, w under it), NaN once it has left, then the flying disk's gap, while a disk
+/// is on or over the beam; and when asked, the envelope's stations' (u, w, φ, a) and the
+/// stretch of the axis.
 pub(super) struct Snapshot {
     pub(super) probes: Vec<f64>,
-    pub(super) disk: Option<[f64; 5]>,
+    pub(super) disk: Option<Vec<f64>>,
     pub(super) along: Vec<f64>,
     /// Per vehicle, its bodies' vertical accelerations then its wheels' contact forces; NaN
     /// before it comes onto the deck.
@@ -35,11 +36,16 @@ impl Snapshot {
 }
 
 /// What the watches take at the end of every step a disk rides: the probes' (u, w, φ, a) and
-/// the disk's (rn, rt, μ needed, w under it, gap).
+/// the disks' values as a [`Snapshot`] holds them.
 pub(super) struct Trailed {
     t: f64,
     probes: Vec<f64>,
-    disk: [f64; 5],
+    disk: Vec<f64>,
+}
+
+/// A snapshot's disk values split into the disks' (rn, rt, μ needed, w under it) and the gap.
+fn and_gap(disk: &[f64]) -> (&[f64], &[f64]) {
+    disk.split_at(disk.len() - 1)
 }
 
 /// The quantities watched for their extremes (`extremes.rs`); `along` takes the parabola's
@@ -55,12 +61,12 @@ pub(super) struct Watches {
 }
 
 impl Watches {
-    pub(super) fn new(probes: usize, stations: usize, vehicles: usize) -> Self {
+    pub(super) fn new(probes: usize, stations: usize, vehicles: usize, disks: usize) -> Self {
         Watches {
             vehicles: Watch::new(vehicles, Turning::OnTheSolution),
             probes: Watch::new(4 * probes, Turning::OnTheSolution),
             after_exit: Watch::new(probes, Turning::OnTheSolution),
-            disk: Watch::new(4, Turning::OnTheSolution),
+            disk: Watch::new(4 * disks, Turning::OnTheSolution),
             gap: Watch::new(1, Turning::OnTheSolution),
             // No stations, no stretch through them.
             along: Watch::new(
@@ -117,8 +123,8 @@ impl Recorder<'_> {
         along: bool,
     ) -> Snapshot {
         let phase = &self.phase;
-        let (disk, gap) = phase.disk(t, y);
-        let q = phase.displaced(t, y, disk.as_ref(), rate);
+        let (disks, gap) = phase.disks(t, y);
+        let q = phase.displaced(t, y, &disks, rate);
         // The beam alone takes its accelerations from the dense output, without a solve for
         // them. With the disk on, the observation has solved for them already, and the
         // contact force, which the beam's acceleration under the disk enters, is sensitive
@@ -142,14 +148,21 @@ impl Recorder<'_> {
                 [d.u, d.w, d.phi, beam.displacement_at(&a, p.x).w]
             })
             .collect();
-        let disk = disk.map(|d| {
-            [
-                d.rn,
-                d.rt,
-                d.mu_needed().unwrap_or(f64::NAN),
-                beam.displacement_at(&q, d.s).w,
-                gap,
-            ]
+        let disk = (!disks.is_empty()).then(|| {
+            let mut values: Vec<f64> = disks
+                .iter()
+                .flat_map(|d| match d {
+                    Some(d) => [
+                        d.rn,
+                        d.rt,
+                        d.mu_needed().unwrap_or(f64::NAN),
+                        beam.displacement_at(&q, d.s).w,
+                    ],
+                    None => [f64::NAN; 4],
+                })
+                .collect();
+            values.push(gap);
+            values
         });
         let along = if along && self.watch_along {
             let displaced = beam.displacements(&self.stations, &q);
@@ -229,7 +242,10 @@ impl Recorder<'_> {
         // the contact force), and the disk's own values are taken at every step's end.
         let riding = (self.phase.coupled).or(self.phase.flying.as_ref().map(|f| f.coupled));
         let spacing = riding.map_or(self.spacing, |c| {
-            let crossing = c.spec.patch / c.spec.v0().abs();
+            let crossing = (0..c.count())
+                .filter(|&k| !c.has_left(k))
+                .map(|k| c.spec_of(k).patch / c.spec_of(k).v0().abs())
+                .fold(f64::INFINITY, f64::min);
             self.spacing.min(crossing / SAMPLES_PER_PATCH)
         });
         if t1 - t0 < spacing {
@@ -246,7 +262,7 @@ impl Recorder<'_> {
             self.sampled(end, t1, riding.is_some());
             return;
         }
-        let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0, 0));
+        let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0, 0, 0));
         let last = self.last.take();
         let fresh = self.along_trail.is_empty();
         let flying = self.phase.flying.is_some();
@@ -278,25 +294,26 @@ impl Recorder<'_> {
                 |tt| see(tt, false).deflections(),
             );
         }
-        match (s0.disk, s1.disk, s2.disk) {
-            (Some(d0), Some(d1), Some(d2)) => {
+        match (&s0.disk, &s1.disk, &s2.disk) {
+            (Some(d0), Some(d1), Some(d2)) if d0.len() == d2.len() && d1.len() == d2.len() => {
+                let [(v0, g0), (v1, g1), (v2, g2)] = [and_gap(d0), and_gap(d1), and_gap(d2)];
                 let disk_at = |tt: f64| {
                     see(tt, false)
                         .disk
-                        .map_or(vec![f64::NAN; 5], |d| d.to_vec())
+                        .filter(|d| d.len() == d2.len())
+                        .unwrap_or_else(|| vec![f64::NAN; d2.len()])
                 };
                 w.disk
-                    .record_step(t, [&d0[..4], &d1[..4], &d2[..4]], &disk_at);
+                    .record_step(t, [v0, v1, v2], |tt| and_gap(&disk_at(tt)).0.to_vec());
                 if flying {
-                    w.gap.record_step(t, [&d0[4..], &d1[4..], &d2[4..]], |tt| {
-                        disk_at(tt)[4..].to_vec()
-                    });
+                    w.gap
+                        .record_step(t, [g0, g1, g2], |tt| and_gap(&disk_at(tt)).1.to_vec());
                 }
             }
             disks => {
                 for (tt, d) in t.iter().zip([disks.0, disks.1, disks.2]) {
                     if let Some(d) = d {
-                        w.disk.record_point(*tt, &d[..4]);
+                        w.disk.record_point(*tt, and_gap(d).0);
                     }
                 }
             }
@@ -330,6 +347,7 @@ impl Recorder<'_> {
         }
         self.trail = end
             .disk
+            .clone()
             .map(|disk| Trailed {
                 t: t1,
                 probes: end.probes.clone(),
@@ -372,24 +390,24 @@ impl Recorder<'_> {
         };
         let flying = self.phase.flying.is_some();
         let w = &mut self.watches;
+        let (values, gap) = and_gap(&now.disk);
         match &self.trail[..] {
-            [a, b] => {
+            [a, b] if a.disk.len() == now.disk.len() && b.disk.len() == now.disk.len() => {
                 let times = [a.t, b.t, t];
                 w.probes
                     .record_parabola(times, [&a.probes, &b.probes, &now.probes]);
-                w.disk
-                    .record_parabola(times, [&a.disk[..4], &b.disk[..4], &now.disk[..4]]);
+                let [(va, ga), (vb, gb)] = [and_gap(&a.disk), and_gap(&b.disk)];
+                w.disk.record_parabola(times, [va, vb, values]);
                 if flying {
-                    w.gap
-                        .record_parabola(times, [&a.disk[4..], &b.disk[4..], &now.disk[4..]]);
+                    w.gap.record_parabola(times, [ga, gb, gap]);
                 }
                 self.trail.remove(0);
             }
             _ => {
                 w.probes.record_point(t, &now.probes);
-                w.disk.record_point(t, &now.disk[..4]);
+                w.disk.record_point(t, values);
                 if flying {
-                    w.gap.record_point(t, &now.disk[4..]);
+                    w.gap.record_point(t, gap);
                 }
             }
         }
@@ -469,10 +487,12 @@ impl Recorder<'_> {
                 .map(|_| w.after_exit.ranges.clone())
                 .filter(|r| r.iter().all(Range::seen)),
             // Any value watched says the disk was on or over the beam.
-            disk: w.disk.ranges.iter().any(Range::seen).then(|| {
-                let r = &w.disk.ranges;
-                [r[0], r[1], r[2], r[3]]
-            }),
+            disks: w
+                .disk
+                .ranges
+                .chunks(4)
+                .map(|r| r.iter().any(Range::seen).then(|| [r[0], r[1], r[2], r[3]]))
+                .collect(),
             vehicles: w.vehicles.ranges.clone(),
         };
         (extremes, self.envelope.from_stations(&w.along.ranges))
@@ -497,11 +517,11 @@ pub(super) fn stations_watched(
 impl Observer for Recorder<'_> {
     fn output(&mut self, t: f64, y: &[f64]) {
         let phase = &self.phase;
-        let (disk, gap) = phase.disk(t, y);
-        let energy = self.ledger.at_output(phase, t, y, disk.as_ref());
-        let q = phase.displaced(t, y, disk.as_ref(), None);
+        let (disks, gap) = phase.disks(t, y);
+        let energy = self.ledger.at_output(phase, t, y, &disks);
+        let q = phase.displaced(t, y, &disks, None);
         let a = phase.acceleration(t, y);
-        let reactions = phase.reactions(t, y, &q, &a, disk.as_ref());
+        let reactions = phase.reactions(t, y, &q, &a, &disks);
         let along = phase.beam.displacements(&self.stations, &q);
         let a = match &self.filter {
             Some(f) => f.filtered(phase.loaded, &a),
@@ -517,7 +537,7 @@ impl Observer for Recorder<'_> {
             q: &q,
             a: &a,
             along: &along,
-            disk,
+            disks,
             gap,
             energy,
             reactions,
@@ -542,11 +562,17 @@ impl Observer for Recorder<'_> {
         if self.phase.flying.is_some() {
             self.watches.gap.record_point(t, &[gap]);
         }
-        if let Some(d) = row.disk {
-            self.watches.disk.record_point(
-                t,
-                &[d.rn, d.rt, d.mu_needed().unwrap_or(f64::NAN), row.w_under],
-            );
+        if !row.disks.is_empty() {
+            let values: Vec<f64> = row
+                .disks
+                .iter()
+                .zip(&row.w_under)
+                .flat_map(|(d, w)| match d {
+                    Some(d) => [d.rn, d.rt, d.mu_needed().unwrap_or(f64::NAN), *w],
+                    None => [f64::NAN; 4],
+                })
+                .collect();
+            self.watches.disk.record_point(t, &values);
         }
     }
 
@@ -581,8 +607,8 @@ impl Observer for Recorder<'_> {
         };
         means.record_span(t0, t1, |t| {
             let y = dense.at(t);
-            let (disk, _) = phase.disk(t, &y);
-            let q = phase.displaced(t, &y, disk.as_ref(), None);
+            let (disks, _) = phase.disks(t, &y);
+            let q = phase.displaced(t, &y, &disks, None);
             history
                 .probes
                 .iter()
@@ -649,7 +675,7 @@ pub(super) fn recorder<'a>(
             frame_every: over.animate.then(|| scene.duration / (FRAMES - 1) as f64),
             shapes: Vec::new(),
             frames: Vec::new(),
-            turned: (0.0, setup.disk.as_ref().map_or(0.0, |d| d.omega0), 0.0),
+            turned: (0.0, setup.disk().map_or(0.0, |d| d.omega0), 0.0),
             wheel_offsets: setup
                 .vehicles
                 .iter()
@@ -667,6 +693,7 @@ pub(super) fn recorder<'a>(
                 .iter()
                 .map(|v| v.bodies.len() + v.axles.len())
                 .sum(),
+            setup.disks.len(),
         ),
         watch_along: !over.no_envelope,
         last: None,

@@ -17,7 +17,8 @@ pub(super) struct Sample<'s> {
     pub a: &'s [f64],
     /// Displacements at the beam's sample points.
     pub along: &'s [PointDisplacement],
-    pub disk: Option<DiskObservation>,
+    /// Each disk while it is on or over the beam (none once they have all left).
+    pub disks: Vec<Option<DiskObservation>>,
     /// The flying disk's gap to the beam (0 while it rolls).
     pub gap: f64,
     pub energy: Energy,
@@ -42,10 +43,12 @@ impl History<'_> {
                 .iter()
                 .map(|p| beam.displacement_at(s.q, p.x))
                 .collect(),
-            disk: s.disk,
+            disks: s.disks.clone(),
             w_under: s
-                .disk
-                .map_or(f64::NAN, |d| beam.displacement_at(s.q, d.s).w),
+                .disks
+                .iter()
+                .map(|d| d.map_or(f64::NAN, |d| beam.displacement_at(s.q, d.s).w))
+                .collect(),
             kinetic: s.energy.kinetic,
             strain: s.energy.strain,
             potential: s.energy.potential,
@@ -148,9 +151,11 @@ pub(super) struct Pictures<'a> {
 }
 
 impl Pictures<'_> {
+    /// Record the sample: the frames follow the first disk.
     pub fn record(&mut self, s: &Sample) {
         let t = s.t;
-        if let Some(d) = s.disk {
+        let disk = s.disks.first().copied().flatten();
+        if let Some(d) = disk {
             let (t0, w0, angle) = self.turned;
             self.turned = (t, d.omega, angle + 0.5 * (w0 + d.omega) * (t - t0));
         }
@@ -161,7 +166,7 @@ impl Pictures<'_> {
             self.frames.push(Frame {
                 t,
                 along: s.along.to_vec(),
-                disk: s.disk.map(|d| (d.s, self.turned.2, s.gap)),
+                disk: disk.map(|d| (d.s, self.turned.2, s.gap)),
                 wheels: s.vehicles.as_ref().map_or_else(Vec::new, |v| {
                     v.x.iter()
                         .zip(&self.wheel_offsets)

@@ -199,7 +199,7 @@ pub struct Summary {
     /// Beam scenes: per probe (name, w_min, w_max, amplitude after the last load left or
     /// NaN, largest |vertical acceleration|).
     pub probes: Vec<(String, f64, f64, f64, f64)>,
-    /// With a disk: (rn_min, rn_max, left_track_t or NaN).
+    /// With a disk: (rn_min, rn_max, left_track_t or NaN), of the first of several.
     pub disk: Option<(f64, f64, f64)>,
     /// With vehicles: per body (`<vehicle>.<body>`, its largest |vertical acceleration|, or
     /// NaN where the vehicle never came onto the deck).
@@ -217,8 +217,10 @@ fn summarise(r: &Run) -> Summary {
                 let after = b.amplitude_after_exit(k).unwrap_or(f64::NAN);
                 probes.push((p.name.clone(), w.min, w.max, after, a.largest_magnitude().0));
             }
-            if let Some([rn, ..]) = b.extremes.disk {
-                disk = Some((rn.min, rn.max, b.left_track_t.unwrap_or(f64::NAN)));
+            // The first disk's, where there are several.
+            if let Some([rn, ..]) = b.extremes.disks.first().copied().flatten() {
+                let left = b.disks_left_t.first().copied().flatten();
+                disk = Some((rn.min, rn.max, left.unwrap_or(f64::NAN)));
             }
             for v in &b.vehicles {
                 for (name, range, _) in &v.bodies {
