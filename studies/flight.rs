@@ -15,8 +15,8 @@
 mod common;
 
 use common::{parse, run_beam, run_with};
+use rollbeam::disk::StopReason;
 use rollbeam::ode::Method;
-use rollbeam::rolling::StopReason;
 use rollbeam::run::{RollingRun, Stop};
 use rollbeam::scene::Scene;
 
@@ -106,7 +106,7 @@ fn a_flight_is_a_parabola_with_constant_spin_after_the_run_that_stops() {
 fn before_landing(scene: &Scene, flown: &RollingRun) -> ([f64; 2], f64, [f64; 2], [f64; 2]) {
     let mut stop_scene = scene.clone();
     if let rollbeam::scene::Model::Rolling(r) = &mut stop_scene.model {
-        r.rolling.contact_loss = rollbeam::rolling::ContactLoss::Stop;
+        r.rolling.contact_loss = rollbeam::disk::ContactLoss::Stop;
     }
     let stopped = run(&stop_scene);
     let d = stopped.last.disk;
@@ -483,7 +483,7 @@ fn bounces_on_a_beam_halve_and_the_balance_closes() {
     let mut scene = continuous("fly");
     if let rollbeam::scene::Model::Beam(b) = &mut scene.model {
         if let Some(d) = b.disks.first_mut() {
-            d.contact_loss = rollbeam::rolling::ContactLoss::Fly { restitution: 0.5 };
+            d.contact_loss = rollbeam::disk::ContactLoss::Fly { restitution: 0.5 };
         }
     }
     let r = run_beam(&scene, Method::GenAlpha, 1e-8, 1e-12);

@@ -9,8 +9,8 @@ mod common;
 
 use common::{at, load, log_slope, parse, run_fixed, run_with};
 use rollbeam::curve::Curve;
+use rollbeam::disk::StopReason;
 use rollbeam::ode::Method;
-use rollbeam::rolling::StopReason;
 use rollbeam::run::{RollingRun, Stop};
 use rollbeam::scene::{Formulation, Model, Scene};
 

@@ -390,12 +390,12 @@ fn profile(p: &crate::vehicle::profile::Profile) -> String {
 }
 
 /// Where the normal force falls to zero, in one line.
-fn contact_loss(loss: crate::rolling::ContactLoss) -> String {
+fn contact_loss(loss: crate::disk::ContactLoss) -> String {
     match loss {
-        crate::rolling::ContactLoss::Stop => {
+        crate::disk::ContactLoss::Stop => {
             "at a loss of contact: the run stops (contact-lost)".into()
         }
-        crate::rolling::ContactLoss::Fly { restitution } => format!(
+        crate::disk::ContactLoss::Fly { restitution } => format!(
             "at a loss of contact: the disk flies and lands (restitution {restitution}{})",
             if restitution == 0.0 { ", plastic" } else { "" }
         ),

@@ -44,10 +44,10 @@ use law::{AddedMass, Law, Rider};
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::{Beam, NodeBasis};
 use crate::disk::Disk;
+use crate::disk::{DiskObservation, StopReason, FIT_MARGIN};
 use crate::linalg::{self, Assembly, AssemblyPattern, LowRank, Sparse, SparseLu, Woodbury};
 use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::EventSpec;
-use crate::rolling::{DiskObservation, StopReason, FIT_MARGIN};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Coupling {
@@ -97,7 +97,7 @@ pub struct DiskOnBeamSpec {
     /// Half-width of the contact patch over which the disk touches the axis.
     pub patch: f64,
     /// What happens where the normal force falls to zero.
-    pub contact_loss: crate::rolling::ContactLoss,
+    pub contact_loss: crate::disk::ContactLoss,
 }
 
 impl DiskOnBeamSpec {

@@ -11,10 +11,10 @@
 //! [`super::Coupling::Thesis`] applies, which integrates the equivalent (s, ṡ) form with
 //! generalized-α; a test checks that the two agree.
 
+use crate::disk::StopReason;
 use crate::linalg::{Assembly, Sparse};
 use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::{Dynamics, EventSpec, Problem};
-use crate::rolling::StopReason;
 
 use super::DiskOnBeam;
 

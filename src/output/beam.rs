@@ -714,7 +714,7 @@ fn figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
 fn disk_figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
     let name = &r.header.scene.name;
     let names = disk_names(r);
-    let series = |f: fn(&crate::rolling::DiskObservation) -> f64, label: &str| {
+    let series = |f: fn(&crate::disk::DiskObservation) -> f64, label: &str| {
         names
             .iter()
             .enumerate()

@@ -114,7 +114,7 @@ impl Summary {
         let [rn, rt, mu] = r.contact;
         let left = matches!(
             r.header.stop,
-            crate::run::Stop::Event(crate::rolling::StopReason::LeftTrack)
+            crate::run::Stop::Event(crate::disk::StopReason::LeftTrack)
         );
         Summary {
             scene: r.header.scene.name.clone(),

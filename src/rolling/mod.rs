@@ -1,44 +1,15 @@
 //! A disk rolling without slip on a rigid curve, in two formulations that must agree:
 //! [`thesis`], the 6-unknown mass-matrix system of thesis Table 1, and [`minimal`], one degree of
 //! freedom s with the centre on the offset curve. Both report the same [`DiskObservation`] and
-//! watch the same physical events.
+//! watch the same physical events ([`crate::disk`]).
 
 pub mod flight;
 pub mod minimal;
 pub mod thesis;
 
 use crate::curve::{Curve, CurvePoint};
-use crate::disk::Disk;
+use crate::disk::{ContactLoss, Disk, DiskObservation, StopReason, FIT_MARGIN};
 use crate::ode::{EventSpec, Problem};
-
-/// Everything a run reports about the disk at one instant.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct DiskObservation {
-    pub s: f64,
-    /// Centre position and velocity, global.
-    pub x: f64,
-    pub y: f64,
-    pub vx: f64,
-    pub vy: f64,
-    /// Absolute angular velocity (Ω < 0 rolls towards +s).
-    pub omega: f64,
-    /// Rotation of the disk relative to the tangent frame (thesis φ).
-    pub phi: f64,
-    /// Contact force on the disk: along the track tangent, and along the left normal (positive
-    /// pushes the disk off the track).
-    pub rt: f64,
-    pub rn: f64,
-    pub kinetic: f64,
-    pub potential: f64,
-}
-
-impl DiskObservation {
-    /// The friction coefficient rolling needs here, |R_t| / R_n; none where the disk does not
-    /// press on the track (R_n ≤ 0), since no friction coefficient holds it there.
-    pub fn mu_needed(&self) -> Option<f64> {
-        (self.rn > 0.0).then(|| self.rt.abs() / self.rn)
-    }
-}
 
 /// A rolling model the run can drive: an ODE problem that also knows its initial state and
 /// what its state means.
@@ -50,40 +21,6 @@ pub trait RollingModel: Problem<Event = StopReason> {
     fn observe(&self, t: f64, y: &[f64]) -> DiskObservation;
     fn formulation(&self) -> &'static str;
 }
-
-/// Where the disk stops being a disk rolling on this track.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum StopReason {
-    ContactLost,
-    Slip,
-    NoFit,
-    LeftTrack,
-}
-
-impl StopReason {
-    pub fn name(self) -> &'static str {
-        match self {
-            StopReason::ContactLost => "contact-lost",
-            StopReason::Slip => "slip",
-            StopReason::NoFit => "no-fit",
-            StopReason::LeftTrack => "left-track",
-        }
-    }
-}
-
-/// What happens where the normal force falls to zero.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ContactLoss {
-    /// The disk leaves the track, flies, and lands by an impact that gives back `restitution`
-    /// of the normal speed.
-    Fly { restitution: f64 },
-    /// The run ends there (`contact-lost`), as the thesis' program did.
-    Stop,
-}
-
-/// The disk is taken not to fit once 1 − aκ falls below this: the offset curve is about to
-/// turn singular and ṡ = v / (|r'| (1 − aκ)) to blow up.
-pub const FIT_MARGIN: f64 = 1e-6;
 
 /// The rolling setting shared by both formulations.
 #[derive(Clone, Debug)]

@@ -12,9 +12,9 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 pub use rolling::{model, RollingRun, Row};
 
+use crate::disk::StopReason;
 use crate::error::Error;
 use crate::ode::Method;
-use crate::rolling::StopReason;
 use crate::scene::{Model, Scene};
 
 /// How a run ended: at its duration, or at a physical event.

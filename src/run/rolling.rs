@@ -4,12 +4,14 @@
 
 use super::extremes::{Range, Turning, Watch};
 use super::{EnergyCheck, FlightRecord, Overrides, Progress, RunHeader, Stop, MAX_FLIGHTS};
+use crate::disk::flight::{self as free, Flight};
+use crate::disk::{ContactLoss, DiskObservation, StopReason};
 use crate::error::Error;
 use crate::ode::{self, Observer};
-use crate::rolling::flight::{self, Flight, FlightEnd};
+use crate::rolling::flight::{self, FlightEnd};
 use crate::rolling::minimal::Minimal;
 use crate::rolling::thesis::Thesis;
-use crate::rolling::{ContactLoss, DiskObservation, RollingModel, StopReason};
+use crate::rolling::{Rolling, RollingModel};
 use crate::scene::{Formulation, RollingScene, Scene};
 
 #[derive(Clone, Copy, Debug)]
@@ -296,62 +298,19 @@ fn fly_and_land(
     };
     let mut from = (lift.disk.s, lift.disk.phi, tangent_angle(r, lift.disk.s));
     loop {
-        if flights.len() >= MAX_FLIGHTS {
-            return Err(Error::Solver(format!(
-                "scene {}: the disk lifted off {MAX_FLIGHTS} times by t = {:.6} s; it cannot stay on this track at this speed, and the run stops rather than count more flights",
-                scene.name, flight.t0
-            )));
-        }
-        let (end, max_gap) = flight::land(r, &flight, from.0, scene.duration);
-        flights.push(FlightRecord {
-            lift_off_t: flight.t0,
-            lift_off_s: from.0,
-            land_t: None,
-            land_s: None,
-            max_gap,
-            energy_lost: None,
-        });
-        let t_stop = match end {
-            FlightEnd::Lands { t, .. } | FlightEnd::LeavesTrack { t, .. } => t,
-            FlightEnd::Airborne => scene.duration,
+        let (t, s, before) = match fly_once(scene, r, rec, flights, outputs, &flight, from)? {
+            Landed::On { t, s, before } => (t, s, before),
+            Landed::Stops(phase) => return Ok(phase),
         };
-        let observe =
-            |t: f64, s_guess: f64, impact: f64| flying(r, &flight, from, t, s_guess, impact);
-        let mut s_guess = from.0;
-        for &o in outputs.iter().filter(|&&o| o > flight.t0 && o <= t_stop) {
-            let row = observe(o, s_guess, rec.impact);
-            s_guess = row.disk.s;
-            rec.record(row);
-        }
-        let (t, s) = match end {
-            FlightEnd::Airborne => {
-                let last = observe(t_stop, s_guess, rec.impact);
-                return Ok(Phase::Stops {
-                    t: t_stop,
-                    stop: Stop::End,
-                    last,
-                });
-            }
-            FlightEnd::LeavesTrack { t, .. } => {
-                let last = observe(t, s_guess, rec.impact);
-                return Ok(Phase::Stops {
-                    t,
-                    stop: Stop::Event(StopReason::LeftTrack),
-                    last,
-                });
-            }
-            FlightEnd::Lands { t, s } => (t, s),
-        };
-        let before = observe(t, s, rec.impact);
         let p = r.curve.at(s);
-        let hit = flight::impact(
+        let hit = free::impact(
             &r.disk,
-            &p,
+            [p.tangent(), p.normal()],
             [before.disk.vx, before.disk.vy],
             flight.omega,
             restitution,
         );
-        let record = flights.last_mut().expect("pushed above");
+        let record = flights.last_mut().expect("pushed by the flight");
         record.land_t = Some(t);
         record.land_s = Some(s);
         if let Some(mu) = r.mu {
@@ -365,9 +324,8 @@ fn fly_and_land(
         }
         record.energy_lost = Some(hit.energy_lost);
         rec.impact += hit.energy_lost;
-        let n = p.normal();
         // What of gravity presses the disk onto the track there.
-        let gravity_n = r.gravity * n[1];
+        let gravity_n = r.gravity * p.normal()[1];
         let height = if gravity_n > 0.0 {
             hit.vn * hit.vn / (2.0 * gravity_n)
         } else {
@@ -388,47 +346,24 @@ fn fly_and_land(
         }
         let (mut t, mut s, mut phi) = (t, s, before.disk.phi);
         if hit.vn > 0.0 && restitution < 1.0 {
-            // The bounces too low to fly, summed (see RESOLVED_BOUNCE).
-            let settled = t + 2.0 * hit.vn / gravity_n / (1.0 - restitution);
-            let glide = Flight {
-                t0: t,
-                centre: [before.disk.x, before.disk.y],
-                velocity: [vt * t_dir[0], vt * t_dir[1]],
+            let low = LowBounces {
+                t,
+                s,
+                vt,
+                vn: hit.vn,
                 omega: hit.omega,
-                gravity: 0.0,
+                height,
+                gravity_n,
+                restitution,
             };
-            let lost = 0.5 * r.disk.mass * hit.vn * hit.vn;
-            let mut s_guess = s;
-            for &o in outputs.iter().filter(|&&o| o > t && o <= settled) {
-                let row = flying(r, &glide, from, o, s_guess, rec.impact + lost);
-                s_guess = row.disk.s;
-                rec.record(row);
+            match settle(scene, r, rec, flights, outputs, &before, from, &low) {
+                Landed::On {
+                    t: ts,
+                    s: ss,
+                    before: end,
+                } => (t, s, phi) = (ts, ss, end.disk.phi),
+                Landed::Stops(phase) => return Ok(phase),
             }
-            rec.impact += lost;
-            let end = flying(
-                r,
-                &glide,
-                from,
-                settled.min(scene.duration),
-                s_guess,
-                rec.impact,
-            );
-            flights.push(FlightRecord {
-                lift_off_t: t,
-                lift_off_s: s,
-                land_t: (settled <= scene.duration).then_some(settled),
-                land_s: (settled <= scene.duration).then_some(end.disk.s),
-                max_gap: height,
-                energy_lost: Some(lost),
-            });
-            if settled > scene.duration {
-                return Ok(Phase::Stops {
-                    t: scene.duration,
-                    stop: Stop::End,
-                    last: end,
-                });
-            }
-            (t, s, phi) = (settled, end.disk.s, end.disk.phi);
         }
         // The disk rolls on from the landing, unless the track falls away faster than it
         // can follow there, in which case it lifts off at once.
@@ -448,7 +383,147 @@ fn fly_and_land(
     }
 }
 
-fn tangent_angle(r: &crate::rolling::Rolling, s: f64) -> f64 {
+/// Where a flight over the curve got to.
+enum Landed {
+    /// Back on the track at t, touching at s, the disk as it came down (`before`).
+    On { t: f64, s: f64, before: Row },
+    /// The run ends in the air, or the disk flew past an end of the track.
+    Stops(Phase),
+}
+
+/// One flight from `flight`'s start at `from` (the track's nearest point, the disk's
+/// rotation relative to it, the tangent's angle): recorded in `flights`, its rows at the
+/// output times, until it lands, leaves the track or the run ends.
+fn fly_once(
+    scene: &Scene,
+    r: &Rolling,
+    rec: &mut Recorder,
+    flights: &mut Vec<FlightRecord>,
+    outputs: &[f64],
+    flight: &Flight,
+    from: (f64, f64, f64),
+) -> Result<Landed, Error> {
+    if flights.len() >= MAX_FLIGHTS {
+        return Err(Error::Solver(format!(
+            "scene {}: the disk lifted off {MAX_FLIGHTS} times by t = {:.6} s; it cannot stay on this track at this speed, and the run stops rather than count more flights",
+            scene.name, flight.t0
+        )));
+    }
+    let (end, max_gap) = flight::land(r, flight, from.0, scene.duration);
+    flights.push(FlightRecord {
+        lift_off_t: flight.t0,
+        lift_off_s: from.0,
+        land_t: None,
+        land_s: None,
+        max_gap,
+        energy_lost: None,
+    });
+    let t_stop = match end {
+        FlightEnd::Lands { t, .. } | FlightEnd::LeavesTrack { t, .. } => t,
+        FlightEnd::Airborne => scene.duration,
+    };
+    let observe = |t: f64, s_guess: f64, impact: f64| flying(r, flight, from, t, s_guess, impact);
+    let mut s_guess = from.0;
+    for &o in outputs.iter().filter(|&&o| o > flight.t0 && o <= t_stop) {
+        let row = observe(o, s_guess, rec.impact);
+        s_guess = row.disk.s;
+        rec.record(row);
+    }
+    Ok(match end {
+        FlightEnd::Airborne => Landed::Stops(Phase::Stops {
+            t: t_stop,
+            stop: Stop::End,
+            last: observe(t_stop, s_guess, rec.impact),
+        }),
+        FlightEnd::LeavesTrack { t, .. } => Landed::Stops(Phase::Stops {
+            t,
+            stop: Stop::Event(StopReason::LeftTrack),
+            last: observe(t, s_guess, rec.impact),
+        }),
+        FlightEnd::Lands { t, s } => Landed::On {
+            t,
+            s,
+            before: observe(t, s, rec.impact),
+        },
+    })
+}
+
+/// A landing at (t, s) that throws the disk off again lower than [`RESOLVED_BOUNCE`]: its
+/// speed along the track and away from it, its spin, how high it would rise, what of gravity
+/// presses it on, and the restitution.
+struct LowBounces {
+    t: f64,
+    s: f64,
+    vt: f64,
+    vn: f64,
+    omega: f64,
+    height: f64,
+    gravity_n: f64,
+    restitution: f64,
+}
+
+/// The bounces too low to fly, summed: the disk glides on at its tangential speed until
+/// they have died out, 2 vₙ / (g (1 − e)) later, having lost its normal kinetic energy;
+/// recorded as one flight. Where the disk settles, or the run's end before it does.
+#[allow(clippy::too_many_arguments)]
+fn settle(
+    scene: &Scene,
+    r: &Rolling,
+    rec: &mut Recorder,
+    flights: &mut Vec<FlightRecord>,
+    outputs: &[f64],
+    before: &Row,
+    from: (f64, f64, f64),
+    b: &LowBounces,
+) -> Landed {
+    let settled = b.t + 2.0 * b.vn / b.gravity_n / (1.0 - b.restitution);
+    let t_dir = r.curve.at(b.s).tangent();
+    let glide = Flight {
+        t0: b.t,
+        centre: [before.disk.x, before.disk.y],
+        velocity: [b.vt * t_dir[0], b.vt * t_dir[1]],
+        omega: b.omega,
+        gravity: 0.0,
+    };
+    let lost = 0.5 * r.disk.mass * b.vn * b.vn;
+    let mut s_guess = b.s;
+    for &o in outputs.iter().filter(|&&o| o > b.t && o <= settled) {
+        let row = flying(r, &glide, from, o, s_guess, rec.impact + lost);
+        s_guess = row.disk.s;
+        rec.record(row);
+    }
+    rec.impact += lost;
+    let end = flying(
+        r,
+        &glide,
+        from,
+        settled.min(scene.duration),
+        s_guess,
+        rec.impact,
+    );
+    flights.push(FlightRecord {
+        lift_off_t: b.t,
+        lift_off_s: b.s,
+        land_t: (settled <= scene.duration).then_some(settled),
+        land_s: (settled <= scene.duration).then_some(end.disk.s),
+        max_gap: b.height,
+        energy_lost: Some(lost),
+    });
+    if settled > scene.duration {
+        return Landed::Stops(Phase::Stops {
+            t: scene.duration,
+            stop: Stop::End,
+            last: end,
+        });
+    }
+    Landed::On {
+        t: settled,
+        s: end.disk.s,
+        before: end,
+    }
+}
+
+fn tangent_angle(r: &Rolling, s: f64) -> f64 {
     let t = r.curve.at(s).tangent();
     t[1].atan2(t[0])
 }
@@ -457,7 +532,7 @@ fn tangent_angle(r: &crate::rolling::Rolling, s: f64) -> f64 {
 /// the rotation relative to that point's tangent, continued from the lift-off at `from`
 /// (s, φ, tangent angle).
 fn flying(
-    r: &crate::rolling::Rolling,
+    r: &Rolling,
     flight: &Flight,
     from: (f64, f64, f64),
     t: f64,

@@ -28,10 +28,11 @@ use crate::coupling::{patch, Coupling, DiskOnBeamSpec};
 use crate::curve::expr::Formula;
 use crate::curve::spline::Spline;
 use crate::curve::Curve;
+use crate::disk::ContactLoss;
 use crate::disk::Disk;
 use crate::error::{quote, Error};
 use crate::ode::Method;
-use crate::rolling::{ContactLoss, Rolling};
+use crate::rolling::Rolling;
 
 mod beam;
 mod checker;
@@ -227,7 +228,7 @@ impl BeamScene {
             && self
                 .disks
                 .iter()
-                .any(|d| matches!(d.contact_loss, crate::rolling::ContactLoss::Fly { .. }))
+                .any(|d| matches!(d.contact_loss, crate::disk::ContactLoss::Fly { .. }))
         {
             out.push("of several disks, one that loses contact ends the run (`contact-lost`): their flight is modelled for a lone disk".to_string());
         }

@@ -9,11 +9,11 @@ use std::ops::Range;
 
 use crate::beam::dynamics::LoadedBeam;
 use crate::coupling::DiskOnBeam;
+use crate::disk::flight::Flight;
+use crate::disk::DiskObservation;
 use crate::linalg::Sparse;
 use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::EventSpec;
-use crate::rolling::flight::Flight;
-use crate::rolling::DiskObservation;
 
 /// The disk in the air over the beam.
 #[derive(Clone)]

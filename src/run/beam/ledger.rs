@@ -12,8 +12,8 @@ use super::phase::Phase;
 use crate::beam::load::PointLoad;
 use crate::beam::{Beam, PointDisplacement};
 use crate::coupling::DiskOnBeam;
+use crate::disk::DiskObservation;
 use crate::ode::second_order::Structure;
-use crate::rolling::DiskObservation;
 use crate::run::EnergyCheck;
 
 /// The energy terms at one time.

@@ -10,9 +10,9 @@ use crate::beam::dynamics::LoadedBeam;
 use crate::beam::Beam;
 use crate::coupling::vehicles::{VehicleObservation, VehiclesOnBeam};
 use crate::coupling::DiskOnBeam;
+use crate::disk::DiskObservation;
 use crate::linalg::{SparseLu, Woodbury};
 use crate::ode::second_order::Structure;
-use crate::rolling::DiskObservation;
 
 pub(super) struct Phase<'a> {
     pub beam: &'a Beam,

@@ -7,7 +7,7 @@ use super::ledger::Energy;
 use super::{BeamRow, Envelope, Frame};
 use crate::beam::load::Probe;
 use crate::beam::{Beam, PointDisplacement};
-use crate::rolling::DiskObservation;
+use crate::disk::DiskObservation;
 
 /// The state at one output time, as the sensors see it.
 pub(super) struct Sample<'s> {
