@@ -844,6 +844,10 @@ fn sweep_ranges_and_keys() {
             "track.beam.elements=4.5:8:2",
             vec!["--set track.beam.elements", "takes a whole number"],
         ),
+        (
+            "disks.1.mass=1:2:2",
+            vec!["--set disks.1.mass", "k from 1 to the 0 disks"],
+        ),
     ] {
         let (code, err) = rollbeam(&["sweep", p, "--set", set, "--out", &out]);
         assert_eq!(code, 1, "{set}: exit {code}, {err}");
@@ -1163,5 +1167,61 @@ fn bad_disk_lists() {
             &format!("disks: [{one}]\ntrain: {{axles: [0.0], load: 1.0e3, speed: 10.0}}\n"),
         ),
         &["`disks`", "`train` are both given"],
+    );
+}
+
+/// A listed disk's keys are swept as `disks.<k>.<field>`, k from 1 as errors name it: a k
+/// the list does not hold, or a field a disk does not have, is one sentence and exit 1; a
+/// number and a name are set on that disk alone.
+#[test]
+fn sweep_keys_of_listed_disks() {
+    let one = "{mass: 100, radius: 0.2, s0: 1.0, omega0: -10, coupling: moving-force}";
+    let path = scene_path(
+        "sweep-disks",
+        &beam_scene(&[], &format!("disks:\n  - {one}\n  - {one}\n")),
+    );
+    let p = path.to_str().expect("utf-8 path");
+    let out = format!("{p}.sweep");
+    for (set, needles) in [
+        (
+            "disks.3.s0=1:2:2",
+            vec!["`disks.3.s0`", "k from 1 to the 2 disks"],
+        ),
+        (
+            "disks.0.s0=1:2:2",
+            vec!["`disks.0.s0`", "k from 1 to the 2 disks"],
+        ),
+        (
+            "disks.2.nothing=1:2:2",
+            vec!["`disks.2.nothing`", "not a number"],
+        ),
+    ] {
+        let (code, err) = rollbeam(&["sweep", p, "--set", set, "--out", &out]);
+        assert_eq!(code, 1, "{set}: exit {code}, {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{set}: {err}");
+        for n in needles {
+            assert!(err.contains(n), "{set}: '{n}' missing from {err}");
+        }
+    }
+    let (code, err) = rollbeam(&[
+        "sweep",
+        p,
+        "--set",
+        "disks.2.s0=2:3:2",
+        "--set",
+        "disks.2.coupling=moving-mass",
+        "--out",
+        &out,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(format!("{out}/sweep.csv")).expect("sweep.csv");
+    assert!(
+        csv.starts_with("disks.2.s0,disks.2.coupling,status"),
+        "{csv}"
+    );
+    assert_eq!(
+        csv.lines().filter(|l| l.contains(",ok,")).count(),
+        2,
+        "{csv}"
     );
 }

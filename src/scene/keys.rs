@@ -5,7 +5,7 @@ use super::*;
 
 impl SceneSpec {
     /// Set the number at a dotted key of the scene format (`disk.omega0`, `track.beam.E`,
-    /// `track.beam.elements`, …), whether or not the file gives it. The changed scene is not
+    /// `track.beam.elements`, `disks.2.s0`, …), whether or not the file gives it. The changed scene is not
     /// checked here: [`SceneSpec::check`] does that.
     pub fn set(&mut self, key: &str, value: f64) -> Result<(), Error> {
         let f = &mut self.file;
@@ -87,17 +87,11 @@ impl SceneSpec {
                 let Some(d) = f.disk.as_mut() else {
                     return unset("disk");
                 };
-                let d = &mut d.value;
-                match field {
-                    "mass" => number(&mut d.mass),
-                    "radius" => number(&mut d.radius),
-                    "s0" => option(&mut d.s0),
-                    "omega0" => option(&mut d.omega0),
-                    "mu" => option(&mut d.mu),
-                    "patch" => option(&mut d.patch),
-                    "restitution" => option(&mut d.restitution),
-                    _ => return Err(not_a_number(key)),
-                }
+                set_disk(&mut d.value, field, value, key)?;
+            }
+            Some(("disks", rest)) => {
+                let (d, field) = listed_disk(f, rest, key)?;
+                set_disk(d, field, value, key)?;
             }
             Some(("train", field)) => {
                 let Some(t) = f.train.as_mut() else {
@@ -185,22 +179,20 @@ impl SceneSpec {
                     _ => b.initial = None,
                 }
             }
-            "disk.s0" | "disk.omega0" | "disk.mu" | "disk.patch" | "disk.coupling"
-            | "disk.formulation" | "disk.contact_loss" | "disk.restitution" => {
+            _ if key.starts_with("disk.") && DISK_OPTIONAL.contains(&&key["disk.".len()..]) => {
                 let Some(d) = f.disk.as_mut() else {
                     return no("disk");
                 };
-                let d = &mut d.value;
-                match key {
-                    "disk.s0" => d.s0 = None,
-                    "disk.omega0" => d.omega0 = None,
-                    "disk.mu" => d.mu = None,
-                    "disk.patch" => d.patch = None,
-                    "disk.coupling" => d.coupling = None,
-                    "disk.contact_loss" => d.contact_loss = None,
-                    "disk.restitution" => d.restitution = None,
-                    _ => d.formulation = None,
+                unset_disk(&mut d.value, &key["disk.".len()..]);
+            }
+            _ if key.starts_with("disks.") => {
+                let (d, field) = listed_disk(f, &key["disks.".len()..], key)?;
+                if !DISK_OPTIONAL.contains(&field) {
+                    return Err(Error::Input(format!(
+                        "`{key}` is not an optional key of the scene format"
+                    )));
                 }
+                unset_disk(d, field);
             }
             "solver.method" | "solver.rtol" | "solver.atol" | "solver.rho_inf"
             | "solver.accuracy" => {
@@ -248,17 +240,23 @@ impl SceneSpec {
         };
         match key {
             "name" => text(&mut f.name),
-            "disk.coupling" | "disk.formulation" | "disk.contact_loss" => {
+            _ if key
+                .strip_prefix("disk.")
+                .is_some_and(|field| DISK_NAMES.contains(&field)) =>
+            {
                 let Some(d) = f.disk.as_mut() else {
                     return Err(Error::Input(format!(
                         "`{key}` cannot be set: the scene has no disk"
                     )));
                 };
-                match key {
-                    "disk.coupling" => text(&mut d.value.coupling),
-                    "disk.formulation" => text(&mut d.value.formulation),
-                    _ => text(&mut d.value.contact_loss),
+                text(disk_name(&mut d.value, &key["disk.".len()..]));
+            }
+            _ if key.starts_with("disks.") => {
+                let (d, field) = listed_disk(f, &key["disks.".len()..], key)?;
+                if !DISK_NAMES.contains(&field) {
+                    return Err(Error::Input(format!("`{key}` does not take a name")));
                 }
+                text(disk_name(d, field));
             }
             "solver.method" => text(&mut f.solver.get_or_insert_with(SolverFile::default).method),
             "train.hslm" | "train.model" => {
@@ -305,7 +303,11 @@ impl SceneSpec {
                     _ => text(&mut b.value.initial),
                 }
             }
-            _ if key.starts_with("vehicles.") && key.ends_with(".wheel") => {
+            _ if key
+                .strip_prefix("vehicles.")
+                .and_then(|rest| rest.split_once('.'))
+                .is_some_and(|(_, field)| field == "wheel") =>
+            {
                 let name = &key["vehicles.".len()..key.len() - ".wheel".len()];
                 let mut any = false;
                 for v in f.vehicles.iter_mut().flat_map(|l| l.value.iter_mut()) {
@@ -323,11 +325,88 @@ impl SceneSpec {
             }
             _ => {
                 return Err(Error::Input(format!(
-                    "`{key}` does not take a name (a number key is swept as `{key}=FROM:TO:COUNT`); the keys that take names are name, disk.coupling, disk.formulation, disk.contact_loss, solver.method, train.hslm, train.model, track.beam.model, track.beam.quadrature, track.beam.initial, track.beam.self_weight and vehicles.<name>.wheel"
+                    "`{key}` does not take a name (a number key is swept as `{key}=FROM:TO:COUNT`); the keys that take names are name, disk.coupling, disk.formulation, disk.contact_loss (and disks.<k>.coupling, disks.<k>.contact_loss), solver.method, train.hslm, train.model, track.beam.model, track.beam.quadrature, track.beam.initial, track.beam.self_weight and vehicles.<name>.wheel"
                 )))
             }
         }
         Ok(())
+    }
+}
+
+/// A disk's keys that may be left out, after `disk.` or `disks.<k>.`.
+const DISK_OPTIONAL: [&str; 8] = [
+    "s0",
+    "omega0",
+    "mu",
+    "patch",
+    "coupling",
+    "formulation",
+    "contact_loss",
+    "restitution",
+];
+
+/// A disk's keys that take a name, after `disk.` or `disks.<k>.`.
+const DISK_NAMES: [&str; 3] = ["coupling", "formulation", "contact_loss"];
+
+/// Disk k of the list `disks` (k from 1, as errors name it) and the field after it, from
+/// `<k>.<field>` of the key `key`.
+fn listed_disk<'f>(
+    f: &'f mut SceneFile,
+    rest: &'f str,
+    key: &str,
+) -> Result<(&'f mut DiskFile, &'f str), Error> {
+    let (k, field) = rest.split_once('.').unwrap_or((rest, ""));
+    let count = f.disks.as_ref().map_or(0, |l| l.value.len());
+    match k.parse::<usize>() {
+        Ok(k) if (1..=count).contains(&k) => {
+            let list = f.disks.as_mut().expect("counted above");
+            Ok((&mut list.value[k - 1].value, field))
+        }
+        _ => Err(Error::Input(format!(
+            "`{key}` cannot be changed: `disks.<k>` takes k from 1 to the {count} disks the scene lists"
+        ))),
+    }
+}
+
+/// Set the number `field` of a disk.
+fn set_disk(d: &mut DiskFile, field: &str, value: f64, key: &str) -> Result<(), Error> {
+    let option = |slot: &mut Option<Spanned<f64>>| match slot {
+        Some(s) => s.value = value,
+        None => *slot = Some(given(value)),
+    };
+    match field {
+        "mass" => d.mass.value = value,
+        "radius" => d.radius.value = value,
+        "s0" => option(&mut d.s0),
+        "omega0" => option(&mut d.omega0),
+        "mu" => option(&mut d.mu),
+        "patch" => option(&mut d.patch),
+        "restitution" => option(&mut d.restitution),
+        _ => return Err(not_a_number(key)),
+    }
+    Ok(())
+}
+
+/// Leave out the optional `field` of a disk (one of [`DISK_OPTIONAL`]).
+fn unset_disk(d: &mut DiskFile, field: &str) {
+    match field {
+        "s0" => d.s0 = None,
+        "omega0" => d.omega0 = None,
+        "mu" => d.mu = None,
+        "patch" => d.patch = None,
+        "coupling" => d.coupling = None,
+        "contact_loss" => d.contact_loss = None,
+        "restitution" => d.restitution = None,
+        _ => d.formulation = None,
+    }
+}
+
+/// The slot of a disk's name key `field` (one of [`DISK_NAMES`]).
+fn disk_name<'d>(d: &'d mut DiskFile, field: &str) -> &'d mut Option<Spanned<String>> {
+    match field {
+        "coupling" => &mut d.coupling,
+        "formulation" => &mut d.formulation,
+        _ => &mut d.contact_loss,
     }
 }
 
