@@ -161,6 +161,42 @@ def test_vehicles_from_a_dict_run_and_are_checked_as_files_are(tmp_path):
         assert e.value.key == key
 
 
+def test_several_disks_from_a_dict_run_and_name_their_columns():
+    """Two moving forces 10 m apart on D44's bridge, listed as `disks`: each has its own
+    history columns and summary entry in the list's order, leaving the beam at (20 − s0) / v;
+    a listed disk's keys are changed as disks.<k>.<field>, and a flawed disk is refused
+    naming its place in the list."""
+    beam = {
+        "from": [0.0, 0.0], "to": [20.0, 0.0], "E": 210.0e9, "G": 81.0e9, "rho": 7850,
+        "A": 181.0e-4, "Av": 46.8e-4, "I": 43190.0e-8, "depth": 0.36,
+        "supports": {"from": "pinned", "to": "roller"}, "elements": 4, "model": "modal",
+        "modes": 8,
+    }
+    disk = {"mass": 1500, "radius": 0.4, "omega0": -44, "coupling": "moving-force"}
+    scene = {
+        "duration": 1.2,
+        "track": {"beam": beam},
+        "disks": [{**disk, "s0": 10.0}, {**disk, "s0": 0.0}],
+        "output": {"probes": [{"name": "mid", "x": 10.0}]},
+    }
+    result = rollbeam.run(rollbeam.Scene(scene))
+    assert "disk" not in result.summary
+    first, second = result.summary["disks"]
+    assert first["left_track_t"] == pytest.approx(10.0 / 17.6, rel=1e-9)
+    assert second["left_track_t"] == pytest.approx(20.0 / 17.6, rel=1e-9)
+    s1, s2 = result.history["disk1.s"], result.history["disk2.s"]
+    on = ~np.isnan(s1)
+    assert np.allclose(s1[on] - s2[on], 10.0)
+    assert np.isnan(s1[-1]) and np.isnan(s2[-1])
+    moved = rollbeam.Scene(scene).with_values({"disks.2.s0": 5.0})
+    assert rollbeam.run(moved).summary["disks"][1]["left_track_t"] == pytest.approx(
+        15.0 / 17.6, rel=1e-9
+    )
+    with pytest.raises(rollbeam.SceneError) as e:
+        rollbeam.Scene({**scene, "disks": [{**disk, "s0": 1.0}, {**disk, "mass": -1.0}]})
+    assert e.value.key == "disks[2].mass"
+
+
 def test_scenes_pickle():
     scene = rollbeam.Scene.from_yaml(STUDIES / "bridge-d44.yaml").with_values({"disk.omega0": -30})
     back = pickle.loads(pickle.dumps(scene))
