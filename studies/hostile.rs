@@ -12,7 +12,13 @@ use std::time::{Duration, Instant};
 const HANG: Duration = Duration::from_secs(30);
 
 fn dir() -> PathBuf {
+    static FRESH: std::sync::Once = std::sync::Once::new();
     let d = std::env::temp_dir().join(format!("rollbeam-hostile-{}", std::process::id()));
+    // A folder left by an earlier process of the same id would hold plans these tests do
+    // not expect.
+    FRESH.call_once(|| {
+        let _ = std::fs::remove_dir_all(&d);
+    });
     std::fs::create_dir_all(&d).expect("temp dir");
     d
 }

@@ -192,37 +192,7 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
         (true, Some(t)) => train(f, t, b.length)?,
         (true, None) if !setup.vehicles.is_empty() => {}
         (true, None) => writeln!(f, "  disk: none (no disk unknowns)")?,
-        (false, _) => {
-            for (k, d) in setup.disks.iter().enumerate() {
-                let name = if setup.disks.len() == 1 {
-                    "disk".to_string()
-                } else {
-                    format!("disk{}", k + 1)
-                };
-                writeln!(
-                    f,
-                    "  {name}: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}){}",
-                    d.disk.mass,
-                    d.disk.radius,
-                    d.s0,
-                    d.omega0,
-                    d.coupling.name(),
-                    if d.coupling.rolls() {
-                        "1 more unknown: the contact point s"
-                    } else {
-                        "prescribed travel, no disk unknowns"
-                    },
-                    d.mu.map_or(String::new(), |m| format!(", mu = {m}"))
-                )?;
-                if d.coupling.rolls() {
-                    writeln!(f, "  {}", contact_loss(d.contact_loss))?;
-                }
-                patch(f, setup, d)?;
-            }
-            for w in setup.warnings() {
-                writeln!(f, "  warning: {w}")?;
-            }
-        }
+        (false, _) => disks(f, setup)?,
     }
     writeln!(
         f,
@@ -235,6 +205,40 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
             .collect::<Vec<_>>()
             .join(", ")
     )?;
+    Ok(())
+}
+
+/// Each disk on the beam, its coupling, contact and patch, and what its results depend on.
+fn disks(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
+    for (k, d) in setup.disks.iter().enumerate() {
+        let name = if setup.disks.len() == 1 {
+            "disk".to_string()
+        } else {
+            format!("disk{}", k + 1)
+        };
+        writeln!(
+            f,
+            "  {name}: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}){}",
+            d.disk.mass,
+            d.disk.radius,
+            d.s0,
+            d.omega0,
+            d.coupling.name(),
+            if d.coupling.rolls() {
+                "1 more unknown: the contact point s"
+            } else {
+                "prescribed travel, no disk unknowns"
+            },
+            d.mu.map_or(String::new(), |m| format!(", mu = {m}"))
+        )?;
+        if d.coupling.rolls() {
+            writeln!(f, "  {}", contact_loss(d.contact_loss))?;
+        }
+        patch(f, setup, d)?;
+    }
+    for w in setup.warnings() {
+        writeln!(f, "  warning: {w}")?;
+    }
     Ok(())
 }
 

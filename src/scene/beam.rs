@@ -837,39 +837,7 @@ pub(super) fn disk_on_beam(
             Ok,
         )?,
     };
-    let line = d
-        .contact_loss
-        .as_ref()
-        .map(|k| k.referenced.line())
-        .or(d.restitution.as_ref().map(|e| e.referenced.line()))
-        .unwrap_or(file.referenced.line());
-    let key = if d.contact_loss.is_some() {
-        format!("{at}.contact_loss")
-    } else {
-        format!("{at}.restitution")
-    };
-    let contact_loss = match (contact_loss(c, d, at)?, coupling) {
-        (Some(_), Coupling::MovingForce | Coupling::MovingMass) => {
-            return c.err(
-                line,
-                &key,
-                format!(
-                    "applies to a disk that can leave the beam; the {} coupling's load is held to the beam and never leaves it",
-                    coupling.name()
-                ),
-            );
-        }
-        (Some(ContactLoss::Fly { .. }), Coupling::Thesis) => {
-            return c.err(
-                line,
-                &key,
-                "asks the disk to fly off the beam, which only the consistent coupling does: the thesis coupling rolls the disk on the axis as if it were frozen, which gives a landing no meaning; write `contact_loss: stop` or use `coupling: consistent`",
-            );
-        }
-        (Some(loss), _) => loss,
-        (None, Coupling::Consistent) => ContactLoss::Fly { restitution: 0.0 },
-        (None, _) => ContactLoss::Stop,
-    };
+    let contact_loss = loss_on_beam(c, file, at, coupling)?;
     let s0_line =
         d.s0.as_ref()
             .map_or(file.referenced.line(), |s| s.referenced.line());
@@ -948,5 +916,50 @@ pub(super) fn disk_on_beam(
         gravity,
         patch,
         contact_loss,
+    })
+}
+
+/// What happens where disk `file` (named `at`) on a beam loses contact, as its coupling
+/// allows: `fly` only where the disk can leave the beam, and only with the consistent
+/// coupling; left out, it flies with the consistent coupling and stops with the others.
+fn loss_on_beam(
+    c: &Checker,
+    file: &Spanned<DiskFile>,
+    at: &str,
+    coupling: Coupling,
+) -> Result<ContactLoss, Error> {
+    let d = &file.value;
+    let line = d
+        .contact_loss
+        .as_ref()
+        .map(|k| k.referenced.line())
+        .or(d.restitution.as_ref().map(|e| e.referenced.line()))
+        .unwrap_or(file.referenced.line());
+    let key = if d.contact_loss.is_some() {
+        format!("{at}.contact_loss")
+    } else {
+        format!("{at}.restitution")
+    };
+    Ok(match (contact_loss(c, d, at)?, coupling) {
+        (Some(_), Coupling::MovingForce | Coupling::MovingMass) => {
+            return c.err(
+                line,
+                &key,
+                format!(
+                    "applies to a disk that can leave the beam; the {} coupling's load is held to the beam and never leaves it",
+                    coupling.name()
+                ),
+            );
+        }
+        (Some(ContactLoss::Fly { .. }), Coupling::Thesis) => {
+            return c.err(
+                line,
+                &key,
+                "asks the disk to fly off the beam, which only the consistent coupling does: the thesis coupling rolls the disk on the axis as if it were frozen, which gives a landing no meaning; write `contact_loss: stop` or use `coupling: consistent`",
+            );
+        }
+        (Some(loss), _) => loss,
+        (None, Coupling::Consistent) => ContactLoss::Fly { restitution: 0.0 },
+        (None, _) => ContactLoss::Stop,
     })
 }

@@ -19,19 +19,6 @@ impl SceneSpec {
             Some(s) => s.value = value,
             None => *slot = Some(given(value)),
         };
-        let whole = |slot: &mut Option<Spanned<i64>>| -> Result<(), Error> {
-            if value.fract() != 0.0 || value.abs() > 1e15 {
-                return Err(Error::Input(format!(
-                    "`{key}` takes a whole number (got {value})"
-                )));
-            }
-            let v = value as i64;
-            match slot {
-                Some(s) => s.value = v,
-                None => *slot = Some(given(v)),
-            }
-            Ok(())
-        };
         match key.split_once('.') {
             None => match key {
                 "gravity" => option(&mut f.gravity),
@@ -43,31 +30,7 @@ impl SceneSpec {
                     let Some(b) = f.track.value.beam.as_mut() else {
                         return unset("beam track");
                     };
-                    let b = &mut b.value;
-                    match field {
-                        "E" => number(&mut b.E),
-                        "G" => number(&mut b.G),
-                        "rho" => number(&mut b.rho),
-                        "A" => number(&mut b.A),
-                        "Av" => number(&mut b.Av),
-                        "I" => number(&mut b.I),
-                        "depth" => option(&mut b.depth),
-                        "elements" => whole(&mut b.elements)?,
-                        "order" => whole(&mut b.order)?,
-                        "modes" => whole(&mut b.modes)?,
-                        "damping.ratio" | "damping.alpha" | "damping.beta" => {
-                            let d = &mut b
-                                .damping
-                                .get_or_insert_with(|| given(DampingFile::default()))
-                                .value;
-                            match field {
-                                "damping.ratio" => option(&mut d.ratio),
-                                "damping.alpha" => option(&mut d.alpha),
-                                _ => option(&mut d.beta),
-                            }
-                        }
-                        _ => return Err(not_a_number(key)),
-                    }
+                    set_beam(&mut b.value, field, value, key)?;
                 }
                 Some(("curve", "parabola.k")) => {
                     match f
@@ -408,6 +371,56 @@ fn disk_name<'d>(d: &'d mut DiskFile, field: &str) -> &'d mut Option<Spanned<Str
         "formulation" => &mut d.formulation,
         _ => &mut d.contact_loss,
     }
+}
+
+/// Set the number `field` (after `track.beam.`) of a beam track.
+fn set_beam(b: &mut BeamFile, field: &str, value: f64, key: &str) -> Result<(), Error> {
+    let number = |slot: &mut Spanned<f64>| slot.value = value;
+    let option = |slot: &mut Option<Spanned<f64>>| match slot {
+        Some(s) => s.value = value,
+        None => *slot = Some(given(value)),
+    };
+    let whole = |slot: &mut Option<Spanned<i64>>| whole_number(slot, value, key);
+    match field {
+        "E" => number(&mut b.E),
+        "G" => number(&mut b.G),
+        "rho" => number(&mut b.rho),
+        "A" => number(&mut b.A),
+        "Av" => number(&mut b.Av),
+        "I" => number(&mut b.I),
+        "depth" => option(&mut b.depth),
+        "elements" => whole(&mut b.elements)?,
+        "order" => whole(&mut b.order)?,
+        "modes" => whole(&mut b.modes)?,
+        "damping.ratio" | "damping.alpha" | "damping.beta" => {
+            let d = &mut b
+                .damping
+                .get_or_insert_with(|| given(DampingFile::default()))
+                .value;
+            match field {
+                "damping.ratio" => option(&mut d.ratio),
+                "damping.alpha" => option(&mut d.alpha),
+                _ => option(&mut d.beta),
+            }
+        }
+        _ => return Err(not_a_number(key)),
+    }
+    Ok(())
+}
+
+/// Set a whole-number key's `slot` to `value`, which must be whole.
+fn whole_number(slot: &mut Option<Spanned<i64>>, value: f64, key: &str) -> Result<(), Error> {
+    if value.fract() != 0.0 || value.abs() > 1e15 {
+        return Err(Error::Input(format!(
+            "`{key}` takes a whole number (got {value})"
+        )));
+    }
+    let v = value as i64;
+    match slot {
+        Some(s) => s.value = v,
+        None => *slot = Some(given(v)),
+    }
+    Ok(())
 }
 
 /// A value set rather than read: it has no line in the file.

@@ -43,120 +43,50 @@ pub(super) fn train(
         );
     }
     let speed = c.positive(&t.speed, "train.speed")?;
-    let model = match &t.model {
-        None => TrainModel::MovingForce,
-        Some(m) if m.value == "moving-force" => TrainModel::MovingForce,
-        Some(m) if m.value == "moving-mass" => {
-            if !(gravity > 0.0) {
-                return c.err(
-                    m.referenced.line(),
-                    "train.model",
-                    format!("is moving-mass, whose axle masses are their loads over gravity, and gravity is {gravity}: give a positive `gravity`, or use moving-force"),
-                );
+    let model = train_model(c, t, gravity)?;
+    let (name, axles, loads) =
+        match (&t.hslm, &t.axles, &t.load) {
+            (Some(h), None, None) => {
+                let (axles, force) = hslm(&h.value).map_or_else(
+                    || {
+                        c.err(
+                            h.referenced.line(),
+                            "train.hslm",
+                            format!(
+                                "is {}; EN 1991-2's HSLM-A trains are {HSLM_NAMES}",
+                                quote(&h.value)
+                            ),
+                        )
+                    },
+                    Ok,
+                )?;
+                let loads = vec![force; axles.len()];
+                (h.value.clone(), axles, loads)
             }
-            TrainModel::MovingMass
-        }
-        Some(m) => {
-            return c.err(
-                m.referenced.line(),
-                "train.model",
-                format!(
-                    "is {}; a train's axles are moving-force or moving-mass",
-                    quote(&m.value)
-                ),
-            )
-        }
-    };
-    let (name, axles, loads) = match (&t.hslm, &t.axles, &t.load) {
-        (Some(h), None, None) => {
-            let (axles, force) = hslm(&h.value).map_or_else(
-                || {
-                    c.err(
-                        h.referenced.line(),
-                        "train.hslm",
-                        format!(
-                            "is {}; EN 1991-2's HSLM-A trains are {HSLM_NAMES}",
-                            quote(&h.value)
-                        ),
-                    )
-                },
-                Ok,
-            )?;
-            let loads = vec![force; axles.len()];
-            (h.value.clone(), axles, loads)
-        }
-        (Some(h), _, _) => {
-            return c.err(
+            (Some(h), _, _) => return c.err(
                 h.referenced.line(),
                 "train.hslm",
                 "names a train whose axles and loads are EN 1991-2's: leave `axles` and `load` out",
-            )
-        }
-        (None, Some(a), Some(l)) => {
-            let line = a.referenced.line();
-            let axles = a.value.clone();
-            if axles.is_empty() || axles.len() > MAX_AXLES {
-                return c.err(
-                    line,
-                    "train.axles",
-                    format!("must hold 1 to {MAX_AXLES} axles"),
-                );
+            ),
+            (None, Some(a), Some(l)) => {
+                let (axles, loads) = listed_axles(c, a, l, model)?;
+                ("axles".to_string(), axles, loads)
             }
-            if axles.iter().any(|x| !x.is_finite() || *x < 0.0)
-                || axles.windows(2).any(|w| w[1] <= w[0])
-            {
+            (None, Some(_), None) => {
                 return c.err(
-                    line,
-                    "train.axles",
-                    "must be distances behind the first axle (m), from 0 and increasing",
-                );
-            }
-            let loads = match &l.value {
-                AxleLoads::All(p) => vec![*p; axles.len()],
-                AxleLoads::Each(each) if each.len() == axles.len() => each.clone(),
-                AxleLoads::Each(each) => {
-                    return c.err(
-                        l.referenced.line(),
-                        "train.load",
-                        format!(
-                            "lists {} loads for {} axles: give one per axle, or one number for all",
-                            each.len(),
-                            axles.len()
-                        ),
-                    )
-                }
-            };
-            if loads.iter().any(|p| !p.is_finite()) {
-                return c.err(
-                    l.referenced.line(),
+                    file.referenced.line(),
                     "train.load",
-                    "must hold finite forces (N)",
-                );
+                    "is missing: give the force per axle (N), or one per axle",
+                )
             }
-            if model == TrainModel::MovingMass && loads.iter().any(|p| !(*p > 0.0)) {
+            (None, None, _) => {
                 return c.err(
-                        l.referenced.line(),
-                        "train.load",
-                        "must hold positive forces (N) with moving-mass, whose axle masses are the loads over gravity",
-                    );
+                    file.referenced.line(),
+                    "train",
+                    "needs `hslm` (A1 to A10), or `axles` and `load`",
+                )
             }
-            ("axles".to_string(), axles, loads)
-        }
-        (None, Some(_), None) => {
-            return c.err(
-                file.referenced.line(),
-                "train.load",
-                "is missing: give the force per axle (N), or one per axle",
-            )
-        }
-        (None, None, _) => {
-            return c.err(
-                file.referenced.line(),
-                "train",
-                "needs `hslm` (A1 to A10), or `axles` and `load`",
-            )
-        }
-    };
+        };
     if model == TrainModel::MovingMass {
         let span = (beam.to[0] - beam.from[0]).hypot(beam.to[1] - beam.from[1]);
         let most = most_within(&axles, span);
@@ -181,4 +111,89 @@ pub(super) fn train(
         masses,
         patch: patch::dispersed_half_width(beam.depth),
     })
+}
+
+/// How a train's axles act: moving forces (the default) or moving masses, whose masses are
+/// their loads over a positive gravity.
+fn train_model(c: &Checker, t: &TrainFile, gravity: f64) -> Result<TrainModel, Error> {
+    Ok(match &t.model {
+        None => TrainModel::MovingForce,
+        Some(m) if m.value == "moving-force" => TrainModel::MovingForce,
+        Some(m) if m.value == "moving-mass" => {
+            if !(gravity > 0.0) {
+                return c.err(
+                    m.referenced.line(),
+                    "train.model",
+                    format!("is moving-mass, whose axle masses are their loads over gravity, and gravity is {gravity}: give a positive `gravity`, or use moving-force"),
+                );
+            }
+            TrainModel::MovingMass
+        }
+        Some(m) => {
+            return c.err(
+                m.referenced.line(),
+                "train.model",
+                format!(
+                    "is {}; a train's axles are moving-force or moving-mass",
+                    quote(&m.value)
+                ),
+            )
+        }
+    })
+}
+
+/// A train's own axles (distances behind the first, from 0 and increasing) and their loads
+/// (one for all, or one each; positive for moving masses).
+fn listed_axles(
+    c: &Checker,
+    a: &Spanned<Vec<f64>>,
+    l: &Spanned<AxleLoads>,
+    model: TrainModel,
+) -> Result<(Vec<f64>, Vec<f64>), Error> {
+    let line = a.referenced.line();
+    let axles = a.value.clone();
+    if axles.is_empty() || axles.len() > MAX_AXLES {
+        return c.err(
+            line,
+            "train.axles",
+            format!("must hold 1 to {MAX_AXLES} axles"),
+        );
+    }
+    if axles.iter().any(|x| !x.is_finite() || *x < 0.0) || axles.windows(2).any(|w| w[1] <= w[0]) {
+        return c.err(
+            line,
+            "train.axles",
+            "must be distances behind the first axle (m), from 0 and increasing",
+        );
+    }
+    let loads = match &l.value {
+        AxleLoads::All(p) => vec![*p; axles.len()],
+        AxleLoads::Each(each) if each.len() == axles.len() => each.clone(),
+        AxleLoads::Each(each) => {
+            return c.err(
+                l.referenced.line(),
+                "train.load",
+                format!(
+                    "lists {} loads for {} axles: give one per axle, or one number for all",
+                    each.len(),
+                    axles.len()
+                ),
+            )
+        }
+    };
+    if loads.iter().any(|p| !p.is_finite()) {
+        return c.err(
+            l.referenced.line(),
+            "train.load",
+            "must hold finite forces (N)",
+        );
+    }
+    if model == TrainModel::MovingMass && loads.iter().any(|p| !(*p > 0.0)) {
+        return c.err(
+                l.referenced.line(),
+                "train.load",
+                "must hold positive forces (N) with moving-mass, whose axle masses are the loads over gravity",
+            );
+    }
+    Ok((axles, loads))
 }

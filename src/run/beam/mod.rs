@@ -435,6 +435,26 @@ struct WheelFlight {
     energy_lost: Option<f64>,
 }
 
+impl Ridden {
+    /// A beam nothing rides on: it vibrates alone from the start, in displacements `q` at
+    /// rest (`n` the model's unknowns).
+    fn nothing(q: Vec<f64>, n: usize) -> Ridden {
+        Ridden {
+            stop: Stop::End,
+            left_track_t: None,
+            disks_left: Vec::new(),
+            flights: Vec::new(),
+            then: Then::Alone {
+                t: 0.0,
+                q,
+                v: vec![0.0; n],
+            },
+            lost_contact: None,
+            wheel_flights: Vec::new(),
+        }
+    }
+}
+
 /// How the run goes on after the riders' phase.
 enum Then {
     /// It ended at t in state y (a stop, or the end of the run with the disk on).
@@ -488,11 +508,7 @@ pub fn run(
         beam: &beam,
         loaded: &loaded,
         coupled: coupled.as_ref(),
-        nz: match (&coupled, &vehicles) {
-            (Some(c), _) => c.dim(),
-            (None, Some(v)) => v.dim(),
-            (None, None) => loaded.dim(),
-        },
+        nz: unknowns_of(&loaded, coupled.as_ref(), vehicles.as_ref()),
         mass_lu: &mass_lu,
         correct: !over.uncorrected_modes,
         flying: None,
@@ -516,19 +532,7 @@ pub fn run(
             scene, setup, &loaded, c, literal, &start, &outputs, &mut opts, &mut rec, &mut stats,
         )?,
         (None, Some(v)) => drive(scene, v, &y0, &outputs, &opts, &mut rec, &mut stats)?,
-        (None, None) => Ridden {
-            stop: Stop::End,
-            left_track_t: None,
-            disks_left: Vec::new(),
-            flights: Vec::new(),
-            then: Then::Alone {
-                t: 0.0,
-                q: loaded.from_mesh(&start),
-                v: vec![0.0; loaded.dim()],
-            },
-            lost_contact: None,
-            wheel_flights: Vec::new(),
-        },
+        (None, None) => Ridden::nothing(loaded.from_mesh(&start), loaded.dim()),
     };
     let (t_end, y_end) = match &ridden.then {
         Then::Ended { t, y } => (*t, y.clone()),
@@ -543,16 +547,29 @@ pub fn run(
         )?,
     };
 
-    let unknowns = match (&coupled, &vehicles) {
-        (None, Some(v)) => v.dim(),
-        (None, None) => loaded.dim(),
-        (Some(_), _) if literal => loaded.dim() + 6,
-        (Some(c), _) => c.dim(),
+    let unknowns = if literal {
+        loaded.dim() + 6
+    } else {
+        unknowns_of(&loaded, coupled.as_ref(), vehicles.as_ref())
     };
     let recorded = Recorded::from(rec, &y_end);
     Ok(collect(
         scene, setup, &opts, unknowns, ridden, t_end, stats, recorded, damping, beam,
     ))
+}
+
+/// The unknowns z of the model that rides first: the disks' (the beam's and their contact
+/// coordinates), the vehicles' (the beam's and their bodies'), or the beam's alone.
+fn unknowns_of(
+    loaded: &LoadedBeam,
+    coupled: Option<&DiskOnBeam>,
+    vehicles: Option<&VehiclesOnBeam>,
+) -> usize {
+    match (coupled, vehicles) {
+        (Some(c), _) => c.dim(),
+        (None, Some(v)) => v.dim(),
+        (None, None) => loaded.dim(),
+    }
 }
 
 /// The modes of a modal beam, the damping resolved, and the lowest circular frequency (0
