@@ -205,11 +205,11 @@ impl<'a> Ledger<'a> {
     /// speed, a train's axles, and the drive of the vehicles.
     fn moving_power(phase: &Phase, t: f64, y: &[f64]) -> f64 {
         let disk = match phase.coupled {
-            Some(c) if !c.disk_in_system() => {
+            Some(c) => {
                 let (z, zd) = phase.split(y);
                 c.power_on_beam(t, z, zd)
             }
-            _ => 0.0,
+            None => 0.0,
         };
         let train = if phase.loaded.train.is_some() {
             let n = phase.loaded.dim();
