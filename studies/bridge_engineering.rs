@@ -284,14 +284,7 @@ fn recorded_acceleration_is_the_deflection_differentiated_twice() {
 /// The bridge (D44's beam, of the given model) carrying a train instead of the disk, as scene
 /// text: `train` is the train block's body.
 fn bridge_with_train(model: &str, train: &str, duration: f64) -> rollbeam::scene::Scene {
-    let text = std::fs::read_to_string(common::studies_dir().join("bridge-d44.yaml")).unwrap();
-    let body: String = text
-        .lines()
-        .take_while(|l| !l.starts_with("disk:"))
-        .map(|l| format!("{l}\n"))
-        .collect::<String>()
-        .replace("duration: 3.0", &format!("duration: {duration}"))
-        .replace("    model: exact", &format!("    model: {model}"));
+    let body = common::d44_bridge_text(model, duration);
     common::parse(&format!(
         "{body}train:\n{train}output:\n  interval: 0.005\n  probes: [{{name: mid, x: 10.0}}]\n"
     ))

@@ -624,15 +624,8 @@ fn bridge_with_disks(model: &str, disks: &[String], duration: f64) -> Scene {
 
 /// [`bridge_with_disks`] as scene text.
 fn bridge_with_disks_text(model: &str, disks: &[String], duration: f64) -> String {
-    let text = std::fs::read_to_string(studies_dir().join("bridge-d44.yaml")).unwrap();
-    let body: String = text
-        .lines()
-        .take_while(|l| !l.starts_with("disk:"))
-        .map(|l| format!("{l}\n"))
-        .collect::<String>()
-        .replace("duration: 3.0", &format!("duration: {duration}"))
-        .replace("    elements: 10", "    elements: 4")
-        .replace("    model: exact", &format!("    model: {model}"));
+    let body =
+        common::d44_bridge_text(model, duration).replace("    elements: 10", "    elements: 4");
     let list: String = disks.iter().map(|d| format!("  - {d}\n")).collect();
     format!("{body}disks:\n{list}output:\n  interval: 0.005\n  probes: [{{name: mid, x: 10.0}}]\n")
 }

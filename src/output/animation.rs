@@ -103,37 +103,69 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
         animate("points", &points)
     );
     if r.setup.disk().is_some() {
-        let r_px = radius * k;
-        let (cx, cy) = (coord(|p| p.0), coord(|p| p.1));
-        let (rx, ry) = (rim(|p| p.0), rim(|p| p.1));
-        // The first frame as plain attributes, for viewers that do not animate.
-        let _ = writeln!(
-            svg,
-            r##"<g>{}<circle r="{r_px:.1}" cx="{}" cy="{}" fill="#f2c14e" stroke="#333" stroke-width="2">{}{}</circle><line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#333" stroke-width="2">{}{}{}{}</line></g>"##,
-            animate("opacity", &opacity),
-            cx[0],
-            cy[0],
-            animate("cx", &cx),
-            animate("cy", &cy),
-            cx[0],
-            cy[0],
-            rx[0],
-            ry[0],
-            animate("x1", &cx),
-            animate("y1", &cy),
-            animate("x2", &rx),
-            animate("y2", &ry),
-        );
+        disk_group(&mut svg, (&coord, &rim), &opacity, radius * k, &animate);
     }
-    // Each wheel a dot on the magnified axis while it is on the deck.
+    wheel_dots(&mut svg, r, &shapes, &to_svg, &animate, [x0, y0]);
+    svg.push_str("</svg>\n");
+    write(path, &svg)
+}
+
+/// A column of an animation: the attribute's values, frame by frame.
+type Values = Vec<String>;
+
+/// The disk: a circle at its centre and a spoke to its rim, frame by frame (`coord` and `rim`
+/// give the x or y values of each), faded while it flies (`opacity`).
+fn disk_group(
+    svg: &mut String,
+    (coord, rim): (
+        &dyn Fn(fn((f64, f64)) -> f64) -> Values,
+        &dyn Fn(fn((f64, f64)) -> f64) -> Values,
+    ),
+    opacity: &[String],
+    r_px: f64,
+    animate: &dyn Fn(&str, &[String]) -> String,
+) {
+    let (cx, cy) = (coord(|p| p.0), coord(|p| p.1));
+    let (rx, ry) = (rim(|p| p.0), rim(|p| p.1));
+    // The first frame as plain attributes, for viewers that do not animate.
+    let _ = writeln!(
+        svg,
+        r##"<g>{}<circle r="{r_px:.1}" cx="{}" cy="{}" fill="#f2c14e" stroke="#333" stroke-width="2">{}{}</circle><line x1="{}" y1="{}" x2="{}" y2="{}" stroke="#333" stroke-width="2">{}{}{}{}</line></g>"##,
+        animate("opacity", &opacity),
+        cx[0],
+        cy[0],
+        animate("cx", &cx),
+        animate("cy", &cy),
+        cx[0],
+        cy[0],
+        rx[0],
+        ry[0],
+        animate("x1", &cx),
+        animate("y1", &cy),
+        animate("x2", &rx),
+        animate("y2", &ry),
+    );
+}
+
+/// Each wheel a dot on the magnified axis `shapes` while it is on the deck; `fallback` where
+/// one never is.
+fn wheel_dots(
+    svg: &mut String,
+    r: &BeamRun,
+    shapes: &[Vec<[f64; 2]>],
+    to_svg: &dyn Fn([f64; 2]) -> (f64, f64),
+    animate: &dyn Fn(&str, &[String]) -> String,
+    fallback: [f64; 2],
+) {
+    let frames = &r.frames;
     let wheels = frames.first().map_or(0, |f| f.wheels.len());
     for j in 0..wheels {
         let at: Vec<Option<[f64; 2]>> = frames
             .iter()
-            .zip(&shapes)
+            .zip(shapes)
             .map(|(f, pts)| on_axis(&r.envelope.x, pts, r.beam.length, f.wheels[j]))
             .collect();
-        let first = at.iter().flatten().next().copied().unwrap_or([x0, y0]);
+        let first = at.iter().flatten().next().copied().unwrap_or(fallback);
         let placed: Vec<(f64, f64)> = at.iter().map(|p| to_svg(p.unwrap_or(first))).collect();
         let cx: Vec<String> = placed.iter().map(|p| format!("{:.1}", p.0)).collect();
         let cy: Vec<String> = placed.iter().map(|p| format!("{:.1}", p.1)).collect();
@@ -152,8 +184,6 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
             animate("opacity", &shown),
         );
     }
-    svg.push_str("</svg>\n");
-    write(path, &svg)
 }
 
 /// The point of the magnified axis `pts` (at the stations `xs`) at material point x, while x

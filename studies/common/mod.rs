@@ -242,3 +242,15 @@ pub fn superposition_error(full: &BeamRun, parts: &[BeamRun]) -> (f64, f64) {
         .fold(0.0, f64::max);
     (worst, peak)
 }
+
+/// D44's bridge (`bridge-d44.yaml` up to its disk) of the given model, running `duration` s:
+/// the scene text a test puts its own riders and outputs after.
+pub fn d44_bridge_text(model: &str, duration: f64) -> String {
+    let text = std::fs::read_to_string(studies_dir().join("bridge-d44.yaml")).unwrap();
+    text.lines()
+        .take_while(|l| !l.starts_with("disk:"))
+        .map(|l| format!("{l}\n"))
+        .collect::<String>()
+        .replace("duration: 3.0", &format!("duration: {duration}"))
+        .replace("    model: exact", &format!("    model: {model}"))
+}
