@@ -349,7 +349,14 @@ pub fn summary_yaml(r: &BeamRun) -> Result<String, Error> {
             modes: r.beam.spec.model.modes(),
             damping: r.damping,
             unknowns: r.header.unknowns,
-            coupling: r.setup.disk().map(|d| d.coupling.name()),
+            // Several disks share a coupling here only where they all have it; each disk's
+            // summary names its own.
+            coupling: r
+                .setup
+                .disk()
+                .map(|d| d.coupling)
+                .filter(|c| r.setup.disks.iter().all(|d| d.coupling == *c))
+                .map(|c| c.name()),
             elements: r.beam.spec.elements,
             order: r.beam.spec.order,
             quadrature: r.beam.spec.quadrature.name(),

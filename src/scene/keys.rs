@@ -65,22 +65,7 @@ impl SceneSpec {
                     _ => return Err(not_a_number(key)),
                 }
             }
-            Some(("vehicles", rest)) => {
-                let Some((name, field)) = rest.split_once('.') else {
-                    return Err(not_a_number(key));
-                };
-                // `*` sets the key on every vehicle: a train of vehicles runs at one speed.
-                let mut any = false;
-                for v in f.vehicles.iter_mut().flat_map(|l| l.value.iter_mut()) {
-                    if name == "*" || v.value.name.value == name {
-                        set_vehicle(&mut v.value, field, value, key)?;
-                        any = true;
-                    }
-                }
-                if !any {
-                    return unset(&format!("vehicle named {}", quote(name)));
-                }
-            }
+            Some(("vehicles", rest)) => set_vehicles(f, rest, value, key)?,
             Some(("solver", field)) => {
                 let s = f.solver.get_or_insert_with(SolverFile::default);
                 match field {
@@ -426,6 +411,28 @@ fn whole_number(slot: &mut Option<Spanned<i64>>, value: f64, key: &str) -> Resul
 /// A value set rather than read: it has no line in the file.
 pub(super) fn given<T>(value: T) -> Spanned<T> {
     Spanned::new(value, Location::UNKNOWN, Location::UNKNOWN)
+}
+
+/// Set `<name>.<field>` (after `vehicles.`) on the vehicle named, or with `*` on every one.
+fn set_vehicles(f: &mut SceneFile, rest: &str, value: f64, key: &str) -> Result<(), Error> {
+    let Some((name, field)) = rest.split_once('.') else {
+        return Err(not_a_number(key));
+    };
+    // `*` sets the key on every vehicle: a train of vehicles runs at one speed.
+    let mut any = false;
+    for v in f.vehicles.iter_mut().flat_map(|l| l.value.iter_mut()) {
+        if name == "*" || v.value.name.value == name {
+            set_vehicle(&mut v.value, field, value, key)?;
+            any = true;
+        }
+    }
+    if !any {
+        return Err(Error::Input(format!(
+            "`{key}` cannot be set: the scene has no vehicle named {}",
+            quote(name)
+        )));
+    }
+    Ok(())
 }
 
 /// Set `field` (after `vehicles.<name>.`) of one vehicle to `value`.
