@@ -383,6 +383,14 @@ fn series(w2: f64, c: f64, hp: f64, g: &[f64], x0: f64, v0: f64) -> Vec<f64> {
         let gk = g.get(k).copied().unwrap_or(0.0) * hp * hp;
         s[k + 2] = (gk - ch * (k + 1) as f64 * s[k + 1] - w2h2 * s[k]) / ((k + 2) * (k + 1)) as f64;
     }
+    // The terms past the last above round-off of the largest add nothing at ς ≤ 1 (nor to the
+    // rate, k ≤ SERIES_TERMS times them); every evaluation within the step sums fewer.
+    let largest = s.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let kept = s
+        .iter()
+        .rposition(|v| v.abs() > 1e-18 * largest)
+        .map_or(1, |k| k + 1);
+    s.truncate(kept);
     s
 }
 
