@@ -25,7 +25,7 @@ use crate::error::{quote, Error};
 use crate::files::{read_text, write_whole};
 use crate::output::{io_error, yaml};
 use crate::plan::Planner;
-use crate::run::{self, Overrides, Run};
+use crate::run::{Overrides, Run};
 use crate::scene::SceneSpec;
 
 /// Largest plan file read back: the ids of [`MAX_CASES`] cases with room to spare.
@@ -396,20 +396,14 @@ pub fn run_shard(
         .copied()
         .filter(|id| !record_path(dir, id).exists())
         .collect();
+    let planner = Planner::default();
     let outcomes = super::super::parallel::map(&todo, show_progress, |id| {
         let case = dir.join("cases").join(format!("{id}.yaml"));
         let spec = SceneSpec::parse(&case_text(dir, id)?, &case.display().to_string(), id)?;
         let values = case_values(&plan, &settings, id)?;
-        let outcome = Planner::default()
+        let outcome = planner
             .plan(&spec)
-            .and_then(|scene| {
-                let over = Overrides {
-                    no_envelope: true,
-                    ..Default::default()
-                };
-                run::run(&scene, &over, false)
-            })
-            .map(|r| summarise(&r))
+            .and_then(|scene| super::run_planned(&scene, &Overrides::default()))
             .map_err(|e| e.to_string());
         let record = Record::of(&row((values, outcome)));
         write_whole(&record_path(dir, id), &record.to_yaml()?)?;

@@ -341,8 +341,11 @@ pub fn run_cases(
     over: &Overrides,
     show_progress: bool,
 ) -> Vec<SweepRow> {
+    // The cases share one planner: those on one beam under one heaviest load plan its mesh,
+    // model and ρ∞ once (the mesh's eigenproblems were a tenth of an HSLM case).
+    let planner = Planner::default();
     let outcomes = super::parallel::map(cases, show_progress, |case| {
-        run_case(spec, keys, case, over)
+        planned_case(&planner, spec, keys, case, over)
     });
     cases.iter().cloned().zip(outcomes).map(row).collect()
 }
@@ -354,15 +357,29 @@ pub fn run_case(
     values: &[Value],
     over: &Overrides,
 ) -> Result<Summary, String> {
+    planned_case(&Planner::default(), spec, keys, values, over)
+}
+
+fn planned_case(
+    planner: &Planner,
+    spec: &SceneSpec,
+    keys: &[String],
+    values: &[Value],
+    over: &Overrides,
+) -> Result<Summary, String> {
+    case_spec(spec, keys, values)
+        .and_then(|c| planner.plan(&c))
+        .and_then(|scene| run_planned(&scene, over))
+        .map_err(|e| e.to_string())
+}
+
+/// A planned case run as a sweep runs it: the envelope along the beam left unwatched.
+pub(crate) fn run_planned(scene: &crate::scene::Scene, over: &Overrides) -> Result<Summary, Error> {
     let over = Overrides {
         no_envelope: true,
         ..over.clone()
     };
-    case_spec(spec, keys, values)
-        .and_then(|c| Planner::default().plan(&c))
-        .and_then(|scene| run::run(&scene, &over, false))
-        .map(|r| summarise(&r))
-        .map_err(|e| e.to_string())
+    run::run(scene, &over, false).map(|r| summarise(&r))
 }
 
 /// A case's row from its values and outcome.
