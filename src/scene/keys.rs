@@ -1,472 +1,330 @@
-//! Editing a scene by dotted key (`disk.omega0`, `track.beam.E`): what `sweep --set`, the
-//! Python package's `with_values` and the tests change before the scene is checked again.
+//! Editing a scene by dotted key (`disk.omega0`, `track.beam.E`, `disks.2.s0`): what `sweep
+//! --set`, the Python package's `with_values` and the tests change before the scene is
+//! checked again. [`KEYS`] lists every key and what it holds; [`find`] matches a key to its
+//! row and `slots` to its place in the file; setting a number or a name, leaving a key out
+//! and every message about keys read those.
 
 use super::*;
 
-impl SceneSpec {
-    /// Set the number at a dotted key of the scene format (`disk.omega0`, `track.beam.E`,
-    /// `track.beam.elements`, `disks.2.s0`, …), whether or not the file gives it. The changed scene is not
-    /// checked here: [`SceneSpec::check`] does that.
-    pub fn set(&mut self, key: &str, value: f64) -> Result<(), Error> {
-        let f = &mut self.file;
-        let unset = |what: &str| {
-            Err(Error::Input(format!(
-                "`{key}` cannot be set: the scene has no {what}"
-            )))
-        };
-        let number = |slot: &mut Spanned<f64>| slot.value = value;
-        let option = |slot: &mut Option<Spanned<f64>>| match slot {
-            Some(s) => s.value = value,
-            None => *slot = Some(given(value)),
-        };
-        match key.split_once('.') {
-            None => match key {
-                "gravity" => option(&mut f.gravity),
-                "duration" => number(&mut f.duration),
-                _ => return Err(not_a_number(key)),
-            },
-            Some(("track", rest)) => match rest.split_once('.') {
-                Some(("beam", field)) => {
-                    let Some(b) = f.track.value.beam.as_mut() else {
-                        return unset("beam track");
-                    };
-                    set_beam(&mut b.value, field, value, key)?;
-                }
-                Some(("curve", "parabola.k")) => {
-                    match f
-                        .track
-                        .value
-                        .curve
-                        .as_mut()
-                        .and_then(|c| c.value.parabola.as_mut())
-                    {
-                        Some(p) => number(&mut p.k),
-                        None => return unset("parabola"),
-                    }
-                }
-                _ => return Err(not_a_number(key)),
-            },
-            Some(("disk", field)) => {
-                let Some(d) = f.disk.as_mut() else {
-                    return unset("disk");
-                };
-                set_disk(&mut d.value, field, value, key)?;
-            }
-            Some(("disks", rest)) => {
-                let (d, field) = listed_disk(f, rest, key)?;
-                set_disk(d, field, value, key)?;
-            }
-            Some(("train", field)) => {
-                let Some(t) = f.train.as_mut() else {
-                    return unset("train");
-                };
-                match field {
-                    "speed" => number(&mut t.value.speed),
-                    _ => return Err(not_a_number(key)),
-                }
-            }
-            Some(("vehicles", rest)) => set_vehicles(f, rest, value, key)?,
-            Some(("solver", field)) => {
-                let s = f.solver.get_or_insert_with(SolverFile::default);
-                match field {
-                    "rtol" => option(&mut s.rtol),
-                    "atol" => option(&mut s.atol),
-                    "rho_inf" => option(&mut s.rho_inf),
-                    "accuracy" => option(&mut s.accuracy),
-                    _ => return Err(not_a_number(key)),
-                }
-            }
-            Some(("output", field)) => {
-                let o = f.output.get_or_insert_with(OutputFile::default);
-                match field {
-                    "interval" => option(&mut o.interval),
-                    "magnify" => option(&mut o.magnify),
-                    "acceleration_cutoff_hz" => option(&mut o.acceleration_cutoff_hz),
-                    _ => return Err(not_a_number(key)),
-                }
-            }
-            _ => return Err(not_a_number(key)),
-        }
-        Ok(())
-    }
-
-    /// Leave out an optional key, so that its default applies (`output.shapes`, `solver.rtol`,
-    /// `track.beam.elements`, …).
-    pub fn unset(&mut self, key: &str) -> Result<(), Error> {
-        let f = &mut self.file;
-        let no = |what: &str| {
-            Err(Error::Input(format!(
-                "`{key}` cannot be left out: the scene has no {what}"
-            )))
-        };
-        match key {
-            "gravity" => f.gravity = None,
-            "loads" => f.loads = None,
-            "track.beam.elements"
-            | "track.beam.order"
-            | "track.beam.quadrature"
-            | "track.beam.initial"
-            | "track.beam.depth"
-            | "track.beam.model"
-            | "track.beam.modes"
-            | "track.beam.damping"
-            | "track.beam.self_weight" => {
-                let Some(b) = f.track.value.beam.as_mut() else {
-                    return no("beam track");
-                };
-                let b = &mut b.value;
-                match key {
-                    "track.beam.elements" => b.elements = None,
-                    "track.beam.order" => b.order = None,
-                    "track.beam.quadrature" => b.quadrature = None,
-                    "track.beam.depth" => b.depth = None,
-                    "track.beam.model" => b.model = None,
-                    "track.beam.modes" => b.modes = None,
-                    "track.beam.damping" => b.damping = None,
-                    "track.beam.self_weight" => b.self_weight = None,
-                    _ => b.initial = None,
-                }
-            }
-            _ if key.starts_with("disk.") && DISK_OPTIONAL.contains(&&key["disk.".len()..]) => {
-                let Some(d) = f.disk.as_mut() else {
-                    return no("disk");
-                };
-                unset_disk(&mut d.value, &key["disk.".len()..]);
-            }
-            _ if key.starts_with("disks.") => {
-                let (d, field) = listed_disk(f, &key["disks.".len()..], key)?;
-                if !DISK_OPTIONAL.contains(&field) {
-                    return Err(Error::Input(format!(
-                        "`{key}` is not an optional key of the scene format"
-                    )));
-                }
-                unset_disk(d, field);
-            }
-            "solver.method" | "solver.rtol" | "solver.atol" | "solver.rho_inf"
-            | "solver.accuracy" => {
-                if let Some(s) = f.solver.as_mut() {
-                    match key {
-                        "solver.method" => s.method = None,
-                        "solver.rtol" => s.rtol = None,
-                        "solver.atol" => s.atol = None,
-                        "solver.rho_inf" => s.rho_inf = None,
-                        _ => s.accuracy = None,
-                    }
-                }
-            }
-            "output.interval"
-            | "output.probes"
-            | "output.shapes"
-            | "output.magnify"
-            | "output.acceleration_cutoff_hz" => {
-                if let Some(o) = f.output.as_mut() {
-                    match key {
-                        "output.interval" => o.interval = None,
-                        "output.probes" => o.probes = None,
-                        "output.shapes" => o.shapes = None,
-                        "output.magnify" => o.magnify = None,
-                        _ => o.acceleration_cutoff_hz = None,
-                    }
-                }
-            }
-            _ => {
-                return Err(Error::Input(format!(
-                    "`{key}` is not an optional key of the scene format"
-                )))
-            }
-        }
-        Ok(())
-    }
-
-    /// Set the name at a dotted key of the scene format (`disk.coupling`, `solver.method`,
-    /// `track.beam.quadrature`, …), whether or not the file gives it.
-    pub fn set_name(&mut self, key: &str, value: &str) -> Result<(), Error> {
-        let f = &mut self.file;
-        let text = |slot: &mut Option<Spanned<String>>| match slot {
-            Some(s) => s.value = value.into(),
-            None => *slot = Some(given(value.to_string())),
-        };
-        match key {
-            "name" => text(&mut f.name),
-            _ if key
-                .strip_prefix("disk.")
-                .is_some_and(|field| DISK_NAMES.contains(&field)) =>
-            {
-                let Some(d) = f.disk.as_mut() else {
-                    return Err(Error::Input(format!(
-                        "`{key}` cannot be set: the scene has no disk"
-                    )));
-                };
-                text(disk_name(&mut d.value, &key["disk.".len()..]));
-            }
-            _ if key.starts_with("disks.") => {
-                let (d, field) = listed_disk(f, &key["disks.".len()..], key)?;
-                if !DISK_NAMES.contains(&field) {
-                    return Err(Error::Input(format!("`{key}` does not take a name")));
-                }
-                text(disk_name(d, field));
-            }
-            "solver.method" => text(&mut f.solver.get_or_insert_with(SolverFile::default).method),
-            "train.hslm" | "train.model" => {
-                let Some(t) = f.train.as_mut() else {
-                    return Err(Error::Input(format!(
-                        "`{key}` cannot be set: the scene has no train"
-                    )));
-                };
-                if key == "train.hslm" {
-                    text(&mut t.value.hslm);
-                    t.value.axles = None;
-                    t.value.load = None;
-                } else {
-                    text(&mut t.value.model);
-                }
-            }
-            "track.beam.self_weight" => {
-                let Some(b) = f.track.value.beam.as_mut() else {
-                    return Err(Error::Input(format!(
-                        "`{key}` cannot be set: the scene has no beam track"
-                    )));
-                };
-                let on = match value {
-                    "true" => true,
-                    "false" => false,
-                    _ => {
-                        return Err(Error::Input(format!(
-                            "`{key}` is true or false (got {})",
-                            quote(value)
-                        )))
-                    }
-                };
-                b.value.self_weight = Some(given(on));
-            }
-            "track.beam.quadrature" | "track.beam.initial" | "track.beam.model" => {
-                let Some(b) = f.track.value.beam.as_mut() else {
-                    return Err(Error::Input(format!(
-                        "`{key}` cannot be set: the scene has no beam track"
-                    )));
-                };
-                match key {
-                    "track.beam.quadrature" => text(&mut b.value.quadrature),
-                    "track.beam.model" => text(&mut b.value.model),
-                    _ => text(&mut b.value.initial),
-                }
-            }
-            _ if key
-                .strip_prefix("vehicles.")
-                .and_then(|rest| rest.split_once('.'))
-                .is_some_and(|(_, field)| field == "wheel") =>
-            {
-                let name = &key["vehicles.".len()..key.len() - ".wheel".len()];
-                let mut any = false;
-                for v in f.vehicles.iter_mut().flat_map(|l| l.value.iter_mut()) {
-                    if name == "*" || v.value.name.value == name {
-                        text(&mut v.value.wheel);
-                        any = true;
-                    }
-                }
-                if !any {
-                    return Err(Error::Input(format!(
-                        "`{key}` cannot be set: the scene has no vehicle named {}",
-                        quote(name)
-                    )));
-                }
-            }
-            _ => {
-                return Err(Error::Input(format!(
-                    "`{key}` does not take a name (a number key is swept as `{key}=FROM:TO:COUNT`); the keys that take names are name, disk.coupling, disk.formulation, disk.contact_loss (and disks.<k>.coupling, disks.<k>.contact_loss), solver.method, train.hslm, train.model, track.beam.model, track.beam.quadrature, track.beam.initial, track.beam.self_weight and vehicles.<name>.wheel"
-                )))
-            }
-        }
-        Ok(())
-    }
+/// What a key holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Holds {
+    Number,
+    /// A whole number.
+    Whole,
+    Name,
+    /// `true` or `false`.
+    Flag,
+    /// A section or a list, which an edit can only leave out.
+    Part,
 }
 
-/// A disk's keys that may be left out, after `disk.` or `disks.<k>.`.
-const DISK_OPTIONAL: [&str; 8] = [
-    "s0",
-    "omega0",
-    "mu",
-    "patch",
-    "coupling",
-    "formulation",
-    "contact_loss",
-    "restitution",
+/// A key of the scene format. In its path, `<k>` is a listed disk (from 1), `<name>` a
+/// vehicle's name (or `*`: every vehicle), `<part>` the name of one of its bodies or axles and
+/// `<i>` one of its springs (from 0). `disks.<k>.` takes every key `disk.` takes.
+#[derive(Clone, Copy, Debug)]
+pub struct Key {
+    pub path: &'static str,
+    pub holds: Holds,
+}
+
+const fn key(path: &'static str, holds: Holds) -> Key {
+    Key { path, holds }
+}
+
+use Holds::{Flag, Name, Number, Part, Whole};
+
+/// Every key an edit can reach.
+pub const KEYS: &[Key] = &[
+    key("name", Name),
+    key("gravity", Number),
+    key("duration", Number),
+    key("loads", Part),
+    key("track.curve.parabola.k", Number),
+    key("track.beam.E", Number),
+    key("track.beam.G", Number),
+    key("track.beam.rho", Number),
+    key("track.beam.A", Number),
+    key("track.beam.Av", Number),
+    key("track.beam.I", Number),
+    key("track.beam.depth", Number),
+    key("track.beam.elements", Whole),
+    key("track.beam.order", Whole),
+    key("track.beam.modes", Whole),
+    key("track.beam.quadrature", Name),
+    key("track.beam.initial", Name),
+    key("track.beam.model", Name),
+    key("track.beam.self_weight", Flag),
+    key("track.beam.damping", Part),
+    key("track.beam.damping.ratio", Number),
+    key("track.beam.damping.alpha", Number),
+    key("track.beam.damping.beta", Number),
+    key("disk.mass", Number),
+    key("disk.radius", Number),
+    key("disk.s0", Number),
+    key("disk.omega0", Number),
+    key("disk.mu", Number),
+    key("disk.patch", Number),
+    key("disk.restitution", Number),
+    key("disk.coupling", Name),
+    key("disk.formulation", Name),
+    key("disk.contact_loss", Name),
+    key("train.hslm", Name),
+    key("train.model", Name),
+    key("train.speed", Number),
+    key("vehicles.<name>.speed", Number),
+    key("vehicles.<name>.x0", Number),
+    key("vehicles.<name>.acceleration", Number),
+    key("vehicles.<name>.radius", Number),
+    key("vehicles.<name>.wheel", Name),
+    key("vehicles.<name>.springs.<i>.k", Number),
+    key("vehicles.<name>.springs.<i>.c", Number),
+    key("vehicles.<name>.<part>.mass", Number),
+    key("vehicles.<name>.<part>.inertia", Number),
+    key("solver.method", Name),
+    key("solver.rtol", Number),
+    key("solver.atol", Number),
+    key("solver.rho_inf", Number),
+    key("solver.accuracy", Number),
+    key("output.interval", Number),
+    key("output.probes", Part),
+    key("output.shapes", Part),
+    key("output.magnify", Number),
+    key("output.acceleration_cutoff_hz", Number),
 ];
 
-/// A disk's keys that take a name, after `disk.` or `disks.<k>.`.
-const DISK_NAMES: [&str; 3] = ["coupling", "formulation", "contact_loss"];
+/// A key matched to its row of [`KEYS`], with what its placeholders stand for.
+#[derive(Clone, Debug)]
+pub struct Found<'k> {
+    pub key: Key,
+    /// The listed disk, where the key is `disks.<k>.…` (as written: not yet checked).
+    disk: Option<&'k str>,
+    /// `<name>`, `<part>` and `<i>`, in the order the path names them.
+    names: Vec<&'k str>,
+}
 
-/// Disk k of the list `disks` (k from 1, as errors name it) and the field after it, from
-/// `<k>.<field>` of the key `key`.
-fn listed_disk<'f>(
-    f: &'f mut SceneFile,
-    rest: &'f str,
-    key: &str,
-) -> Result<(&'f mut DiskFile, &'f str), Error> {
-    let (k, field) = rest.split_once('.').unwrap_or((rest, ""));
-    let count = f.disks.as_ref().map_or(0, |l| l.value.len());
-    match k.parse::<usize>() {
-        Ok(k) if (1..=count).contains(&k) => {
-            let list = f.disks.as_mut().expect("counted above");
-            Ok((&mut list.value[k - 1].value, field))
+/// The row of [`KEYS`] a dotted key is, if any.
+pub fn find(dotted: &str) -> Option<Found<'_>> {
+    let (disk, rest) = match dotted.strip_prefix("disks.").map(|r| r.split_once('.')) {
+        Some(Some((k, field))) if !k.is_empty() => (Some(k), vec!["disk", field]),
+        Some(_) => return None,
+        None => (None, vec![dotted]),
+    };
+    let parts: Vec<&str> = rest.iter().flat_map(|p| p.split('.')).collect();
+    KEYS.iter().find_map(|key| {
+        let pattern: Vec<&str> = key.path.split('.').collect();
+        if pattern.len() != parts.len() {
+            return None;
         }
-        _ => Err(Error::Input(format!(
-            "`{key}` cannot be changed: `disks.<k>` takes k from 1 to the {count} disks the scene lists"
-        ))),
+        let mut names = Vec::new();
+        for (want, got) in pattern.iter().zip(&parts) {
+            if want.starts_with('<') && !got.is_empty() {
+                names.push(*got);
+            } else if want != got {
+                return None;
+            }
+        }
+        Some(Found {
+            key: *key,
+            disk,
+            names,
+        })
+    })
+}
+
+/// A key's place in the file.
+enum Slot<'f> {
+    /// A number the file must give.
+    Number(&'f mut Spanned<f64>),
+    /// A number the file may leave out.
+    MaybeNumber(&'f mut Option<Spanned<f64>>),
+    Whole(&'f mut Option<Spanned<i64>>),
+    Name(&'f mut Option<Spanned<String>>),
+    Flag(&'f mut Option<Spanned<bool>>),
+    Part(&'f mut dyn LeftOut),
+    /// The train's HSLM name, which replaces the axles and loads the file gives.
+    Hslm(&'f mut TrainFile),
+}
+
+/// What an edit can leave out whole.
+trait LeftOut {
+    fn leave_out(&mut self);
+}
+
+impl<T> LeftOut for Option<T> {
+    fn leave_out(&mut self) {
+        *self = None;
     }
 }
 
-/// Set the number `field` of a disk.
-fn set_disk(d: &mut DiskFile, field: &str, value: f64, key: &str) -> Result<(), Error> {
-    let option = |slot: &mut Option<Spanned<f64>>| match slot {
-        Some(s) => s.value = value,
-        None => *slot = Some(given(value)),
-    };
-    match field {
-        "mass" => d.mass.value = value,
-        "radius" => d.radius.value = value,
-        "s0" => option(&mut d.s0),
-        "omega0" => option(&mut d.omega0),
-        "mu" => option(&mut d.mu),
-        "patch" => option(&mut d.patch),
-        "restitution" => option(&mut d.restitution),
-        _ => return Err(not_a_number(key)),
-    }
-    Ok(())
+/// Why a key has no place in this scene: the end of "`key` cannot be set: …".
+struct Absent(String);
+
+fn no(what: &str) -> Absent {
+    Absent(format!("the scene has no {what}"))
 }
 
-/// Leave out the optional `field` of a disk (one of [`DISK_OPTIONAL`]).
-fn unset_disk(d: &mut DiskFile, field: &str) {
-    match field {
-        "s0" => d.s0 = None,
-        "omega0" => d.omega0 = None,
-        "mu" => d.mu = None,
-        "patch" => d.patch = None,
-        "coupling" => d.coupling = None,
-        "contact_loss" => d.contact_loss = None,
-        "restitution" => d.restitution = None,
-        _ => d.formulation = None,
+/// The places of a found key in the file (several for `vehicles.*.…`). A section that only
+/// holds optional keys (`solver`, `output`, a beam's `damping`) is made where `make`, and
+/// otherwise its keys have no place, which leaves nothing to do.
+fn slots<'f>(f: &'f mut SceneFile, found: &Found, make: bool) -> Result<Vec<Slot<'f>>, Absent> {
+    let path = found.key.path;
+    let (section, field) = path.split_once('.').unwrap_or((path, ""));
+    let one = |slot| Ok(vec![slot]);
+    match section {
+        "name" => one(Slot::Name(&mut f.name)),
+        "gravity" => one(Slot::MaybeNumber(&mut f.gravity)),
+        "duration" => one(Slot::Number(&mut f.duration)),
+        "loads" => one(Slot::Part(&mut f.loads)),
+        "track" => track_slot(&mut f.track.value, field, make).map(|s| s.into_iter().collect()),
+        "disk" => {
+            let d = match found.disk {
+                Some(k) => listed_disk(f, k)?,
+                None => &mut f.disk.as_mut().ok_or_else(|| no("disk"))?.value,
+            };
+            one(disk_slot(d, field))
+        }
+        "train" => {
+            let t = &mut f.train.as_mut().ok_or_else(|| no("train"))?.value;
+            one(match field {
+                "hslm" => Slot::Hslm(t),
+                "model" => Slot::Name(&mut t.model),
+                _ => Slot::Number(&mut t.speed),
+            })
+        }
+        "vehicles" => vehicle_slots(f, field, &found.names),
+        "solver" => Ok(solver_slot(&mut f.solver, field, make)
+            .into_iter()
+            .collect()),
+        _ => Ok(output_slot(&mut f.output, field, make)
+            .into_iter()
+            .collect()),
     }
 }
 
-/// The slot of a disk's name key `field` (one of [`DISK_NAMES`]).
-fn disk_name<'d>(d: &'d mut DiskFile, field: &str) -> &'d mut Option<Spanned<String>> {
-    match field {
-        "coupling" => &mut d.coupling,
-        "formulation" => &mut d.formulation,
-        _ => &mut d.contact_loss,
+fn track_slot<'f>(
+    t: &'f mut TrackFile,
+    field: &str,
+    make: bool,
+) -> Result<Option<Slot<'f>>, Absent> {
+    if field == "curve.parabola.k" {
+        let p = t.curve.as_mut().and_then(|c| c.value.parabola.as_mut());
+        return Ok(Some(Slot::Number(&mut p.ok_or_else(|| no("parabola"))?.k)));
     }
-}
-
-/// Set the number `field` (after `track.beam.`) of a beam track.
-fn set_beam(b: &mut BeamFile, field: &str, value: f64, key: &str) -> Result<(), Error> {
-    let number = |slot: &mut Spanned<f64>| slot.value = value;
-    let option = |slot: &mut Option<Spanned<f64>>| match slot {
-        Some(s) => s.value = value,
-        None => *slot = Some(given(value)),
-    };
-    let whole = |slot: &mut Option<Spanned<i64>>| whole_number(slot, value, key);
-    match field {
-        "E" => number(&mut b.E),
-        "G" => number(&mut b.G),
-        "rho" => number(&mut b.rho),
-        "A" => number(&mut b.A),
-        "Av" => number(&mut b.Av),
-        "I" => number(&mut b.I),
-        "depth" => option(&mut b.depth),
-        "elements" => whole(&mut b.elements)?,
-        "order" => whole(&mut b.order)?,
-        "modes" => whole(&mut b.modes)?,
-        "damping.ratio" | "damping.alpha" | "damping.beta" => {
+    let b = &mut t.beam.as_mut().ok_or_else(|| no("beam track"))?.value;
+    Ok(Some(match field.strip_prefix("beam.").unwrap_or(field) {
+        "E" => Slot::Number(&mut b.E),
+        "G" => Slot::Number(&mut b.G),
+        "rho" => Slot::Number(&mut b.rho),
+        "A" => Slot::Number(&mut b.A),
+        "Av" => Slot::Number(&mut b.Av),
+        "I" => Slot::Number(&mut b.I),
+        "depth" => Slot::MaybeNumber(&mut b.depth),
+        "elements" => Slot::Whole(&mut b.elements),
+        "order" => Slot::Whole(&mut b.order),
+        "modes" => Slot::Whole(&mut b.modes),
+        "quadrature" => Slot::Name(&mut b.quadrature),
+        "initial" => Slot::Name(&mut b.initial),
+        "model" => Slot::Name(&mut b.model),
+        "self_weight" => Slot::Flag(&mut b.self_weight),
+        "damping" => Slot::Part(&mut b.damping),
+        damping => {
+            if b.damping.is_none() && !make {
+                return Ok(None);
+            }
             let d = &mut b
                 .damping
                 .get_or_insert_with(|| given(DampingFile::default()))
                 .value;
-            match field {
-                "damping.ratio" => option(&mut d.ratio),
-                "damping.alpha" => option(&mut d.alpha),
-                _ => option(&mut d.beta),
-            }
+            Slot::MaybeNumber(match damping {
+                "damping.ratio" => &mut d.ratio,
+                "damping.alpha" => &mut d.alpha,
+                _ => &mut d.beta,
+            })
         }
-        _ => return Err(not_a_number(key)),
-    }
-    Ok(())
+    }))
 }
 
-/// Set a whole-number key's `slot` to `value`, which must be whole.
-fn whole_number(slot: &mut Option<Spanned<i64>>, value: f64, key: &str) -> Result<(), Error> {
-    if value.fract() != 0.0 || value.abs() > 1e15 {
-        return Err(Error::Input(format!(
-            "`{key}` takes a whole number (got {value})"
-        )));
+/// Disk k of the list `disks`, k from 1 as errors name it.
+fn listed_disk<'f>(f: &'f mut SceneFile, k: &str) -> Result<&'f mut DiskFile, Absent> {
+    let count = f.disks.as_ref().map_or(0, |l| l.value.len());
+    match k.parse::<usize>() {
+        Ok(k) if (1..=count).contains(&k) => {
+            let list = f.disks.as_mut().expect("counted above");
+            Ok(&mut list.value[k - 1].value)
+        }
+        _ => Err(Absent(format!(
+            "`disks.<k>` takes k from 1 to the {count} disks the scene lists"
+        ))),
     }
-    let v = value as i64;
-    match slot {
-        Some(s) => s.value = v,
-        None => *slot = Some(given(v)),
-    }
-    Ok(())
 }
 
-/// A value set rather than read: it has no line in the file.
-pub(super) fn given<T>(value: T) -> Spanned<T> {
-    Spanned::new(value, Location::UNKNOWN, Location::UNKNOWN)
+fn disk_slot<'f>(d: &'f mut DiskFile, field: &str) -> Slot<'f> {
+    match field {
+        "mass" => Slot::Number(&mut d.mass),
+        "radius" => Slot::Number(&mut d.radius),
+        "s0" => Slot::MaybeNumber(&mut d.s0),
+        "omega0" => Slot::MaybeNumber(&mut d.omega0),
+        "mu" => Slot::MaybeNumber(&mut d.mu),
+        "patch" => Slot::MaybeNumber(&mut d.patch),
+        "restitution" => Slot::MaybeNumber(&mut d.restitution),
+        "coupling" => Slot::Name(&mut d.coupling),
+        "formulation" => Slot::Name(&mut d.formulation),
+        _ => Slot::Name(&mut d.contact_loss),
+    }
 }
 
-/// Set `<name>.<field>` (after `vehicles.`) on the vehicle named, or with `*` on every one.
-fn set_vehicles(f: &mut SceneFile, rest: &str, value: f64, key: &str) -> Result<(), Error> {
-    let Some((name, field)) = rest.split_once('.') else {
-        return Err(not_a_number(key));
-    };
-    // `*` sets the key on every vehicle: a train of vehicles runs at one speed.
-    let mut any = false;
+/// `vehicles.<name>.…` on the vehicle named, or with `*` on every one (a train of vehicles
+/// runs at one speed).
+fn vehicle_slots<'f>(
+    f: &'f mut SceneFile,
+    field: &str,
+    names: &[&str],
+) -> Result<Vec<Slot<'f>>, Absent> {
+    let name = names[0];
+    let field = field.split_once('.').map_or(field, |(_, rest)| rest);
+    let mut out = Vec::new();
     for v in f.vehicles.iter_mut().flat_map(|l| l.value.iter_mut()) {
         if name == "*" || v.value.name.value == name {
-            set_vehicle(&mut v.value, field, value, key)?;
-            any = true;
+            out.push(vehicle_slot(&mut v.value, field, &names[1..])?);
         }
     }
-    if !any {
-        return Err(Error::Input(format!(
-            "`{key}` cannot be set: the scene has no vehicle named {}",
+    if out.is_empty() {
+        return Err(Absent(format!(
+            "the scene has no vehicle named {}",
             quote(name)
         )));
     }
-    Ok(())
+    Ok(out)
 }
 
-/// Set `field` (after `vehicles.<name>.`) of one vehicle to `value`.
-fn set_vehicle(v: &mut VehicleFile, field: &str, value: f64, key: &str) -> Result<(), Error> {
-    let name = v.name.value.clone();
-    let unset = |what: String| -> Result<(), Error> {
-        Err(Error::Input(format!(
-            "`{key}` cannot be set: vehicle {} has no {what}",
-            quote(&name)
-        )))
-    };
-    let option = |slot: &mut Option<Spanned<f64>>| match slot {
-        Some(s) => s.value = value,
-        None => *slot = Some(given(value)),
-    };
-    match field.split('.').collect::<Vec<_>>()[..] {
-        ["speed"] => v.speed.value = value,
-        ["x0"] => option(&mut v.x0),
-        ["acceleration"] => option(&mut v.acceleration),
-        ["radius"] => option(&mut v.radius),
-        ["springs", i, what @ ("k" | "c")] => {
-            let Some(s) = i
+fn vehicle_slot<'f>(
+    v: &'f mut VehicleFile,
+    field: &str,
+    names: &[&str],
+) -> Result<Slot<'f>, Absent> {
+    let whose = quote(&v.name.value);
+    let lacks = |what: String| Absent(format!("vehicle {whose} has no {what}"));
+    Ok(match field.rsplit('.').next().unwrap_or(field) {
+        "speed" => Slot::Number(&mut v.speed),
+        "x0" => Slot::MaybeNumber(&mut v.x0),
+        "acceleration" => Slot::MaybeNumber(&mut v.acceleration),
+        "radius" => Slot::MaybeNumber(&mut v.radius),
+        "wheel" => Slot::Name(&mut v.wheel),
+        what @ ("k" | "c") => {
+            let i = names[0];
+            let s = i
                 .parse::<usize>()
                 .ok()
                 .and_then(|i| v.springs.value.get_mut(i))
-            else {
-                return unset(format!("spring {i}"));
-            };
+                .ok_or_else(|| lacks(format!("spring {i}")))?;
             match what {
-                "k" => s.value.k.value = value,
-                _ => option(&mut s.value.c),
+                "k" => Slot::Number(&mut s.value.k),
+                _ => Slot::MaybeNumber(&mut s.value.c),
             }
         }
-        [part, what @ ("mass" | "inertia")] => {
+        what => {
+            let part = names[0];
             if let Some(b) = v
                 .bodies
                 .value
@@ -474,27 +332,294 @@ fn set_vehicle(v: &mut VehicleFile, field: &str, value: f64, key: &str) -> Resul
                 .find(|b| b.value.name.value == part)
             {
                 match what {
-                    "mass" => b.value.mass.value = value,
-                    _ => option(&mut b.value.inertia),
+                    "mass" => Slot::Number(&mut b.value.mass),
+                    _ => Slot::MaybeNumber(&mut b.value.inertia),
                 }
-            } else if let Some(a) = v
-                .axles
-                .value
-                .iter_mut()
-                .find(|a| a.value.name.value == part && what == "mass")
-            {
-                option(&mut a.value.mass)
             } else {
-                return unset(format!("body or axle {} with {what}", quote(part)));
+                let axle = v.axles.value.iter_mut();
+                match axle
+                    .filter(|_| what == "mass")
+                    .find(|a| a.value.name.value == part)
+                {
+                    Some(a) => Slot::MaybeNumber(&mut a.value.mass),
+                    None => return Err(lacks(format!("body or axle {} with {what}", quote(part)))),
+                }
             }
         }
-        _ => return Err(not_a_number(key)),
-    }
-    Ok(())
+    })
 }
 
-pub(super) fn not_a_number(key: &str) -> Error {
+fn solver_slot<'f>(s: &'f mut Option<SolverFile>, field: &str, make: bool) -> Option<Slot<'f>> {
+    let s = if make {
+        s.get_or_insert_with(SolverFile::default)
+    } else {
+        s.as_mut()?
+    };
+    Some(match field {
+        "method" => Slot::Name(&mut s.method),
+        "rtol" => Slot::MaybeNumber(&mut s.rtol),
+        "atol" => Slot::MaybeNumber(&mut s.atol),
+        "rho_inf" => Slot::MaybeNumber(&mut s.rho_inf),
+        _ => Slot::MaybeNumber(&mut s.accuracy),
+    })
+}
+
+fn output_slot<'f>(o: &'f mut Option<OutputFile>, field: &str, make: bool) -> Option<Slot<'f>> {
+    let o = if make {
+        o.get_or_insert_with(OutputFile::default)
+    } else {
+        o.as_mut()?
+    };
+    Some(match field {
+        "interval" => Slot::MaybeNumber(&mut o.interval),
+        "probes" => Slot::Part(&mut o.probes),
+        "shapes" => Slot::Part(&mut o.shapes),
+        "magnify" => Slot::MaybeNumber(&mut o.magnify),
+        _ => Slot::MaybeNumber(&mut o.acceleration_cutoff_hz),
+    })
+}
+
+/// What an edit does, for its messages.
+#[derive(Clone, Copy)]
+enum Edit {
+    Set,
+    LeaveOut,
+}
+
+impl Edit {
+    fn cannot(self, dotted: &str, why: Absent) -> Error {
+        let verb = match self {
+            Edit::Set => "set",
+            Edit::LeaveOut => "left out",
+        };
+        Error::Input(format!("`{dotted}` cannot be {verb}: {}", why.0))
+    }
+}
+
+impl SceneSpec {
+    /// The places of `dotted` in the file, or why it has none: `wrong` says why a key that is
+    /// not in [`KEYS`], or holds what `takes` refuses, cannot take the edit.
+    fn places(
+        &mut self,
+        dotted: &str,
+        edit: Edit,
+        takes: impl Fn(Holds) -> bool,
+        wrong: impl FnOnce() -> Error,
+    ) -> Result<Vec<Slot<'_>>, Error> {
+        let Some(found) = find(dotted).filter(|f| takes(f.key.holds)) else {
+            return Err(wrong());
+        };
+        slots(&mut self.file, &found, matches!(edit, Edit::Set))
+            .map_err(|why| edit.cannot(dotted, why))
+    }
+
+    /// Set the number at a dotted key of the scene format (`disk.omega0`, `track.beam.E`,
+    /// `track.beam.elements`, `disks.2.s0`, …), whether or not the file gives it. The changed
+    /// scene is not checked here: [`SceneSpec::check`] does that.
+    pub fn set(&mut self, dotted: &str, value: f64) -> Result<(), Error> {
+        let number = |h| matches!(h, Number | Whole);
+        for slot in self.places(dotted, Edit::Set, number, || not_a_number(dotted))? {
+            match slot {
+                Slot::Number(s) => s.value = value,
+                Slot::MaybeNumber(s) => put(s, value),
+                Slot::Whole(s) => put(s, whole_number(value, dotted)?),
+                _ => return Err(not_a_number(dotted)),
+            }
+        }
+        Ok(())
+    }
+
+    /// Leave out an optional key, so that its default applies (`output.shapes`, `solver.rtol`,
+    /// `track.beam.elements`, …).
+    pub fn unset(&mut self, dotted: &str) -> Result<(), Error> {
+        let required = || {
+            Error::Input(format!(
+                "`{dotted}` is not an optional key of the scene format"
+            ))
+        };
+        for slot in self.places(dotted, Edit::LeaveOut, |_| true, required)? {
+            match slot {
+                Slot::Number(_) | Slot::Hslm(_) => return Err(required()),
+                Slot::MaybeNumber(s) => *s = None,
+                Slot::Whole(s) => *s = None,
+                Slot::Name(s) => *s = None,
+                Slot::Flag(s) => *s = None,
+                Slot::Part(s) => s.leave_out(),
+            }
+        }
+        Ok(())
+    }
+
+    /// Set the name at a dotted key of the scene format (`disk.coupling`, `solver.method`,
+    /// `track.beam.quadrature`, …), whether or not the file gives it.
+    pub fn set_name(&mut self, dotted: &str, value: &str) -> Result<(), Error> {
+        let named = |h| matches!(h, Name | Flag);
+        let not_a_name = || {
+            let names: Vec<&str> = KEYS
+                .iter()
+                .filter(|k| named(k.holds))
+                .map(|k| k.path)
+                .collect();
+            Error::Input(format!(
+                "`{dotted}` does not take a name (a number key is swept as `{dotted}=FROM:TO:COUNT`); the keys that take names are {} (and disks.<k>.… as disk.…)",
+                names.join(", ")
+            ))
+        };
+        for slot in self.places(dotted, Edit::Set, named, not_a_name)? {
+            match slot {
+                Slot::Name(s) => put(s, value.to_string()),
+                Slot::Flag(s) => put(s, flag(value, dotted)?),
+                Slot::Hslm(t) => {
+                    put(&mut t.hslm, value.to_string());
+                    t.axles = None;
+                    t.load = None;
+                }
+                _ => return Err(not_a_name()),
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Set an optional value: where the file gives it, in its place (its line stays in messages).
+fn put<T>(slot: &mut Option<Spanned<T>>, value: T) {
+    match slot {
+        Some(s) => s.value = value,
+        None => *slot = Some(given(value)),
+    }
+}
+
+/// `value` as a whole number, which it must be.
+fn whole_number(value: f64, dotted: &str) -> Result<i64, Error> {
+    if value.fract() != 0.0 || value.abs() > 1e15 {
+        return Err(Error::Input(format!(
+            "`{dotted}` takes a whole number (got {value})"
+        )));
+    }
+    Ok(value as i64)
+}
+
+fn flag(value: &str, dotted: &str) -> Result<bool, Error> {
+    match value {
+        "true" => Ok(true),
+        "false" => Ok(false),
+        _ => Err(Error::Input(format!(
+            "`{dotted}` is true or false (got {})",
+            quote(value)
+        ))),
+    }
+}
+
+/// A value set rather than read: it has no line in the file.
+fn given<T>(value: T) -> Spanned<T> {
+    Spanned::new(value, Location::UNKNOWN, Location::UNKNOWN)
+}
+
+pub(super) fn not_a_number(dotted: &str) -> Error {
     Error::Input(format!(
-        "`{key}` is not a number the scene format holds (keys are dotted paths such as disk.omega0, track.beam.E or solver.rtol)"
+        "`{dotted}` is not a number the scene format holds (keys are dotted paths such as disk.omega0, track.beam.E or solver.rtol)"
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A file holding every section an edit can reach (read, not checked: a curve and a beam,
+    /// a disk and a list of them).
+    const EVERYTHING: &str = "
+name: all
+duration: 1.0
+track:
+  curve: {parabola: {k: 0.1}}
+  beam:
+    from: [0.0, 0.0]
+    to: [10.0, 0.0]
+    E: 1.0e9
+    G: 1.0e9
+    rho: 1000
+    A: 1.0
+    Av: 1.0
+    I: 1.0
+    supports: {from: pinned, to: roller}
+disk: {mass: 1.0, radius: 0.1}
+disks: [{mass: 1.0, radius: 0.1}, {mass: 2.0, radius: 0.1}]
+train: {hslm: A1, speed: 50.0}
+vehicles:
+  - name: car
+    speed: 10.0
+    bodies: [{name: body, mass: 100.0}]
+    axles: [{name: wheel, x: 0.0}]
+    springs: [{upper: body, lower: wheel, x: 0.0, k: 1.0e5}]
+";
+
+    fn everything() -> SceneSpec {
+        SceneSpec {
+            file: serde_saphyr::from_str(EVERYTHING).expect("the test file reads"),
+            source: "test".into(),
+            stem: "test".into(),
+        }
+    }
+
+    /// A row's path with its placeholders filled in as `EVERYTHING` names them.
+    fn example(path: &str) -> String {
+        path.replace("<name>", "car").replace("<i>", "0").replace(
+            "<part>",
+            if path.ends_with("inertia") {
+                "body"
+            } else {
+                "wheel"
+            },
+        )
+    }
+
+    /// Every row of the table has a place in a file that holds its section, and an edit of the
+    /// kind the row says reaches it: the table and the places agree.
+    #[test]
+    fn every_key_in_the_table_can_be_edited() {
+        for k in KEYS {
+            for dotted in [
+                example(k.path),
+                example(k.path).replacen("disk.", "disks.2.", 1),
+            ] {
+                let mut spec = everything();
+                let done = match k.holds {
+                    Number | Whole => spec.set(&dotted, 3.0),
+                    Name => spec.set_name(&dotted, "x"),
+                    Flag => spec.set_name(&dotted, "true"),
+                    Part => spec.unset(&dotted),
+                };
+                assert!(
+                    done.is_ok(),
+                    "{dotted}: {:?}",
+                    done.err().map(|e| e.to_string())
+                );
+            }
+        }
+    }
+
+    /// What no row matches, and a placeholder left empty, is no key.
+    #[test]
+    fn keys_outside_the_table_are_refused() {
+        for dotted in [
+            "",
+            "disk",
+            "disk.",
+            "disks.1",
+            "disks..mass",
+            "track.beam.E.x",
+            "vehicles.car..mass",
+        ] {
+            assert!(find(dotted).is_none(), "{dotted}");
+        }
+        let mut spec = everything();
+        assert!(spec.set("train.hslm", 1.0).is_err());
+        assert!(spec.set_name("track.beam.E", "steel").is_err());
+        assert!(spec.unset("track.beam.E").is_err());
+        assert!(spec
+            .set("disks.3.mass", 1.0)
+            .unwrap_err()
+            .to_string()
+            .contains("the 2 disks"));
+    }
 }

@@ -5,7 +5,7 @@
 //! problem is reported as one sentence with the file, the line and the key.
 //!
 //! Here: the public scene types, reading, and the check of the whole file. `file`: the file's
-//! structure as serde reads it; `keys`: editing by dotted key; `checker`: the reporter and the
+//! structure as serde reads it; `keys`: the table of dotted keys and editing by them; `checker`: the reporter and the
 //! bounds; `rolling`, `beam`, `train`: each section's checks; `yaml_error`: a YAML reader's
 //! error as one sentence.
 
