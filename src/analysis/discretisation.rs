@@ -233,72 +233,47 @@ pub fn choose(
 ) -> Discretisation {
     let order = order.unwrap_or(DEFAULT_ORDER);
     let admissible = |n: usize| n.div_ceil(multiple) * multiple;
-    let fallback_elements = admissible(FALLBACK_ELEMENTS);
-    let fallback = |why: &str| Discretisation {
+    let chosen = |elements: usize, excited_modes: usize, why: String| Discretisation {
         accuracy,
-        elements: elements.unwrap_or(fallback_elements),
+        elements,
         order,
-        excited_modes: 0,
-        why: format!(
-            "elements {} of degree {order}: {why}",
-            elements.unwrap_or(fallback_elements)
-        ),
+        excited_modes,
+        why,
+    };
+    let fallback = |why: &str| {
+        let n = elements.unwrap_or(admissible(FALLBACK_ELEMENTS));
+        chosen(n, 0, format!("elements {n} of degree {order}: {why}"))
     };
     let spec = BeamSpec {
         order,
         ..spec.clone()
     };
-    let mut pattern: Vec<([f64; 4], bool)> = loads
-        .iter()
-        .map(|l| ([l.x, l.force[0], l.force[1], l.mz], excites(l, start)))
-        .collect();
-    if let Some(weight) = weight {
-        pattern.extend(xs.iter().map(|&x| ([x, 0.0, -weight, 0.0], true)));
-    }
-    let no_static = "the supports leave a rigid-body motion, so no static deflection to estimate from (default mesh)";
+    let pattern = load_pattern(loads, weight, xs, start);
     // The modal estimate is dense: no mesh past MAX_NODES is ever analysed, however many
     // bearings or modes ask for one.
     let nodes = |elements: usize| elements * order + 1;
-    if nodes(admissible(ESTIMATION_ELEMENTS)) > MAX_NODES {
-        return Discretisation {
-            accuracy,
-            elements: elements.unwrap_or(multiple),
-            order,
-            excited_modes: 0,
-            why: format!(
-                "elements {} of degree {order}: a node at every bearing leaves a mesh too large for the modal estimate (more than {MAX_NODES} nodes), so one element per span",
-                elements.unwrap_or(multiple)
-            ),
-        };
+    let estimation_elements = admissible(ESTIMATION_ELEMENTS);
+    if nodes(estimation_elements) > MAX_NODES {
+        let n = elements.unwrap_or(multiple);
+        return chosen(n, 0, format!(
+            "elements {n} of degree {order}: a node at every bearing leaves a mesh too large for the modal estimate (more than {MAX_NODES} nodes), so one element per span"
+        ));
     }
     let drops = weight_drops(&spec, start);
-    let Some(est) = estimate(&spec, admissible(ESTIMATION_ELEMENTS), &pattern, drops, xs) else {
-        return fallback(no_static);
+    let Some(est) = estimate(&spec, estimation_elements, &pattern, drops, xs) else {
+        return fallback(NO_STATIC);
     };
-    let scale = est.static_at_probes.iter().fold(0.0_f64, |m, v| m.max(*v));
-    if !(scale > 0.0) {
+    let tol = accuracy / 4.0;
+    let Some((excited, scale)) = excited_modes(&est, tol) else {
         return fallback("the loads do not deflect the probes (default mesh)");
-    }
-    let within =
-        |a: &[f64], b: &[f64], tol: f64| a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol * scale);
-    let none = vec![0.0; xs.len()];
-    let excited = (0..est.truncated.len())
-        .rev()
-        .find(|&k| {
-            let before = if k == 0 { &none } else { &est.truncated[k - 1] };
-            !within(&est.truncated[k], before, accuracy / 4.0)
-        })
-        .map_or(1, |k| k + 1);
+    };
     if let Some(n) = elements {
-        return Discretisation {
-            accuracy,
-            elements: n,
-            order,
-            excited_modes: excited,
-            why: format!("elements {n} as the scene gives, of degree {order}"),
-        };
+        return chosen(
+            n,
+            excited,
+            format!("elements {n} as the scene gives, of degree {order}"),
+        );
     }
-    let estimation_elements = admissible(ESTIMATION_ELEMENTS);
     // The estimation mesh is often one of those the refinement visits.
     let on = |elements: usize| {
         if elements == estimation_elements {
@@ -308,30 +283,83 @@ pub fn choose(
         }
     };
     let largest = (MAX_NODES - 1) / order / 2 / multiple * multiple;
-    let mut n = admissible(excited.div_ceil(2).max(2)).min(largest.max(multiple));
-    let Some(mut coarse) = on(n) else {
-        return fallback(no_static);
-    };
+    let first = admissible(excited.div_ceil(2).max(2)).min(largest.max(multiple));
+    match refine(on, first, excited, (tol, tol * scale), nodes) {
+        Some((n, reason)) => chosen(n, excited, format!(
+            "elements {n} of degree {order}: the loads excite {excited} modes (each adds more than {tol:.1e} of the peak static deflection at the probes); {reason}"
+        )),
+        None => fallback(NO_STATIC),
+    }
+}
+
+const NO_STATIC: &str = "the supports leave a rigid-body motion, so no static deflection to estimate from (default mesh)";
+
+/// The loads as [`estimate`] takes them, each flagged where it excites the modes; the weight
+/// riding on the beam stands at each probe.
+fn load_pattern(
+    loads: &[PointLoad],
+    weight: Option<f64>,
+    xs: &[f64],
+    start: BeamStart,
+) -> Vec<([f64; 4], bool)> {
+    let mut pattern: Vec<([f64; 4], bool)> = loads
+        .iter()
+        .map(|l| ([l.x, l.force[0], l.force[1], l.mz], excites(l, start)))
+        .collect();
+    if let Some(weight) = weight {
+        pattern.extend(xs.iter().map(|&x| ([x, 0.0, -weight, 0.0], true)));
+    }
+    pattern
+}
+
+/// Whether each of a and b's entries are within `tol` of the other's.
+fn within(a: &[f64], b: &[f64], tol: f64) -> bool {
+    a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol)
+}
+
+/// How many modes the loads excite (the last whose share of the static deflection at a probe
+/// passes `tol` of the largest), and that largest deflection; `None` where the loads do not
+/// deflect the probes.
+fn excited_modes(est: &Estimate, tol: f64) -> Option<(usize, f64)> {
+    let scale = est.static_at_probes.iter().fold(0.0_f64, |m, v| m.max(*v));
+    if !(scale > 0.0) {
+        return None;
+    }
+    let none = vec![0.0; est.static_at_probes.len()];
+    let excited = (0..est.truncated.len())
+        .rev()
+        .find(|&k| {
+            let before = if k == 0 { &none } else { &est.truncated[k - 1] };
+            !within(&est.truncated[k], before, tol * scale)
+        })
+        .map_or(1, |k| k + 1);
+    Some((excited, scale))
+}
+
+/// Double the mesh from `n` elements until the highest excited mode's frequency moves by
+/// less than `tol` relative and the probes' static deflection by less than `deflection`, or a
+/// further doubling would pass [`MAX_NODES`]: the elements chosen and why; `None` where a
+/// mesh has no static deflection.
+fn refine(
+    on: impl Fn(usize) -> Option<Estimate>,
+    mut n: usize,
+    excited: usize,
+    (tol, deflection): (f64, f64),
+    nodes: impl Fn(usize) -> usize,
+) -> Option<(usize, String)> {
+    let mut coarse = on(n)?;
     loop {
-        let Some(fine) = on(2 * n) else {
-            return fallback(no_static);
-        };
+        let fine = on(2 * n)?;
         let k = excited.min(coarse.omega.len()) - 1;
         let df = (coarse.omega[k] - fine.omega[k]).abs() / fine.omega[k];
-        let ok = df <= accuracy / 4.0
-            && within(
-                &coarse.static_at_probes,
-                &fine.static_at_probes,
-                accuracy / 4.0,
-            );
+        let ok = df <= tol && within(&coarse.static_at_probes, &fine.static_at_probes, deflection);
         if ok || nodes(4 * n) > MAX_NODES {
             let f_hz = fine.omega[k] / std::f64::consts::TAU;
             let reason = if ok {
                 format!(
-                    "on {} elements mode {} ({f_hz:.4} Hz) moves by {df:.1e} and the static deflection at the probes by less than {:.1e}",
+                    "on {} elements mode {} ({f_hz:.4} Hz) moves by {df:.1e} and the static deflection at the probes by less than {tol:.1e}",
                     2 * n,
                     k + 1,
-                    accuracy / 4.0
                 )
             } else {
                 format!(
@@ -339,16 +367,7 @@ pub fn choose(
                     nodes(2 * n)
                 )
             };
-            return Discretisation {
-                accuracy,
-                elements: n,
-                order,
-                excited_modes: excited,
-                why: format!(
-                    "elements {n} of degree {order}: the loads excite {excited} modes (each adds more than {:.1e} of the peak static deflection at the probes); {reason}",
-                    accuracy / 4.0
-                ),
-            };
+            return Some((n, reason));
         }
         n *= 2;
         coarse = fine;

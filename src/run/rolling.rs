@@ -80,7 +80,30 @@ fn contact_quantities(d: &DiskObservation) -> Vec<f64> {
     vec![d.rn, d.rt, d.mu_needed().unwrap_or(f64::NAN)]
 }
 
-impl Recorder<'_> {
+impl<'a> Recorder<'a> {
+    fn new(
+        model: &'a dyn RollingModel,
+        first: &DiskObservation,
+        outputs: usize,
+        scene: &Scene,
+        show_progress: bool,
+    ) -> Self {
+        let (total, scale) = energy_of(first, 0.0);
+        Recorder {
+            model,
+            rows: Vec::with_capacity(outputs + 1),
+            energy: EnergyCheck::new(total, scale),
+            progress: if show_progress {
+                Progress::new(scene.duration)
+            } else {
+                None
+            },
+            impact: 0.0,
+            watch: Watch::new(3, Turning::OnTheSolution),
+            last: None,
+        }
+    }
+
     fn record(&mut self, row: Row) {
         let (total, scale) = energy_of(&row.disk, row.impact);
         self.energy.record(total, scale);
@@ -137,10 +160,20 @@ impl Observer for Recorder<'_> {
 /// is what they take.
 const RESOLVED_BOUNCE: f64 = 1e-8;
 
-/// How one phase of the run ended.
+/// What the disk does next: the run goes from phase to phase until one stops it.
 enum Phase {
-    Rolls { t: f64, y: Vec<f64> },
-    Stops { t: f64, stop: Stop, last: Row },
+    /// Rolls from (t, y).
+    Rolls {
+        t: f64,
+        y: Vec<f64>,
+    },
+    /// Leaves the track at the row where the normal force fell to zero.
+    Lifts(Row),
+    Stops {
+        t: f64,
+        stop: Stop,
+        last: Row,
+    },
 }
 
 pub fn run(
@@ -155,93 +188,56 @@ pub fn run(
     let opts = over.options(scene);
     let outputs = super::output_times(scene);
     let first = model.observe(0.0, &y0);
-    let mut rec = Recorder {
-        model: model.as_ref(),
-        rows: Vec::with_capacity(outputs.len() + 1),
-        energy: {
-            let (total, scale) = energy_of(&first, 0.0);
-            EnergyCheck::new(total, scale)
-        },
-        progress: if show_progress {
-            Progress::new(scene.duration)
-        } else {
-            None
-        },
-        impact: 0.0,
-        watch: Watch::new(3, Turning::OnTheSolution),
-        last: None,
-    };
+    let mut rec = Recorder::new(model.as_ref(), &first, outputs.len(), scene, show_progress);
     let mut stats = ode::Stats::default();
     let mut flights = Vec::new();
-    let (mut t, mut y) = (0.0, y0.clone());
     // A disk launched faster than the track can hold it (the normal force negative from the
     // start) leaves the track at once.
-    let launched = (first.rn < 0.0).then(|| Row {
-        t: 0.0,
-        disk: first,
-        gap: 0.0,
-        impact: 0.0,
-    });
-    if let Some(start) = launched {
+    let mut phase = if first.rn < 0.0 {
+        let start = Row {
+            t: 0.0,
+            disk: first,
+            gap: 0.0,
+            impact: 0.0,
+        };
         rec.record(start);
-    }
-    let mut pending = launched;
-    let (t_end, stop, last) = loop {
-        // Roll until the normal force falls to zero, unless the disk is off the track already.
-        let lift = match pending.take() {
-            Some(start) => start,
-            None => {
-                // Rows at the output times after this phase's start (and at t = 0 for the first).
-                let ahead: Vec<f64> = outputs
-                    .iter()
-                    .copied()
-                    .filter(|&o| o > t || (t == 0.0 && o == 0.0))
-                    .collect();
-                let out = ode::solve(
-                    model.as_ref(),
-                    t,
-                    &y,
-                    scene.duration,
-                    &ahead,
-                    &opts,
-                    &mut rec,
-                )
-                .map_err(|e| {
-                    Error::Solver(format!("scene {}: the solver failed: {e}", scene.name))
-                })?;
-                stats.add(&out.stats);
-                let last = Row {
-                    t: out.t,
-                    disk: model.observe(out.t, &out.y),
-                    gap: 0.0,
-                    impact: rec.impact,
-                };
-                match out.stopped_by {
-                    None => break (out.t, Stop::End, last),
-                    Some(hit) if hit.reason == StopReason::ContactLost => last,
-                    Some(hit) => break (out.t, Stop::Event(hit.reason), last),
-                }
-            }
-        };
-        let ContactLoss::Fly { restitution } = setup.rolling.contact_loss else {
-            break (lift.t, Stop::Event(StopReason::ContactLost), lift);
-        };
-        match fly_and_land(
-            scene,
-            setup,
-            model.as_ref(),
-            &mut rec,
-            &mut flights,
-            &outputs,
-            lift,
-            restitution,
-        )? {
-            Phase::Rolls {
-                t: t_land,
-                y: y_land,
-            } => (t, y) = (t_land, y_land),
-            Phase::Stops { t, stop, last } => break (t, stop, last),
+        Phase::Lifts(start)
+    } else {
+        Phase::Rolls {
+            t: 0.0,
+            y: y0.clone(),
         }
+    };
+    let (t_end, stop, last) = loop {
+        phase = match phase {
+            Phase::Rolls { t, y } => {
+                let rolling = RollingPhase {
+                    scene,
+                    model: model.as_ref(),
+                    opts: &opts,
+                    outputs: &outputs,
+                };
+                rolling.roll(t, &y, &mut rec, &mut stats)?
+            }
+            Phase::Lifts(lift) => match setup.rolling.contact_loss {
+                ContactLoss::Fly { restitution } => fly_and_land(
+                    scene,
+                    setup,
+                    model.as_ref(),
+                    &mut rec,
+                    &mut flights,
+                    &outputs,
+                    lift,
+                    restitution,
+                )?,
+                _ => Phase::Stops {
+                    t: lift.t,
+                    stop: Stop::Event(StopReason::ContactLost),
+                    last: lift,
+                },
+            },
+            Phase::Stops { t, stop, last } => break (t, stop, last),
+        };
     };
     if let Some(p) = &rec.progress {
         p.finish();
@@ -272,6 +268,54 @@ pub fn run(
             rec.watch.ranges[2],
         ],
     })
+}
+
+/// What a rolling phase needs of the run.
+struct RollingPhase<'a> {
+    scene: &'a Scene,
+    model: &'a dyn RollingModel,
+    opts: &'a ode::Options,
+    outputs: &'a [f64],
+}
+
+impl RollingPhase<'_> {
+    /// Roll from (t, y) until the run's end, a stopping event, or the normal force falling to
+    /// zero (the disk lifts).
+    fn roll(
+        &self,
+        t: f64,
+        y: &[f64],
+        rec: &mut Recorder,
+        stats: &mut ode::Stats,
+    ) -> Result<Phase, Error> {
+        // Rows at the output times after this phase's start (and at t = 0 for the first).
+        let ahead: Vec<f64> = self
+            .outputs
+            .iter()
+            .copied()
+            .filter(|&o| o > t || (t == 0.0 && o == 0.0))
+            .collect();
+        let scene = self.scene;
+        let out = ode::solve(self.model, t, y, scene.duration, &ahead, self.opts, rec)
+            .map_err(|e| Error::Solver(format!("scene {}: the solver failed: {e}", scene.name)))?;
+        stats.add(&out.stats);
+        let last = Row {
+            t: out.t,
+            disk: self.model.observe(out.t, &out.y),
+            gap: 0.0,
+            impact: rec.impact,
+        };
+        let stop = match out.stopped_by {
+            None => Stop::End,
+            Some(hit) if hit.reason == StopReason::ContactLost => return Ok(Phase::Lifts(last)),
+            Some(hit) => Stop::Event(hit.reason),
+        };
+        Ok(Phase::Stops {
+            t: out.t,
+            stop,
+            last,
+        })
+    }
 }
 
 /// From a lift-off (`lift`, the row where the normal force fell to zero): the flight, its

@@ -347,25 +347,23 @@ impl SceneSpec {
     }
 }
 
-fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
-    let c = Checker { file };
-    let name = scene_name(&c, raw.name.as_ref(), stem)?;
-    let gravity = match &raw.gravity {
-        Some(g) => c.finite(g, "gravity")?,
-        None => DEFAULT_GRAVITY,
-    };
-    let duration = c.positive(&raw.duration, "duration")?;
+/// The track's model (a disk on a rigid curve or a beam with what rides on it) and the mesh
+/// as the file gives it.
+fn track_model(
+    c: &Checker,
+    raw: &SceneFile,
+    gravity: f64,
+    duration: f64,
+) -> Result<(Model, MeshAsGiven), Error> {
     let track = &raw.track;
-    let (model, mesh) = match (&track.value.curve, &track.value.beam) {
-        (Some(_), Some(_)) | (None, None) => {
-            return c.err(
-                track.referenced.line(),
-                "track",
-                "must name exactly one of `curve` or `beam`",
-            )
-        }
-        (Some(curve), None) => (
-            Model::Rolling(rolling_scene(&c, raw, curve, gravity)?),
+    match (&track.value.curve, &track.value.beam) {
+        (Some(_), Some(_)) | (None, None) => c.err(
+            track.referenced.line(),
+            "track",
+            "must name exactly one of `curve` or `beam`",
+        ),
+        (Some(curve), None) => Ok((
+            Model::Rolling(rolling_scene(c, raw, curve, gravity)?),
             MeshAsGiven {
                 elements: None,
                 order: None,
@@ -373,13 +371,22 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
                 model: true,
                 duration,
             },
-        ),
+        )),
         (None, Some(beam)) => {
-            let (scene, mesh) = beam_scene(&c, raw, beam, duration, gravity)?;
-            (Model::Beam(scene), mesh)
+            let (scene, mesh) = beam_scene(c, raw, beam, duration, gravity)?;
+            Ok((Model::Beam(scene), mesh))
         }
-    };
-    let duration = mesh.duration;
+    }
+}
+
+/// The solver as the file gives it, over the track's defaults; whether rtol and atol were
+/// given.
+fn solver_settings(
+    c: &Checker,
+    raw: &SceneFile,
+    model: &Model,
+    mesh: &MeshAsGiven,
+) -> Result<(SolverSettings, bool, bool), Error> {
     let beam_default = matches!(model, Model::Beam(_));
     let mut solver = SolverSettings {
         method: if beam_default {
@@ -396,59 +403,78 @@ fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
         free_vibration_chosen: None,
     };
     let (mut rtol_given, mut atol_given) = (false, false);
-    if let Some(s) = &raw.solver {
-        if let Some(m) = &s.method {
-            solver.method = Method::from_name(&m.value).map_or_else(
-                || {
-                    c.err(
-                        m.referenced.line(),
-                        "solver.method",
-                        format!("is {}; use one of {}", quote(&m.value), method_names()),
-                    )
-                },
-                Ok,
-            )?;
-            if matches!(solver.method, Method::GenAlpha | Method::ExactModal) && !beam_default {
-                return c.err(m.referenced.line(), "solver.method", format!("{} integrates structural (beam) scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve", solver.method.name()));
-            }
-        }
-        if let Some(r) = &s.rtol {
-            solver.rtol = c.positive(r, "solver.rtol")?;
-            if let Some(why) = crate::ode::rtol_problem(solver.rtol) {
-                return c.err(r.referenced.line(), "solver.rtol", why);
-            }
-            rtol_given = true;
-        }
-        if let Some(a) = &s.atol {
-            solver.atol = c.positive(a, "solver.atol")?;
-            atol_given = true;
+    let Some(s) = &raw.solver else {
+        return Ok((solver, rtol_given, atol_given));
+    };
+    if let Some(m) = &s.method {
+        solver.method = Method::from_name(&m.value).map_or_else(
+            || {
+                c.err(
+                    m.referenced.line(),
+                    "solver.method",
+                    format!("is {}; use one of {}", quote(&m.value), method_names()),
+                )
+            },
+            Ok,
+        )?;
+        if matches!(solver.method, Method::GenAlpha | Method::ExactModal) && !beam_default {
+            return c.err(m.referenced.line(), "solver.method", format!("{} integrates structural (beam) scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve", solver.method.name()));
         }
     }
-    let mut interval = duration / 500.0;
-    if let Some(i) = raw.output.as_ref().and_then(|o| o.interval.as_ref()) {
-        interval = c.positive(i, "output.interval")?;
-        if interval > duration {
-            return c.err(
-                i.referenced.line(),
-                "output.interval",
-                format!("= {interval} s is longer than `duration` = {duration} s; history.csv would hold t = 0 alone"),
-            );
+    if let Some(r) = &s.rtol {
+        solver.rtol = c.positive(r, "solver.rtol")?;
+        if let Some(why) = crate::ode::rtol_problem(solver.rtol) {
+            return c.err(r.referenced.line(), "solver.rtol", why);
         }
-        if duration / interval > MAX_ROWS {
-            return c.err(i.referenced.line(), "output.interval", format!("= {interval:e} would write {:.3e} rows of history; at most {MAX_ROWS:.0} are allowed", duration / interval));
+        rtol_given = true;
+    }
+    if let Some(a) = &s.atol {
+        solver.atol = c.positive(a, "solver.atol")?;
+        atol_given = true;
+    }
+    if let (Model::Beam(b), Some(m)) = (model, &s.method) {
+        if b.disk().is_some_and(|d| d.coupling == Coupling::Thesis)
+            && solver.method != Method::GenAlpha
+            && b.beam.model != BeamModel::Exact
+            && mesh.model
+        {
+            return c.err(m.referenced.line(), "solver.method", format!("{} integrates the thesis coupling as the published 3n + 6 system, which transcribes the exact beam; use `model: exact`, or genalpha for the thesis coupling on a {} beam", solver.method.name(), b.beam.model.name()));
         }
     }
-    if let (Model::Beam(b), Some(s)) = (&model, &raw.solver) {
-        if let (Some(d), Some(m)) = (b.disk(), &s.method) {
-            if d.coupling == Coupling::Thesis
-                && solver.method != Method::GenAlpha
-                && b.beam.model != BeamModel::Exact
-                && mesh.model
-            {
-                return c.err(m.referenced.line(), "solver.method", format!("{} integrates the thesis coupling as the published 3n + 6 system, which transcribes the exact beam; use `model: exact`, or genalpha for the thesis coupling on a {} beam", solver.method.name(), b.beam.model.name()));
-            }
-        }
+    Ok((solver, rtol_given, atol_given))
+}
+
+/// The history's interval: the file's, or a 500th of the run.
+fn output_interval(c: &Checker, raw: &SceneFile, duration: f64) -> Result<f64, Error> {
+    let Some(i) = raw.output.as_ref().and_then(|o| o.interval.as_ref()) else {
+        return Ok(duration / 500.0);
+    };
+    let interval = c.positive(i, "output.interval")?;
+    if interval > duration {
+        return c.err(
+            i.referenced.line(),
+            "output.interval",
+            format!("= {interval} s is longer than `duration` = {duration} s; history.csv would hold t = 0 alone"),
+        );
     }
+    if duration / interval > MAX_ROWS {
+        return c.err(i.referenced.line(), "output.interval", format!("= {interval:e} would write {:.3e} rows of history; at most {MAX_ROWS:.0} are allowed", duration / interval));
+    }
+    Ok(interval)
+}
+
+fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
+    let c = Checker { file };
+    let name = scene_name(&c, raw.name.as_ref(), stem)?;
+    let gravity = match &raw.gravity {
+        Some(g) => c.finite(g, "gravity")?,
+        None => DEFAULT_GRAVITY,
+    };
+    let duration = c.positive(&raw.duration, "duration")?;
+    let (model, mesh) = track_model(&c, raw, gravity, duration)?;
+    let duration = mesh.duration;
+    let (solver, rtol_given, atol_given) = solver_settings(&c, raw, &model, &mesh)?;
+    let interval = output_interval(&c, raw, duration)?;
     Ok(Checked {
         scene: Scene {
             name,

@@ -76,6 +76,36 @@ pub(super) fn rolling_scene(
         Some(m) => Some(c.positive(m, "disk.mu")?),
         None => None,
     };
+    refuse_beam_disk_keys(c, d)?;
+    let formulation = formulation(c, d)?;
+    let s0_line =
+        d.s0.as_ref()
+            .map_or(disk_file.referenced.line(), |s| s.referenced.line());
+    if let Some((lo, hi)) = curve.domain() {
+        if !(lo..=hi).contains(&s0) {
+            return c.err(
+                s0_line,
+                "disk.s0",
+                format!(
+                    "= {s0} is off the track: the {} runs over s in [{lo}, {hi}]",
+                    curve.kind()
+                ),
+            );
+        }
+    }
+    let mut rolling = Rolling::new(curve, disk, gravity, s0, omega0, mu);
+    rolling.contact_loss =
+        contact_loss(c, d, "disk")?.unwrap_or(ContactLoss::Fly { restitution: 0.0 });
+    disk_fits(c, &rolling, curve_file, d)?;
+    start_is_finite(c, &rolling, s0_line)?;
+    Ok(RollingScene {
+        rolling,
+        formulation,
+    })
+}
+
+/// A disk's keys that only a beam track takes.
+fn refuse_beam_disk_keys(c: &Checker, d: &DiskFile) -> Result<(), Error> {
     if let Some(cp) = &d.coupling {
         return c.err(
             cp.referenced.line(),
@@ -90,65 +120,60 @@ pub(super) fn rolling_scene(
             "applies to beam tracks only; on a rigid curve the contact is a point",
         );
     }
-    let formulation = match &d.formulation {
-        None => Formulation::Minimal,
+    Ok(())
+}
+
+fn formulation(c: &Checker, d: &DiskFile) -> Result<Formulation, Error> {
+    match &d.formulation {
+        None => Ok(Formulation::Minimal),
         Some(f) => match f.value.as_str() {
-            "minimal" => Formulation::Minimal,
-            "thesis" => Formulation::Thesis,
-            other => {
-                return c.err(
-                    f.referenced.line(),
-                    "disk.formulation",
-                    format!("is {}; use minimal or thesis", quote(other)),
-                )
-            }
-        },
-    };
-    if let Some((lo, hi)) = curve.domain() {
-        if !(lo..=hi).contains(&s0) {
-            let line =
-                d.s0.as_ref()
-                    .map_or(disk_file.referenced.line(), |s| s.referenced.line());
-            return c.err(
-                line,
-                "disk.s0",
-                format!(
-                    "= {s0} is off the track: the {} runs over s in [{lo}, {hi}]",
-                    curve.kind()
-                ),
-            );
-        }
-    }
-    let mut rolling = Rolling::new(curve, disk, gravity, s0, omega0, mu);
-    rolling.contact_loss =
-        contact_loss(c, d, "disk")?.unwrap_or(ContactLoss::Fly { restitution: 0.0 });
-    if let Some(s) = rolling.first_unfit_point() {
-        let kappa = rolling.curve.at(s).curvature();
-        if !kappa.is_finite() {
-            return c.err(
-                curve_file.referenced.line(),
-                "track.curve",
-                format!("has no finite tangent or curvature at s = {s:.4}, where the disk can reach (r' = 0 or a derivative is infinite there)"),
-            );
-        }
-        return c.err(
-            d.radius.referenced.line(),
-            "disk.radius",
-            format!(
-                "= {} does not fit the curve at s = {s:.4}, which the disk can reach: the radius of curvature there is {:.4} m (the disk needs radius × curvature < 1)",
-                disk.radius,
-                1.0 / kappa
+            "minimal" => Ok(Formulation::Minimal),
+            "thesis" => Ok(Formulation::Thesis),
+            other => c.err(
+                f.referenced.line(),
+                "disk.formulation",
+                format!("is {}; use minimal or thesis", quote(other)),
             ),
+        },
+    }
+}
+
+/// The disk fits the curve wherever it can reach: radius × curvature < 1, the curvature finite.
+fn disk_fits(
+    c: &Checker,
+    rolling: &Rolling,
+    curve_file: &Spanned<CurveFile>,
+    d: &DiskFile,
+) -> Result<(), Error> {
+    let Some(s) = rolling.first_unfit_point() else {
+        return Ok(());
+    };
+    let kappa = rolling.curve.at(s).curvature();
+    if !kappa.is_finite() {
+        return c.err(
+            curve_file.referenced.line(),
+            "track.curve",
+            format!("has no finite tangent or curvature at s = {s:.4}, where the disk can reach (r' = 0 or a derivative is infinite there)"),
         );
     }
-    // The start in numbers: a finite point can still lie where the curve's coordinates, or the
-    // energy measured from them, overflow.
+    c.err(
+        d.radius.referenced.line(),
+        "disk.radius",
+        format!(
+            "= {} does not fit the curve at s = {s:.4}, which the disk can reach: the radius of curvature there is {:.4} m (the disk needs radius × curvature < 1)",
+            rolling.disk.radius,
+            1.0 / kappa
+        ),
+    )
+}
+
+/// The start in numbers: a finite point can still lie where the curve's coordinates, or the
+/// energy measured from them, overflow.
+fn start_is_finite(c: &Checker, rolling: &Rolling, s0_line: u64) -> Result<(), Error> {
+    let s0 = rolling.s0;
     let start = rolling.curve.at(s0);
     let centre = rolling.centre(&start);
-    let (kinetic, potential) = rolling.energies(rolling.v0(), omega0, centre[1]);
-    let s0_line =
-        d.s0.as_ref()
-            .map_or(disk_file.referenced.line(), |s| s.referenced.line());
+    let (kinetic, potential) = rolling.energies(rolling.v0(), rolling.omega0, centre[1]);
     for (v, what) in [
         (centre[0], "the centre's X at the start"),
         (centre[1], "the centre's Y at the start"),
@@ -165,10 +190,7 @@ pub(super) fn rolling_scene(
             );
         }
     }
-    Ok(RollingScene {
-        rolling,
-        formulation,
-    })
+    Ok(())
 }
 
 pub(super) fn build_curve(c: &Checker, file: &Spanned<CurveFile>) -> Result<Curve, Error> {

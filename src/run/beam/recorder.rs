@@ -262,11 +262,9 @@ impl Recorder<'_> {
             self.sampled(end, t1, riding.is_some());
             return;
         }
-        let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0, 0, 0));
-        let last = self.last.take();
         let fresh = self.along_trail.is_empty();
-        let flying = self.phase.flying.is_some();
-        let after = self.exit_t.is_some_and(|te| t0 >= te);
+        let last = self.last.take();
+        let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0, 0, 0));
         let see =
             |t: f64, along: bool| self.snapshot(t, &dense.at(t), dense.rate(t).as_deref(), along);
         let start = match last {
@@ -275,67 +273,18 @@ impl Recorder<'_> {
         };
         let tm = 0.5 * (t0 + t1);
         let (middle, end) = (see(tm, false), see(t1, true));
-        let t = [t0, tm, t1];
-        let [s0, s1, s2] = [&start, &middle, &end];
-        w.probes
-            .record_step(t, [&s0.probes, &s1.probes, &s2.probes], |tt| {
-                see(tt, false).probes
-            });
-        if !s0.vehicles.is_empty() {
-            w.vehicles
-                .record_step(t, [&s0.vehicles, &s1.vehicles, &s2.vehicles], |tt| {
-                    see(tt, false).vehicles
-                });
-        }
-        if after {
-            w.after_exit.record_step(
-                t,
-                [&s0.deflections(), &s1.deflections(), &s2.deflections()],
-                |tt| see(tt, false).deflections(),
-            );
-        }
-        match (&s0.disk, &s1.disk, &s2.disk) {
-            (Some(d0), Some(d1), Some(d2)) if d0.len() == d2.len() && d1.len() == d2.len() => {
-                let [(v0, g0), (v1, g1), (v2, g2)] = [and_gap(d0), and_gap(d1), and_gap(d2)];
-                let disk_at = |tt: f64| {
-                    see(tt, false)
-                        .disk
-                        .filter(|d| d.len() == d2.len())
-                        .unwrap_or_else(|| vec![f64::NAN; d2.len()])
-                };
-                w.disk
-                    .record_step(t, [v0, v1, v2], |tt| and_gap(&disk_at(tt)).0.to_vec());
-                if flying {
-                    w.gap
-                        .record_step(t, [g0, g1, g2], |tt| and_gap(&disk_at(tt)).1.to_vec());
-                }
-            }
-            disks => {
-                for (tt, d) in t.iter().zip([disks.0, disks.1, disks.2]) {
-                    if let Some(d) = d {
-                        w.disk.record_point(*tt, and_gap(d).0);
-                    }
-                }
-            }
-        }
+        let steps = StepWatch {
+            t: [t0, tm, t1],
+            after_exit: self.exit_t.is_some_and(|te| t0 >= te),
+            flying: self.phase.flying.is_some(),
+        };
+        steps.record(&mut w, [&start, &middle, &end], |tt| see(tt, false));
         self.watches = w;
         if self.watch_along {
-            // The stations are sampled every `spacing` at most, the parabola through the last
-            // three taken as it is: on a long step's ends alone (an exact step may span a
-            // sixteenth of the lowest period) it overshot HSLM's largest deck acceleration by
-            // 3·10⁻³. Each sample of every station costs about what a step of the beam does,
-            // so they are not taken at the steps' middles.
             if fresh {
                 self.trail_along(t0, start.along.clone());
             }
-            let n = ((t1 - t0) / spacing).ceil().clamp(1.0, MAX_ALONG_SAMPLES) as usize;
-            for k in 1..n {
-                let tk = t0 + (t1 - t0) * k as f64 / n as f64;
-                let along = self
-                    .snapshot(tk, &dense.at(tk), dense.rate(tk).as_deref(), true)
-                    .along;
-                self.trail_along(tk, along);
-            }
+            self.sample_along((t0, t1), spacing, dense);
             self.trail_along(t1, end.along.clone());
         }
         if !start.vehicles.is_empty() {
@@ -357,6 +306,22 @@ impl Recorder<'_> {
             .collect();
         self.before = Some((t0, start));
         self.last = Some((t1, end));
+    }
+
+    /// The envelope's stations inside a long step, every `spacing` at most, the parabola
+    /// through the last three taken as it is: on a long step's ends alone (an exact step may
+    /// span a sixteenth of the lowest period) it overshot HSLM's largest deck acceleration by
+    /// 3·10⁻³. Each sample of every station costs about what a step of the beam does, so they
+    /// are not taken at the steps' middles.
+    fn sample_along(&mut self, (t0, t1): (f64, f64), spacing: f64, dense: &dyn Dense) {
+        let n = ((t1 - t0) / spacing).ceil().clamp(1.0, MAX_ALONG_SAMPLES) as usize;
+        for k in 1..n {
+            let tk = t0 + (t1 - t0) * k as f64 / n as f64;
+            let along = self
+                .snapshot(tk, &dense.at(tk), dense.rate(tk).as_deref(), true)
+                .along;
+            self.trail_along(tk, along);
+        }
     }
 
     /// Take in the envelope's stations at t: with the two samples before it, the parabola
@@ -615,6 +580,62 @@ impl Observer for Recorder<'_> {
                 .map(|p| history.beam.displacement_at(&q, p.x).w)
                 .collect()
         });
+    }
+}
+
+/// A long step's three samples (start, middle, end) and what the headline watches take from
+/// them; each watch refines its turning points on the solution through `see`.
+struct StepWatch {
+    t: [f64; 3],
+    /// The last load has left: the residual vibration is watched.
+    after_exit: bool,
+    /// A disk flies: its gap is watched.
+    flying: bool,
+}
+
+impl StepWatch {
+    fn record(&self, w: &mut Watches, s: [&Snapshot; 3], see: impl Fn(f64) -> Snapshot) {
+        let t = self.t;
+        let [s0, s1, s2] = s;
+        w.probes
+            .record_step(t, [&s0.probes, &s1.probes, &s2.probes], |tt| see(tt).probes);
+        if !s0.vehicles.is_empty() {
+            w.vehicles
+                .record_step(t, [&s0.vehicles, &s1.vehicles, &s2.vehicles], |tt| {
+                    see(tt).vehicles
+                });
+        }
+        if self.after_exit {
+            w.after_exit.record_step(
+                t,
+                [&s0.deflections(), &s1.deflections(), &s2.deflections()],
+                |tt| see(tt).deflections(),
+            );
+        }
+        match (&s0.disk, &s1.disk, &s2.disk) {
+            (Some(d0), Some(d1), Some(d2)) if d0.len() == d2.len() && d1.len() == d2.len() => {
+                let [(v0, g0), (v1, g1), (v2, g2)] = [and_gap(d0), and_gap(d1), and_gap(d2)];
+                let disk_at = |tt: f64| {
+                    see(tt)
+                        .disk
+                        .filter(|d| d.len() == d2.len())
+                        .unwrap_or_else(|| vec![f64::NAN; d2.len()])
+                };
+                w.disk
+                    .record_step(t, [v0, v1, v2], |tt| and_gap(&disk_at(tt)).0.to_vec());
+                if self.flying {
+                    w.gap
+                        .record_step(t, [g0, g1, g2], |tt| and_gap(&disk_at(tt)).1.to_vec());
+                }
+            }
+            disks => {
+                for (tt, d) in t.iter().zip([disks.0, disks.1, disks.2]) {
+                    if let Some(d) = d {
+                        w.disk.record_point(*tt, and_gap(d).0);
+                    }
+                }
+            }
+        }
     }
 }
 

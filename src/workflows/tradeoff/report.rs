@@ -143,31 +143,7 @@ pub(super) fn diagram(
 ) -> Result<(), Error> {
     let err =
         |e: &dyn std::fmt::Display| Error::Output(format!("cannot draw {}: {e}", path.display()));
-    let mut lines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
-    // Per method, every setting's (work, error): its front when the lines are too many.
-    let mut by_method: Vec<(&str, Vec<(f64, f64)>)> = Vec::new();
-    for t in trials {
-        let Ok(m) = &t.outcome else { continue };
-        let Some(error) = score.of(m) else { continue };
-        let p = &t.point;
-        let mut name = match (p.elements, p.order) {
-            (Some(n), Some(k)) => format!("{} ({n} el. p{k})", p.method.name()),
-            (Some(n), None) => format!("{} ({n} el.)", p.method.name()),
-            (None, _) => p.method.name().to_string(),
-        };
-        if let Some(m) = p.model {
-            name = format!("{name} {}", model_label(m));
-        }
-        let point = ((m.rhs_evals as f64).max(1.0), error.max(1e-12));
-        match lines.iter_mut().find(|(n, _)| *n == name) {
-            Some((_, pts)) => pts.push(point),
-            None => lines.push((name, vec![point])),
-        }
-        match by_method.iter_mut().find(|(n, _)| *n == p.method.name()) {
-            Some((_, pts)) => pts.push(point),
-            None => by_method.push((p.method.name(), vec![point])),
-        }
-    }
+    let (mut lines, by_method) = lines_of(trials, score);
     let all = lines.iter().flat_map(|(_, p)| p.iter());
     let (x0, x1, y0, y1) = all.fold(
         (
@@ -259,6 +235,39 @@ pub(super) fn diagram(
             .map_err(|e| err(&e))?;
         Ok(())
     })
+}
+
+/// Points (work, error): one line per setting (method, mesh, model), and all of a method's
+/// settings together.
+type Lines<S> = Vec<(S, Vec<(f64, f64)>)>;
+
+/// Each scored trial's (work, error) on its setting's line and on its method's.
+fn lines_of(trials: &[Trial], score: Score) -> (Lines<String>, Lines<&'static str>) {
+    let mut lines: Lines<String> = Vec::new();
+    let mut by_method: Lines<&'static str> = Vec::new();
+    for t in trials {
+        let Ok(m) = &t.outcome else { continue };
+        let Some(error) = score.of(m) else { continue };
+        let p = &t.point;
+        let mut name = match (p.elements, p.order) {
+            (Some(n), Some(k)) => format!("{} ({n} el. p{k})", p.method.name()),
+            (Some(n), None) => format!("{} ({n} el.)", p.method.name()),
+            (None, _) => p.method.name().to_string(),
+        };
+        if let Some(m) = p.model {
+            name = format!("{name} {}", model_label(m));
+        }
+        let point = ((m.rhs_evals as f64).max(1.0), error.max(1e-12));
+        match lines.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, pts)) => pts.push(point),
+            None => lines.push((name, vec![point])),
+        }
+        match by_method.iter_mut().find(|(n, _)| *n == p.method.name()) {
+            Some((_, pts)) => pts.push(point),
+            None => by_method.push((p.method.name(), vec![point])),
+        }
+    }
+    (lines, by_method)
 }
 
 /// The points no other point beats in both work and error, by increasing work.

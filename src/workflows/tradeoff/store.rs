@@ -222,100 +222,30 @@ pub fn load(
     if !path.exists() {
         return Stored::Missing;
     }
+    match read_stored(path, hash, plan, method, scene_order) {
+        Ok(reference) => Stored::Usable(Box::new(reference)),
+        Err(stale) => stale,
+    }
+}
+
+/// The reference stored at `path`, or why it cannot serve (`Stored::Stale`).
+fn read_stored(
+    path: &Path,
+    hash: &str,
+    plan: &Plan,
+    method: Method,
+    scene_order: Option<usize>,
+) -> Result<Reference, Stored> {
     let bad = |why: String| Stored::Stale(format!("{}: {why}", path.display()));
-    let text = match read_text(path, MAX_STORED_BYTES, "stored reference") {
-        Ok(t) => t,
-        Err(e) => return Stored::Stale(e.to_string()),
-    };
-    let file: StoredFile = match serde_saphyr::from_str(&text) {
-        Ok(f) => f,
-        Err(e) => return bad(format!("unreadable ({e})")),
-    };
-    if file.scene_hash != hash {
-        return bad(format!(
-            "made from another version of the scene ({}, the scene is now {hash})",
-            file.scene_hash
-        ));
-    }
-    let measure = |x: f64| x.is_finite() && x >= 0.0;
-    if !measure(file.settled_to) || !file.mesh_gap.is_none_or(measure) {
-        return bad("its settling or mesh gap is not a finite, non-negative number".into());
-    }
-    if file.method != method.name() {
-        return bad(format!("made with {}, not {}", file.method, method.name()));
-    }
-    let start = plan.reference_rtol();
-    if file.rtol > start * (1.0 + 1e-9) {
-        return bad(format!(
-            "made at rtol {:e}, not at or below {start:e}, a decade below the tightest tried",
-            file.rtol
-        ));
-    }
-    if let Some(finest) = plan.meshes.iter().copied().max() {
-        if file.elements.is_none_or(|n| n < 2 * finest) {
-            return bad(format!(
-                "made on {:?} elements, not twice the finest tried, {finest}",
-                file.elements
-            ));
-        }
-    }
-    if let Some(highest) = plan.reference_order() {
-        match file.order.or(scene_order) {
-            Some(made) if made >= highest => {}
-            Some(made) => {
-                return bad(format!(
-                    "made with elements of degree {made}, below the highest tried, {highest}"
-                ))
-            }
-            None => {
-                return bad(format!(
-                    "made without a beam, and degree {highest} is tried"
-                ))
-            }
-        }
-    }
-    let csv = match read_text(&history_path(path), MAX_HISTORY_BYTES, "stored history") {
-        Ok(csv) => csv,
-        Err(e) => return Stored::Stale(e.to_string()),
-    };
-    match &file.history_hash {
-        Some(h) if *h == content_hash(&csv) => {}
-        Some(_) => {
-            return bad(
-                "its history file is not the one stored with it (its hash differs: cut or edited)"
-                    .into(),
-            )
-        }
-        None => {
-            return bad("it holds no hash of its history, so the history cannot be checked".into())
-        }
-    }
-    let mut history = Vec::new();
-    for line in csv.lines() {
-        let numbers: Result<Vec<f64>, _> = line.split(',').map(str::parse::<f64>).collect();
-        match numbers {
-            Ok(n) if n.len() == file.history_columns + 1 && n.iter().all(|x| x.is_finite()) => {
-                history.push((n[0], n[1..].to_vec()));
-            }
-            _ => return bad(format!("its history has a malformed row: {line:.80}")),
-        }
-    }
-    // Every run records its start, and the extremes a run is scored on include it (a sudden
-    // load's highest point is the rest it starts from); a reference without that row scores
-    // every run by what happens at t = 0.
-    match history.first() {
-        Some((t, _)) if *t == 0.0 => {}
-        Some((t, _)) => {
-            return bad(format!(
-                "its history starts at t = {t}, not at the run's start, t = 0 (made by an older rollbeam that left the start row out)"
-            ))
-        }
-        None => return bad("its history is empty".into()),
-    }
-    let means = match file.means.map(StoredMeans::read).transpose() {
-        Ok(m) => m,
-        Err(why) => return bad(why),
-    };
+    let text = read_text(path, MAX_STORED_BYTES, "stored reference")
+        .map_err(|e| Stored::Stale(e.to_string()))?;
+    let file: StoredFile =
+        serde_saphyr::from_str(&text).map_err(|e| bad(format!("unreadable ({e})")))?;
+    fits(&file, hash, plan, method, scene_order).map_err(bad)?;
+    let csv = read_text(&history_path(path), MAX_HISTORY_BYTES, "stored history")
+        .map_err(|e| Stored::Stale(e.to_string()))?;
+    let history = stored_history(&file, &csv).map_err(bad)?;
+    let means = file.means.map(StoredMeans::read).transpose().map_err(bad)?;
     // Means made on a mesh coarser than the grid now reaches cannot score its finest runs,
     // and what they resolve does not say so; the headlines' reference still serves, and the
     // diagram in the means waits for `--reference-means`. (An rtol tried as tight as the
@@ -324,7 +254,7 @@ pub fn load(
     let means = means.filter(|m| {
         m.elements >= means_elements && m.order.or(scene_order) >= means_order.or(scene_order)
     });
-    Stored::Usable(Box::new(Reference {
+    Ok(Reference {
         method,
         rtol: file.rtol,
         elements: file.elements,
@@ -336,7 +266,92 @@ pub fn load(
         wall_s: file.wall_s,
         made_by: file.made_by,
         means,
-    }))
+    })
+}
+
+/// Whether a stored reference was made from this scene, with this method, and tighter and
+/// finer than everything the plan tries.
+fn fits(
+    file: &StoredFile,
+    hash: &str,
+    plan: &Plan,
+    method: Method,
+    scene_order: Option<usize>,
+) -> Result<(), String> {
+    if file.scene_hash != hash {
+        return Err(format!(
+            "made from another version of the scene ({}, the scene is now {hash})",
+            file.scene_hash
+        ));
+    }
+    let measure = |x: f64| x.is_finite() && x >= 0.0;
+    if !measure(file.settled_to) || !file.mesh_gap.is_none_or(measure) {
+        return Err("its settling or mesh gap is not a finite, non-negative number".into());
+    }
+    if file.method != method.name() {
+        return Err(format!("made with {}, not {}", file.method, method.name()));
+    }
+    let start = plan.reference_rtol();
+    if file.rtol > start * (1.0 + 1e-9) {
+        return Err(format!(
+            "made at rtol {:e}, not at or below {start:e}, a decade below the tightest tried",
+            file.rtol
+        ));
+    }
+    if let Some(finest) = plan.meshes.iter().copied().max() {
+        if file.elements.is_none_or(|n| n < 2 * finest) {
+            return Err(format!(
+                "made on {:?} elements, not twice the finest tried, {finest}",
+                file.elements
+            ));
+        }
+    }
+    match (plan.reference_order(), file.order.or(scene_order)) {
+        (Some(highest), Some(made)) if made < highest => Err(format!(
+            "made with elements of degree {made}, below the highest tried, {highest}"
+        )),
+        (Some(highest), None) => Err(format!(
+            "made without a beam, and degree {highest} is tried"
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// The stored history's rows (t, values), checked against the hash stored with it; every
+/// row finite and as wide as the reference says, the first at the run's start.
+fn stored_history(file: &StoredFile, csv: &str) -> Result<Vec<(f64, Vec<f64>)>, String> {
+    match &file.history_hash {
+        Some(h) if *h == content_hash(csv) => {}
+        Some(_) => {
+            return Err(
+                "its history file is not the one stored with it (its hash differs: cut or edited)"
+                    .into(),
+            )
+        }
+        None => {
+            return Err("it holds no hash of its history, so the history cannot be checked".into())
+        }
+    }
+    let mut history = Vec::new();
+    for line in csv.lines() {
+        let numbers: Result<Vec<f64>, _> = line.split(',').map(str::parse::<f64>).collect();
+        match numbers {
+            Ok(n) if n.len() == file.history_columns + 1 && n.iter().all(|x| x.is_finite()) => {
+                history.push((n[0], n[1..].to_vec()));
+            }
+            _ => return Err(format!("its history has a malformed row: {line:.80}")),
+        }
+    }
+    // Every run records its start, and the extremes a run is scored on include it (a sudden
+    // load's highest point is the rest it starts from); a reference without that row scores
+    // every run by what happens at t = 0.
+    match history.first() {
+        Some((t, _)) if *t == 0.0 => Ok(history),
+        Some((t, _)) => Err(format!(
+            "its history starts at t = {t}, not at the run's start, t = 0 (made by an older rollbeam that left the start row out)"
+        )),
+        None => Err("its history is empty".into()),
+    }
 }
 
 /// The windowed means' reference stored at `path` for the scene text hashed `hash`, if there
