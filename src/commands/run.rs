@@ -77,6 +77,14 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
     if let Some((plan, id)) = &case {
         crate::workflows::sweep::cluster::record_case(plan, id, &result)?;
     }
+    tell(&scene.name, &result);
+    say!("  wrote {}", dir.display());
+    Ok(())
+}
+
+/// What the run did, on the terminal: how it ended, where the disk or the probes went, the
+/// energy balance and the solver's work.
+fn tell(name: &str, result: &Run) {
     let h = result.header();
     let lost = match &result {
         Run::Beam(b) => b
@@ -88,10 +96,10 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
     match lost {
         Some((vehicle, axle)) => say!(
             "{}: the wheel of axle {axle} of vehicle {vehicle} lost contact with the deck at t = {:.6} s (its contact force fell to zero; contact-lost): a disk wheel (`wheel: disk`) on an axle with mass flies and lands instead",
-            scene.name,
+            name,
             h.t_end
         ),
-        None => say!("{}: {}", scene.name, h.stop.sentence(h.t_end)),
+        None => say!("{}: {}", name, h.stop.sentence(h.t_end)),
     }
     match &result {
         Run::Rolling(r) => {
@@ -130,6 +138,4 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
         "  {} rtol {} atol {}: {} steps, {} rejected, {} rhs evaluations, {} Jacobians, {} factorisations, {:.3} s",
         h.method.name(), output::tolerance(h.rtol), output::tolerance(h.atol), s.steps, s.rejected, s.rhs_evals, s.jacobians, s.factorizations, s.wall_s
     );
-    say!("  wrote {}", dir.display());
-    Ok(())
 }

@@ -671,6 +671,16 @@ fn figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             ),
         ],
     )?;
+    envelopes(r, dir)?;
+    if r.setup.disk().is_some() {
+        disk_figures(r, dir)?;
+    }
+    shapes(r, &dir.join("shapes.svg"))
+}
+
+/// The envelopes of u, w and φ along the beam.
+fn envelopes(r: &BeamRun, dir: &Path) -> Result<(), Error> {
+    let name = &r.header.scene.name;
     let env = &r.envelope;
     for (file, label, pick) in [
         (
@@ -710,10 +720,7 @@ fn figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
             ],
         )?;
     }
-    if r.setup.disk().is_some() {
-        disk_figures(r, dir)?;
-    }
-    shapes(r, &dir.join("shapes.svg"))
+    Ok(())
 }
 
 /// The disks' quantities while they are on the beam (thesis figures 31, 34, 38, 42), each
@@ -875,37 +882,18 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
         .iter()
         .map(|(t, disp)| wheels_in_plot(r, *t, disp, &axis, mag))
         .collect();
-    let circle = |c: [f64; 2]| -> Vec<(f64, f64)> {
-        (0..=48)
-            .map(|k| {
-                let th = 2.0 * std::f64::consts::PI * k as f64 / 48.0;
-                (c[0] + radius * th.cos(), c[1] + radius * th.sin())
-            })
-            .collect()
-    };
+    let circle = |c: [f64; 2]| circle(c, radius);
     let all = axis
         .iter()
         .map(|p| (p[0], p[1]))
         .chain(lines.iter().flat_map(|l| l.1.iter().copied()))
         .chain(disks.iter().flatten().flat_map(|c| circle(*c)));
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for (x, y) in all {
-        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
-    }
-    let span = (x1 - x0).max(y1 - y0).max(1e-9);
-    let pad = 0.05 * span;
-    // Equal scales, so the magnified shape is seen as drawn.
-    let (w, h) = (
-        900.0,
-        (900.0 * ((y1 - y0) + 2.0 * pad) / ((x1 - x0) + 2.0 * pad)).clamp(250.0, 700.0),
-    );
-    let scale = (((x1 - x0) + 2.0 * pad) / w).max(((y1 - y0) + 2.0 * pad) / h);
-    let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+    let Frame {
+        w,
+        h,
+        scale,
+        centre: (cx, cy),
+    } = Frame::around(all);
     super::plots::svg(path, (w as u32 + 90, h as u32 + 80), |root| {
         let mut chart = ChartBuilder::on(root)
             .caption(
@@ -962,6 +950,51 @@ fn shapes(r: &BeamRun, path: &Path) -> Result<(), Error> {
             .map_err(|e| err(&e))?;
         Ok(())
     })
+}
+
+/// A circle of `radius` about c, as a closed line.
+fn circle(c: [f64; 2], radius: f64) -> Vec<(f64, f64)> {
+    (0..=48)
+        .map(|k| {
+            let th = 2.0 * std::f64::consts::PI * k as f64 / 48.0;
+            (c[0] + radius * th.cos(), c[1] + radius * th.sin())
+        })
+        .collect()
+}
+
+/// A plot's area (pixels) and its metres per pixel, equal along both axes so that a magnified
+/// shape is seen as drawn, about the centre of the points it frames.
+struct Frame {
+    w: f64,
+    h: f64,
+    scale: f64,
+    centre: (f64, f64),
+}
+
+impl Frame {
+    fn around(points: impl Iterator<Item = (f64, f64)>) -> Frame {
+        let (mut x0, mut x1, mut y0, mut y1) = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for (x, y) in points {
+            (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+        }
+        let span = (x1 - x0).max(y1 - y0).max(1e-9);
+        let pad = 0.05 * span;
+        let (w, h) = (
+            900.0,
+            (900.0 * ((y1 - y0) + 2.0 * pad) / ((x1 - x0) + 2.0 * pad)).clamp(250.0, 700.0),
+        );
+        Frame {
+            w,
+            h,
+            scale: (((x1 - x0) + 2.0 * pad) / w).max(((y1 - y0) + 2.0 * pad) / h),
+            centre: (0.5 * (x0 + x1), 0.5 * (y0 + y1)),
+        }
+    }
 }
 
 fn chosen(r: &BeamRun) -> Option<Chosen> {

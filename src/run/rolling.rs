@@ -1,6 +1,7 @@
-//! A run of a disk on a rigid curve: rolling phases integrated, and between them, where the
-//! normal force falls to zero and the scene lets the disk fly, flights in closed form and the
-//! landings that end them (`rolling/flight.rs`).
+//! A run of a disk on a rigid curve, from phase to phase ([`Phase`]): it rolls (integrated)
+//! until the normal force falls to zero, then lifts; where the scene lets it fly, the flight
+//! in closed form and the landing that ends it (`rolling/flight.rs`) hand it back to rolling,
+//! or the run stops.
 
 use super::extremes::{Range, Turning, Watch};
 use super::{EnergyCheck, FlightRecord, Overrides, Progress, RunHeader, Stop, MAX_FLIGHTS};
@@ -347,27 +348,10 @@ fn fly_and_land(
             Landed::Stops(phase) => return Ok(phase),
         };
         let p = r.curve.at(s);
-        let hit = free::impact(
-            &r.disk,
-            [p.tangent(), p.normal()],
-            [before.disk.vx, before.disk.vy],
-            flight.omega,
-            restitution,
-        );
-        let record = flights.last_mut().expect("pushed by the flight");
-        record.land_t = Some(t);
-        record.land_s = Some(s);
-        if let Some(mu) = r.mu {
-            if hit.jt.abs() > mu * hit.jn {
-                return Ok(Phase::Stops {
-                    t,
-                    stop: Stop::Event(StopReason::Slip),
-                    last: before,
-                });
-            }
-        }
-        record.energy_lost = Some(hit.energy_lost);
-        rec.impact += hit.energy_lost;
+        let hit = match impact_at(r, rec, flights, (t, s), &before, flight.omega, restitution) {
+            Ok(hit) => hit,
+            Err(stops) => return Ok(stops),
+        };
         // What of gravity presses the disk onto the track there.
         let gravity_n = r.gravity * p.normal()[1];
         let height = if gravity_n > 0.0 {
@@ -425,6 +409,41 @@ fn fly_and_land(
         };
         from = (s, phi, tangent_angle(r, s));
     }
+}
+
+/// The impact where the last flight meets the curve at (t, s), `before` the disk just before
+/// it: booked on the flight's record and in the energy the landings took; the run stops where
+/// friction cannot hold the tangential impulse.
+fn impact_at(
+    r: &Rolling,
+    rec: &mut Recorder,
+    flights: &mut [FlightRecord],
+    (t, s): (f64, f64),
+    before: &Row,
+    omega: f64,
+    restitution: f64,
+) -> Result<free::Impact, Phase> {
+    let p = r.curve.at(s);
+    let hit = free::impact(
+        &r.disk,
+        [p.tangent(), p.normal()],
+        [before.disk.vx, before.disk.vy],
+        omega,
+        restitution,
+    );
+    let record = flights.last_mut().expect("pushed by the flight");
+    record.land_t = Some(t);
+    record.land_s = Some(s);
+    if r.mu.is_some_and(|mu| hit.jt.abs() > mu * hit.jn) {
+        return Err(Phase::Stops {
+            t,
+            stop: Stop::Event(StopReason::Slip),
+            last: *before,
+        });
+    }
+    record.energy_lost = Some(hit.energy_lost);
+    rec.impact += hit.energy_lost;
+    Ok(hit)
 }
 
 /// Where a flight over the curve got to.

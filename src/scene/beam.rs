@@ -99,66 +99,11 @@ pub(super) fn beam_scene(
     let vehicles = vehicles(c, raw, &beam, gravity)?;
     let profile = profile(c, raw, &raw.track.value)?;
     wheel_breakpoints(c, raw, &vehicles, &profile)?;
-    // With a train or vehicles `duration` is the free vibration after the last axle has left
-    // (or the last vehicle has stopped).
-    let crossing = train.as_ref().map_or(0.0, |t| t.gone(length)).max(
-        vehicles
-            .iter()
-            .map(|v| vehicle_gone(v, length, patch::dispersed_half_width(beam.depth)))
-            .fold(0.0, f64::max),
-    );
-    let duration = match (&raw.train, &raw.vehicles) {
-        (None, None) => duration,
-        (Some(file), _) => c.derived(
-            file.value.speed.referenced.line(),
-            "train.speed",
-            "the run's length, the crossing plus `duration`,",
-            crossing + duration,
-        )?,
-        (None, Some(file)) => c.derived(
-            file.referenced.line(),
-            "vehicles",
-            "the run's length, the crossing plus `duration`,",
-            crossing + duration,
-        )?,
-    };
+    let duration = run_length(c, raw, duration, (&beam, length), train.as_ref(), &vehicles)?;
     let (probes, shapes, magnify) = outputs(c, raw, length, duration)?;
-    let rho_inf = match raw.solver.as_ref().and_then(|s| s.rho_inf.as_ref()) {
-        None => 1.0,
-        Some(r) => {
-            let v = c.finite(r, "solver.rho_inf")?;
-            if !(0.0..=1.0).contains(&v) {
-                return c.err(
-                    r.referenced.line(),
-                    "solver.rho_inf",
-                    format!("= {v} must lie in [0, 1]"),
-                );
-            }
-            v
-        }
-    };
+    let rho_inf = rho_inf(c, raw)?;
     let disks = disks_on_beam(c, raw, &beam, length, gravity)?;
-    let accuracy = match raw.solver.as_ref().and_then(|s| s.accuracy.as_ref()) {
-        None => DEFAULT_ACCURACY,
-        Some(a) => {
-            let v = c.positive(a, "solver.accuracy")?;
-            if v >= 0.5 {
-                return c.err(
-                    a.referenced.line(),
-                    "solver.accuracy",
-                    format!("= {v} is a relative error and must be below 0.5"),
-                );
-            }
-            if v < MIN_ACCURACY {
-                return c.err(
-                    a.referenced.line(),
-                    "solver.accuracy",
-                    format!("= {v:e} asks for more than the beam's equations hold: the tolerances it implies (down to accuracy/1000) would pass the round-off of a step; use at least {MIN_ACCURACY:e}"),
-                );
-            }
-            v
-        }
-    };
+    let accuracy = accuracy(c, raw)?;
     let given = MeshAsGiven {
         elements: b.elements.as_ref().map(|_| beam.elements),
         order: b.order.as_ref().map(|_| beam.order),
@@ -195,6 +140,78 @@ pub(super) fn beam_scene(
     Ok((scene, given))
 }
 
+/// The run's length: with a train or vehicles `duration` is the free vibration after the
+/// last axle has left (or the last vehicle has stopped).
+fn run_length(
+    c: &Checker,
+    raw: &SceneFile,
+    duration: f64,
+    (beam, length): (&BeamSpec, f64),
+    train: Option<&Train>,
+    vehicles: &[crate::vehicle::Vehicle],
+) -> Result<f64, Error> {
+    let crossing = train.map_or(0.0, |t| t.gone(length)).max(
+        vehicles
+            .iter()
+            .map(|v| vehicle_gone(v, length, patch::dispersed_half_width(beam.depth)))
+            .fold(0.0, f64::max),
+    );
+    match (&raw.train, &raw.vehicles) {
+        (None, None) => Ok(duration),
+        (Some(file), _) => c.derived(
+            file.value.speed.referenced.line(),
+            "train.speed",
+            "the run's length, the crossing plus `duration`,",
+            crossing + duration,
+        ),
+        (None, Some(file)) => c.derived(
+            file.referenced.line(),
+            "vehicles",
+            "the run's length, the crossing plus `duration`,",
+            crossing + duration,
+        ),
+    }
+}
+
+/// Generalized-α's ρ∞ as the file gives it, in [0, 1] (1 where it does not).
+fn rho_inf(c: &Checker, raw: &SceneFile) -> Result<f64, Error> {
+    let Some(r) = raw.solver.as_ref().and_then(|s| s.rho_inf.as_ref()) else {
+        return Ok(1.0);
+    };
+    let v = c.finite(r, "solver.rho_inf")?;
+    if !(0.0..=1.0).contains(&v) {
+        return c.err(
+            r.referenced.line(),
+            "solver.rho_inf",
+            format!("= {v} must lie in [0, 1]"),
+        );
+    }
+    Ok(v)
+}
+
+/// The relative accuracy the run is planned for.
+fn accuracy(c: &Checker, raw: &SceneFile) -> Result<f64, Error> {
+    let Some(a) = raw.solver.as_ref().and_then(|s| s.accuracy.as_ref()) else {
+        return Ok(DEFAULT_ACCURACY);
+    };
+    let v = c.positive(a, "solver.accuracy")?;
+    if v >= 0.5 {
+        return c.err(
+            a.referenced.line(),
+            "solver.accuracy",
+            format!("= {v} is a relative error and must be below 0.5"),
+        );
+    }
+    if v < MIN_ACCURACY {
+        return c.err(
+            a.referenced.line(),
+            "solver.accuracy",
+            format!("= {v:e} asks for more than the beam's equations hold: the tolerances it implies (down to accuracy/1000) would pass the round-off of a step; use at least {MIN_ACCURACY:e}"),
+        );
+    }
+    Ok(v)
+}
+
 /// What of the mesh and model a beam scene gives itself (the plan chooses the rest).
 pub struct MeshAsGiven {
     pub elements: Option<usize>,
@@ -227,14 +244,40 @@ pub(super) fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usi
         "the beam's length",
         length,
     )?;
+    let section = section(c, b)?;
+    let (supports, bearings, multiple) = supports(c, b, length)?;
+    let (elements, order, quadrature) = mesh(c, b, multiple)?;
+    let depth = depth(c, b, &section, length)?;
+    let unknowns = (elements > 0).then(|| {
+        let held: usize = supports.iter().map(|s| s.held_components().len()).sum();
+        3 * (elements * order + 1) - held - bearings.len()
+    });
+    let model = beam_model(c, b, unknowns)?;
+    let beam = BeamSpec {
+        from,
+        to,
+        section,
+        depth,
+        supports,
+        bearings,
+        elements,
+        order,
+        quadrature,
+        model: model.unwrap_or(BeamModel::Exact),
+        damping: None,
+        self_weight: None,
+    };
+    Ok((beam, length, multiple, model.is_some()))
+}
+
+/// The section's stiffnesses and inertias from E, G, ρ, A, Av and I, each finite.
+fn section(c: &Checker, b: &BeamFile) -> Result<Section, Error> {
     let e = c.positive(&b.E, "track.beam.E")?;
     let g = c.positive(&b.G, "track.beam.G")?;
     let rho = c.positive(&b.rho, "track.beam.rho")?;
     let a = c.positive(&b.A, "track.beam.A")?;
     let av = c.positive(&b.Av, "track.beam.Av")?;
     let i = c.positive(&b.I, "track.beam.I")?;
-    let (supports, bearings, multiple) = supports(c, b, length)?;
-    let (elements, order, quadrature) = mesh(c, b, multiple)?;
     let section = Section {
         ea: e * a,
         gav: g * av,
@@ -277,16 +320,21 @@ pub(super) fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usi
     ] {
         c.derived(given.referenced.line(), key, what, v)?;
     }
-    let depth = match &b.depth {
+    Ok(section)
+}
+
+/// The section's depth: the file's, or a rectangle's of the section's A and I.
+fn depth(c: &Checker, b: &BeamFile, section: &Section, length: f64) -> Result<f64, Error> {
+    match &b.depth {
         Some(d) => c.part_of_length(
             d,
             "track.beam.depth",
             length,
             "the depth sets the contact patch, which would be a point",
             ("is deeper than the beam is long", "that is not a beam"),
-        )?,
+        ),
         None => {
-            let depth = patch::rectangular_depth(&section);
+            let depth = patch::rectangular_depth(section);
             if !(depth <= length) {
                 return c.err(
                     b.I.referenced.line(),
@@ -297,29 +345,9 @@ pub(super) fn beam_spec(c: &Checker, b: &BeamFile) -> Result<(BeamSpec, f64, usi
                     ),
                 );
             }
-            depth
+            Ok(depth)
         }
-    };
-    let unknowns = (elements > 0).then(|| {
-        let held: usize = supports.iter().map(|s| s.held_components().len()).sum();
-        3 * (elements * order + 1) - held - bearings.len()
-    });
-    let model = beam_model(c, b, unknowns)?;
-    let beam = BeamSpec {
-        from,
-        to,
-        section,
-        depth,
-        supports,
-        bearings,
-        elements,
-        order,
-        quadrature,
-        model: model.unwrap_or(BeamModel::Exact),
-        damping: None,
-        self_weight: None,
-    };
-    Ok((beam, length, multiple, model.is_some()))
+    }
 }
 
 /// Rayleigh damping as the file gives it: a ratio at two modes, or α and β.
@@ -820,24 +848,74 @@ pub(super) fn disk_on_beam(
             "applies to rigid curves only; on a beam choose `coupling`",
         );
     }
-    let coupling = match &d.coupling {
-        None => Coupling::Consistent,
-        Some(cp) => Coupling::from_name(&cp.value).map_or_else(
-            || {
-                c.err(
-                    cp.referenced.line(),
-                    &format!("{at}.coupling"),
-                    format!(
-                        "is {}; use one of {}",
-                        quote(&cp.value),
-                        Coupling::ALL.map(|k| k.name()).join(", ")
-                    ),
-                )
-            },
-            Ok,
-        )?,
-    };
+    let coupling = coupling(c, d, at)?;
     let contact_loss = loss_on_beam(c, file, at, coupling)?;
+    let (s0, omega0) = start_on_beam(c, file, at, disk.radius, coupling, length)?;
+    let mu = match &d.mu {
+        Some(m) => Some(c.positive(m, &format!("{at}.mu"))?),
+        None => None,
+    };
+    let patch = match &d.patch {
+        Some(p) => c.part_of_length(
+            p,
+            &format!("{at}.patch"),
+            length,
+            "a contact that short is a point, on which the disk's contact force is not defined (see REPORT.md, \"What depends on the patch\")",
+            (
+                "is wider than the beam",
+                "the patch is the half-width of the contact, about the section's depth",
+            ),
+        )?,
+        None => {
+            patch::physical_half_width(&beam.section, beam.depth, disk.radius, disk.mass * gravity)
+                .min(length)
+        }
+    };
+    Ok(DiskOnBeamSpec {
+        disk,
+        s0,
+        omega0,
+        coupling,
+        mu,
+        gravity,
+        patch,
+        contact_loss,
+    })
+}
+
+/// How disk `d` (named `at`) rides on the beam: the consistent coupling where the file says
+/// nothing.
+fn coupling(c: &Checker, d: &DiskFile, at: &str) -> Result<Coupling, Error> {
+    let Some(cp) = &d.coupling else {
+        return Ok(Coupling::Consistent);
+    };
+    Coupling::from_name(&cp.value).map_or_else(
+        || {
+            c.err(
+                cp.referenced.line(),
+                &format!("{at}.coupling"),
+                format!(
+                    "is {}; use one of {}",
+                    quote(&cp.value),
+                    Coupling::ALL.map(|k| k.name()).join(", ")
+                ),
+            )
+        },
+        Ok,
+    )
+}
+
+/// Where disk `file` (named `at`) starts on a beam of `length`, and its spin: on the beam,
+/// moving where its coupling needs it to, and not off or at rest on an end.
+fn start_on_beam(
+    c: &Checker,
+    file: &Spanned<DiskFile>,
+    at: &str,
+    radius: f64,
+    coupling: Coupling,
+    length: f64,
+) -> Result<(f64, f64), Error> {
+    let d = &file.value;
     let s0_line =
         d.s0.as_ref()
             .map_or(file.referenced.line(), |s| s.referenced.line());
@@ -872,7 +950,7 @@ pub(super) fn disk_on_beam(
     }
     // Rolling off the end it starts on leaves nothing to simulate; a disk resting exactly on
     // an end support with no speed has nowhere to go but off or nowhere.
-    let v0 = -disk.radius * omega0;
+    let v0 = -radius * omega0;
     if (s0 == 0.0 && v0 < 0.0) || (s0 == length && v0 > 0.0) {
         return c.err(
             omega_line,
@@ -887,36 +965,7 @@ pub(super) fn disk_on_beam(
             format!("= {s0} puts the disk at rest on the end support, where it would load only the support and never move onto the beam; give it a speed (omega0) or start it inside"),
         );
     }
-    let mu = match &d.mu {
-        Some(m) => Some(c.positive(m, &format!("{at}.mu"))?),
-        None => None,
-    };
-    let patch = match &d.patch {
-        Some(p) => c.part_of_length(
-            p,
-            &format!("{at}.patch"),
-            length,
-            "a contact that short is a point, on which the disk's contact force is not defined (see REPORT.md, \"What depends on the patch\")",
-            (
-                "is wider than the beam",
-                "the patch is the half-width of the contact, about the section's depth",
-            ),
-        )?,
-        None => {
-            patch::physical_half_width(&beam.section, beam.depth, disk.radius, disk.mass * gravity)
-                .min(length)
-        }
-    };
-    Ok(DiskOnBeamSpec {
-        disk,
-        s0,
-        omega0,
-        coupling,
-        mu,
-        gravity,
-        patch,
-        contact_loss,
-    })
+    Ok((s0, omega0))
 }
 
 /// What happens where disk `file` (named `at`) on a beam loses contact, as its coupling

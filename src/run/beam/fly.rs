@@ -2,6 +2,7 @@
 //! closed form, and the landing (with its bounces) or its leaving the beam.
 
 use super::*;
+use crate::coupling::landing::Bounce;
 
 /// How a flight over the beam ended.
 pub(super) enum FlightEnd {
@@ -236,34 +237,7 @@ fn touch_down<'a>(
             || b.leaving * b.leaving / (2.0 * gravity_n) >= RESOLVED_BOUNCE * c.spec().disk.radius
     }) {
         record.energy_lost = Some(b.energy_lost);
-        let after = c.observe(t, &landing.z, &landing.zd);
-        if slips(c, &landing, t, before, b.velocity) {
-            rec.ledger.disk_lands(landing.energy_lost);
-            rec.phase.couple(c);
-            return Ok(Next::Ends(FlightEnd::Stops {
-                t,
-                y: landing.z.iter().chain(&landing.zd).copied().collect(),
-                stop: Stop::Event(StopReason::Slip),
-            }));
-        }
-        let m = c.spec().disk.mass;
-        let kinetic = 0.5 * m * (b.velocity[0].powi(2) + b.velocity[1].powi(2))
-            + 0.5 * c.spec().disk.inertia() * b.omega * b.omega;
-        rec.ledger
-            .disk_bounces(b.energy_lost, (kinetic, after.potential));
-        return Ok(Next::FliesAgain(Launch {
-            t,
-            q,
-            v: b.beam,
-            flight: Flight {
-                t0: t,
-                centre: [after.x, after.y],
-                velocity: b.velocity,
-                omega: b.omega,
-                gravity: c.spec().gravity,
-            },
-            s,
-        }));
+        return Ok(bounce_off(c, rec, (t, s), q, &landing, before, b));
     }
     record.energy_lost = Some(landing.energy_lost);
     rec.ledger.disk_lands(landing.energy_lost);
@@ -296,6 +270,47 @@ fn touch_down<'a>(
         }));
     }
     Ok(Next::FliesAgain(lift_off(c, rec, t, &y)))
+}
+
+/// The disk bouncing off the beam where it landed at (t, s) from `before` (its centre
+/// velocity) with the beam at q: it flies again, unless friction cannot hold the impulse.
+fn bounce_off<'a>(
+    c: &'a DiskOnBeam<'a>,
+    rec: &mut Recorder<'a>,
+    (t, s): (f64, f64),
+    q: Vec<f64>,
+    landing: &Landing,
+    before: [f64; 2],
+    b: Bounce,
+) -> Next {
+    let after = c.observe(t, &landing.z, &landing.zd);
+    if slips(c, landing, t, before, b.velocity) {
+        rec.ledger.disk_lands(landing.energy_lost);
+        rec.phase.couple(c);
+        return Next::Ends(FlightEnd::Stops {
+            t,
+            y: landing.z.iter().chain(&landing.zd).copied().collect(),
+            stop: Stop::Event(StopReason::Slip),
+        });
+    }
+    let m = c.spec().disk.mass;
+    let kinetic = 0.5 * m * (b.velocity[0].powi(2) + b.velocity[1].powi(2))
+        + 0.5 * c.spec().disk.inertia() * b.omega * b.omega;
+    rec.ledger
+        .disk_bounces(b.energy_lost, (kinetic, after.potential));
+    Next::FliesAgain(Launch {
+        t,
+        q,
+        v: b.beam,
+        flight: Flight {
+            t0: t,
+            centre: [after.x, after.y],
+            velocity: b.velocity,
+            omega: b.omega,
+            gravity: c.spec().gravity,
+        },
+        s,
+    })
 }
 
 /// Whether the impulse that took the disk from `before` to `after` (centre velocities,
