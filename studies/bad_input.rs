@@ -1219,6 +1219,13 @@ fn sweep_keys_of_listed_disks() {
         csv.starts_with("disks.2.s0,disks.2.coupling,status"),
         "{csv}"
     );
+    // Each listed disk has its columns, named as in history.csv.
+    assert!(
+        csv.lines().next().is_some_and(|header| header.contains(
+            ",disk1.rn_min,disk1.rn_max,disk1.left_track_t,disk2.rn_min,disk2.rn_max,disk2.left_track_t"
+        )),
+        "{csv}"
+    );
     assert_eq!(
         csv.lines().filter(|l| l.contains(",ok,")).count(),
         2,

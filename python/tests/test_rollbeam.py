@@ -192,6 +192,9 @@ def test_several_disks_from_a_dict_run_and_name_their_columns():
     assert rollbeam.run(moved).summary["disks"][1]["left_track_t"] == pytest.approx(
         15.0 / 17.6, rel=1e-9
     )
+    table = rollbeam.sweep(rollbeam.Scene(scene), {"disks.2.s0": [0.0, 5.0]})
+    assert np.allclose(table["disk1.left_track_t"], 10.0 / 17.6, rtol=1e-9)
+    assert np.allclose(table["disk2.left_track_t"], [20.0 / 17.6, 15.0 / 17.6], rtol=1e-9)
     with pytest.raises(rollbeam.SceneError) as e:
         rollbeam.Scene({**scene, "disks": [{**disk, "s0": 1.0}, {**disk, "mass": -1.0}]})
     assert e.value.key == "disks[2].mass"

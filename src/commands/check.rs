@@ -210,12 +210,7 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
 
 /// Each disk on the beam, its coupling, contact and patch, and what its results depend on.
 fn disks(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
-    for (k, d) in setup.disks.iter().enumerate() {
-        let name = if setup.disks.len() == 1 {
-            "disk".to_string()
-        } else {
-            format!("disk{}", k + 1)
-        };
+    for (d, name) in setup.disks.iter().zip(setup.disk_names()) {
         writeln!(
             f,
             "  {name}: m = {} kg, a = {} m, s0 = {}, Ω0 = {} 1/s, {} coupling ({}){}",

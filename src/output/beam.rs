@@ -400,19 +400,11 @@ const DISK_COLUMNS: [&str; 10] = [
     "gap",
 ];
 
-/// The disks' names in history.csv: `disk` alone, `disk1`, `disk2`, … for several.
-fn disk_names(r: &BeamRun) -> Vec<String> {
-    match r.setup.disks.len() {
-        1 => vec!["disk".to_string()],
-        n => (1..=n).map(|k| format!("disk{k}")).collect(),
-    }
-}
-
 /// The text of `history.csv`.
 pub fn csv(r: &BeamRun) -> String {
     let mut head = vec!["t".to_string()];
     let disks = r.setup.disks.len();
-    for name in disk_names(r) {
+    for name in r.setup.disk_names() {
         head.extend(DISK_COLUMNS.iter().map(|c| format!("{name}.{c}")));
     }
     for p in &r.setup.probes {
@@ -727,7 +719,7 @@ fn envelopes(r: &BeamRun, dir: &Path) -> Result<(), Error> {
 /// disk's series named after it where there are several.
 fn disk_figures(r: &BeamRun, dir: &Path) -> Result<(), Error> {
     let name = &r.header.scene.name;
-    let names = disk_names(r);
+    let names = r.setup.disk_names();
     let series = |f: fn(&crate::disk::DiskObservation) -> f64, label: &str| {
         names
             .iter()

@@ -134,6 +134,14 @@ impl BeamScene {
         self.disks.first()
     }
 
+    /// The disks' names in the outputs: `disk` alone, `disk1`, `disk2`, … for several.
+    pub fn disk_names(&self) -> Vec<String> {
+        match self.disks.len() {
+            1 => vec!["disk".to_string()],
+            n => (1..=n).map(|k| format!("disk{k}")).collect(),
+        }
+    }
+
     /// Why `exact-modal` cannot integrate this scene, if it cannot: it takes a modal beam under
     /// moving forces, point loads or its weight, and nothing that rides with inertia.
     pub fn exact_modal_refusal(&self) -> Option<String> {

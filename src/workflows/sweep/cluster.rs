@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::{
-    case_at, case_spec, grid, row, summarise, Setting, Summary, SweepRow, Value, MAX_CASES,
+    case_at, case_spec, grid, row, summarise, DiskRow, Setting, Summary, SweepRow, Value, MAX_CASES,
 };
 use crate::error::{quote, Error};
 use crate::files::{read_text, write_whole};
@@ -61,8 +61,8 @@ struct RecordSummary {
     steps: usize,
     wall_s: f64,
     probes: Vec<RecordProbe>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    disk: Option<RecordDisk>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    disks: Vec<RecordDisk>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     bodies: Vec<RecordBody>,
 }
@@ -86,6 +86,7 @@ struct RecordProbe {
 
 #[derive(Serialize, Deserialize)]
 struct RecordDisk {
+    name: String,
     rn_min: f64,
     rn_max: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -117,11 +118,16 @@ impl Record {
                             a_max: p.4,
                         })
                         .collect(),
-                    disk: s.disk.map(|(rn_min, rn_max, left)| RecordDisk {
-                        rn_min,
-                        rn_max,
-                        left_track_t: finite(left),
-                    }),
+                    disks: s
+                        .disks
+                        .iter()
+                        .map(|d| RecordDisk {
+                            name: d.name.clone(),
+                            rn_min: d.rn_min,
+                            rn_max: d.rn_max,
+                            left_track_t: finite(d.left_track_t),
+                        })
+                        .collect(),
                     bodies: s
                         .bodies
                         .iter()
@@ -191,10 +197,16 @@ impl Record {
                         )
                     })
                     .collect(),
-                disk: s
-                    .disk
-                    .as_ref()
-                    .map(|d| (d.rn_min, d.rn_max, d.left_track_t.unwrap_or(f64::NAN))),
+                disks: s
+                    .disks
+                    .iter()
+                    .map(|d| DiskRow {
+                        name: d.name.clone(),
+                        rn_min: d.rn_min,
+                        rn_max: d.rn_max,
+                        left_track_t: d.left_track_t.unwrap_or(f64::NAN),
+                    })
+                    .collect(),
                 bodies: s
                     .bodies
                     .iter()
@@ -522,13 +534,16 @@ pub fn rows(records: &[(String, Record)], keys: usize) -> Result<Vec<SweepRow>, 
                 .chain(s.bodies.iter().map(|b| b.name.clone()))
                 .collect()
         };
-        if names(summary) != names(expected) || summary.disk.is_some() != expected.disk.is_some() {
+        let disks = |s: &RecordSummary| -> String {
+            s.disks.iter().map(|d| format!(" and {}", d.name)).collect()
+        };
+        if names(summary) != names(expected) || disks(summary) != disks(expected) {
             return Err(Error::Input(format!(
                 "{source} reports probes [{}]{} where {first_source} reports [{}]{}: the records are not of one scene",
                 names(summary).join(", "),
-                if summary.disk.is_some() { " and a disk" } else { "" },
+                disks(summary),
                 names(expected).join(", "),
-                if expected.disk.is_some() { " and a disk" } else { "" },
+                disks(expected),
             )));
         }
     }

@@ -199,16 +199,26 @@ pub struct Summary {
     /// Beam scenes: per probe (name, w_min, w_max, amplitude after the last load left or
     /// NaN, largest |vertical acceleration|).
     pub probes: Vec<(String, f64, f64, f64, f64)>,
-    /// With a disk: (rn_min, rn_max, left_track_t or NaN), of the first of several.
-    pub disk: Option<(f64, f64, f64)>,
+    /// Per disk (`disk`, or `disk1`, `disk2`, … for several): its contact force's extremes
+    /// and when it left the track (NaN: it did not).
+    pub disks: Vec<DiskRow>,
     /// With vehicles: per body (`<vehicle>.<body>`, its largest |vertical acceleration|, or
     /// NaN where the vehicle never came onto the deck).
     pub bodies: Vec<(String, f64)>,
 }
 
+/// A disk's columns of `sweep.csv`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiskRow {
+    pub name: String,
+    pub rn_min: f64,
+    pub rn_max: f64,
+    pub left_track_t: f64,
+}
+
 fn summarise(r: &Run) -> Summary {
     let mut probes = Vec::new();
-    let mut disk = None;
+    let mut disks = Vec::new();
     let mut bodies = Vec::new();
     match r {
         Run::Beam(b) => {
@@ -217,10 +227,16 @@ fn summarise(r: &Run) -> Summary {
                 let after = b.amplitude_after_exit(k).unwrap_or(f64::NAN);
                 probes.push((p.name.clone(), w.min, w.max, after, a.largest_magnitude().0));
             }
-            // The first disk's, where there are several.
-            if let Some([rn, ..]) = b.extremes.disks.first().copied().flatten() {
-                let left = b.disks_left_t.first().copied().flatten();
-                disk = Some((rn.min, rn.max, left.unwrap_or(f64::NAN)));
+            let on = b.extremes.disks.iter().zip(&b.disks_left_t);
+            for (name, (extremes, left)) in b.setup.disk_names().into_iter().zip(on) {
+                if let Some([rn, ..]) = extremes {
+                    disks.push(DiskRow {
+                        name,
+                        rn_min: rn.min,
+                        rn_max: rn.max,
+                        left_track_t: left.unwrap_or(f64::NAN),
+                    });
+                }
             }
             for v in &b.vehicles {
                 for (name, range, _) in &v.bodies {
@@ -235,7 +251,12 @@ fn summarise(r: &Run) -> Summary {
         }
         Run::Rolling(rr) => {
             let [rn, ..] = rr.contact;
-            disk = Some((rn.min, rn.max, f64::NAN));
+            disks.push(DiskRow {
+                name: "disk".into(),
+                rn_min: rn.min,
+                rn_max: rn.max,
+                left_track_t: f64::NAN,
+            });
         }
     }
     Summary {
@@ -245,7 +266,7 @@ fn summarise(r: &Run) -> Summary {
         steps: r.header().stats.steps,
         wall_s: r.header().stats.wall_s,
         probes,
-        disk,
+        disks,
         bodies,
     }
 }
@@ -470,6 +491,19 @@ fn body_names(rows: &[SweepRow]) -> Vec<String> {
         })
 }
 
+/// The disks any case that ran reports, in the order first met.
+fn disk_names(rows: &[SweepRow]) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for s in rows.iter().filter_map(|r| r.outcome.as_ref().ok()) {
+        for d in &s.disks {
+            if !names.contains(&d.name) {
+                names.push(d.name.clone());
+            }
+        }
+    }
+    names
+}
+
 /// The probes of the first case that ran.
 fn probe_names(rows: &[SweepRow]) -> Vec<String> {
     rows.iter()
@@ -484,15 +518,13 @@ fn probe_names(rows: &[SweepRow]) -> Vec<String> {
 pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
     let probe_names = &probe_names(rows);
     // A scene without a disk (a train, loads) has no disk columns.
-    let disk = rows
-        .iter()
-        .any(|r| r.outcome.as_ref().is_ok_and(|s| s.disk.is_some()));
+    let disks = disk_names(rows);
     let mut csv = format!(
         "{},status,stopped,t_end,energy_drift,steps,wall_s",
         keys.join(",")
     );
-    if disk {
-        csv.push_str(",disk.rn_min,disk.rn_max,disk.left_track_t");
+    for d in &disks {
+        let _ = write!(csv, ",{d}.rn_min,{d}.rn_max,{d}.left_track_t");
     }
     for p in probe_names {
         let _ = write!(
@@ -522,9 +554,14 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
                     "{values},ok,{},{},{},{},{}",
                     s.stop, s.t_end, s.energy_drift, s.steps, s.wall_s,
                 );
-                if disk {
-                    let (lo, hi, left) = s.disk.unwrap_or((f64::NAN, f64::NAN, f64::NAN));
-                    let _ = write!(csv, ",{},{},{}", cell(lo), cell(hi), cell(left));
+                for name in &disks {
+                    match s.disks.iter().find(|d| d.name == *name) {
+                        Some(d) => {
+                            let (lo, hi, left) = (d.rn_min, d.rn_max, d.left_track_t);
+                            let _ = write!(csv, ",{},{},{}", cell(lo), cell(hi), cell(left));
+                        }
+                        None => csv.push_str(",,,"),
+                    }
                 }
                 for p in &s.probes {
                     let _ = write!(csv, ",{},{},{},{}", p.1, p.2, cell(p.3), p.4);
@@ -535,7 +572,7 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
             }
             Err(e) => {
                 let _ = write!(csv, "{values},\"failed: {}\",,,,,", e.replace('"', "'"));
-                if disk {
+                for _ in &disks {
                     csv.push_str(",,,");
                 }
                 for _ in probe_names {
@@ -670,13 +707,13 @@ fn sweep_chart(
                 (
                     "lowest R_n".to_string(),
                     ok.iter()
-                        .filter_map(|(v, s)| s.disk.map(|d| (*v, d.0)))
+                        .filter_map(|(v, s)| s.disks.first().map(|d| (*v, d.rn_min)))
                         .collect(),
                 ),
                 (
                     "highest R_n".to_string(),
                     ok.iter()
-                        .filter_map(|(v, s)| s.disk.map(|d| (*v, d.1)))
+                        .filter_map(|(v, s)| s.disks.first().map(|d| (*v, d.rn_max)))
                         .collect(),
                 ),
             ],
