@@ -98,23 +98,11 @@ impl Stepper for ExactModal {
         let s = structural(p)?;
         let linear = s.linear_modal().ok_or(SolveError::NotLinearModal)?;
         // A force of degree d within its pieces is fitted exactly with two degrees to spare,
-        // which the error estimate reads.
-        self.degree = linear.degree + 2;
-        let d = self.degree as f64;
-        self.nodes = (0..=self.degree)
-            .map(|j| 0.5 * (1.0 - (std::f64::consts::PI * j as f64 / d).cos()))
-            .collect();
-        let unit = |j: usize| -> Vec<f64> {
-            (0..=self.degree)
-                .map(|i| f64::from(u8::from(i == j)))
-                .collect()
-        };
-        let columns: Vec<Vec<f64>> = (0..=self.degree)
-            .map(|j| chebyshev_coefficients(&unit(j)))
-            .collect();
-        self.chebyshev = (0..=self.degree)
-            .map(|i| columns.iter().map(|c| c[i]).collect())
-            .collect();
+        // which the error estimate reads. A run restarts at every breakpoint (each axle's
+        // entry and exit): the points and weights are formed once per degree.
+        if self.chebyshev.is_empty() || self.degree != linear.degree + 2 {
+            self.fit_to_degree(linear.degree + 2);
+        }
         self.linear = Some(linear);
         self.y_new.copy_from_slice(y0);
         self.accepted = StepMotion {
@@ -226,6 +214,24 @@ impl Stepper for ExactModal {
 }
 
 impl ExactModal {
+    /// The Chebyshev–Lobatto points of a fit of `degree` and the weights that turn samples at
+    /// them into Chebyshev coefficients.
+    fn fit_to_degree(&mut self, degree: usize) {
+        self.degree = degree;
+        let d = degree as f64;
+        self.nodes = (0..=degree)
+            .map(|j| 0.5 * (1.0 - (std::f64::consts::PI * j as f64 / d).cos()))
+            .collect();
+        let unit =
+            |j: usize| -> Vec<f64> { (0..=degree).map(|i| f64::from(u8::from(i == j))).collect() };
+        let columns: Vec<Vec<f64>> = (0..=degree)
+            .map(|j| chebyshev_coefficients(&unit(j)))
+            .collect();
+        self.chebyshev = (0..=degree)
+            .map(|i| columns.iter().map(|c| c[i]).collect())
+            .collect();
+    }
+
     /// Displacements and rates of every oscillator at t within the accepted step.
     fn at(&self, t: f64) -> (Vec<f64>, Vec<f64>) {
         let m = &self.accepted;
