@@ -300,8 +300,12 @@ impl<'a> LoadedBeam<'a> {
     pub fn train_power(&self, t: f64, q: &[f64], v: &[f64], a: Option<&[f64]>) -> f64 {
         let mut forces = 0.0;
         for (x, p) in self.axles(t) {
+            // An axle's force has no moment and, on a level beam, no axial part: the rates of
+            // those unknowns are not needed.
             self.beam.point_load_terms(x, [0.0, -p], 0.0, |i, f| {
-                forces += f * self.on_mesh_at(i, v)
+                if f != 0.0 {
+                    forces += f * self.on_mesh_at(i, v);
+                }
             });
         }
         let masses = match (self.moving_masses(), a) {

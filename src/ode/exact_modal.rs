@@ -54,6 +54,9 @@ pub(crate) struct ExactModal {
     /// Row i: the i-th Chebyshev coefficient's weights on the samples at `nodes`, formed once:
     /// every mode fits its force by it at every step.
     chebyshev: Vec<Vec<f64>>,
+    /// Row j: the weights that turn the samples into the fitted polynomial's coefficient of
+    /// σ^j (each column the interpolant through one unit sample, in monomials).
+    monomial: Vec<Vec<f64>>,
     linear: Option<LinearModal>,
     trial: StepMotion,
     accepted: StepMotion,
@@ -84,6 +87,7 @@ impl ExactModal {
             degree: 6,
             nodes: Vec::new(),
             chebyshev: Vec::new(),
+            monomial: Vec::new(),
             linear: None,
             trial: StepMotion::default(),
             accepted: StepMotion::default(),
@@ -157,20 +161,19 @@ impl Stepper for ExactModal {
         let mut error = vec![0.0; 2 * n];
         let mut force = Vec::with_capacity(n);
         let mut motions = Vec::with_capacity(n);
+        let weigh = |row: &[f64], k: usize| -> f64 {
+            row.iter().zip(&samples[k]).map(|(w, v)| w * v).sum()
+        };
         for k in 0..n {
-            let cheb: Vec<f64> = self
-                .chebyshev
-                .iter()
-                .map(|row| row.iter().zip(&samples[k]).map(|(w, v)| w * v).sum())
-                .collect();
-            let dropped = cheb[d].abs() + cheb[d - 1].abs();
+            let dropped =
+                weigh(&self.chebyshev[d], k).abs() + weigh(&self.chebyshev[d - 1], k).abs();
             let (w2, c) = (linear.stiffness[k], linear.damping[k]);
             let w = w2.max(0.0).sqrt();
             // What the two highest coefficients move: at most their size times the static
             // (1/ω²) or the impulsive (h²/2) response, and a rate of h or 1/ω.
             error[k] = dropped * (0.5 * h * h).min(if w2 > 0.0 { 1.0 / w2 } else { f64::INFINITY });
             error[n + k] = dropped * h.min(if w > 0.0 { 1.0 / w } else { f64::INFINITY });
-            let g = monomial_in_sigma(&cheb);
+            let g: Vec<f64> = self.monomial.iter().map(|row| weigh(row, k)).collect();
             let m = motion(w2, c, h, &g, y[k], y[n + k]);
             let (x1, v1) = evaluate(&m, w2, c, h, 1.0);
             self.y_new[k] = x1;
@@ -246,6 +249,10 @@ impl ExactModal {
             .collect();
         self.chebyshev = (0..=degree)
             .map(|i| columns.iter().map(|c| c[i]).collect())
+            .collect();
+        let in_sigma: Vec<Vec<f64>> = columns.iter().map(|c| monomial_in_sigma(c)).collect();
+        self.monomial = (0..=degree)
+            .map(|j| in_sigma.iter().map(|c| c[j]).collect())
             .collect();
     }
 
