@@ -17,7 +17,7 @@ pub fn describe(text: &str, message: &str, line: Option<(u64, u64)>) -> String {
         .filter(|(head, _)| head.starts_with("line "))
         .map_or(first, |(_, rest)| rest);
     let path = line.and_then(|(l, c)| path_at(text, l as usize, c as usize));
-    let key = |path: &[String]| format!("`{}`", path.join("."));
+    let key = |path: &[String]| dotted(&path.join("."));
     let at = |sentence: String| match line {
         Some((l, _)) => format!("line {l}: {sentence}"),
         None => sentence,
@@ -82,6 +82,15 @@ fn reworded(what: &str, unplaced: bool) -> String {
 
 /// A reader message cut to one short line: its echoes of the scene's text are quoted and
 /// shortened like every other excerpt.
+/// A key path as a message names it: in backticks, or quoted and cut where it is longer than
+/// any key of the format (a flow of nested garbage can make it thousands of characters).
+fn dotted(path: &str) -> String {
+    if path.chars().count() <= 80 && !path.chars().any(char::is_control) {
+        return format!("`{path}`");
+    }
+    quote(path)
+}
+
 fn clip(message: &str) -> String {
     if message.chars().count() <= 160 && !message.chars().any(char::is_control) {
         return message.to_string();
@@ -164,7 +173,18 @@ fn is_key(word: &str) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::path_at;
+    use super::{dotted, path_at};
+
+    /// A key path nested past any the format has is cut in the message, which stays one short
+    /// line (found by fuzzing: a flow of nested keys made a sentence of 834 characters).
+    #[test]
+    fn a_long_key_path_is_cut() {
+        assert_eq!(dotted("track.beam.E"), "`track.beam.E`");
+        let long = ["k".repeat(50), "k".repeat(50)].join(".");
+        let named = dotted(&long);
+        assert!(named.chars().count() < 50 && named.contains('…'), "{named}");
+        assert!(!dotted("a\nb").contains('\n'));
+    }
 
     #[test]
     fn keys_are_found_by_indentation_and_flow() {
