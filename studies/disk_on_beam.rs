@@ -764,3 +764,48 @@ fn a_list_of_one_disk_is_the_disk() {
     };
     assert_eq!(written(&text), written(&listed));
 }
+
+/// `--animate` with two disks draws each: a disk group (its circle and spoke) per disk, the
+/// one ahead starting 10 m (at the drawing's scale) to the right of the one behind, and each
+/// faded once it has left the beam.
+#[test]
+fn an_animation_draws_every_disk() {
+    let disks = [
+        d44_disk(10.0, "moving-force"),
+        d44_disk(0.0, "moving-force"),
+    ];
+    let scene = bridge_with_disks("modal\n    modes: 8", &disks, 1.2);
+    let over = rollbeam::run::Overrides {
+        animate: true,
+        ..Default::default()
+    };
+    let r = rollbeam::run::run(&scene, &over, false)
+        .expect("the run completes")
+        .beam()
+        .expect("a beam scene");
+    let path = std::env::temp_dir().join(format!("rollbeam-animation-{}.svg", std::process::id()));
+    rollbeam::output::animation::write_animation(&r, &path).expect("written");
+    let svg = std::fs::read_to_string(&path).expect("read back");
+    std::fs::remove_file(&path).ok();
+    let groups: Vec<&str> = svg.split(r##"fill="#f2c14e""##).skip(1).collect();
+    assert_eq!(groups.len(), 2, "{svg:.400}");
+    let first_cx = |g: &str| -> f64 {
+        let before = svg.split(g).next().expect("the group is in the drawing");
+        let at = before.rfind("cx=\"").expect("a centre") + 4;
+        before[at..]
+            .split('"')
+            .next()
+            .unwrap()
+            .parse()
+            .expect("a number")
+    };
+    let (ahead, behind) = (first_cx(groups[0]), first_cx(groups[1]));
+    let metres = 960.0 - 2.0 * 30.0;
+    assert!(
+        (ahead - behind - 10.0 / 20.0 * metres).abs() < 0.05 * metres,
+        "centres {ahead} and {behind}"
+    );
+    for g in groups {
+        assert!(g.contains(";0.25"), "a disk that left is drawn faded");
+    }
+}

@@ -1,7 +1,7 @@
-//! `animation.svg` (`rollbeam run --animate`): the disk rolling on the magnified beam, as an
+//! `animation.svg` (`rollbeam run --animate`): the disks rolling on the magnified beam, as an
 //! SVG that animates itself (SMIL), so any browser plays it with no player or codec. Each
-//! frame of the run is one value of a discrete animation: the beam's polyline, the disk's
-//! centre and a spoke that shows how far it has turned.
+//! frame of the run is one value of a discrete animation: the beam's polyline, each disk's
+//! centre and a spoke that shows how far it has turned, and the vehicles' wheels.
 
 use std::fmt::Write;
 use std::path::Path;
@@ -22,9 +22,9 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
         )));
     }
     let mag = r.setup.magnify;
-    let radius = r.setup.disk().map_or(0.0, |d| d.disk.radius);
+    let radii: Vec<f64> = r.setup.disks.iter().map(|d| d.disk.radius).collect();
     let (shapes, disks) = frame_geometry(r);
-    let [x0, x1, y0, y1] = bounds(&shapes, &disks, radius);
+    let [x0, x1, y0, y1] = bounds(&shapes, &disks, &radii);
     let k = (WIDTH - 2.0 * MARGIN) / (x1 - x0).max(1e-9);
     let height = (y1 - y0) * k + 2.0 * MARGIN + 30.0;
     let to_svg = |p: [f64; 2]| (MARGIN + (p[0] - x0) * k, MARGIN + 30.0 + (y1 - p[1]) * k);
@@ -51,27 +51,6 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
                 .collect::<Vec<_>>()
                 .join(" ")
         })
-        .collect();
-    let held = held(&disks, [x0, y0]);
-    let coord = |f: fn((f64, f64)) -> f64| -> Vec<String> {
-        held.iter()
-            .map(|(c, _, _)| format!("{:.1}", f(to_svg(*c))))
-            .collect()
-    };
-    let rim = |f: fn((f64, f64)) -> f64| -> Vec<String> {
-        held.iter()
-            .map(|(c, turned, _)| {
-                let p = [
-                    c[0] + radius * (turned + 0.5 * std::f64::consts::PI).cos(),
-                    c[1] + radius * (turned + 0.5 * std::f64::consts::PI).sin(),
-                ];
-                format!("{:.1}", f(to_svg(p)))
-            })
-            .collect()
-    };
-    let opacity: Vec<String> = held
-        .iter()
-        .map(|(_, _, on)| if *on { "1" } else { "0.25" }.to_string())
         .collect();
     let mut svg = String::new();
     let _ = writeln!(
@@ -102,7 +81,28 @@ pub fn write_animation(r: &BeamRun, path: &Path) -> Result<(), Error> {
         points[0],
         animate("points", &points)
     );
-    if r.setup.disk().is_some() {
+    for (disk, &radius) in disks.iter().zip(&radii) {
+        let held = held(disk, [x0, y0]);
+        let coord = |f: fn((f64, f64)) -> f64| -> Vec<String> {
+            held.iter()
+                .map(|(c, _, _)| format!("{:.1}", f(to_svg(*c))))
+                .collect()
+        };
+        let rim = |f: fn((f64, f64)) -> f64| -> Vec<String> {
+            held.iter()
+                .map(|(c, turned, _)| {
+                    let p = [
+                        c[0] + radius * (turned + 0.5 * std::f64::consts::PI).cos(),
+                        c[1] + radius * (turned + 0.5 * std::f64::consts::PI).sin(),
+                    ];
+                    format!("{:.1}", f(to_svg(p)))
+                })
+                .collect()
+        };
+        let opacity: Vec<String> = held
+            .iter()
+            .map(|(_, _, on)| if *on { "1" } else { "0.25" }.to_string())
+            .collect();
         disk_group(&mut svg, (&coord, &rim), &opacity, radius * k, &animate);
     }
     wheel_dots(&mut svg, r, &shapes, &to_svg, &animate, [x0, y0]);
@@ -200,13 +200,14 @@ fn on_axis(xs: &[f64], pts: &[[f64; 2]], length: f64, x: f64) -> Option<[f64; 2]
     ])
 }
 
-/// The magnified axis in each frame, and the disk's centre and turned angle on it (or over
+/// A disk's centre and turned angle in each frame, while it is on or over the beam.
+type DiskFrames = Vec<Option<([f64; 2], f64)>>;
+
+/// The magnified axis in each frame, and each disk's centre and turned angle on it (or over
 /// it, in flight) while it is on or over the beam.
-#[allow(clippy::type_complexity)]
-fn frame_geometry(r: &BeamRun) -> (Vec<Vec<[f64; 2]>>, Vec<Option<([f64; 2], f64)>>) {
+fn frame_geometry(r: &BeamRun) -> (Vec<Vec<[f64; 2]>>, Vec<DiskFrames>) {
     let frames = &r.frames;
     let mag = r.setup.magnify;
-    let radius = r.setup.disk().map_or(0.0, |d| d.disk.radius);
     let xs = &r.envelope.x;
     let (sn, cs) = r.beam.angle.sin_cos();
     let shape = |along: &[crate::beam::PointDisplacement]| -> Vec<[f64; 2]> {
@@ -219,23 +220,32 @@ fn frame_geometry(r: &BeamRun) -> (Vec<Vec<[f64; 2]>>, Vec<Option<([f64; 2], f64
             .collect()
     };
     let shapes: Vec<Vec<[f64; 2]>> = frames.iter().map(|f| shape(&f.along)).collect();
-    let disks = frames
+    let disks = r
+        .setup
+        .disks
         .iter()
-        .zip(&shapes)
-        .map(|(f, pts)| {
-            f.disk.map(|(s, turned, gap)| {
-                let p = on_axis(xs, pts, f64::INFINITY, s.max(0.0)).unwrap_or(pts[0]);
-                // A flying disk's gap is a displacement from the track: magnified with it.
-                let lift = radius + mag * gap;
-                ([p[0] - lift * sn, p[1] + lift * cs], turned)
-            })
+        .enumerate()
+        .map(|(k, d)| {
+            frames
+                .iter()
+                .zip(&shapes)
+                .map(|(f, pts)| {
+                    f.disks[k].map(|(s, turned, gap)| {
+                        let p = on_axis(xs, pts, f64::INFINITY, s.max(0.0)).unwrap_or(pts[0]);
+                        // A flying disk's gap is a displacement from the track: magnified
+                        // with it.
+                        let lift = d.disk.radius + mag * gap;
+                        ([p[0] - lift * sn, p[1] + lift * cs], turned)
+                    })
+                })
+                .collect()
         })
         .collect();
     (shapes, disks)
 }
 
-/// [x0, x1, y0, y1] of the smallest box holding every frame's axis and disk.
-fn bounds(shapes: &[Vec<[f64; 2]>], disks: &[Option<([f64; 2], f64)>], radius: f64) -> [f64; 4] {
+/// [x0, x1, y0, y1] of the smallest box holding every frame's axis and disks.
+fn bounds(shapes: &[Vec<[f64; 2]>], disks: &[DiskFrames], radii: &[f64]) -> [f64; 4] {
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -245,9 +255,11 @@ fn bounds(shapes: &[Vec<[f64; 2]>], disks: &[Option<([f64; 2], f64)>], radius: f
     for p in shapes.iter().flatten() {
         (x0, x1, y0, y1) = (x0.min(p[0]), x1.max(p[0]), y0.min(p[1]), y1.max(p[1]));
     }
-    for (c, _) in disks.iter().flatten() {
-        (x0, x1) = (x0.min(c[0] - radius), x1.max(c[0] + radius));
-        (y0, y1) = (y0.min(c[1] - radius), y1.max(c[1] + radius));
+    for (disk, radius) in disks.iter().zip(radii) {
+        for (c, _) in disk.iter().flatten() {
+            (x0, x1) = (x0.min(c[0] - radius), x1.max(c[0] + radius));
+            (y0, y1) = (y0.min(c[1] - radius), y1.max(c[1] + radius));
+        }
     }
     [x0, x1, y0, y1]
 }

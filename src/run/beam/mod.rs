@@ -60,9 +60,9 @@ pub const FRAMES: usize = 240;
 pub struct Frame {
     pub t: f64,
     pub along: Vec<PointDisplacement>,
-    /// Contact point s (in flight, the nearest point), the angle the disk has turned through,
-    /// and its gap to the beam (0 while it rolls), while it is on or over the beam.
-    pub disk: Option<(f64, f64, f64)>,
+    /// Per disk, while it is on or over the beam: its contact point s (in flight, the nearest
+    /// point), the angle it has turned through, and its gap to the beam (0 while it rolls).
+    pub disks: Vec<Option<(f64, f64, f64)>>,
     /// Where every vehicle's every wheel is along the beam (on the deck or off it).
     pub wheels: Vec<f64>,
 }

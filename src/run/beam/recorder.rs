@@ -696,7 +696,7 @@ pub(super) fn recorder<'a>(
             frame_every: over.animate.then(|| scene.duration / (FRAMES - 1) as f64),
             shapes: Vec::new(),
             frames: Vec::new(),
-            turned: (0.0, setup.disk().map_or(0.0, |d| d.omega0), 0.0),
+            turned: setup.disks.iter().map(|d| (0.0, d.omega0, 0.0)).collect(),
             wheel_offsets: setup
                 .vehicles
                 .iter()

@@ -144,20 +144,21 @@ pub(super) struct Pictures<'a> {
     pub frame_every: Option<f64>,
     pub shapes: Vec<(f64, Vec<PointDisplacement>)>,
     pub frames: Vec<Frame>,
-    /// (t, Ω, angle) at the last row with the disk on the beam.
-    pub turned: (f64, f64, f64),
+    /// Per disk, (t, Ω, angle) at the last row with it on the beam.
+    pub turned: Vec<(f64, f64, f64)>,
     /// Per vehicle, its wheels' distances behind its first axle.
     pub wheel_offsets: Vec<Vec<f64>>,
 }
 
 impl Pictures<'_> {
-    /// Record the sample: the frames follow the first disk.
+    /// Record the sample.
     pub fn record(&mut self, s: &Sample) {
         let t = s.t;
-        let disk = s.disks.first().copied().flatten();
-        if let Some(d) = disk {
-            let (t0, w0, angle) = self.turned;
-            self.turned = (t, d.omega, angle + 0.5 * (w0 + d.omega) * (t - t0));
+        for (d, turned) in s.disks.iter().zip(self.turned.iter_mut()) {
+            if let Some(d) = d {
+                let (t0, w0, angle) = *turned;
+                *turned = (t, d.omega, angle + 0.5 * (w0 + d.omega) * (t - t0));
+            }
         }
         if self
             .frame_every
@@ -166,7 +167,16 @@ impl Pictures<'_> {
             self.frames.push(Frame {
                 t,
                 along: s.along.to_vec(),
-                disk: disk.map(|d| (d.s, self.turned.2, s.gap)),
+                // After the riders have left, the samples hold no disks.
+                disks: self
+                    .turned
+                    .iter()
+                    .enumerate()
+                    .map(|(k, turned)| {
+                        let d = s.disks.get(k).copied().flatten();
+                        d.map(|d| (d.s, turned.2, s.gap))
+                    })
+                    .collect(),
                 wheels: s.vehicles.as_ref().map_or_else(Vec::new, |v| {
                     v.x.iter()
                         .zip(&self.wheel_offsets)
