@@ -710,8 +710,8 @@ fn item_11_planned_sweeps_trust_no_file() {
             |p| {
                 edit(&files(p, "done")[1], |t| {
                     let (head, rest) = t.split_once("  probes:").unwrap();
-                    let tail = rest.split_once("  disk:").unwrap().1;
-                    format!("{head}  probes: []\n  disk:{tail}")
+                    let tail = rest.split_once("  disks:").unwrap().1;
+                    format!("{head}  probes: []\n  disks:{tail}")
                 })
             },
             "merge",
