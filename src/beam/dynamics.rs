@@ -499,16 +499,7 @@ impl Structure for LoadedBeam<'_> {
     /// as in the first, and a weight of the displacement alone let D44's largest acceleration
     /// come out 5 % low with every displacement within 10⁻⁴.
     fn norm_weights(&self) -> Option<Vec<f64>> {
-        let m = self.modal?;
-        let mut w = m.displacement_per_amplitude();
-        if self.lowest > 0.0 {
-            for (w, omega) in w.iter_mut().zip(&m.omega) {
-                if *omega <= self.reported {
-                    *w *= (omega / self.lowest).powi(2).max(1.0);
-                }
-            }
-        }
-        Some(w)
+        self.weights_by_acceleration_up_to(self.reported)
     }
     /// A modal beam under moving forces, point loads and its weight: the modes' oscillators,
     /// damped by α + β ω², under a force that is, between the axles' crossings of the mesh's
@@ -539,6 +530,27 @@ impl Structure for LoadedBeam<'_> {
 }
 
 impl LoadedBeam<'_> {
+    /// The modal error weights with every mode up to the circular frequency `reported` counted
+    /// by the acceleration it makes (see `norm_weights`).
+    fn weights_by_acceleration_up_to(&self, reported: f64) -> Option<Vec<f64>> {
+        let m = self.modal?;
+        let mut w = m.displacement_per_amplitude();
+        if self.lowest > 0.0 {
+            for (w, omega) in w.iter_mut().zip(&m.omega) {
+                if *omega <= reported {
+                    *w *= (omega / self.lowest).powi(2).max(1.0);
+                }
+            }
+        }
+        Some(w)
+    }
+
+    /// The modal error weights where a rider's contact force is reported: the force is the
+    /// rider's mass times the beam's acceleration under it, in every mode the beam holds.
+    pub fn contact_norm_weights(&self) -> Option<Vec<f64>> {
+        self.weights_by_acceleration_up_to(f64::INFINITY)
+    }
+
     /// The longest step at t: a share of the lowest mode's period (see [`STEPS_PER_PERIOD`]),
     /// and while an axle of the train is on the beam the time it takes to cross one element. An axle's load on the mesh changes smoothly within an element and
     /// with a kink at each node, so no step may carry it over a node unseen, and none can

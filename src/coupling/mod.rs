@@ -839,7 +839,15 @@ impl Structure for DiskOnBeam<'_> {
     }
 
     fn norm_weights(&self) -> Option<Vec<f64>> {
-        let mut w = self.loaded.norm_weights()?;
+        let inertial = self
+            .disks
+            .iter()
+            .any(|d| d.spec.coupling != Coupling::MovingForce);
+        let mut w = if inertial {
+            self.loaded.contact_norm_weights()?
+        } else {
+            self.loaded.norm_weights()?
+        };
         w.resize(self.dim(), 1.0);
         Some(w)
     }

@@ -175,6 +175,16 @@ impl BeamScene {
                 .is_some_and(|t| t.model == TrainModel::MovingMass)
     }
 
+    /// Whether a disk whose contact force follows the beam's motion (any coupling but a
+    /// moving force) rides on a modal beam: its force then rings in every mode kept.
+    pub fn contact_rides_on_modes(&self) -> bool {
+        matches!(self.beam.model, BeamModel::Modal { .. })
+            && self
+                .disks
+                .iter()
+                .any(|d| d.coupling != Coupling::MovingForce)
+    }
+
     /// Whether a load is switched on or off during the run, the beam's own weight included
     /// where it drops on a beam that starts undeformed: it then excites every mode the mesh
     /// holds.
