@@ -296,7 +296,7 @@ fn item_4_no_hangs() {
         "accuracy",
         &beam("", &format!("{DISK}solver: {{accuracy: 1e-12}}\n")),
     );
-    fails(&["check", &s], 1, &["`solver.accuracy`", "at least 1e-8"]);
+    fails(&["check", &s], 1, &["`solver.accuracy`", "at least 1e-7"]);
     let s = scene(
         "rtol-tiny",
         &beam("", &format!("{DISK}solver: {{rtol: 1e-300}}\n")),

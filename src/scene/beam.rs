@@ -206,7 +206,7 @@ fn accuracy(c: &Checker, raw: &SceneFile) -> Result<f64, Error> {
         return c.err(
             a.referenced.line(),
             "solver.accuracy",
-            format!("= {v:e} asks for more than the beam's equations hold: the tolerances it implies (down to accuracy/1000) would pass the round-off of a step; use at least {MIN_ACCURACY:e}"),
+            format!("= {v:e} asks for more than the beam's equations hold: the tolerances it implies (down to accuracy/10000) would pass the round-off of a step; use at least {MIN_ACCURACY:e}"),
         );
     }
     Ok(v)

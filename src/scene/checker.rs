@@ -3,8 +3,8 @@
 
 use super::*;
 
-/// Finest `solver.accuracy`: with a switched load its rtol is a thousandth of it, 1e-11.
-pub(super) const MIN_ACCURACY: f64 = 1e-8;
+/// Finest `solver.accuracy`: with a switched load its rtol is a ten-thousandth of it, 1e-11.
+pub(super) const MIN_ACCURACY: f64 = 1e-7;
 
 /// Rows of history.csv a run may write.
 pub(super) const MAX_ROWS: f64 = 1e6;
