@@ -517,7 +517,7 @@ fn a_stored_history_cut_or_replaced_is_stale() {
 /// to the plan; the scene's mesh kept) lands within the accuracy asked of its stored
 /// reference, in the reference's own measure: the headlines read on the output grid, each
 /// against the largest of its family. Measured at most 8.9·10⁻⁴ (the rubber beam's
-/// three-quarter point), 3.4·10⁻⁴ on B1–B3 and C1–C3, 2.9·10⁻⁴ on D50, 5.9·10⁻⁵ on D44 and
+/// three-quarter point), 2.3·10⁻⁴ on B1–B3 and C1–C3, 2.9·10⁻⁴ on D50, 5.9·10⁻⁵ on D44 and
 /// the vehicles, 10⁻⁷ on the HSLM bridge (integrated exactly).
 fn land_within_their_references_at_the_defaults(names: &[&str]) {
     let references = stored_references();
