@@ -176,13 +176,11 @@ impl BeamScene {
     }
 
     /// Whether a disk whose contact force follows the beam's motion (any coupling but a
-    /// moving force) rides on a modal beam: its force then rings in every mode kept.
-    pub fn contact_rides_on_modes(&self) -> bool {
-        matches!(self.beam.model, BeamModel::Modal { .. })
-            && self
-                .disks
-                .iter()
-                .any(|d| d.coupling != Coupling::MovingForce)
+    /// moving force) rolls on the beam: its force then rings in every mode the beam holds.
+    pub fn rolls_with_inertia(&self) -> bool {
+        self.disks
+            .iter()
+            .any(|d| d.coupling != Coupling::MovingForce)
     }
 
     /// Whether a load is switched on or off during the run, the beam's own weight included
