@@ -113,6 +113,15 @@ impl Curve {
         }
     }
 
+    /// The parameters where the curvature has a kink (a spline's interior knots): a contact
+    /// force's extreme may sit there, where no turning point of a smooth fit finds it.
+    pub fn curvature_kinks(&self) -> &[f64] {
+        match self {
+            Curve::Points(sp) => sp.interior_knots(),
+            Curve::Parabola { .. } | Curve::Line { .. } | Curve::Expr { .. } => &[],
+        }
+    }
+
     pub fn kind(&self) -> &'static str {
         match self {
             Curve::Parabola { .. } => "parabola",

@@ -48,6 +48,11 @@ impl Spline {
         (self.x[0], self.x[self.x.len() - 1])
     }
 
+    /// The interior knots: there Y'' is continuous but Y''' jumps, so the curvature has a kink.
+    pub fn interior_knots(&self) -> &[f64] {
+        &self.x[1..self.x.len() - 1]
+    }
+
     /// Y, Y', Y'' at X = s (clamped to the last interval at the ends).
     pub fn eval(&self, s: f64) -> (f64, f64, f64) {
         let n = self.x.len();

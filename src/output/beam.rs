@@ -59,6 +59,22 @@ struct PatchSummary {
     contact_force_sensitivity: f64,
 }
 
+/// Whether disk k lifted off while rolling ([`crate::run::lifted_off_rolling`]): of several
+/// disks, a lift-off stops the run, and the one lifting is the one whose normal force is least.
+fn lifted_off_rolling(r: &BeamRun, k: usize) -> bool {
+    if !crate::run::lifted_off_rolling(&r.flights, r.header.stop) {
+        return false;
+    }
+    let last_rn = |j: usize| {
+        r.rows
+            .iter()
+            .rev()
+            .find_map(|row| row.disks.get(j).copied().flatten())
+            .map_or(f64::INFINITY, |d| d.rn)
+    };
+    (0..r.setup.disks.len()).all(|j| last_rn(k) <= last_rn(j))
+}
+
 /// Disk k's summary, if it was ever observed on or over the beam.
 fn disk_summary(r: &BeamRun, k: usize) -> Option<BeamDiskSummary> {
     let spec = r.setup.disks.get(k)?;
@@ -68,7 +84,7 @@ fn disk_summary(r: &BeamRun, k: usize) -> Option<BeamDiskSummary> {
         .filter_map(|row| row.disks.get(k).copied().flatten())
         .last()?;
     let [rn, rt, mu, w_under] = (*r.extremes.disks.get(k)?)?;
-    let mu_needed_max = mu.seen().then_some(mu.max);
+    let mu_needed_max = (mu.seen() && !lifted_off_rolling(r, k)).then_some(mu.max);
     Some(BeamDiskSummary {
         coupling: spec.coupling.name(),
         common: super::summary::DiskSummary {

@@ -137,7 +137,9 @@ impl Summary {
                 rn_max: rn.max,
                 rt_min: rt.min,
                 rt_max: rt.max,
-                mu_needed_max: mu.seen().then_some(mu.max),
+                mu_needed_max: (mu.seen()
+                    && !crate::run::lifted_off_rolling(&r.flights, r.header.stop))
+                .then_some(mu.max),
                 left_track_t: left.then_some(r.last.t),
                 flights: r.flights.clone(),
             },

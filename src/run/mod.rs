@@ -161,6 +161,19 @@ pub struct FlightRecord {
     pub energy_lost: Option<f64>,
 }
 
+/// Whether the disk lifted off while rolling (not just bounced, or launched at the start):
+/// there its normal force fell to zero with the track still pushing it along, so the friction
+/// rolling needs grew without bound and no largest value is reported.
+pub fn lifted_off_rolling(flights: &[FlightRecord], stop: Stop) -> bool {
+    let mut landed: Option<f64> = None;
+    let rolled_into_a_flight = flights.iter().any(|f| {
+        let after_rolling = f.lift_off_t > 0.0 && landed != Some(f.lift_off_t);
+        landed = f.land_t;
+        after_rolling
+    });
+    rolled_into_a_flight || stop == Stop::Event(StopReason::ContactLost)
+}
+
 /// Most flights one run may take: a disk that lands and lifts off again without end (rolling
 /// over a crest it cannot hold at a speed it keeps) is stopped with that reason.
 pub const MAX_FLIGHTS: usize = 100_000;

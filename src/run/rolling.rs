@@ -73,6 +73,8 @@ struct Recorder<'a> {
     watch: Watch,
     /// Those quantities at the end of the last step watched.
     last: Option<(f64, Vec<f64>)>,
+    /// Where the track's curvature has a kink ([`crate::curve::Curve::curvature_kinks`]).
+    kinks: &'a [f64],
 }
 
 /// What the summary reports the extremes of: rn, rt and the friction coefficient rolling
@@ -84,6 +86,7 @@ fn contact_quantities(d: &DiskObservation) -> Vec<f64> {
 impl<'a> Recorder<'a> {
     fn new(
         model: &'a dyn RollingModel,
+        kinks: &'a [f64],
         first: &DiskObservation,
         outputs: usize,
         scene: &Scene,
@@ -102,6 +105,7 @@ impl<'a> Recorder<'a> {
             impact: 0.0,
             watch: Watch::new(3, Turning::OnTheSolution),
             last: None,
+            kinks,
         }
     }
 
@@ -132,15 +136,26 @@ impl Observer for Recorder<'_> {
         }
         let model = self.model;
         let at = |t: f64| contact_quantities(&model.observe(t, &dense.at(t)));
-        let start = match self.last.take() {
+        let mut start = match self.last.take() {
             Some((t, v)) if t == t0 => v,
             _ => at(t0),
         };
-        let tm = 0.5 * (t0 + t1);
-        let (middle, end) = (at(tm), at(t1));
-        self.watch
-            .record_step([t0, tm, t1], [&start, &middle, &end], at);
-        self.last = Some((t1, end));
+        // The contact force has a kink where the contact point crosses a kink of the
+        // curvature; a parabola fitted across it finds no turning point there, so the step is
+        // watched in pieces that end at each crossing.
+        let s_at = |t: f64| model.observe(t, &dense.at(t)).s;
+        let mut a = t0;
+        for b in kink_crossings(self.kinks, t0, t1, s_at)
+            .into_iter()
+            .chain([t1])
+        {
+            let m = 0.5 * (a + b);
+            let (middle, end) = (at(m), at(b));
+            self.watch
+                .record_step([a, m, b], [&start, &middle, &end], at);
+            (a, start) = (b, end);
+        }
+        self.last = Some((t1, start));
     }
 
     fn step(&mut self, t: f64, y: &[f64]) {
@@ -151,6 +166,34 @@ impl Observer for Recorder<'_> {
             p.update(t);
         }
     }
+}
+
+/// The times inside (t0, t1) where the contact parameter `s_at` crosses one of `kinks`
+/// (ascending), each to 1e-12 of the step by bisection; a knot crossed twice within one step
+/// is not seen, which needs the disk to turn back within a step.
+fn kink_crossings(kinks: &[f64], t0: f64, t1: f64, s_at: impl Fn(f64) -> f64) -> Vec<f64> {
+    let (s0, s1) = (s_at(t0), s_at(t1));
+    let (lo, hi) = (s0.min(s1), s0.max(s1));
+    let from = kinks.partition_point(|&k| k <= lo);
+    let to = kinks.partition_point(|&k| k < hi);
+    let mut times: Vec<f64> = kinks[from..to]
+        .iter()
+        .map(|&knot| {
+            let on_start_side = |t: f64| (s_at(t) < knot) == (s0 < knot);
+            let (mut a, mut b) = (t0, t1);
+            while b - a > 1e-12 * (t1 - t0) {
+                let m = 0.5 * (a + b);
+                if on_start_side(m) {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            0.5 * (a + b)
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times
 }
 
 /// A bounce lower than this share of the radius is not flown: the gap is resolved to about
@@ -189,7 +232,14 @@ pub fn run(
     let opts = over.options(scene);
     let outputs = super::output_times(scene);
     let first = model.observe(0.0, &y0);
-    let mut rec = Recorder::new(model.as_ref(), &first, outputs.len(), scene, show_progress);
+    let mut rec = Recorder::new(
+        model.as_ref(),
+        setup.rolling.curve.curvature_kinks(),
+        &first,
+        outputs.len(),
+        scene,
+        show_progress,
+    );
     let mut stats = ode::Stats::default();
     let mut flights = Vec::new();
     // A disk launched faster than the track can hold it (the normal force negative from the
