@@ -172,6 +172,9 @@ impl Observer for Recorder<'_> {
 /// (ascending), each to 1e-12 of the step by bisection; a knot crossed twice within one step
 /// is not seen, which needs the disk to turn back within a step.
 fn kink_crossings(kinks: &[f64], t0: f64, t1: f64, s_at: impl Fn(f64) -> f64) -> Vec<f64> {
+    if kinks.is_empty() {
+        return Vec::new();
+    }
     let (s0, s1) = (s_at(t0), s_at(t1));
     let (lo, hi) = (s0.min(s1), s0.max(s1));
     let from = kinks.partition_point(|&k| k <= lo);
