@@ -1,7 +1,8 @@
 //! What a run leaves in its output directory: `summary.yaml`, `history.csv` and SVG figures.
-//! `beam.rs` and `animation.rs` write a beam run's; `rolling_history.rs`, and the rigid curve's
-//! parts of `summary.rs` and `plots.rs`, a disk on a rigid curve's; `summary.rs` and `plots.rs`
-//! also hold what both share (the stop, the solver's report, the energy; the charts).
+//! `beam/` (its summary and history; `beam/figures.rs`, its figures) and `animation.rs` write a
+//! beam run's; `rolling_history.rs`, and the rigid curve's parts of `summary.rs` and
+//! `plots.rs`, a disk on a rigid curve's; `summary.rs` and `plots.rs` also hold what both share
+//! (the stop, the solver's report, the energy; the charts).
 
 pub mod animation;
 pub mod beam;

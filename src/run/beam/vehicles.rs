@@ -1,0 +1,214 @@
+//! The vehicles' part of a beam run: their model on the beam, the drive over the whole run
+//! (each wheel's lift-offs and landings), and each vehicle's report from what was watched.
+
+use super::*;
+
+/// What a vehicle did over the run: its bodies' vertical accelerations and its wheels'
+/// contact forces from the time it came onto the deck, located on the solution.
+#[derive(Clone, Debug)]
+pub struct VehicleReport {
+    pub name: String,
+    /// Per body: its name, the range of its vertical acceleration, and its root mean square.
+    pub bodies: Vec<(String, Range, f64)>,
+    /// Per axle: its name and the range of its wheel's contact force.
+    pub axles: Vec<(String, Range)>,
+    /// When its last wheel left the deck, if it did in the run.
+    pub left_t: Option<f64>,
+    /// When it stopped, braking, if it did.
+    pub stopped_t: Option<f64>,
+    /// The axle whose wheel lost contact and stopped the run.
+    pub lost_contact: Option<String>,
+    /// Per axle, its disk wheel's flights.
+    pub flights: Vec<Vec<AxleFlight>>,
+}
+
+/// One flight of a vehicle's disk wheel (`summary.yaml`, `vehicles.<name>.axles.<axle>.flights`):
+/// when and where (the wheel's centre along the beam) it lifted off and landed, and the energy
+/// the plastic landing took (J); a flight the run ends in has no landing.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+pub struct AxleFlight {
+    pub lift_off_t: f64,
+    pub lift_off_x: f64,
+    pub land_t: Option<f64>,
+    pub land_x: Option<f64>,
+    pub energy_lost: Option<f64>,
+}
+
+/// One flight of a vehicle's disk wheel (index among all the wheels), from lift-off to
+/// landing.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct WheelFlight {
+    wheel: usize,
+    lift_off_t: f64,
+    land_t: Option<f64>,
+    /// What the landing took (J).
+    energy_lost: Option<f64>,
+}
+
+/// The vehicles on the beam, where the scene has them.
+pub(super) fn vehicles_on<'a>(
+    scene: &Scene,
+    setup: &'a BeamScene,
+    loaded: &'a LoadedBeam<'a>,
+) -> Result<Option<VehiclesOnBeam<'a>>, Error> {
+    if setup.vehicles.is_empty() {
+        return Ok(None);
+    }
+    let patch = crate::coupling::patch::dispersed_half_width(setup.beam.depth);
+    VehiclesOnBeam::new(loaded, &setup.vehicles, &setup.profile, patch)
+        .map(Some)
+        .ok_or_else(|| {
+            Error::Solver(format!(
+                "scene {}: the mass matrix of the beam and the vehicles' bodies is singular",
+                scene.name
+            ))
+        })
+}
+
+/// Integrate the vehicles on the beam over the whole run: on the deck, and on the rigid
+/// approaches before and after it, until the end or a wheel that cannot fly loses contact. A
+/// disk wheel with an unsprung mass flies where its contact force falls to zero and lands,
+/// plastically, where it touches the track again; the run goes on from each.
+pub(super) fn drive<'a>(
+    scene: &Scene,
+    v: &'a VehiclesOnBeam<'a>,
+    y0: &[f64],
+    outputs: &[f64],
+    opts: &ode::Options,
+    rec: &mut Recorder<'a>,
+    stats: &mut Stats,
+) -> Result<Ridden, Error> {
+    let n = v.dim();
+    let (mut t, mut y) = (0.0, y0.to_vec());
+    let mut flights: Vec<WheelFlight> = Vec::new();
+    let (stop, lost_contact) = loop {
+        let ahead: Vec<f64> = outputs
+            .iter()
+            .copied()
+            .filter(|&o| t == 0.0 || o > t)
+            .collect();
+        let out = integrate(v, t, &y[..n], &y[n..], scene.duration, &ahead, opts, rec)
+            .map_err(|e| solver_error(scene, e))?;
+        stats.add(&out.stats);
+        (t, y) = (out.t, out.y);
+        let Some(hit) = out.stopped_by else {
+            break (Stop::End, None);
+        };
+        let k = hit.reason;
+        if !v.can_fly(k) {
+            break (Stop::Event(StopReason::ContactLost), Some(v.wheel(k)));
+        }
+        if rec.history.rows.last().is_none_or(|r| r.t < t) {
+            rec.output(t, &y);
+        }
+        rec.restart();
+        if v.flies(k) {
+            let (lost, work) = v.land(k, t, &mut y);
+            rec.ledger.wheel_lands(lost, work);
+            if let Some(f) = flights.iter_mut().rev().find(|f| f.wheel == k) {
+                f.land_t = Some(t);
+                f.energy_lost = Some(f.energy_lost.unwrap_or(0.0) + lost);
+            }
+            // Landed with the body pulling the axle up: it flies on at the track's speed.
+            let (z, zd) = y.split_at(n);
+            if v.contact_forces(t, z, zd, &v.acceleration(t, z, zd))[k] < 0.0 {
+                v.lift(k, t, &mut y);
+                if let Some(f) = flights.iter_mut().rev().find(|f| f.wheel == k) {
+                    f.land_t = None;
+                }
+            }
+        } else {
+            if flights.len() >= MAX_FLIGHTS {
+                return Err(Error::Solver(format!(
+                    "scene {}: the vehicles' wheels lifted off {MAX_FLIGHTS} times by t = {t:.6} s; the run stops rather than count more flights",
+                    scene.name
+                )));
+            }
+            v.lift(k, t, &mut y);
+            flights.push(WheelFlight {
+                wheel: k,
+                lift_off_t: t,
+                land_t: None,
+                energy_lost: None,
+            });
+        }
+        rec.ledger.restart(&rec.phase, t, &y);
+    };
+    if rec.history.rows.last().is_none_or(|r| r.t < t) {
+        rec.output(t, &y);
+    }
+    Ok(Ridden {
+        stop,
+        left_track_t: None,
+        disks_left: Vec::new(),
+        flights: Vec::new(),
+        then: Then::Ended { t, y },
+        lost_contact,
+        wheel_flights: flights,
+    })
+}
+
+/// Each vehicle's report from the ranges watched (per vehicle, its bodies' accelerations then
+/// its wheels' contact forces) and the bodies' root mean squares.
+pub(super) fn vehicle_reports(
+    setup: &BeamScene,
+    ranges: &[Range],
+    rms: &[f64],
+    lost: Option<(usize, String)>,
+    wheel_flights: &[WheelFlight],
+    t_end: f64,
+    length: f64,
+) -> Vec<VehicleReport> {
+    let patch = crate::coupling::patch::dispersed_half_width(setup.beam.depth);
+    let (mut r, mut b) = (ranges.iter(), rms.iter());
+    let mut first_wheel = 0;
+    setup
+        .vehicles
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let last = v.axles.last().map_or(0.0, |a| a.x);
+            let wheels = first_wheel..first_wheel + v.axles.len();
+            first_wheel = wheels.end;
+            let mut flights = vec![Vec::new(); v.axles.len()];
+            for f in wheel_flights.iter().filter(|f| wheels.contains(&f.wheel)) {
+                let a = f.wheel - wheels.start;
+                let at = |t: f64| v.travel(t).0 - v.axles[a].x;
+                flights[a].push(AxleFlight {
+                    lift_off_t: f.lift_off_t,
+                    lift_off_x: at(f.lift_off_t),
+                    land_t: f.land_t,
+                    land_x: f.land_t.map(at),
+                    energy_lost: f.energy_lost,
+                });
+            }
+            VehicleReport {
+                flights,
+                name: v.name.clone(),
+                bodies: v
+                    .bodies
+                    .iter()
+                    .map(|body| {
+                        let range = r.next().copied().unwrap_or(Range::EMPTY);
+                        (
+                            body.name.clone(),
+                            range,
+                            b.next().copied().unwrap_or(f64::NAN),
+                        )
+                    })
+                    .collect(),
+                axles: v
+                    .axles
+                    .iter()
+                    .map(|a| (a.name.clone(), r.next().copied().unwrap_or(Range::EMPTY)))
+                    .collect(),
+                left_t: v.time_at(length + last + patch).filter(|&t| t <= t_end),
+                stopped_t: v.stops_at().filter(|&t| t <= t_end),
+                lost_contact: lost
+                    .as_ref()
+                    .filter(|(k, _)| *k == i)
+                    .map(|(_, axle)| axle.clone()),
+            }
+        })
+        .collect()
+}
