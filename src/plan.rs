@@ -100,8 +100,7 @@ impl Planner {
             scene.solver.method = crate::ode::Method::ExactModal;
             scene.solver.method_chosen = Some(EXACT_MODAL.to_string());
         } else if !method_given {
-            let damped_mesh = !matches!(b.beam.model, BeamModel::Modal { .. }) && b.rho_inf < 1.0;
-            if b.rolls_with_inertia() && b.vehicles.is_empty() && !damped_mesh {
+            if b.rolls_with_inertia() && b.vehicles.is_empty() && !damped_by_the_scene(b) {
                 scene.solver.method = crate::ode::Method::Esdirk4;
                 scene.solver.method_chosen = Some(ROLLING_CONTACT.to_string());
             }
@@ -129,11 +128,12 @@ impl Planner {
 /// Why the plan integrates a modal beam under moving forces and loads exactly.
 const EXACT_MODAL: &str = "exact-modal: the modal beam under moving forces and loads is uncoupled damped oscillators under a force of time alone, which it integrates in closed form between the axles' crossings of the nodes: exact whatever rtol, where a time-stepped run carries the error of every step into what it reports after the loads have moved along";
 
-/// Why the plan integrates a rolling disk with the fourth-order ESDIRK: on a modal beam, or a
-/// mesh left undamped (a nonlinear beam). A linearly responding mesh keeps generalized-α with
-/// the planned ρ∞ = 0.9: the fourth-order steps took twice as many on D44's mesh with stiff
-/// shear modes (G × 10⁴), which the damping removes for nothing.
-const ROLLING_CONTACT: &str = "esdirk4: a rolling disk's contact force is its mass times the beam's acceleration under it, which rings in every mode the beam holds from the moment the disk is set down; generalized-α carries that ringing with the phase error of every step (at a three-hundredth of the accuracy it read the deck's largest acceleration 1.2 % low on D44's modal beam, 4 % on the rubber beam and twice the converged on the zip-line), where the fourth-order method at a thirtieth of the accuracy comes within 6.9e-4 of the weight in the contact force and 6e-4 in the acceleration";
+/// Why the plan integrates a rolling disk with the fourth-order ESDIRK, on a modal beam or a
+/// mesh, unless the scene asks for numerical damping itself. On D44's linearly responding mesh
+/// (10 exact elements) started carrying the disk, generalized-α with the planned ρ∞ = 0.9 read
+/// the deck's largest acceleration 9 % low and the largest contact force 4·10⁻³ of the weight
+/// high; the fourth-order steps there come within 1.1·10⁻⁴ and 7·10⁻⁴, at 1.6 times the steps.
+const ROLLING_CONTACT: &str = "esdirk4: a rolling disk's contact force is its mass times the beam's acceleration under it, which rings in every mode the beam holds from the moment the disk is set down; generalized-α carries that ringing with the phase error of every step (at a three-hundredth of the accuracy it read the deck's largest acceleration 1.2 % low on D44's modal beam, 4 % on the rubber beam and twice the converged on the zip-line; with rho_inf = 0.9, 9 % low on D44's exact mesh started carrying the disk), where the fourth-order method at a thirtieth of the accuracy comes within 6.9e-4 of the weight in the contact force and 6e-4 in the acceleration";
 
 /// Why the plan integrates a modal beam's free vibration after its riders leave exactly.
 const FREE_EXACT: &str = "exact-modal once the riders have left: the modal beam alone is uncoupled damped oscillators, whose free vibration a time-stepped method of second order would carry with the phase error of the highest mode the accelerations report, growing with every period (on D44 at the defaults the deck's largest acceleration, 2 s after the disk left, came out 5 % low)";
@@ -241,7 +241,10 @@ pub const PLANNED_RHO_INF: f64 = 0.9;
 /// - A rolling disk with the planned ESDIRK4: its contact force rings in every mode, and on a
 ///   modal beam the error norm weighs each mode by its acceleration (`contact_norm_weights`);
 ///   at ε/10 D44's contact force missed by 1.7 ε, at ε/30 every headline of D44, D50 (modal
-///   beams) and the rubber beam lands within 0.69 ε.
+///   beams) and the rubber beam lands within 0.69 ε. On a linearly responding mesh the
+///   contact force also rings in the mesh's highest modes, whose phase no rtol the run can
+///   afford settles: on D44's 10 and 20 exact elements started static it lands within 1.1 ε
+///   of the weight at ε/30 and 1.4 ε at ε/100, the accelerations within 0.11 ε at either.
 /// - With a ρ∞ < 1 the scene gives, the damped high modes that ride on a sudden load's peak
 ///   cost up to 2.4 ε at ε/10 (B2 at ρ∞ = 0.8) and 0.06 ε at ε/100 (REPORT.md), hence ε/100;
 ///   under moving loads too, where the plan has not shown the damped modes to carry nothing
@@ -273,7 +276,7 @@ pub fn rtol_for(scene: &BeamScene, method: crate::ode::Method) -> (f64, &'static
     if method == crate::ode::Method::Esdirk4 && scene.rolls_with_inertia() {
         return (
             accuracy / 30.0,
-            "a thirtieth of the accuracy: the fourth-order steps carry the disk's contact force and the deck's acceleration over the crossing with a global error of a few times rtol (D44's modal beam: 6.9e-4 of the weight and 6e-6 of the acceleration at a thirtieth, 1.7e-3 of the weight at a tenth)",
+            "a thirtieth of the accuracy: the fourth-order steps carry the disk's contact force and the deck's acceleration over the crossing with a global error of a few times rtol (D44's modal beam: 6.9e-4 of the weight and 6e-6 of the acceleration at a thirtieth, 1.7e-3 of the weight at a tenth; its 10- and 20-element exact meshes started carrying the disk: the acceleration within 1.1e-4, the contact force within 1.1e-3 of the weight, which rings in the mesh's highest modes with a phase that tightening rtol does not settle: 1.4e-3 at a hundredth)",
         );
     }
     if damped_by_the_scene(scene) {

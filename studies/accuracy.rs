@@ -250,8 +250,7 @@ fn a_rolling_disk_s_headlines_within_the_accuracy_at_the_defaults() {
 /// the normal contact force, against generalized-α at rtol 10⁻⁹ on the same mesh, within the
 /// accuracy of the largest deflection, acceleration and the disk's weight. The reference
 /// moves by 9.6·10⁻⁴ of the acceleration from rtol 10⁻⁸, so it is within about 2·10⁻⁴ (its
-/// error falls as rtol^⅔). Generalized-α at the defaults' old rtol, a three-hundredth of the
-/// accuracy, read the envelope's largest acceleration 4.4 % low and the largest contact force
+/// error falls as rtol^⅔). Generalized-α at a three-hundredth of the accuracy read the envelope's largest acceleration 4.4 % low and the largest contact force
 /// 3 % of the weight low.
 #[test]
 fn the_rubber_beam_s_headlines_within_the_accuracy_at_the_defaults() {
@@ -463,8 +462,11 @@ fn the_envelope_holds_between_long_exact_steps() {
 /// contact force rings in every mode the mesh holds: its least value, a millisecond in, moves
 /// by a third of the weight as the mesh is refined (measured 6.2 → 2.3 kN), no converged value
 /// exists, and the run says so. Started with the beam carrying the disk (`initial: static`) the
-/// largest contact force holds to the accuracy of the weight (measured 16 536 → 16 544 N;
-/// ESDIRK4 at rtol 10⁻⁷ gives 16 475 → 16 466 N), and no such warning is given.
+/// largest contact force holds, and no such warning is given: converged (ESDIRK4 at rtol
+/// 10⁻⁹) it reads 16 476 and 16 467 N, 6·10⁻⁴ of the weight apart; each run at the defaults
+/// carries the ringing of its mesh's highest modes with a phase its steps do not resolve, up to
+/// 1.1·10⁻³ of the weight on 20 elements (measured 16 468 and 16 483 N), hence 1.5·10⁻³ here.
+/// The crossing alone is run (the disk leaves at 1.14 s).
 #[test]
 fn a_disk_set_down_on_a_beam_at_rest_is_said_to_ring_with_the_mesh() {
     let weight = 1500.0 * 9.81;
@@ -472,6 +474,7 @@ fn a_disk_set_down_on_a_beam_at_rest_is_said_to_ring_with_the_mesh() {
         let scene = changed(
             "bridge-d44.yaml",
             &[
+                Set::Number("duration", 1.5),
                 Set::LeftOut("solver.method"),
                 Set::LeftOut("solver.rho_inf"),
                 Set::LeftOut("solver.rtol"),
@@ -500,11 +503,58 @@ fn a_disk_set_down_on_a_beam_at_rest_is_said_to_ring_with_the_mesh() {
     let (coarse, fine) = (on("static", 10.0), on("static", 20.0));
     assert!(!coarse.2 && !fine.2, "a warning for a beam started static");
     assert!(
-        (coarse.1 - fine.1).abs() <= 1e-3 * weight,
+        (coarse.1 - fine.1).abs() <= 1.5e-3 * weight,
         "started static the largest contact force moved: {} and {} N",
         coarse.1,
         fine.1
     );
+}
+
+/// D44's consistent disk on the study's own mesh (10 exact elements, a beam that responds
+/// linearly), started carrying the disk, every solver setting left to the plan (ESDIRK4 at a
+/// thirtieth of the accuracy): each probe's extremes of w and largest acceleration, the
+/// envelope's, and the contact forces, against ESDIRK4 at rtol 10⁻⁷ on the same mesh (which
+/// rtol 10⁻⁹ moves by 5·10⁻⁶ of the acceleration and 2·10⁻⁴ of the weight), within the
+/// accuracy of the largest deflection, acceleration and the weight. Generalized-α with the
+/// plan's ρ∞ = 0.9 read the deck's largest acceleration 9 % low here.
+#[test]
+fn a_rolling_disk_on_a_mesh_within_the_accuracy_at_the_defaults() {
+    let scene = changed(
+        "bridge-d44.yaml",
+        &[
+            Set::Number("duration", 1.5),
+            Set::Name("track.beam.initial", "static"),
+            Set::LeftOut("solver.method"),
+            Set::LeftOut("solver.rho_inf"),
+            Set::LeftOut("solver.rtol"),
+            Set::LeftOut("output.shapes"),
+        ],
+    );
+    let planned = at_defaults(&scene);
+    assert_eq!(planned.header.method, Method::Esdirk4);
+    let converged = run_beam(&scene, Method::Esdirk4, 1e-7, 1e-7 * 0.03);
+    let w_scale = converged
+        .envelope
+        .min
+        .iter()
+        .map(|m| m.w.abs())
+        .fold(0.0, f64::max);
+    let a_scale = converged.envelope.a_max.0;
+    let weight = 1500.0 * 9.81;
+    let mut pairs = vec![(
+        "the envelope's largest acceleration",
+        planned.envelope.a_max.0,
+        a_scale,
+        a_scale,
+    )];
+    pairs.extend(probe_pairs(&planned, &converged, w_scale, a_scale));
+    let (d, e) = (
+        planned.extremes.disk().expect("a disk"),
+        converged.extremes.disk().expect("a disk"),
+    );
+    pairs.push(("the least contact force", d[0].min, e[0].min, weight));
+    pairs.push(("the largest contact force", d[0].max, e[0].max, weight));
+    within_the_accuracy("D44 on its mesh", &pairs);
 }
 
 /// The jump (a disk over a crest, its flight and bounces) with its solver block left out,
