@@ -738,6 +738,51 @@ fn two_disks_start_static_on_the_beam() {
     );
 }
 
+/// Two disks on the rubber beam, a light one a metre ahead of the study's disk at its speed:
+/// the soft beam, pressed down behind it, springs up under the light disk until it no longer
+/// presses. Of several disks a lift-off stops the run (`contact-lost`), and the run names the
+/// disk whose event it was: its normal force at the stop is zero to the event's tolerance
+/// (within 10⁻⁶ of its weight), while the other's still carries more than its weight. The
+/// named disk's friction coefficient needed is not reported (it grows without bound into a
+/// lift-off), the other's is.
+#[test]
+fn the_disk_that_loses_contact_is_named() {
+    let text = std::fs::read_to_string(studies_dir().join("rubber.yaml")).unwrap();
+    let (head, rest) = text.split_once("disk:\n").expect("the study's disk");
+    let (_, tail) = rest.split_once("solver:").expect("its solver");
+    let disks = "disks:\n  - {mass: 1, radius: 0.2, s0: 1.0, omega0: -15, coupling: consistent}\n  - {mass: 100, radius: 0.2, s0: 0.0, omega0: -15, coupling: consistent}\n";
+    let scene = common::parse(&format!("{head}{disks}solver:{tail}"));
+    let r = run_beam(&scene, Method::GenAlpha, 1e-5, 1e-9);
+    assert_eq!(
+        r.header.stop,
+        rollbeam::run::Stop::Event(rollbeam::disk::StopReason::ContactLost)
+    );
+    assert_eq!(r.stopped_disk, Some(0));
+    let last = r.rows.last().expect("rows");
+    let rn = |k: usize| last.disks[k].expect("on the beam").rn;
+    assert!(
+        rn(0).abs() <= 1e-6 * 9.81,
+        "the light disk presses with {} N",
+        rn(0)
+    );
+    assert!(
+        rn(1) > 100.0 * 9.81,
+        "the study's disk presses with {} N",
+        rn(1)
+    );
+    let summary = rollbeam::output::beam::summary_yaml(&r).unwrap();
+    let stopped = summary.split_once("stopped:\n").unwrap().1;
+    let disk_line = stopped.lines().take(3).find(|l| l.starts_with("  disk:"));
+    assert_eq!(disk_line, Some("  disk: disk1"), "{summary}");
+    let mu: Vec<&str> = summary
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("mu_needed_max: "))
+        .collect();
+    assert_eq!(mu.len(), 2, "{summary}");
+    assert_eq!(mu[0], "null", "{summary}");
+    assert!(mu[1].parse::<f64>().is_ok_and(f64::is_finite), "{summary}");
+}
+
 /// `disks:` with one disk is `disk:`: the same run, written the same.
 #[test]
 fn a_list_of_one_disk_is_the_disk() {

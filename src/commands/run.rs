@@ -86,6 +86,12 @@ pub fn run(args: RunArgs) -> Result<(), Error> {
 /// energy balance and the solver's work.
 fn tell(name: &str, result: &Run) {
     let h = result.header();
+    let disk = match &result {
+        Run::Beam(b) if b.setup.disks.len() > 1 => b
+            .stopped_disk
+            .map_or("a disk".to_string(), |k| b.setup.disk_names()[k].clone()),
+        _ => "the disk".to_string(),
+    };
     let lost = match &result {
         Run::Beam(b) => b
             .vehicles
@@ -99,7 +105,7 @@ fn tell(name: &str, result: &Run) {
             name,
             h.t_end
         ),
-        None => say!("{}: {}", name, h.stop.sentence(h.t_end)),
+        None => say!("{}: {}", name, h.stop.sentence(&disk, h.t_end)),
     }
     match &result {
         Run::Rolling(r) => {

@@ -132,6 +132,13 @@ const EVENTS: [EventSpec<StopReason>; 5] = [
     },
 ];
 
+/// What a rolling disk on the beam met: which disk (in the scene's order), and what.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DiskEvent {
+    pub disk: usize,
+    pub reason: StopReason,
+}
+
 /// One disk on the beam: its law, the disk as the law sees it, where its contact coordinate
 /// sits among z, and what is kept of its contact between evaluations.
 struct Mounted {
@@ -159,7 +166,7 @@ pub struct DiskOnBeam<'a> {
     n: usize,
     /// Every rolling disk's events, disk by disk, and for each the disk and which of
     /// [`EVENTS`] it is.
-    events: Vec<EventSpec<StopReason>>,
+    events: Vec<EventSpec<DiskEvent>>,
     event_of: Vec<(usize, usize)>,
     /// The last observations and their acceleration, keyed by (t, z's and ż's last
     /// entries): every event function of one state needs them, and so does the output row.
@@ -232,7 +239,13 @@ impl<'a> DiskOnBeam<'a> {
                 });
                 if slot.is_some() {
                     let watched = if spec.mu.is_some() { 5 } else { 4 };
-                    events.extend_from_slice(&EVENTS[..watched]);
+                    events.extend(EVENTS[..watched].iter().map(|e| EventSpec {
+                        reason: DiskEvent {
+                            disk: k,
+                            reason: e.reason,
+                        },
+                        terminal: e.terminal,
+                    }));
                     event_of.extend((0..watched).map(|e| (k, e)));
                 }
                 Mounted {
@@ -313,16 +326,6 @@ impl<'a> DiskOnBeam<'a> {
     /// Every disk has left the beam.
     pub fn all_left(&self) -> bool {
         self.on().next().is_none()
-    }
-
-    /// The rolling disk on the beam nearest an end at z: the one a left-track event at z
-    /// stopped.
-    pub fn at_an_end(&self, z: &[f64]) -> Option<usize> {
-        let l = self.beam().length;
-        self.on()
-            .filter_map(|(k, d)| d.slot.map(|i| (k, z[i].min(l - z[i]))))
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(k, _)| k)
     }
 
     /// A row over the mesh's unknowns and disk `d`'s contact coordinate (as the laws write
@@ -862,7 +865,7 @@ impl Structure for DiskOnBeam<'_> {
 }
 
 impl SecondOrderProblem for DiskOnBeam<'_> {
-    type Event = StopReason;
+    type Event = DiskEvent;
 
     /// The averaged track changes over the patch half-width b and no faster, and a crest
     /// there shows in the contact force, not in the motion the error estimate measures: a
@@ -885,7 +888,7 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
         self.loaded.enter_segment(start, end)
     }
 
-    fn events(&self) -> &[EventSpec<StopReason>] {
+    fn events(&self) -> &[EventSpec<DiskEvent>] {
         &self.events
     }
 

@@ -19,6 +19,9 @@ pub struct Summary {
 pub struct Stopped {
     pub reason: String,
     pub t: f64,
+    /// Of several disks on a beam, the one whose event stopped the run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub disk: Option<String>,
 }
 
 #[derive(Serialize)]
@@ -76,6 +79,7 @@ impl Stopped {
         Stopped {
             reason: h.stop.name().into(),
             t: h.t_end,
+            disk: None,
         }
     }
 }

@@ -32,14 +32,22 @@ impl Stop {
         }
     }
 
-    /// What a user reads on the terminal.
-    pub fn sentence(self, t: f64) -> String {
+    /// What a user reads on the terminal; `disk` names the disk the event was its.
+    pub fn sentence(self, disk: &str, t: f64) -> String {
         match self {
             Stop::End => format!("reached the end of the run at t = {t:.6} s"),
-            Stop::Event(StopReason::ContactLost) => format!("the disk lost contact with the track at t = {t:.6} s (normal reaction fell to zero)"),
-            Stop::Event(StopReason::Slip) => format!("the disk started to slip at t = {t:.6} s (|R_t| reached mu R_n)"),
-            Stop::Event(StopReason::NoFit) => format!("the disk no longer fits the curve at t = {t:.6} s (radius × curvature reached 1)"),
-            Stop::Event(StopReason::LeftTrack) => format!("the disk ran off the end of the track at t = {t:.6} s"),
+            Stop::Event(StopReason::ContactLost) => format!(
+                "{disk} lost contact with the track at t = {t:.6} s (normal reaction fell to zero)"
+            ),
+            Stop::Event(StopReason::Slip) => {
+                format!("{disk} started to slip at t = {t:.6} s (|R_t| reached mu R_n)")
+            }
+            Stop::Event(StopReason::NoFit) => format!(
+                "{disk} no longer fits the curve at t = {t:.6} s (radius × curvature reached 1)"
+            ),
+            Stop::Event(StopReason::LeftTrack) => {
+                format!("{disk} ran off the end of the track at t = {t:.6} s")
+            }
         }
     }
 }
@@ -148,7 +156,6 @@ impl Overrides {
     }
 }
 
-/// The output grid: every `interval` from 0 to the duration.
 /// One flight of the disk, from lift-off to landing (`summary.yaml`, `disk.flights`).
 #[derive(Clone, Copy, Debug, serde::Serialize)]
 pub struct FlightRecord {
@@ -178,6 +185,7 @@ pub fn lifted_off_rolling(flights: &[FlightRecord], stop: Stop) -> bool {
 /// over a crest it cannot hold at a speed it keeps) is stopped with that reason.
 pub const MAX_FLIGHTS: usize = 100_000;
 
+/// The output grid: every `interval` from 0 to the duration.
 pub(crate) fn output_times(scene: &Scene) -> Vec<f64> {
     let count = (scene.duration / scene.interval + 1e-9).floor() as usize;
     (0..=count).map(|i| i as f64 * scene.interval).collect()

@@ -62,23 +62,15 @@ struct PatchSummary {
     contact_force_sensitivity: f64,
 }
 
-/// Whether disk k lifted off while rolling ([`crate::run::lifted_off_rolling`]): of several
-/// disks, a lift-off stops the run, and the one lifting is the one whose normal force is least.
+/// Whether disk k lifted off while rolling ([`crate::run::lifted_off_rolling`]): the lone
+/// disk's flights say so, and of several disks a lift-off stops the run at that disk's event.
 fn lifted_off_rolling(r: &BeamRun, k: usize) -> bool {
-    if !crate::run::lifted_off_rolling(&r.flights, r.header.stop) {
-        return false;
+    match r.header.stop {
+        crate::run::Stop::Event(crate::disk::StopReason::ContactLost) => r.stopped_disk == Some(k),
+        stop => k == 0 && crate::run::lifted_off_rolling(&r.flights, stop),
     }
-    let last_rn = |j: usize| {
-        r.rows
-            .iter()
-            .rev()
-            .find_map(|row| row.disks.get(j).copied().flatten())
-            .map_or(f64::INFINITY, |d| d.rn)
-    };
-    (0..r.setup.disks.len()).all(|j| last_rn(k) <= last_rn(j))
 }
 
-/// Disk k's summary, if it was ever observed on or over the beam.
 fn disk_summary(r: &BeamRun, k: usize) -> Option<BeamDiskSummary> {
     let spec = r.setup.disks.get(k)?;
     let last = r
@@ -361,7 +353,13 @@ pub fn write_all(r: &BeamRun, dir: &Path, with_figures: bool) -> Result<(), Erro
 pub fn summary_yaml(r: &BeamRun) -> Result<String, Error> {
     let summary = Summary {
         scene: r.header.scene.name.clone(),
-        stopped: super::summary::Stopped::of(&r.header),
+        stopped: super::summary::Stopped {
+            disk: r
+                .stopped_disk
+                .filter(|_| r.setup.disks.len() > 1)
+                .map(|k| r.setup.disk_names()[k].clone()),
+            ..super::summary::Stopped::of(&r.header)
+        },
         model: Model {
             track: "beam",
             beam: r.beam.spec.model.name(),

@@ -31,7 +31,7 @@ use crate::beam::{Beam, BeamModel, PointDisplacement, Stations};
 use crate::coupling::landing::Landing;
 use crate::coupling::thesis_system::ThesisSystem;
 use crate::coupling::vehicles::{VehicleObservation, VehiclesOnBeam};
-use crate::coupling::{Coupling, DiskOnBeam};
+use crate::coupling::{Coupling, DiskEvent, DiskOnBeam};
 use crate::disk::flight::Flight;
 use crate::disk::{ContactLoss, DiskObservation, StopReason};
 use crate::error::Error;
@@ -151,6 +151,9 @@ pub struct BeamRun {
     pub left_track_t: Option<f64>,
     /// When each disk left the beam, if it did.
     pub disks_left_t: Vec<Option<f64>>,
+    /// The disk (in the scene's order) whose event stopped the run: it lost contact, slipped
+    /// or no longer fitted.
+    pub stopped_disk: Option<usize>,
     /// The disk's flights over the beam.
     pub flights: Vec<FlightRecord>,
     /// (q, v) at the end of the run.
@@ -313,10 +316,21 @@ fn integrate<E: Copy + std::fmt::Debug>(
 
 /// How the coupled phase ended.
 enum CoupledEnd {
-    /// At the end of the run, or at a physical event: the run ends here.
-    Stopped { t: f64, y: Vec<f64>, stop: Stop },
-    /// The disk left the beam at an end; the beam goes on alone.
-    Left { t: f64, y: Vec<f64> },
+    /// At the end of the run, or at a physical event: the run ends here. `disk`: the disk
+    /// whose event it was.
+    Stopped {
+        t: f64,
+        y: Vec<f64>,
+        stop: Stop,
+        disk: Option<usize>,
+    },
+    /// A disk left the beam at an end (`disk`: the rolling one that ran off, none for a
+    /// prescribed load at its exit time).
+    Left {
+        t: f64,
+        y: Vec<f64>,
+        disk: Option<usize>,
+    },
 }
 
 /// Integrate the disk on the beam until it leaves it, stops, or the run ends.
@@ -360,7 +374,15 @@ fn integrate_coupled(
         )
         .map_err(|e| solver_error(scene, e))?;
         stats.add(&out.stats);
-        (out.t, out.stopped_by, sys.reduced(out.t, &out.y))
+        // The literal system holds the lone disk.
+        let hit = out.stopped_by.map(|h| ode::EventHit {
+            reason: DiskEvent {
+                disk: 0,
+                reason: h.reason,
+            },
+            t: h.t,
+        });
+        (out.t, hit, sys.reduced(out.t, &out.y))
     } else {
         let out = integrate(c, 0.0, &z0, &zd0, until, outputs, opts, rec)
             .map_err(|e| solver_error(scene, e))?;
@@ -373,18 +395,19 @@ fn integrate_coupled(
 fn coupled_end(
     scene: &Scene,
     t: f64,
-    stopped_by: Option<ode::EventHit<StopReason>>,
+    stopped_by: Option<ode::EventHit<DiskEvent>>,
     y: Vec<f64>,
 ) -> CoupledEnd {
+    let disk = stopped_by.as_ref().map(|hit| hit.reason.disk);
     let stop = match stopped_by {
         None if t < scene.duration => None,
         None => Some(Stop::End),
-        Some(hit) if hit.reason == StopReason::LeftTrack => None,
-        Some(hit) => Some(Stop::Event(hit.reason)),
+        Some(hit) if hit.reason.reason == StopReason::LeftTrack => None,
+        Some(hit) => Some(Stop::Event(hit.reason.reason)),
     };
     match stop {
-        None => CoupledEnd::Left { t, y },
-        Some(stop) => CoupledEnd::Stopped { t, y, stop },
+        None => CoupledEnd::Left { t, y, disk },
+        Some(stop) => CoupledEnd::Stopped { t, y, stop, disk },
     }
 }
 
@@ -398,6 +421,8 @@ struct Ridden {
     then: Then,
     /// The vehicle and axle whose wheel lost contact, where one did.
     lost_contact: Option<(usize, String)>,
+    /// The disk whose event (contact lost, slip, no fit) stopped the run, where one did.
+    stopped_disk: Option<usize>,
     /// The vehicles' wheels' flights.
     wheel_flights: Vec<WheelFlight>,
 }
@@ -417,6 +442,7 @@ impl Ridden {
                 v: vec![0.0; n],
             },
             lost_contact: None,
+            stopped_disk: None,
             wheel_flights: Vec::new(),
         }
     }
@@ -641,11 +667,12 @@ fn ride<'a>(
             rec,
             stats,
         )?;
-        let (t, y, stop) = match end {
+        let (t, y, stop, disk) = match end {
             CoupledEnd::Stopped {
                 t,
                 y,
                 stop: Stop::Event(StopReason::ContactLost),
+                ..
             } if flies => {
                 // The damping the plan chose is for loads that move: once the disk has
                 // left the beam, what it lands with or leaves behind vibrates freely.
@@ -671,12 +698,12 @@ fn ride<'a>(
                     FlightEnd::Leaves { t, q, v } => {
                         return Ok(left_beam(rec, t, q, v, flights, vec![Some(t)]))
                     }
-                    FlightEnd::Stops { t, y, stop } => (t, y, stop),
+                    FlightEnd::Stops { t, y, stop } => (t, y, stop, Some(0)),
                 }
             }
-            CoupledEnd::Stopped { t, y, stop } => (t, y, stop),
-            CoupledEnd::Left { t, y } => {
-                let k = leaving(c, t, rec.phase.split(&y).0);
+            CoupledEnd::Stopped { t, y, stop, disk } => (t, y, stop, disk),
+            CoupledEnd::Left { t, y, disk } => {
+                let k = disk.unwrap_or_else(|| leaving(c, t));
                 let on = (0..c.count()).filter(|&j| !c.has_left(j)).count();
                 if on > 1 {
                     from = Some(one_leaves(c, k, rec, t, y));
@@ -703,19 +730,18 @@ fn ride<'a>(
             flights,
             then: Then::Ended { t, y },
             lost_contact: None,
+            stopped_disk: disk.filter(|_| stop != Stop::End),
             wheel_flights: Vec::new(),
         });
     }
 }
 
-/// Which disk left the beam at (t, z): a prescribed load that reached its exit then, or else
-/// the rolling disk a left-track event stopped at an end.
-fn leaving(c: &DiskOnBeam, t: f64, z: &[f64]) -> usize {
+/// The prescribed load that left the beam at t, its exit time, where no disk's event stopped
+/// the integration.
+fn leaving(c: &DiskOnBeam, t: f64) -> usize {
     match c.next_exit() {
         Some((te, k)) if (te - t).abs() <= 1e-12 * te.max(1.0) => k,
-        _ => c
-            .at_an_end(z)
-            .expect("a left-track event stops a rolling disk on the beam"),
+        _ => unreachable!("the coupled phase stops early only at an event or a load's exit"),
     }
 }
 
@@ -755,6 +781,7 @@ fn left_beam(
         flights,
         then: Then::Alone { t, q, v },
         lost_contact: None,
+        stopped_disk: None,
         wheel_flights: Vec::new(),
     }
 }
@@ -825,6 +852,7 @@ fn collect(
         windowed_means: recorded.windowed_means,
         left_track_t: ridden.left_track_t,
         disks_left_t: ridden.disks_left,
+        stopped_disk: ridden.stopped_disk,
         flights: ridden.flights,
         y_end: recorded.y_end,
         acceleration: recorded.acceleration,

@@ -144,6 +144,7 @@ pub(super) fn drive<'a>(
         flights: Vec::new(),
         then: Then::Ended { t, y },
         lost_contact,
+        stopped_disk: None,
         wheel_flights: flights,
     })
 }
