@@ -516,9 +516,10 @@ fn a_disk_set_down_on_a_beam_at_rest_is_said_to_ring_with_the_mesh() {
 /// envelope's, and the contact forces, against ESDIRK4 at rtol 10⁻⁷ on the same mesh (which
 /// rtol 10⁻⁹ moves by 5·10⁻⁶ of the acceleration and 2·10⁻⁴ of the weight), within the
 /// accuracy of the largest deflection, acceleration and the weight. Generalized-α with the
-/// plan's ρ∞ = 0.9 read the deck's largest acceleration 9 % low here.
+/// plan's ρ∞ = 0.9 read the deck's largest acceleration 9 % low here. D50, the same disk at
+/// 20 m/s, does not hold on its mesh (REPORT.md, "The accuracy a scene asks for").
 #[test]
-fn a_rolling_disk_on_a_mesh_within_the_accuracy_at_the_defaults() {
+fn d44_started_static_on_its_mesh_within_the_accuracy_at_the_defaults() {
     let scene = changed(
         "bridge-d44.yaml",
         &[
