@@ -196,12 +196,7 @@ fn a_rolling_disk_s_headlines_within_the_accuracy_at_the_defaults() {
         // atol: rtol times the peak deflection (about 30 mm).
         let converged = run_beam(&scene, Method::Esdirk4, 1e-9, 1e-9 * 0.03);
         let (p, c) = (&planned.extremes, &converged.extremes);
-        let w_peak = converged
-            .envelope
-            .min
-            .iter()
-            .map(|m| m.w.abs())
-            .fold(0.0, f64::max);
+        let w_peak = deepest(&converged);
         let a_peak = converged.envelope.a_max.0;
         let weight = 1500.0 * 9.81;
         let left = converged.left_track_t.expect("the disk leaves");
@@ -534,12 +529,7 @@ fn d44_started_static_on_its_mesh_within_the_accuracy_at_the_defaults() {
     let planned = at_defaults(&scene);
     assert_eq!(planned.header.method, Method::Esdirk4);
     let converged = run_beam(&scene, Method::Esdirk4, 1e-7, 1e-7 * 0.03);
-    let w_scale = converged
-        .envelope
-        .min
-        .iter()
-        .map(|m| m.w.abs())
-        .fold(0.0, f64::max);
+    let w_scale = deepest(&converged);
     let a_scale = converged.envelope.a_max.0;
     let weight = 1500.0 * 9.81;
     let mut pairs = vec![(
@@ -618,6 +608,11 @@ fn the_jump_s_headlines_within_the_accuracy_at_the_defaults() {
         ));
         within_the_accuracy(&format!("jump, {grid} output grid"), &pairs);
     }
+}
+
+/// The deepest deflection over the beam and the run: the scale of the deflections' accuracy.
+fn deepest(r: &BeamRun) -> f64 {
+    r.envelope.min.iter().map(|m| m.w.abs()).fold(0.0, f64::max)
 }
 
 /// A headline: what it is, at the defaults, converged, and the scale the accuracy is a share of.
