@@ -36,6 +36,7 @@ use crate::rolling::Rolling;
 
 mod beam;
 mod checker;
+mod disks;
 mod file;
 mod keys;
 mod rolling;
@@ -45,6 +46,7 @@ mod yaml_error;
 
 use beam::*;
 use checker::*;
+use disks::*;
 use file::*;
 use rolling::*;
 use train::*;
