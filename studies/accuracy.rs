@@ -267,19 +267,7 @@ fn the_rubber_beam_s_headlines_within_the_accuracy_at_the_defaults() {
         .chain(&converged.envelope.max)
         .map(|m| m.w.abs())
         .fold(0.0, f64::max);
-    let a_scale = converged.envelope.a_max.0;
-    let weight = 100.0 * 9.81;
-    let (p, c) = (&planned.extremes, &converged.extremes);
-    let mut pairs = vec![(
-        "the envelope's largest acceleration",
-        planned.envelope.a_max.0,
-        a_scale,
-        a_scale,
-    )];
-    pairs.extend(probe_pairs(&planned, &converged, w_scale, a_scale));
-    let (d, e) = (p.disk().expect("a disk"), c.disk().expect("a disk"));
-    pairs.push(("the least contact force", d[0].min, e[0].min, weight));
-    pairs.push(("the largest contact force", d[0].max, e[0].max, weight));
+    let pairs = disk_headlines(&planned, &converged, w_scale, 100.0 * 9.81);
     within_the_accuracy("rubber", &pairs);
 }
 
@@ -529,22 +517,7 @@ fn d44_started_static_on_its_mesh_within_the_accuracy_at_the_defaults() {
     let planned = at_defaults(&scene);
     assert_eq!(planned.header.method, Method::Esdirk4);
     let converged = run_beam(&scene, Method::Esdirk4, 1e-7, 1e-7 * 0.03);
-    let w_scale = deepest(&converged);
-    let a_scale = converged.envelope.a_max.0;
-    let weight = 1500.0 * 9.81;
-    let mut pairs = vec![(
-        "the envelope's largest acceleration",
-        planned.envelope.a_max.0,
-        a_scale,
-        a_scale,
-    )];
-    pairs.extend(probe_pairs(&planned, &converged, w_scale, a_scale));
-    let (d, e) = (
-        planned.extremes.disk().expect("a disk"),
-        converged.extremes.disk().expect("a disk"),
-    );
-    pairs.push(("the least contact force", d[0].min, e[0].min, weight));
-    pairs.push(("the largest contact force", d[0].max, e[0].max, weight));
+    let pairs = disk_headlines(&planned, &converged, deepest(&converged), 1500.0 * 9.81);
     within_the_accuracy("D44 on its mesh", &pairs);
 }
 
@@ -641,6 +614,32 @@ fn probe_pairs(
             a_scale,
         ));
     }
+    pairs
+}
+
+/// A rolling disk's run's headlines: the envelope's largest acceleration, each probe's
+/// (`probe_pairs`), and the least and largest normal contact force (of the disk's `weight`); the
+/// accelerations against the converged envelope's largest.
+fn disk_headlines(
+    planned: &BeamRun,
+    converged: &BeamRun,
+    w_scale: f64,
+    weight: f64,
+) -> Vec<Compared> {
+    let a_scale = converged.envelope.a_max.0;
+    let mut pairs = vec![(
+        "the envelope's largest acceleration",
+        planned.envelope.a_max.0,
+        a_scale,
+        a_scale,
+    )];
+    pairs.extend(probe_pairs(planned, converged, w_scale, a_scale));
+    let (d, e) = (
+        planned.extremes.disk().expect("a disk"),
+        converged.extremes.disk().expect("a disk"),
+    );
+    pairs.push(("the least contact force", d[0].min, e[0].min, weight));
+    pairs.push(("the largest contact force", d[0].max, e[0].max, weight));
     pairs
 }
 
