@@ -4,6 +4,7 @@
 //! (`coupling`) both build on it.
 
 pub mod flight;
+pub mod life;
 
 #[derive(Clone, Copy, Debug)]
 pub struct Disk {

@@ -1,11 +1,12 @@
-//! A run of a disk on a rigid curve, from phase to phase ([`Phase`]): it rolls (integrated)
-//! until the normal force falls to zero, then lifts; where the scene lets it fly, the flight
-//! in closed form and the landing that ends it (`rolling/flight.rs`) hand it back to rolling,
-//! or the run stops.
+//! A run of a disk on a rigid curve, driven through the disk's life at its track
+//! (`disk::life`): it rolls (integrated) until the normal force falls to zero, then lifts;
+//! where the scene lets it fly, the flight in closed form and the landing that ends it
+//! (`rolling/flight.rs`) hand it back to rolling, or the run stops.
 
 use super::extremes::{Range, Turning, Watch};
 use super::{EnergyCheck, FlightRecord, Overrides, Progress, RunHeader, Stop, MAX_FLIGHTS};
 use crate::disk::flight::{self as free, Flight};
+use crate::disk::life::{self, Next};
 use crate::disk::{ContactLoss, DiskObservation, StopReason};
 use crate::error::Error;
 use crate::ode::{self, Observer};
@@ -207,20 +208,27 @@ fn kink_crossings(kinks: &[f64], t0: f64, t1: f64, s_at: impl Fn(f64) -> f64) ->
 /// is what they take.
 const RESOLVED_BOUNCE: f64 = 1e-8;
 
-/// What the disk does next: the run goes from phase to phase until one stops it.
-enum Phase {
-    /// Rolls from (t, y).
-    Rolls {
-        t: f64,
-        y: Vec<f64>,
-    },
-    /// Leaves the track at the row where the normal force fell to zero.
-    Lifts(Row),
-    Stops {
-        t: f64,
-        stop: Stop,
-        last: Row,
-    },
+/// Where the run ends: at t, for `stop`, the disk last seen as `last`.
+struct Ended {
+    t: f64,
+    stop: Stop,
+    last: Row,
+}
+
+/// A disk leaving the curve on `flight`, from `from`: the track's nearest point, the disk's
+/// rotation relative to it, and the tangent's angle there.
+struct Launch {
+    flight: Flight,
+    from: (f64, f64, f64),
+}
+
+/// A flight back on the curve at t, touching at s, the disk as it came down (`before`)
+/// spinning at `omega`.
+struct Touch {
+    t: f64,
+    s: f64,
+    before: Row,
+    omega: f64,
 }
 
 pub fn run(
@@ -235,64 +243,48 @@ pub fn run(
     let opts = over.options(scene);
     let outputs = super::output_times(scene);
     let first = model.observe(0.0, &y0);
-    let mut rec = Recorder::new(
-        model.as_ref(),
-        setup.rolling.curve.curvature_kinks(),
-        &first,
-        outputs.len(),
+    let mut curve = Curve {
         scene,
-        show_progress,
-    );
-    let mut stats = ode::Stats::default();
-    let mut flights = Vec::new();
+        setup,
+        model: model.as_ref(),
+        opts: &opts,
+        outputs: &outputs,
+        rec: Recorder::new(
+            model.as_ref(),
+            setup.rolling.curve.curvature_kinks(),
+            &first,
+            outputs.len(),
+            scene,
+            show_progress,
+        ),
+        stats: ode::Stats::default(),
+        flights: Vec::new(),
+    };
     // A disk launched faster than the track can hold it (the normal force negative from the
     // start) leaves the track at once.
-    let mut phase = if first.rn < 0.0 {
+    let start = if first.rn < 0.0 {
         let start = Row {
             t: 0.0,
             disk: first,
             gap: 0.0,
             impact: 0.0,
         };
-        rec.record(start);
-        Phase::Lifts(start)
+        curve.rec.record(start);
+        curve.lifts(start)
     } else {
-        Phase::Rolls {
-            t: 0.0,
-            y: y0.clone(),
-        }
+        Next::Rolls((0.0, y0.clone()))
     };
-    let (t_end, stop, last) = loop {
-        phase = match phase {
-            Phase::Rolls { t, y } => {
-                let rolling = RollingPhase {
-                    scene,
-                    model: model.as_ref(),
-                    opts: &opts,
-                    outputs: &outputs,
-                };
-                rolling.roll(t, &y, &mut rec, &mut stats)?
-            }
-            Phase::Lifts(lift) => match setup.rolling.contact_loss {
-                ContactLoss::Fly { restitution } => fly_and_land(
-                    scene,
-                    setup,
-                    model.as_ref(),
-                    &mut rec,
-                    &mut flights,
-                    &outputs,
-                    lift,
-                    restitution,
-                )?,
-                _ => Phase::Stops {
-                    t: lift.t,
-                    stop: Stop::Event(StopReason::ContactLost),
-                    last: lift,
-                },
-            },
-            Phase::Stops { t, stop, last } => break (t, stop, last),
-        };
-    };
+    let Ended {
+        t: t_end,
+        stop,
+        last,
+    } = life::live(&mut curve, start)?;
+    let Curve {
+        mut rec,
+        mut stats,
+        flights,
+        ..
+    } = curve;
     if let Some(p) = &rec.progress {
         p.finish();
     }
@@ -324,24 +316,61 @@ pub fn run(
     })
 }
 
-/// What a rolling phase needs of the run.
-struct RollingPhase<'a> {
+/// The rigid curve as a disk's life meets it: what its phases need of the run, and what
+/// they record.
+struct Curve<'a> {
     scene: &'a Scene,
+    setup: &'a RollingScene,
     model: &'a dyn RollingModel,
     opts: &'a ode::Options,
     outputs: &'a [f64],
+    rec: Recorder<'a>,
+    stats: ode::Stats,
+    flights: Vec<FlightRecord>,
 }
 
-impl RollingPhase<'_> {
-    /// Roll from (t, y) until the run's end, a stopping event, or the normal force falling to
-    /// zero (the disk lifts).
-    fn roll(
-        &self,
-        t: f64,
-        y: &[f64],
-        rec: &mut Recorder,
-        stats: &mut ode::Stats,
-    ) -> Result<Phase, Error> {
+impl Curve<'_> {
+    /// The disk loses contact at `lift` (the row where the normal force fell to zero): it
+    /// flies where the scene lets it, and the run stops there otherwise.
+    fn lifts(&self, lift: Row) -> Next<Self> {
+        let r = &self.setup.rolling;
+        if !matches!(r.contact_loss, ContactLoss::Fly { .. }) {
+            return Next::Ends(Ended {
+                t: lift.t,
+                stop: Stop::Event(StopReason::ContactLost),
+                last: lift,
+            });
+        }
+        let d = lift.disk;
+        Next::Flies(Launch {
+            flight: Flight {
+                t0: lift.t,
+                centre: [d.x, d.y],
+                velocity: [d.vx, d.vy],
+                omega: d.omega,
+                gravity: r.gravity,
+            },
+            from: (d.s, d.phi, tangent_angle(r, d.s)),
+        })
+    }
+
+    fn restitution(&self) -> f64 {
+        match self.setup.rolling.contact_loss {
+            ContactLoss::Fly { restitution } => restitution,
+            ContactLoss::Stop => 0.0,
+        }
+    }
+}
+
+impl life::Track for Curve<'_> {
+    type Rolling = (f64, Vec<f64>);
+    type Launch = Launch;
+    type Touch = Touch;
+    type End = Ended;
+
+    /// Roll from (t, y) until the run's end, a stopping event, or the normal force falling
+    /// to zero (the disk lifts).
+    fn roll(&mut self, (t, y): (f64, Vec<f64>)) -> Result<Next<Self>, Error> {
         // Rows at the output times after this phase's start (and at t = 0 for the first).
         let ahead: Vec<f64> = self
             .outputs
@@ -350,60 +379,120 @@ impl RollingPhase<'_> {
             .filter(|&o| o > t || (t == 0.0 && o == 0.0))
             .collect();
         let scene = self.scene;
-        let out = ode::solve(self.model, t, y, scene.duration, &ahead, self.opts, rec)
-            .map_err(|e| Error::Solver(format!("scene {}: the solver failed: {e}", scene.name)))?;
-        stats.add(&out.stats);
+        let out = ode::solve(
+            self.model,
+            t,
+            &y,
+            scene.duration,
+            &ahead,
+            self.opts,
+            &mut self.rec,
+        )
+        .map_err(|e| Error::Solver(format!("scene {}: the solver failed: {e}", scene.name)))?;
+        self.stats.add(&out.stats);
         let last = Row {
             t: out.t,
             disk: self.model.observe(out.t, &out.y),
             gap: 0.0,
-            impact: rec.impact,
+            impact: self.rec.impact,
         };
         let stop = match out.stopped_by {
             None => Stop::End,
-            Some(hit) if hit.reason == StopReason::ContactLost => return Ok(Phase::Lifts(last)),
+            Some(hit) if hit.reason == StopReason::ContactLost => return Ok(self.lifts(last)),
             Some(hit) => Stop::Event(hit.reason),
         };
-        Ok(Phase::Stops {
+        Ok(Next::Ends(Ended {
             t: out.t,
             stop,
             last,
+        }))
+    }
+
+    /// One flight, recorded in `flights` with its rows at the output times, until it lands,
+    /// leaves the track or the run ends.
+    fn fly(&mut self, launch: Launch) -> Result<Next<Self>, Error> {
+        let (scene, r) = (self.scene, &self.setup.rolling);
+        let Launch { flight, from } = launch;
+        if self.flights.len() >= MAX_FLIGHTS {
+            return Err(Error::Solver(format!(
+                "scene {}: the disk lifted off {MAX_FLIGHTS} times by t = {:.6} s; it cannot stay on this track at this speed, and the run stops rather than count more flights",
+                scene.name, flight.t0
+            )));
+        }
+        let (end, max_gap) = flight::land(r, &flight, from.0, scene.duration);
+        self.flights.push(FlightRecord {
+            lift_off_t: flight.t0,
+            lift_off_s: from.0,
+            land_t: None,
+            land_s: None,
+            max_gap,
+            energy_lost: None,
+        });
+        let t_stop = match end {
+            FlightEnd::Lands { t, .. } | FlightEnd::LeavesTrack { t, .. } => t,
+            FlightEnd::Airborne => scene.duration,
+        };
+        let rec = &mut self.rec;
+        let observe =
+            |t: f64, s_guess: f64, impact: f64| flying(r, &flight, from, t, s_guess, impact);
+        let mut s_guess = from.0;
+        for &o in self
+            .outputs
+            .iter()
+            .filter(|&&o| o > flight.t0 && o <= t_stop)
+        {
+            let row = observe(o, s_guess, rec.impact);
+            s_guess = row.disk.s;
+            rec.record(row);
+        }
+        Ok(match end {
+            FlightEnd::Airborne => Next::Ends(Ended {
+                t: t_stop,
+                stop: Stop::End,
+                last: observe(t_stop, s_guess, rec.impact),
+            }),
+            FlightEnd::LeavesTrack { t, .. } => Next::Ends(Ended {
+                t,
+                stop: Stop::Event(StopReason::LeftTrack),
+                last: observe(t, s_guess, rec.impact),
+            }),
+            FlightEnd::Lands { t, s } => Next::Touches(Touch {
+                t,
+                s,
+                before: observe(t, s, rec.impact),
+                omega: flight.omega,
+            }),
         })
     }
-}
 
-/// From a lift-off (`lift`, the row where the normal force fell to zero): the flight, its
-/// landing, and the bounces after it, until the disk rolls again or the run stops.
-#[allow(clippy::too_many_arguments)]
-fn fly_and_land(
-    scene: &Scene,
-    setup: &RollingScene,
-    model: &dyn RollingModel,
-    rec: &mut Recorder,
-    flights: &mut Vec<FlightRecord>,
-    outputs: &[f64],
-    lift: Row,
-    restitution: f64,
-) -> Result<Phase, Error> {
-    let r = &setup.rolling;
-    let d = lift.disk;
-    let mut flight = Flight {
-        t0: lift.t,
-        centre: [d.x, d.y],
-        velocity: [d.vx, d.vy],
-        omega: d.omega,
-        gravity: r.gravity,
-    };
-    let mut from = (lift.disk.s, lift.disk.phi, tangent_angle(r, lift.disk.s));
-    loop {
-        let (t, s, before) = match fly_once(scene, r, rec, flights, outputs, &flight, from)? {
-            Landed::On { t, s, before } => (t, s, before),
-            Landed::Stops(phase) => return Ok(phase),
-        };
+    /// The impact where a flight meets the curve: a bounce high enough to resolve flies; a
+    /// lower one settles in closed form; then the disk rolls on, unless the track falls away
+    /// faster than it can follow there, in which case it lifts off at once.
+    fn land(&mut self, touch: Touch) -> Result<Next<Self>, Error> {
+        let r = &self.setup.rolling;
+        let restitution = self.restitution();
+        let Touch {
+            t,
+            s,
+            before,
+            omega,
+        } = touch;
         let p = r.curve.at(s);
-        let hit = match impact_at(r, rec, flights, (t, s), &before, flight.omega, restitution) {
-            Ok(hit) => hit,
-            Err(stops) => return Ok(stops),
+        let impact = impact_at(
+            r,
+            &mut self.rec,
+            &mut self.flights,
+            (t, s),
+            &before,
+            omega,
+            restitution,
+        );
+        let Some(hit) = impact else {
+            return Ok(Next::Ends(Ended {
+                t,
+                stop: Stop::Event(StopReason::Slip),
+                last: before,
+            }));
         };
         // What of gravity presses the disk onto the track there.
         let gravity_n = r.gravity * p.normal()[1];
@@ -414,16 +503,18 @@ fn fly_and_land(
         };
         let t_dir = p.tangent();
         let vt = hit.velocity[0] * t_dir[0] + hit.velocity[1] * t_dir[1];
-        from = (s, before.disk.phi, tangent_angle(r, s));
+        let from = (s, before.disk.phi, tangent_angle(r, s));
         if hit.vn > 0.0 && height >= RESOLVED_BOUNCE * r.disk.radius {
-            flight = Flight {
-                t0: t,
-                centre: [before.disk.x, before.disk.y],
-                velocity: hit.velocity,
-                omega: hit.omega,
-                gravity: r.gravity,
-            };
-            continue;
+            return Ok(Next::Flies(Launch {
+                flight: Flight {
+                    t0: t,
+                    centre: [before.disk.x, before.disk.y],
+                    velocity: hit.velocity,
+                    omega: hit.omega,
+                    gravity: r.gravity,
+                },
+                from,
+            }));
         }
         let (mut t, mut s, mut phi) = (t, s, before.disk.phi);
         if hit.vn > 0.0 && restitution < 1.0 {
@@ -437,36 +528,38 @@ fn fly_and_land(
                 gravity_n,
                 restitution,
             };
-            match settle(scene, r, rec, flights, outputs, &before, from, &low) {
-                Landed::On {
-                    t: ts,
-                    s: ss,
-                    before: end,
-                } => (t, s, phi) = (ts, ss, end.disk.phi),
-                Landed::Stops(phase) => return Ok(phase),
+            match self.settle(&before, from, &low) {
+                Settles::At(end) => (t, s, phi) = (end.t, end.disk.s, end.disk.phi),
+                Settles::AfterTheEnd(last) => {
+                    return Ok(Next::Ends(Ended {
+                        t: self.scene.duration,
+                        stop: Stop::End,
+                        last,
+                    }))
+                }
             }
         }
-        // The disk rolls on from the landing, unless the track falls away faster than it
-        // can follow there, in which case it lifts off at once.
-        let y = model.state_at(s, vt, phi);
-        let rolling = model.observe(t, &y);
+        let y = self.model.state_at(s, vt, phi);
+        let rolling = self.model.observe(t, &y);
         if rolling.rn > 0.0 {
-            return Ok(Phase::Rolls { t, y });
+            return Ok(Next::Rolls((t, y)));
         }
-        flight = Flight {
-            t0: t,
-            centre: [rolling.x, rolling.y],
-            velocity: [rolling.vx, rolling.vy],
-            omega: rolling.omega,
-            gravity: r.gravity,
-        };
-        from = (s, phi, tangent_angle(r, s));
+        Ok(Next::Flies(Launch {
+            flight: Flight {
+                t0: t,
+                centre: [rolling.x, rolling.y],
+                velocity: [rolling.vx, rolling.vy],
+                omega: rolling.omega,
+                gravity: r.gravity,
+            },
+            from: (s, phi, tangent_angle(r, s)),
+        }))
     }
 }
 
 /// The impact where the last flight meets the curve at (t, s), `before` the disk just before
-/// it: booked on the flight's record and in the energy the landings took; the run stops where
-/// friction cannot hold the tangential impulse.
+/// it: booked on the flight's record and in the energy the landings took; none where friction
+/// cannot hold the tangential impulse, which stops the run.
 fn impact_at(
     r: &Rolling,
     rec: &mut Recorder,
@@ -475,7 +568,7 @@ fn impact_at(
     before: &Row,
     omega: f64,
     restitution: f64,
-) -> Result<free::Impact, Phase> {
+) -> Option<free::Impact> {
     let p = r.curve.at(s);
     let hit = free::impact(
         &r.disk,
@@ -488,80 +581,11 @@ fn impact_at(
     record.land_t = Some(t);
     record.land_s = Some(s);
     if r.mu.is_some_and(|mu| hit.jt.abs() > mu * hit.jn) {
-        return Err(Phase::Stops {
-            t,
-            stop: Stop::Event(StopReason::Slip),
-            last: *before,
-        });
+        return None;
     }
     record.energy_lost = Some(hit.energy_lost);
     rec.impact += hit.energy_lost;
-    Ok(hit)
-}
-
-/// Where a flight over the curve got to.
-enum Landed {
-    /// Back on the track at t, touching at s, the disk as it came down (`before`).
-    On { t: f64, s: f64, before: Row },
-    /// The run ends in the air, or the disk flew past an end of the track.
-    Stops(Phase),
-}
-
-/// One flight from `flight`'s start at `from` (the track's nearest point, the disk's
-/// rotation relative to it, the tangent's angle): recorded in `flights`, its rows at the
-/// output times, until it lands, leaves the track or the run ends.
-fn fly_once(
-    scene: &Scene,
-    r: &Rolling,
-    rec: &mut Recorder,
-    flights: &mut Vec<FlightRecord>,
-    outputs: &[f64],
-    flight: &Flight,
-    from: (f64, f64, f64),
-) -> Result<Landed, Error> {
-    if flights.len() >= MAX_FLIGHTS {
-        return Err(Error::Solver(format!(
-            "scene {}: the disk lifted off {MAX_FLIGHTS} times by t = {:.6} s; it cannot stay on this track at this speed, and the run stops rather than count more flights",
-            scene.name, flight.t0
-        )));
-    }
-    let (end, max_gap) = flight::land(r, flight, from.0, scene.duration);
-    flights.push(FlightRecord {
-        lift_off_t: flight.t0,
-        lift_off_s: from.0,
-        land_t: None,
-        land_s: None,
-        max_gap,
-        energy_lost: None,
-    });
-    let t_stop = match end {
-        FlightEnd::Lands { t, .. } | FlightEnd::LeavesTrack { t, .. } => t,
-        FlightEnd::Airborne => scene.duration,
-    };
-    let observe = |t: f64, s_guess: f64, impact: f64| flying(r, flight, from, t, s_guess, impact);
-    let mut s_guess = from.0;
-    for &o in outputs.iter().filter(|&&o| o > flight.t0 && o <= t_stop) {
-        let row = observe(o, s_guess, rec.impact);
-        s_guess = row.disk.s;
-        rec.record(row);
-    }
-    Ok(match end {
-        FlightEnd::Airborne => Landed::Stops(Phase::Stops {
-            t: t_stop,
-            stop: Stop::End,
-            last: observe(t_stop, s_guess, rec.impact),
-        }),
-        FlightEnd::LeavesTrack { t, .. } => Landed::Stops(Phase::Stops {
-            t,
-            stop: Stop::Event(StopReason::LeftTrack),
-            last: observe(t, s_guess, rec.impact),
-        }),
-        FlightEnd::Lands { t, s } => Landed::On {
-            t,
-            s,
-            before: observe(t, s, rec.impact),
-        },
-    })
+    Some(hit)
 }
 
 /// A landing at (t, s) that throws the disk off again lower than [`RESOLVED_BOUNCE`]: its
@@ -578,64 +602,55 @@ struct LowBounces {
     restitution: f64,
 }
 
-/// The bounces too low to fly, summed: the disk glides on at its tangential speed until
-/// they have died out, 2 vₙ / (g (1 − e)) later, having lost its normal kinetic energy;
-/// recorded as one flight. Where the disk settles, or the run's end before it does.
-#[allow(clippy::too_many_arguments)]
-fn settle(
-    scene: &Scene,
-    r: &Rolling,
-    rec: &mut Recorder,
-    flights: &mut Vec<FlightRecord>,
-    outputs: &[f64],
-    before: &Row,
-    from: (f64, f64, f64),
-    b: &LowBounces,
-) -> Landed {
-    let settled = b.t + 2.0 * b.vn / b.gravity_n / (1.0 - b.restitution);
-    let t_dir = r.curve.at(b.s).tangent();
-    let glide = Flight {
-        t0: b.t,
-        centre: [before.disk.x, before.disk.y],
-        velocity: [b.vt * t_dir[0], b.vt * t_dir[1]],
-        omega: b.omega,
-        gravity: 0.0,
-    };
-    let lost = 0.5 * r.disk.mass * b.vn * b.vn;
-    let mut s_guess = b.s;
-    for &o in outputs.iter().filter(|&&o| o > b.t && o <= settled) {
-        let row = flying(r, &glide, from, o, s_guess, rec.impact + lost);
-        s_guess = row.disk.s;
-        rec.record(row);
-    }
-    rec.impact += lost;
-    let end = flying(
-        r,
-        &glide,
-        from,
-        settled.min(scene.duration),
-        s_guess,
-        rec.impact,
-    );
-    flights.push(FlightRecord {
-        lift_off_t: b.t,
-        lift_off_s: b.s,
-        land_t: (settled <= scene.duration).then_some(settled),
-        land_s: (settled <= scene.duration).then_some(end.disk.s),
-        max_gap: b.height,
-        energy_lost: Some(lost),
-    });
-    if settled > scene.duration {
-        return Landed::Stops(Phase::Stops {
-            t: scene.duration,
-            stop: Stop::End,
-            last: end,
+/// Where low bounces leave the disk: settled, or still bouncing at the run's end.
+enum Settles {
+    At(Row),
+    AfterTheEnd(Row),
+}
+
+impl Curve<'_> {
+    /// The bounces too low to fly, summed: the disk glides on at its tangential speed until
+    /// they have died out, 2 vₙ / (g (1 − e)) later, having lost its normal kinetic energy;
+    /// recorded as one flight. The disk where it settles, or where the run ends before it does.
+    fn settle(&mut self, before: &Row, from: (f64, f64, f64), b: &LowBounces) -> Settles {
+        let (scene, r, rec) = (self.scene, &self.setup.rolling, &mut self.rec);
+        let settled = b.t + 2.0 * b.vn / b.gravity_n / (1.0 - b.restitution);
+        let t_dir = r.curve.at(b.s).tangent();
+        let glide = Flight {
+            t0: b.t,
+            centre: [before.disk.x, before.disk.y],
+            velocity: [b.vt * t_dir[0], b.vt * t_dir[1]],
+            omega: b.omega,
+            gravity: 0.0,
+        };
+        let lost = 0.5 * r.disk.mass * b.vn * b.vn;
+        let mut s_guess = b.s;
+        for &o in self.outputs.iter().filter(|&&o| o > b.t && o <= settled) {
+            let row = flying(r, &glide, from, o, s_guess, rec.impact + lost);
+            s_guess = row.disk.s;
+            rec.record(row);
+        }
+        rec.impact += lost;
+        let end = flying(
+            r,
+            &glide,
+            from,
+            settled.min(scene.duration),
+            s_guess,
+            rec.impact,
+        );
+        self.flights.push(FlightRecord {
+            lift_off_t: b.t,
+            lift_off_s: b.s,
+            land_t: (settled <= scene.duration).then_some(settled),
+            land_s: (settled <= scene.duration).then_some(end.disk.s),
+            max_gap: b.height,
+            energy_lost: Some(lost),
         });
-    }
-    Landed::On {
-        t: settled,
-        s: end.disk.s,
-        before: end,
+        if settled > scene.duration {
+            return Settles::AfterTheEnd(end);
+        }
+        Settles::At(end)
     }
 }
 

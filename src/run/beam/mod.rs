@@ -6,8 +6,9 @@
 //! beam at an end (or stops at a physical event), then the beam alone, vibrating freely to the
 //! end. The energy budget is kept by `ledger.rs`; the outputs are recorded by the sensors of
 //! `sensors.rs`, which observe and compute nothing, gathered with the extremes watched over
-//! every step by `recorder.rs`; the disk's flights and landings are `fly.rs`, the vehicles'
-//! drive over the whole run `vehicles.rs`. [`run`] names the steps of a run: build the model,
+//! every step by `recorder.rs`; the disks ride through the disk's life at its track
+//! (`disk::life`), the beam's side of it here and its flights and landings in `fly.rs`; the
+//! vehicles' drive over the whole run is `vehicles.rs`. [`run`] names the steps of a run: build the model,
 //! the start state, ride (integrate while the disk is on), vibrate alone, collect.
 
 mod acceleration;
@@ -33,6 +34,7 @@ use crate::coupling::thesis_system::ThesisSystem;
 use crate::coupling::vehicles::{VehicleObservation, VehiclesOnBeam};
 use crate::coupling::{Coupling, DiskEvent, DiskOnBeam};
 use crate::disk::flight::Flight;
+use crate::disk::life::{self, Next};
 use crate::disk::{ContactLoss, DiskObservation, StopReason};
 use crate::error::Error;
 use crate::linalg::SparseLu;
@@ -650,89 +652,144 @@ fn ride<'a>(
     rec: &mut Recorder<'a>,
     stats: &mut Stats,
 ) -> Result<Ridden, Error> {
-    let n = loaded.dim();
-    let mut flights = Vec::new();
-    let mut from = None;
-    let mut left = vec![None; c.count()];
-    let flies = c.count() == 1 && matches!(c.spec().contact_loss, ContactLoss::Fly { .. });
-    loop {
+    let mut on = OnTheBeam {
+        scene,
+        setup,
+        loaded,
+        c,
+        literal,
+        start,
+        outputs,
+        opts,
+        rec,
+        stats,
+        flights: Vec::new(),
+        left: vec![None; c.count()],
+    };
+    life::live(&mut on, Next::Rolls(None))
+}
+
+/// The beam as a disk's life meets it (`disk::life`): what the riders' phases need of the
+/// run, and what they keep. Its flights and landings are `fly.rs`.
+struct OnTheBeam<'a, 'r> {
+    scene: &'r Scene,
+    setup: &'r BeamScene,
+    loaded: &'a LoadedBeam<'a>,
+    c: &'a DiskOnBeam<'a>,
+    literal: bool,
+    start: &'r [f64],
+    outputs: &'r [f64],
+    opts: &'r mut ode::Options,
+    rec: &'r mut Recorder<'a>,
+    stats: &'r mut Stats,
+    flights: Vec<FlightRecord>,
+    /// When each disk left the beam.
+    left: Vec<Option<f64>>,
+}
+
+impl<'a> OnTheBeam<'a, '_> {
+    /// A lone disk whose scene lets it fly does; several disks on the beam stop at a lift-off.
+    fn flies(&self) -> bool {
+        self.c.count() == 1 && matches!(self.c.spec().contact_loss, ContactLoss::Fly { .. })
+    }
+
+    /// The run stops at t in the state y of the coupled phase, for `stop`, where `disk`'s
+    /// event stopped it.
+    fn stopped(&mut self, t: f64, y: Vec<f64>, stop: Stop, disk: Option<usize>) -> Next<Self> {
+        // The run stops between output times: its last row is the stop itself.
+        if self.rec.history.rows.last().is_none_or(|r| r.t < t) {
+            self.rec.output(t, &y);
+        }
+        Next::Ends(Ridden {
+            stop,
+            left_track_t: None,
+            disks_left: self.left.clone(),
+            flights: std::mem::take(&mut self.flights),
+            then: Then::Ended { t, y },
+            lost_contact: None,
+            stopped_disk: disk.filter(|_| stop != Stop::End),
+            wheel_flights: Vec::new(),
+        })
+    }
+
+    /// The last disk has left the beam at t, the beam in (q, v): from then on the residual
+    /// vibration is watched.
+    fn left_beam(&mut self, t: f64, q: Vec<f64>, v: Vec<f64>) -> Next<Self> {
+        for l in self.left.iter_mut().filter(|l| l.is_none()) {
+            *l = Some(t);
+        }
+        self.rec.exit_t = Some(t);
+        Next::Ends(Ridden {
+            stop: Stop::End,
+            left_track_t: Some(t),
+            disks_left: self.left.clone(),
+            flights: std::mem::take(&mut self.flights),
+            then: Then::Alone { t, q, v },
+            lost_contact: None,
+            stopped_disk: None,
+            wheel_flights: Vec::new(),
+        })
+    }
+}
+
+impl<'a> life::Track for OnTheBeam<'a, '_> {
+    type Rolling = Option<(f64, Vec<f64>, Vec<f64>)>;
+    type Launch = Launch;
+    type Touch = Touch;
+    type End = Ridden;
+
+    /// The disks roll from `from` (the run's start where `None`) until one leaves the beam,
+    /// stops, or lifts off, or the run ends.
+    fn roll(&mut self, from: Self::Rolling) -> Result<Next<Self>, Error> {
         let end = integrate_coupled(
-            scene,
-            c,
-            literal,
-            start,
-            from.take(),
-            outputs,
-            opts,
-            rec,
-            stats,
+            self.scene,
+            self.c,
+            self.literal,
+            self.start,
+            from,
+            self.outputs,
+            self.opts,
+            self.rec,
+            self.stats,
         )?;
-        let (t, y, stop, disk) = match end {
+        Ok(match end {
             CoupledEnd::Stopped {
                 t,
                 y,
                 stop: Stop::Event(StopReason::ContactLost),
                 ..
-            } if flies => {
+            } if self.flies() => {
                 // The damping the plan chose is for loads that move: once the disk has
                 // left the beam, what it lands with or leaves behind vibrates freely.
-                if setup.rho_inf_chosen.is_some() {
-                    opts.rho_inf = 1.0;
+                if self.setup.rho_inf_chosen.is_some() {
+                    self.opts.rho_inf = 1.0;
                 }
-                match fly(
-                    scene,
-                    c,
-                    loaded,
-                    t,
-                    &y,
-                    outputs,
-                    opts,
-                    rec,
-                    stats,
-                    &mut flights,
-                )? {
-                    FlightEnd::Lands { t, z, zd } => {
-                        from = Some((t, z, zd));
-                        continue;
-                    }
-                    FlightEnd::Leaves { t, q, v } => {
-                        return Ok(left_beam(rec, t, q, v, flights, vec![Some(t)]))
-                    }
-                    FlightEnd::Stops { t, y, stop } => (t, y, stop, Some(0)),
-                }
+                Next::Flies(lift_off(self.c, self.rec, t, &y))
             }
-            CoupledEnd::Stopped { t, y, stop, disk } => (t, y, stop, disk),
+            CoupledEnd::Stopped { t, y, stop, disk } => self.stopped(t, y, stop, disk),
             CoupledEnd::Left { t, y, disk } => {
+                let c = self.c;
                 let k = disk.unwrap_or_else(|| leaving(c, t));
                 let on = (0..c.count()).filter(|&j| !c.has_left(j)).count();
                 if on > 1 {
-                    from = Some(one_leaves(c, k, rec, t, y));
-                    left[k] = Some(t);
-                    continue;
+                    self.left[k] = Some(t);
+                    return Ok(Next::Rolls(Some(one_leaves(c, k, self.rec, t, y))));
                 }
-                rec.ledger.disk_leaves(&rec.phase, t, &y);
-                let (z, zd) = rec.phase.split(&y);
+                self.rec.ledger.disk_leaves(&self.rec.phase, t, &y);
+                let n = self.loaded.dim();
+                let (z, zd) = self.rec.phase.split(&y);
                 let (q, v) = (z[..n].to_vec(), zd[..n].to_vec());
-                for l in left.iter_mut().filter(|l| l.is_none()) {
-                    *l = Some(t);
-                }
-                return Ok(left_beam(rec, t, q, v, flights, left));
+                self.left_beam(t, q, v)
             }
-        };
-        // The run stops between output times: its last row is the stop itself.
-        if rec.history.rows.last().is_none_or(|r| r.t < t) {
-            rec.output(t, &y);
-        }
-        return Ok(Ridden {
-            stop,
-            left_track_t: None,
-            disks_left: left,
-            flights,
-            then: Then::Ended { t, y },
-            lost_contact: None,
-            stopped_disk: disk.filter(|_| stop != Stop::End),
-            wheel_flights: Vec::new(),
-        });
+        })
+    }
+
+    fn fly(&mut self, launch: Launch) -> Result<Next<Self>, Error> {
+        self.fly_once(launch)
+    }
+
+    fn land(&mut self, touch: Touch) -> Result<Next<Self>, Error> {
+        self.touch_down(touch)
     }
 }
 
@@ -761,29 +818,6 @@ fn one_leaves(
     let y: Vec<f64> = z.iter().chain(&zd).copied().collect();
     rec.ledger.restart(&rec.phase, t, &y);
     (t, z, zd)
-}
-
-/// The last disk left the beam at t, the beam in (q, v): from then on the residual vibration
-/// is watched. `disks_left`: when each disk left.
-fn left_beam(
-    rec: &mut Recorder,
-    t: f64,
-    q: Vec<f64>,
-    v: Vec<f64>,
-    flights: Vec<FlightRecord>,
-    disks_left: Vec<Option<f64>>,
-) -> Ridden {
-    rec.exit_t = Some(t);
-    Ridden {
-        stop: Stop::End,
-        left_track_t: Some(t),
-        disks_left,
-        flights,
-        then: Then::Alone { t, q, v },
-        lost_contact: None,
-        stopped_disk: None,
-        wheel_flights: Vec::new(),
-    }
 }
 
 /// Integrate the beam alone from where the riders left it to the end of the run.
