@@ -570,24 +570,49 @@ impl<'a> DiskOnBeam<'a> {
         added
     }
 
-    /// Add to f the force of every disk resting at its s0 on the beam displaced by q (both on
-    /// the mesh): its weight, passed on as its coupling passes it (through the contact patch
-    /// when it rolls).
+    /// Add to f the force of every disk at its s0 on the beam displaced by q (both on the
+    /// mesh), the beam still: its weight, passed on as its coupling passes it (through the
+    /// contact patch when it rolls). A disk whose path is an unknown is not held there: it
+    /// rolls at its Ω0 (over the deflection's curvature), on a slope it rolls down it, and the
+    /// beam carries its weight less what that acceleration takes (on the zip-line's 20 % slope
+    /// a held disk's tangential force is m g sin θ, three times a rolling one's: a start that
+    /// holds it rings with the difference).
     pub fn add_weight_at_rest(&self, q: &[f64], f: &mut [f64]) {
+        let still = vec![0.0; q.len()];
         for d in &self.disks {
-            let at = AxisPoint::at(
-                self.beam(),
-                q,
-                &vec![0.0; q.len()],
-                d.spec.s0,
-                0.0,
-                d.spec.patch,
-            );
+            let at =
+                |sdot: f64| AxisPoint::at(self.beam(), q, &still, d.spec.s0, sdot, d.spec.patch);
+            // The disk as the run starts it: rolling at its Ω0 over the beam at rest.
+            let rest = at(0.0);
+            let sdot = match d.slot {
+                Some(_) => d.spec.v0() / (rest.rp.v - d.spec.disk.radius * rest.psi_s.v),
+                None => 0.0,
+            };
+            let at = at(sdot);
             let mut force = Vec::new();
             d.law.force(&d.rider, &at, &mut force);
-            for (i, v) in force {
-                if i < d.rider.n {
+            let n = d.rider.n;
+            for &(i, v) in &force {
+                if i < n {
                     f[i] += v;
+                }
+            }
+            if d.law.unknowns() == 0 {
+                continue;
+            }
+            // The rows index the contact coordinate s at n: with the beam still, s̈ solves its
+            // own row of M z̈ = f, and its inertia's coupling to the beam takes M_is s̈.
+            let on_s = |row: &Row| -> f64 { row.iter().filter(|e| e.0 == n).map(|e| e.1).sum() };
+            let added = d.law.added_mass(&d.rider, &at);
+            let mass_s: f64 = added.iter().map(|(w, row)| w * on_s(row).powi(2)).sum();
+            if !mass_s.is_finite() || mass_s <= 0.0 {
+                continue;
+            }
+            let sdd = on_s(&force) / mass_s;
+            for (w, row) in &added {
+                let taken = w * on_s(row) * sdd;
+                for &(i, v) in row.iter().filter(|e| e.0 < n) {
+                    f[i] -= v * taken;
                 }
             }
         }
