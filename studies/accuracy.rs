@@ -291,8 +291,10 @@ fn a_switched_load_s_extremes_within_the_accuracy_at_the_defaults() {
             Set::LeftOut("output.shapes"),
         ],
     );
-    let planned = at_defaults(&scene);
-    let converged = run_beam(&scene, Method::GenAlpha, 1e-8, 1e-8 * 9.73e-3);
+    let (planned, converged) = common::side_by_side(
+        || at_defaults(&scene),
+        || run_beam(&scene, Method::GenAlpha, 1e-8, 1e-8 * 9.73e-3),
+    );
     let largest = |r: &BeamRun, k: usize| {
         let e = &r.envelope;
         e.min

@@ -97,8 +97,10 @@ fn reduced_models_against_exact_on_every_steel_study() {
             .unwrap()
             .beam
             .model;
-        let exact = at_defaults(&changed(file, &settings));
-        let linear = at_defaults(&with_model(file, "linear", &settings));
+        let (exact, linear) = common::side_by_side(
+            || at_defaults(&changed(file, &settings)),
+            || at_defaults(&with_model(file, "linear", &settings)),
+        );
         let el = off(&linear, &exact);
         if chosen == BeamModel::Exact {
             eprintln!("{file}: chosen exact; linear {el:.2e} off the exact beam");

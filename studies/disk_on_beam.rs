@@ -619,10 +619,7 @@ fn patch_width_from_the_section_and_its_shear_kink() {
 /// exceed 2.8, and the finer pair's p + 0.5.
 #[test]
 fn mesh_convergence_of_the_rubber_beam_and_the_zipline() {
-    for (file, until, order, meshes, fine) in [
-        ("rubber.yaml", 1.5, 3usize, [5usize, 10, 20], 20usize),
-        ("zipline.yaml", 3.4, 2, [8, 16, 32], 32),
-    ] {
+    let converges = |(file, until, order, meshes, fine): (&str, f64, usize, [usize; 3], usize)| {
         let mean = |elements: usize, p: usize| {
             let scene = changed(
                 file,
@@ -646,7 +643,11 @@ fn mesh_convergence_of_the_rubber_beam_and_the_zipline() {
             orders.iter().all(|&o| o > 2.8) && orders[1] > order as f64 + 0.5,
             "{file}: errors {errors:?}, orders {orders:?}"
         );
-    }
+    };
+    common::side_by_side(
+        || converges(("rubber.yaml", 1.5, 3, [5, 10, 20], 20)),
+        || converges(("zipline.yaml", 3.4, 2, [8, 16, 32], 32)),
+    );
 }
 
 /// D44's bridge on 4 elements, of the given model, carrying the disks `disks` (YAML flow maps,

@@ -561,17 +561,33 @@ fn land_within_their_references_at_the_defaults(names: &[&str]) {
 }
 
 #[test]
-fn the_sudden_loads_land_within_their_references_at_the_defaults() {
-    land_within_their_references_at_the_defaults(&["beam-b1", "beam-b2", "beam-b3"]);
+fn beam_b1_lands_within_its_reference_at_the_defaults() {
+    land_within_their_references_at_the_defaults(&["beam-b1"]);
 }
 
 #[test]
-fn the_cantilevers_land_within_their_references_at_the_defaults() {
-    land_within_their_references_at_the_defaults(&[
-        "cantilever-c1",
-        "cantilever-c2",
-        "cantilever-c3",
-    ]);
+fn beam_b2_lands_within_its_reference_at_the_defaults() {
+    land_within_their_references_at_the_defaults(&["beam-b2"]);
+}
+
+#[test]
+fn beam_b3_lands_within_its_reference_at_the_defaults() {
+    land_within_their_references_at_the_defaults(&["beam-b3"]);
+}
+
+#[test]
+fn cantilever_c1_lands_within_its_reference_at_the_defaults() {
+    land_within_their_references_at_the_defaults(&["cantilever-c1"]);
+}
+
+#[test]
+fn cantilever_c2_lands_within_its_reference_at_the_defaults() {
+    land_within_their_references_at_the_defaults(&["cantilever-c2"]);
+}
+
+#[test]
+fn cantilever_c3_lands_within_its_reference_at_the_defaults() {
+    land_within_their_references_at_the_defaults(&["cantilever-c3"]);
 }
 
 #[test]

@@ -43,6 +43,19 @@ pub fn changed(file: &str, changes: &[Set]) -> Scene {
         .expect("the changed scene is valid")
 }
 
+/// Two independent runs side by side, one a core: a test that compares a run against its
+/// converged twin takes as long as the longer of the two.
+pub fn side_by_side<A: Send, B: Send>(
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    std::thread::scope(|scope| {
+        let first = scope.spawn(a);
+        let second = b();
+        (first.join().expect("the first run"), second)
+    })
+}
+
 pub fn parse(text: &str) -> Scene {
     Scene::parse(text, "test scene", "test").expect("test scene is valid")
 }
