@@ -400,11 +400,15 @@ impl<'a> DiskOnBeam<'a> {
                 0.0,
                 d.spec.patch,
             );
-            // θ̇ = (ψ_s − |r'|/a) ṡ on the beam at rest; the thesis' v_x = ṡ (|r'| − a ψ_s) is
-            // the same condition.
-            zd[i] = d.spec.v0() / (at.rp.v - d.spec.disk.radius * at.psi_s.v);
+            zd[i] = Self::starting_rate(d, &at);
         }
         (z, zd)
+    }
+
+    /// ṡ of disk `d` rolling at its Ω0 at the contact `at` on the beam at rest:
+    /// θ̇ = (ψ_s − |r'|/a) ṡ; the thesis' v_x = ṡ (|r'| − a ψ_s) is the same condition.
+    fn starting_rate(d: &Mounted, at: &AxisPoint) -> f64 {
+        d.spec.v0() / (at.rp.v - d.spec.disk.radius * at.psi_s.v)
     }
 
     /// Where a prescribed load is at time t, and how fast it moves.
@@ -585,7 +589,7 @@ impl<'a> DiskOnBeam<'a> {
             // The disk as the run starts it: rolling at its Ω0 over the beam at rest.
             let rest = at(0.0);
             let sdot = match d.slot {
-                Some(_) => d.spec.v0() / (rest.rp.v - d.spec.disk.radius * rest.psi_s.v),
+                Some(_) => Self::starting_rate(d, &rest),
                 None => 0.0,
             };
             let at = at(sdot);
