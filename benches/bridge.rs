@@ -16,6 +16,9 @@
 //! The HSLM study's whole sweep, A1–A10 at 40–120 m/s (810 cases on the automatic modal beam,
 //! integrated exactly as the plan chooses), on the machine's cores as `rollbeam sweep` runs
 //! it, beside the same cases time-stepped by generalized-α at the plan's rtol.
+//!
+//! How one HSLM case's cost grows (HSLM-A1 at 90 m/s, the defaults, integrated exactly):
+//! with the modes kept, and with the train's axles (trains of equal axles 4 m apart).
 
 use std::path::Path;
 
@@ -138,12 +141,47 @@ fn hslm_sweep(c: &mut Criterion) {
     group.finish();
 }
 
+/// The HSLM study's text with the beam's modes or the train replaced.
+fn hslm_text(beam_model: &str, train: &str) -> String {
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("studies/hslm-15m.yaml"),
+    )
+    .expect("the HSLM study");
+    text.replace("    damping:", &format!("{beam_model}    damping:"))
+        .replace("  hslm: A1\n", train)
+}
+
+fn hslm_growth(c: &mut Criterion) {
+    let mut group = c.benchmark_group("hslm-15m-growth");
+    group.sample_size(20);
+    for modes in [6, 12, 24, 48, 96] {
+        let text = hslm_text(
+            &format!("    model: modal\n    modes: {modes}\n"),
+            "  hslm: A1\n",
+        );
+        let scene = Scene::parse(&text, "hslm-15m", "benches").expect("valid");
+        group.bench_with_input(BenchmarkId::new("modes", modes), &scene, |b, s| {
+            b.iter(|| run(s, &Overrides::default(), false).expect("runs"))
+        });
+    }
+    for axles in [1, 10, 100, 1000] {
+        let at: Vec<String> = (0..axles).map(|k| format!("{}", 4 * k)).collect();
+        let train = format!("  axles: [{}]\n  load: 170.0e3\n", at.join(", "));
+        let scene = Scene::parse(&hslm_text("", &train), "hslm-15m", "benches").expect("valid");
+        group.bench_with_input(BenchmarkId::new("axles", axles), &scene, |b, s| {
+            b.iter(|| run(s, &Overrides::default(), false).expect("runs"))
+        });
+    }
+    group.finish();
+}
+
 criterion_group!(
     benches,
     whole,
     at_a_tenth_of_a_percent,
     with_the_defaults,
     beam_models,
-    hslm_sweep
+    hslm_sweep,
+    hslm_growth
 );
 criterion_main!(benches);
