@@ -575,6 +575,20 @@ impl LoadedBeam<'_> {
             self.longest_step
         }
     }
+    /// While an axle of the train is on the beam, the time it takes to cross the shortest
+    /// length the beam's response varies over along the span: an element (its shape functions)
+    /// or, on a modal beam, the span over the modes kept (the highest one's half-wave). The
+    /// axles' power on the beam changes at that pace. `None` with no axle on the beam.
+    pub fn load_passage(&self, t: f64) -> Option<f64> {
+        let train = self.train?;
+        let length = self.beam.length;
+        let on = (0..train.axles.len()).any(|a| (0.0..=length).contains(&train.position(a, t)));
+        let finest = self
+            .modal
+            .map_or(f64::INFINITY, |m| length / m.dim().max(1) as f64)
+            .min(self.beam.element_length());
+        (on && train.speed > 0.0).then(|| finest / train.speed)
+    }
 }
 
 impl SecondOrderProblem for LoadedBeam<'_> {

@@ -3,6 +3,11 @@
 
 use super::*;
 
+/// Simpson pieces of the energy ledger while an axle passes the beam's shortest wave: each
+/// piece's error falls as its fourth power. Eight bring a lone axle at 1000 m/s over the
+/// HSLM bridge from a drift of 3e-3 to 2e-4, what an output time inside a long step leaves.
+const PIECES_PER_PASSAGE: f64 = 8.0;
+
 /// Samples of the extremes' watch a period of the acceleration's cutoff, where the steps are
 /// shorter (see `Recorder::watch`).
 pub(super) const SAMPLES_PER_CUTOFF_PERIOD: f64 = 32.0;
@@ -560,11 +565,20 @@ impl Observer for Recorder<'_> {
 
     fn span(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
         self.ledger.step_ends(&self.phase, t1, &dense.at(t1));
-        // A step longer than two watched samples books the work and the damping on the way,
-        // by Simpson's rule on pieces at most a sample long: the trapezoidal rule over the
-        // step alone would miss what the modes below the cutoff do within it.
-        if self.spacing > 0.0 && t1 - t0 > 2.0 * self.spacing {
-            let count = ((t1 - t0) / self.spacing).ceil();
+        // A step longer than two pieces books the work and the damping on the way, by
+        // Simpson's rule on pieces at most a sample long: the trapezoidal rule over the step
+        // alone would miss what the modes below the cutoff do within it. A fast train's axles
+        // sweep the modes faster than that: their power then changes at the pace they pass
+        // over the beam's shortest wave, and the pieces follow it.
+        let piece = self
+            .phase
+            .loaded
+            .load_passage(t0)
+            .map(|p| p / PIECES_PER_PASSAGE)
+            .filter(|&p| self.spacing <= 0.0 || p < self.spacing)
+            .unwrap_or(self.spacing);
+        if piece > 0.0 && t1 - t0 > 2.0 * piece {
+            let count = ((t1 - t0) / piece).ceil();
             let at = |i: f64| t0 + (t1 - t0) * i / count;
             let pieces = (1..=count as usize)
                 .map(|i| {
