@@ -575,6 +575,39 @@ impl LoadedBeam<'_> {
             self.longest_step
         }
     }
+    /// On a modal beam in the state (η, η̇), the longest piece of time over which Simpson's
+    /// rule integrates each mode's share of the powers to `tol` of the beam's energy: mode k
+    /// moving at ω_k with a share s_k of the energy as kinetic energy errs by about
+    /// (ω_k h)⁴/2880 · √s_k. `None` on a mesh, or at rest.
+    pub fn quadrature_piece(&self, eta: &[f64], eta_dot: &[f64], tol: f64) -> Option<f64> {
+        let modal = self.modal?;
+        let energy: f64 = eta
+            .iter()
+            .zip(eta_dot)
+            .zip(&modal.omega)
+            .map(|((x, v), w)| 0.5 * (v * v + (w * x).powi(2)))
+            .sum();
+        if energy.is_nan() || energy <= 0.0 {
+            return None;
+        }
+        eta_dot
+            .iter()
+            .zip(&modal.omega)
+            .filter(|(v, w)| **v != 0.0 && **w > 0.0)
+            .map(|(v, w)| {
+                let share = (0.5 * v * v / energy).sqrt();
+                (2880.0 * tol / share).powf(0.25) / w
+            })
+            .min_by(f64::total_cmp)
+    }
+
+    /// The shortest piece [`Self::quadrature_piece`] can ask for at `tol`: the highest mode's,
+    /// moving alone. `None` on a mesh.
+    pub fn quadrature_floor(&self, tol: f64) -> Option<f64> {
+        let highest = self.modal?.omega.last().copied()?;
+        (highest > 0.0).then(|| (2880.0 * tol).powf(0.25) / highest)
+    }
+
     /// While an axle of the train is on the beam, the time it takes to cross the shortest
     /// length the beam's response varies over along the span: an element (its shape functions)
     /// or, on a modal beam, the span over the modes kept (the highest one's half-wave). The

@@ -4,9 +4,15 @@
 use super::*;
 
 /// Simpson pieces of the energy ledger while an axle passes the beam's shortest wave: each
-/// piece's error falls as its fourth power. Eight bring a lone axle at 1000 m/s over the
-/// HSLM bridge from a drift of 3e-3 to 2e-4, what an output time inside a long step leaves.
+/// piece's error falls as its fourth power.
 const PIECES_PER_PASSAGE: f64 = 8.0;
+
+/// What Simpson's rule may err by on each moving mode's share of the ledger's powers, of the
+/// beam's energy: a lone axle at 1000 m/s over the HSLM bridge, integrated exactly, then
+/// balances within 3e-5 (1.8e-4 with the passage's pieces alone, where the modes it set
+/// ringing after it left were booked a sample a piece), and HSLM-A1 at 40-120 m/s takes
+/// under 5 % more pieces; 1e-6 takes 40-60 % more.
+const QUADRATURE_TOLERANCE: f64 = 1e-5;
 
 /// Samples of the extremes' watch a period of the acceleration's cutoff, where the steps are
 /// shorter (see `Recorder::watch`).
@@ -320,6 +326,33 @@ impl Recorder<'_> {
         self.last = Some((t1, end));
     }
 
+    /// The longest piece a long step's work and damping may be booked in by Simpson's rule:
+    /// a sample at most (the trapezoidal rule over the step alone would miss what the modes
+    /// below the cutoff do within it); an eighth of the time a fast train's axle takes to pass
+    /// the beam's shortest wave, over which its power on the modes changes; and on a modal
+    /// beam short enough for every mode that moves (`LoadedBeam::quadrature_piece`).
+    /// Zero: no pieces.
+    fn ledger_piece(&self, t0: f64, t1: f64, dense: &dyn Dense) -> f64 {
+        let shorter = |a: f64, b: f64| if a > 0.0 { a.min(b) } else { b };
+        let loaded = self.phase.loaded;
+        let mut piece = self.spacing;
+        if let Some(p) = loaded.load_passage(t0) {
+            piece = shorter(piece, p / PIECES_PER_PASSAGE);
+        }
+        let floor = loaded.quadrature_floor(QUADRATURE_TOLERANCE);
+        if floor.is_some_and(|f| t1 - t0 > 2.0 * f) {
+            let n = loaded.dim();
+            for t in [t0, t1] {
+                let y = dense.at(t);
+                let (z, zd) = self.phase.split(&y);
+                if let Some(p) = loaded.quadrature_piece(&z[..n], &zd[..n], QUADRATURE_TOLERANCE) {
+                    piece = shorter(piece, p);
+                }
+            }
+        }
+        piece
+    }
+
     /// The envelope's stations inside a long step, every `spacing` at most, the parabola
     /// through the last three taken as it is: on a long step's ends alone (an exact step may
     /// span a sixteenth of the lowest period) it overshot HSLM's largest deck acceleration by
@@ -566,17 +599,8 @@ impl Observer for Recorder<'_> {
     fn span(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
         self.ledger.step_ends(&self.phase, t1, &dense.at(t1));
         // A step longer than two pieces books the work and the damping on the way, by
-        // Simpson's rule on pieces at most a sample long: the trapezoidal rule over the step
-        // alone would miss what the modes below the cutoff do within it. A fast train's axles
-        // sweep the modes faster than that: their power then changes at the pace they pass
-        // over the beam's shortest wave, and the pieces follow it.
-        let piece = self
-            .phase
-            .loaded
-            .load_passage(t0)
-            .map(|p| p / PIECES_PER_PASSAGE)
-            .filter(|&p| self.spacing <= 0.0 || p < self.spacing)
-            .unwrap_or(self.spacing);
+        // Simpson's rule (see `ledger_piece`).
+        let piece = self.ledger_piece(t0, t1, dense);
         if piece > 0.0 && t1 - t0 > 2.0 * piece {
             let count = ((t1 - t0) / piece).ceil();
             let at = |i: f64| t0 + (t1 - t0) * i / count;
