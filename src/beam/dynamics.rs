@@ -616,11 +616,16 @@ impl LoadedBeam<'_> {
         let train = self.train?;
         let length = self.beam.length;
         let on = (0..train.axles.len()).any(|a| (0.0..=length).contains(&train.position(a, t)));
-        let finest = self
-            .modal
+        (on && train.speed > 0.0).then(|| self.finest_length() / train.speed)
+    }
+
+    /// The shortest length the beam's response varies over along the span: an element (its
+    /// shape functions) or, on a modal beam, the span over the modes kept.
+    pub fn finest_length(&self) -> f64 {
+        let length = self.beam.length;
+        self.modal
             .map_or(f64::INFINITY, |m| length / m.dim().max(1) as f64)
-            .min(self.beam.element_length());
-        (on && train.speed > 0.0).then(|| finest / train.speed)
+            .min(self.beam.element_length())
     }
 }
 

@@ -136,6 +136,7 @@ pub(super) fn beam_scene(
             Some(f) => Some(c.positive(f, "output.acceleration_cutoff_hz")?),
         },
         response: None,
+        passage: None,
     };
     Ok((scene, given))
 }

@@ -660,6 +660,19 @@ impl<'a> VehiclesOnBeam<'a> {
         (0, String::new())
     }
 
+    /// While a wheel is on the deck, the time the fastest takes to cross the shortest length
+    /// the beam's response varies over ([`LoadedBeam::finest_length`]): the drive's power on
+    /// the beam changes at that pace. `None` with no wheel on the deck.
+    pub fn load_passage(&self, t: f64, q: &[f64]) -> Option<f64> {
+        let fastest = self
+            .contacts(t, q)
+            .iter()
+            .filter(|c| !c.rows[0].is_empty())
+            .map(|c| c.speed.abs())
+            .fold(0.0, f64::max);
+        (fastest > 0.0).then(|| self.loaded.finest_length() / fastest)
+    }
+
     /// The longest step at t: the beam's bound, and while a wheel is on the deck the time it
     /// takes to cross an element (its load has a kink at each node).
     fn step_bound(&self, t: f64, q: &[f64]) -> f64 {

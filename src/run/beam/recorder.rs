@@ -3,7 +3,7 @@
 
 use super::*;
 
-/// Simpson pieces of the energy ledger while an axle passes the beam's shortest wave: each
+/// Simpson pieces of the energy ledger while an axle or a wheel passes the beam's shortest wave: each
 /// piece's error falls as its fourth power.
 const PIECES_PER_PASSAGE: f64 = 8.0;
 
@@ -336,7 +336,11 @@ impl Recorder<'_> {
         let shorter = |a: f64, b: f64| if a > 0.0 { a.min(b) } else { b };
         let loaded = self.phase.loaded;
         let mut piece = self.spacing;
-        if let Some(p) = loaded.load_passage(t0) {
+        let wheels = self.phase.vehicles.and_then(|v| {
+            let y = dense.at(t0);
+            v.load_passage(t0, self.phase.split(&y).0)
+        });
+        for p in loaded.load_passage(t0).into_iter().chain(wheels) {
             piece = shorter(piece, p / PIECES_PER_PASSAGE);
         }
         let floor = loaded.quadrature_floor(QUADRATURE_TOLERANCE);
