@@ -167,8 +167,7 @@ fn riding_weight(b: &BeamScene) -> Option<f64> {
 /// disk, a load, or a vehicle that slows down or stays on the deck, whose response is as large
 /// as the static one.
 fn loaded_for(b: &BeamScene) -> Option<f64> {
-    if !b.disks.is_empty() || !b.loads.is_empty() || (b.train.is_none() && b.vehicles.is_empty())
-    {
+    if !b.disks.is_empty() || !b.loads.is_empty() || (b.train.is_none() && b.vehicles.is_empty()) {
         return None;
     }
     let length = (b.beam.to[0] - b.beam.from[0]).hypot(b.beam.to[1] - b.beam.from[1]);

@@ -519,7 +519,7 @@ pub fn run(
         phase,
         filter,
         &y0,
-        outputs.len(),
+        &outputs,
         show_progress,
     );
 

@@ -1,17 +1,19 @@
 //! The run's observers in one: what the sensors record at output times, the extremes watched
 //! over every step, the energy ledger, and the progress bar.
 
+use super::ledger::LOBATTO;
 use super::*;
 
-/// Simpson pieces of the energy ledger while an axle or a wheel passes the beam's shortest wave: each
-/// piece's error falls as its fourth power.
-const PIECES_PER_PASSAGE: f64 = 8.0;
+/// Samples of the energy ledger while an axle or a wheel passes the beam's shortest wave.
+const SAMPLES_PER_PASSAGE: f64 = 8.0;
 
-/// What Simpson's rule may err by on each moving mode's share of the ledger's powers, of the
+/// Samples a piece of the ledger's Gauss–Lobatto rule spans at most.
+const LOBATTO_REACH: f64 = 8.0;
+
+/// What the ledger's rule may err by on each moving mode's share of its powers, of the
 /// beam's energy. The modes a fast axle sets ringing move faster than a sample: at this
 /// tolerance a lone axle at 1000 m/s over the HSLM bridge, integrated exactly, balances
-/// within 3e-5, and HSLM-A1 at 40-120 m/s takes under 5 % more pieces; a tenth of it takes
-/// 40-60 % more.
+/// within 3e-5.
 const QUADRATURE_TOLERANCE: f64 = 1e-5;
 
 /// Samples of the extremes' watch a period of the acceleration's cutoff, where the steps are
@@ -110,6 +112,9 @@ pub(super) struct Recorder<'a> {
     pub(super) before: Option<(f64, Snapshot)>,
     /// The least time between samples of steps far shorter than it (see `Recorder::watch`).
     pub(super) spacing: f64,
+    /// The output times: the ledger's pieces end at each, so that the energy a row records
+    /// is booked by their rule up to its time.
+    pub(super) outputs: Vec<f64>,
     /// The probes and the disk at the last two step ends watched while a disk is on or over
     /// the beam: then every step is.
     pub(super) trail: Vec<Trailed>,
@@ -326,23 +331,29 @@ impl Recorder<'_> {
         self.last = Some((t1, end));
     }
 
-    /// The longest piece a long step's work and damping may be booked in by Simpson's rule:
-    /// a sample at most (the trapezoidal rule over the step alone would miss what the modes
-    /// below the cutoff do within it); an eighth of the time a fast train's axle takes to pass
-    /// the beam's shortest wave, over which its power on the modes changes; and on a modal
-    /// beam short enough for every mode that moves (`LoadedBeam::quadrature_piece`).
-    /// Zero: no pieces.
-    fn ledger_piece(&self, t0: f64, t1: f64, dense: &dyn Dense) -> f64 {
+    /// How a step's work and damping are booked: `None`, by the trapezoidal rule over the
+    /// step, where it spans two samples or less (a sample: `spacing`, and an eighth of the
+    /// time a fast axle or wheel takes to pass the beam's shortest wave, over which its power
+    /// on the modes changes); otherwise the longest piece the Gauss–Lobatto rule ([`LOBATTO`])
+    /// may book it in: [`LOBATTO_REACH`] samples, and on a modal beam short enough for every
+    /// mode that moves (`LoadedBeam::quadrature_piece`).
+    fn ledger_pieces(&self, t0: f64, t1: f64, dense: &dyn Dense) -> Option<f64> {
         let shorter = |a: f64, b: f64| if a > 0.0 { a.min(b) } else { b };
         let loaded = self.phase.loaded;
-        let mut piece = self.spacing;
         let wheels = self.phase.vehicles.and_then(|v| {
             let y = dense.at(t0);
             v.load_passage(t0, self.phase.split(&y).0)
         });
-        for p in loaded.load_passage(t0).into_iter().chain(wheels) {
-            piece = shorter(piece, p / PIECES_PER_PASSAGE);
+        let sample = loaded
+            .load_passage(t0)
+            .into_iter()
+            .chain(wheels)
+            .map(|p| p / SAMPLES_PER_PASSAGE)
+            .fold(self.spacing, shorter);
+        if !(sample > 0.0) || t1 - t0 <= 2.0 * sample {
+            return None;
         }
+        let mut piece = LOBATTO_REACH * sample;
         let floor = loaded.quadrature_floor(QUADRATURE_TOLERANCE);
         if floor.is_some_and(|f| t1 - t0 > 2.0 * f) {
             let n = loaded.dim();
@@ -350,11 +361,11 @@ impl Recorder<'_> {
                 let y = dense.at(t);
                 let (z, zd) = self.phase.split(&y);
                 if let Some(p) = loaded.quadrature_piece(&z[..n], &zd[..n], QUADRATURE_TOLERANCE) {
-                    piece = shorter(piece, p);
+                    piece = piece.min(p);
                 }
             }
         }
-        piece
+        Some(piece)
     }
 
     /// The envelope's stations inside a long step, every `spacing` at most, the parabola
@@ -602,19 +613,25 @@ impl Observer for Recorder<'_> {
 
     fn span(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
         self.ledger.step_ends(&self.phase, t1, &dense.at(t1));
-        // A step longer than two pieces books the work and the damping on the way, by
-        // Simpson's rule (see `ledger_piece`).
-        let piece = self.ledger_piece(t0, t1, dense);
-        if piece > 0.0 && t1 - t0 > 2.0 * piece {
-            let count = ((t1 - t0) / piece).ceil();
-            let at = |i: f64| t0 + (t1 - t0) * i / count;
-            let pieces = (1..=count as usize)
-                .map(|i| {
-                    let (tm, t) = (at(i as f64 - 0.5), at(i as f64).min(t1));
-                    self.ledger
-                        .piece(&self.phase, (tm, &dense.at(tm)), t, &dense.at(t))
-                })
-                .collect();
+        // A long step books the work and the damping on the way (see `ledger_pieces`).
+        if let Some(piece) = self.ledger_pieces(t0, t1, dense) {
+            let from = self.outputs.partition_point(|&o| o <= t0);
+            let to = self.outputs.partition_point(|&o| o < t1);
+            let ends: Vec<f64> = self.outputs[from..to].iter().copied().chain([t1]).collect();
+            let mut pieces = Vec::new();
+            let mut a = t0;
+            for b in ends {
+                let count = ((b - a) / piece).ceil().max(1.0);
+                let at = |i: f64| a + (b - a) * i / count;
+                for i in 1..=count as usize {
+                    let (start, t) = (at(i as f64 - 1.0), at(i as f64).min(b));
+                    let times = LOBATTO.0.map(|x| start + (t - start) * x);
+                    let states = times.map(|ti| dense.at(ti));
+                    let inner = [0, 1, 2].map(|k| (times[k], &states[k][..]));
+                    pieces.push(self.ledger.piece(&self.phase, inner, t, &dense.at(t)));
+                }
+                a = b;
+            }
             self.ledger.book_in_pieces(pieces);
         }
         self.watch(t0, t1, dense);
@@ -720,7 +737,7 @@ pub(super) fn recorder<'a>(
     phase: Phase<'a>,
     filter: Option<AccelerationFilter>,
     y0: &[f64],
-    rows: usize,
+    outputs: &[f64],
     show_progress: bool,
 ) -> Recorder<'a> {
     let beam = phase.beam;
@@ -739,7 +756,7 @@ pub(super) fn recorder<'a>(
         history: History {
             beam,
             probes: &setup.probes,
-            rows: Vec::with_capacity(rows),
+            rows: Vec::with_capacity(outputs.len()),
         },
         phase,
         envelope: Envelope::new(xs),
@@ -774,6 +791,7 @@ pub(super) fn recorder<'a>(
         trail: Vec::new(),
         along_trail: Vec::new(),
         spacing,
+        outputs: outputs.to_vec(),
         exit_t,
         arrivals,
         squares: vec![(0.0, 0.0); setup.vehicles.iter().map(|v| v.bodies.len()).sum()],
