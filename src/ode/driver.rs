@@ -1,6 +1,7 @@
 //! The one stepping driver: output times, breakpoints, event location and step-size control,
 //! the same for every [`Stepper`].
 
+use std::cell::RefCell;
 use std::time::Instant;
 
 use super::dopri5::Dopri5;
@@ -321,7 +322,14 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             },
         );
         let t_stop = first.map_or(t_new, |(_, te)| te);
-        observer.span(self.t, t_stop, &StepperDense(stepper.as_ref()));
+        let dense = StepperDense {
+            stepper: stepper.as_ref(),
+            ends: (self.t, t_new),
+            problem: stepper
+                .rate_from_the_problem()
+                .then(|| (self.p as &dyn Dynamics, RefCell::new(&mut self.ctx))),
+        };
+        observer.span(self.t, t_stop, &dense);
         while self.next_out < self.outputs.len() && self.outputs[self.next_out] <= t_stop {
             let to = self.outputs[self.next_out];
             stepper.interpolate(to, y_tmp);
@@ -360,19 +368,34 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
     }
 }
 
-/// The dense output of the stepper's last accepted step.
-struct StepperDense<'a>(&'a dyn Stepper);
+/// The dense output of the stepper's last accepted step, which spans `ends`; with the problem
+/// where y' inside is read from it ([`Stepper::rate_from_the_problem`]).
+struct StepperDense<'a> {
+    stepper: &'a dyn Stepper,
+    ends: (f64, f64),
+    problem: Option<(&'a dyn Dynamics, RefCell<&'a mut Ctx>)>,
+}
 
 impl Dense for StepperDense<'_> {
     fn at(&self, t: f64) -> Vec<f64> {
-        let mut y = vec![0.0; self.0.y_new().len()];
-        self.0.interpolate(t, &mut y);
+        let mut y = vec![0.0; self.stepper.y_new().len()];
+        self.stepper.interpolate(t, &mut y);
         y
     }
 
     fn rate(&self, t: f64) -> Option<Vec<f64>> {
-        let mut yp = vec![0.0; self.0.y_new().len()];
-        self.0.interpolate_rate(t, &mut yp);
+        let mut yp = vec![0.0; self.stepper.y_new().len()];
+        let inside = t != self.ends.0 && t != self.ends.1;
+        let from_problem = match &self.problem {
+            Some((p, ctx)) if inside => ctx
+                .borrow_mut()
+                .derivative(*p, t, &self.at(t), &mut yp)
+                .is_ok(),
+            _ => false,
+        };
+        if !from_problem {
+            self.stepper.interpolate_rate(t, &mut yp);
+        }
         Some(yp)
     }
 }

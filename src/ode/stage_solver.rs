@@ -164,6 +164,10 @@ impl<M: DirkMethod> Stepper for Dirk<M> {
         self.s.ends.interpolate_rate(t, out);
     }
 
+    fn rate_from_the_problem(&self) -> bool {
+        true
+    }
+
     /// Keep the factorised iteration matrix while the step would grow by less than 20 %, or
     /// shrink by no more than the controller's safety factor 0.9: a refactorisation costs
     /// more than the few steps a slightly larger h saves, and a proposal of 0.9 h or more
