@@ -664,30 +664,27 @@ impl<'a> VehiclesOnBeam<'a> {
     /// the beam's response varies over ([`LoadedBeam::finest_length`]): the drive's power on
     /// the beam changes at that pace. `None` with no wheel on the deck.
     pub fn load_passage(&self, t: f64, q: &[f64]) -> Option<f64> {
-        let fastest = self
-            .contacts(t, q)
-            .iter()
-            .filter(|c| !c.rows[0].is_empty())
-            .map(|c| c.speed.abs())
-            .fold(0.0, f64::max);
-        (fastest > 0.0).then(|| self.loaded.finest_length() / fastest)
+        self.fastest_on_deck(t, q)
+            .map(|v| self.loaded.finest_length() / v)
     }
 
     /// The longest step at t: the beam's bound, and while a wheel is on the deck the time it
     /// takes to cross an element (its load has a kink at each node).
     fn step_bound(&self, t: f64, q: &[f64]) -> f64 {
+        let beam = self.loaded.load_step_bound(t);
+        self.fastest_on_deck(t, q)
+            .map_or(beam, |v| beam.min(self.loaded.beam.element_length() / v))
+    }
+
+    /// The speed of the fastest wheel on the deck at t; `None` with none on it, or none moving.
+    fn fastest_on_deck(&self, t: f64, q: &[f64]) -> Option<f64> {
         let fastest = self
             .contacts(t, q)
             .iter()
             .filter(|c| !c.rows[0].is_empty())
             .map(|c| c.speed.abs())
             .fold(0.0, f64::max);
-        let beam = self.loaded.load_step_bound(t);
-        if fastest > 0.0 {
-            beam.min(self.loaded.beam.element_length() / fastest)
-        } else {
-            beam
-        }
+        (fastest > 0.0).then_some(fastest)
     }
 }
 
