@@ -406,8 +406,14 @@ fn breakpoints_within(mut breaks: Vec<f64>, t0: f64, t_end: f64) -> Vec<f64> {
     breaks.sort_by(f64::total_cmp);
     // Two loads that switch at one time (an axle entering is also its first node crossing)
     // make one breakpoint, not a step of round-off between them.
-    breaks.dedup_by(|b, a| *b - *a <= 1e-12 * a.abs().max(1.0));
+    breaks.dedup_by(|b, a| same_breakpoint(*a, *b));
     breaks
+}
+
+/// Whether two breakpoints are one: a step ends on the first of several that lie within a
+/// round-off of each other, so whoever looks for a step end among them compares by this.
+pub fn same_breakpoint(a: f64, b: f64) -> bool {
+    (b - a).abs() <= 1e-12 * a.abs().max(1.0)
 }
 
 /// The events of one step [t0, t1] whose g passes from ≥ 0 (g0) to < 0 (g1), each located on

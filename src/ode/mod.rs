@@ -21,7 +21,7 @@ mod stage_solver;
 mod test_models;
 mod trbdf2;
 
-pub use driver::solve;
+pub use driver::{same_breakpoint, solve};
 
 use std::fmt;
 

@@ -3,6 +3,7 @@
 
 use super::ledger::LOBATTO;
 use super::*;
+use crate::ode::same_breakpoint;
 
 /// Samples of the energy ledger while an axle or a wheel passes the beam's shortest wave.
 const SAMPLES_PER_PASSAGE: f64 = 8.0;
@@ -308,9 +309,7 @@ impl Recorder<'_> {
                 .collect();
             // A step that ends where the loads turn is sampled there too: what is watched may
             // turn sharply there.
-            if times.last() != Some(&t1)
-                && self.kinks.binary_search_by(|k| k.total_cmp(&t1)).is_ok()
-            {
+            if times.last() != Some(&t1) && self.turns_at(t1) {
                 times.push(t1);
             }
             for ts in times {
@@ -482,6 +481,17 @@ impl Recorder<'_> {
             _ => self.watches.along.record_point(t, &along),
         }
         self.along_trail.push((t, along));
+    }
+
+    /// Whether the loads turn at t, as the driver ends a step there: on the breakpoint, or a
+    /// round-off away where two breakpoints lie that close ([`same_breakpoint`]).
+    fn turns_at(&self, t: f64) -> bool {
+        let next = self.kinks.partition_point(|&k| k < t);
+        [next.checked_sub(1), Some(next)]
+            .into_iter()
+            .flatten()
+            .filter_map(|i| self.kinks.get(i))
+            .any(|&k| same_breakpoint(k, t))
     }
 
     /// Whether the loads turn nowhere after ta up to tb ([`Recorder::kinks`]): a window that
