@@ -13,7 +13,7 @@
 //! - The automatic choice: the bridge comes out modal, the rubber beam and the zip-line exact,
 //!   each with the measured reason, and the linear model's error on those two stated.
 
-mod common;
+use crate::common;
 
 use common::{at_defaults, changed, hann_mean, run_beam, Set};
 use rollbeam::beam::BeamModel;

@@ -3,7 +3,7 @@
 //! free beam, mesh convergence of the headline deflection, and snapshots of converged
 //! headline numbers. The thesis' claims are checked with these numbers in REPORT.md.
 
-mod common;
+use crate::common;
 
 use common::{changed, hann_mean, load, parse, run_beam, Set};
 use rollbeam::ode::Method;

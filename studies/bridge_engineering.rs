@@ -9,7 +9,7 @@
 //! - The static sag under self-weight against 5qL⁴/(384EI) + qL²/(8GAv).
 //! - The recorded acceleration against the second derivative of the recorded deflection.
 
-mod common;
+use crate::common;
 
 use common::{changed, run_beam, Set};
 use rollbeam::analysis::statics;

@@ -8,7 +8,7 @@
 //! the thickness-shear motion it excites is resolved (ρ∞ = 1, rtol 1e-8: about a minute per
 //! study), so those are checked by hand in REPORT.md against the converged values there.
 
-mod common;
+use crate::common;
 
 use common::{changed, parse, run_beam, Set};
 use rollbeam::ode::Method;

@@ -1,7 +1,7 @@
 //! Studies 4–6: the disk rolling on the beam (thesis chapter 5), and the checks of the four
 //! couplings against closed forms, limits and each other.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 

@@ -8,7 +8,7 @@
 //!   stiff), as the time-stepped runs are,
 //! - and refused, with the reason, where it does not apply.
 
-mod common;
+use crate::common;
 
 use common::{hslm_bridge, mid_headlines, parse, run_beam, superposition_error};
 use rollbeam::ode::Method;

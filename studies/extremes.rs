@@ -2,7 +2,7 @@
 //! completes with its energy balance, or stops with its named reason, and matches a closed form
 //! where one exists.
 
-mod common;
+use crate::common;
 
 use common::{changed, parse, run_beam, run_with, Set};
 use rollbeam::analysis::moving_load::MovingForce;

@@ -12,7 +12,7 @@
 //!   the geometric series 2eu/(g(1 − e)) before the disk rolls, to 1e-6 s.
 //! - The energy balance, what the landings took included, closes at the integrator's rtol.
 
-mod common;
+use crate::common;
 
 use common::{parse, run_beam, run_with};
 use rollbeam::disk::StopReason;

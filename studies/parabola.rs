@@ -5,7 +5,7 @@
 //! integrator against itself under step refinement (orders) and under tolerance refinement
 //! (energy), and the model against closed forms on a line and a circle.
 
-mod common;
+use crate::common;
 
 use common::{at, load, log_slope, parse, run_fixed, run_with};
 use rollbeam::curve::Curve;

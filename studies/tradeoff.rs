@@ -5,7 +5,7 @@
 //! there. Costs are compared in right-hand-side evaluations, which do not depend on the
 //! machine; wall times are what the command reports, and REPORT.md shows.
 
-mod common;
+use crate::common;
 
 use common::{changed, load, Set};
 use rollbeam::ode::Method;
@@ -523,18 +523,12 @@ const COARSER_THAN_ASKED: [&str; 1] = ["rubber"];
 /// to the plan; the scene's mesh kept, but the rubber beam's, see [`COARSER_THAN_ASKED`]) lands
 /// within the accuracy asked of its stored reference, in the reference's own measure: the
 /// headlines read on the output grid, each against the largest of its family. Measured at
-/// most 4.1·10⁻⁴ (the rubber beam's midspan rebound), 2.3·10⁻⁴ on B1–B3 and C1–C3, 2.9·10⁻⁴ on D50, 5.9·10⁻⁵ on D44 and
-/// the vehicles, 10⁻⁷ on the HSLM bridge (integrated exactly).
+/// most 4.1·10⁻⁴ (the rubber beam's midspan rebound), 3.2·10⁻⁴ on the zip-line, 2.3·10⁻⁴ on
+/// B1–B3 and C1–C3, 2.6·10⁻⁴ on D50, 1.3·10⁻⁴ on D44, 10⁻⁵ on the vehicles, 10⁻⁷ on the HSLM
+/// bridge (integrated exactly). C1's run at the defaults is
+/// the one [`crate::accuracy`] checks against the same model converged, and is scored there.
 fn land_within_their_references_at_the_defaults(names: &[&str]) {
-    let references = stored_references();
     for name in names {
-        let (scene, _, stored) = references
-            .iter()
-            .find(|(s, _, _)| s.name == *name)
-            .expect("the study");
-        let Stored::Usable(reference) = stored else {
-            panic!("{name}: no usable stored reference");
-        };
         let file = common::studies_dir().join(format!("{name}.yaml"));
         let mut spec = rollbeam::scene::SceneSpec::load(&file).expect("the study");
         for key in [
@@ -545,19 +539,43 @@ fn land_within_their_references_at_the_defaults(names: &[&str]) {
         ] {
             spec.unset(key).expect("a solver key");
         }
-        if let (true, Some(n)) = (COARSER_THAN_ASKED.contains(name), reference.elements) {
-            spec.set("track.beam.elements", n as f64)
-                .expect("a mesh key");
+        if COARSER_THAN_ASKED.contains(name) {
+            let elements = stored_reference(name).elements;
+            if let Some(n) = elements {
+                spec.set("track.beam.elements", n as f64)
+                    .expect("a mesh key");
+            }
         }
         let planned = rollbeam::plan::Planner::default()
             .plan(&spec)
             .expect("planned");
-        let accuracy = scene.beam().expect("a beam study").accuracy;
         let r = run::run(&planned, &Overrides::default(), false).expect("the run");
-        let error = tradeoff::headline_error(&tradeoff::headlines(&r), &reference.headlines);
-        eprintln!("{name}: {error:.1e} of its reference at the defaults");
-        assert!(error <= accuracy, "{name}: {error:.1e} from its reference");
+        lands_within_its_reference(name, &r);
     }
+}
+
+/// The stored reference of the study `name`, which must serve.
+fn stored_reference(name: &str) -> Box<tradeoff::Reference> {
+    let (_, _, stored) = stored_references()
+        .into_iter()
+        .find(|(s, _, _)| s.name == name)
+        .expect("the study");
+    match stored {
+        Stored::Usable(reference) => reference,
+        _ => panic!("{name}: no usable stored reference"),
+    }
+}
+
+/// The run `r` of the study `name` lands within the study's accuracy of its stored reference,
+/// in the reference's measure.
+pub(crate) fn lands_within_its_reference(name: &str, r: &run::Run) {
+    let reference = stored_reference(name);
+    let scene =
+        Scene::load(&common::studies_dir().join(format!("{name}.yaml"))).expect("the study");
+    let accuracy = scene.beam().expect("a beam study").accuracy;
+    let error = tradeoff::headline_error(&tradeoff::headlines(r), &reference.headlines);
+    eprintln!("{name}: {error:.1e} of its reference at the defaults");
+    assert!(error <= accuracy, "{name}: {error:.1e} from its reference");
 }
 
 #[test]
@@ -573,11 +591,6 @@ fn beam_b2_lands_within_its_reference_at_the_defaults() {
 #[test]
 fn beam_b3_lands_within_its_reference_at_the_defaults() {
     land_within_their_references_at_the_defaults(&["beam-b3"]);
-}
-
-#[test]
-fn cantilever_c1_lands_within_its_reference_at_the_defaults() {
-    land_within_their_references_at_the_defaults(&["cantilever-c1"]);
 }
 
 #[test]

@@ -10,7 +10,7 @@
 //! - by the energy balance with dampers, a random profile and braking, which shrinks with rtol;
 //! - and by its refusals: a wheel that lifts off stops the run and is named.
 
-mod common;
+use crate::common;
 
 use common::{at_defaults, load, mid_headlines, parse, run_beam};
 use rollbeam::ode::Method;
