@@ -286,43 +286,50 @@ impl Recorder<'_> {
         // points do not resolve, so such a step is sampled on the grid too.
         let passing = riding.is_none() && spacing < self.spacing;
         if t1 - t0 < spacing || passing {
-            // The contact force rings at the frequencies of the disk on the beam's local
-            // stiffness, above any cutoff: sampled less often than every step, D44's largest
-            // (the disk meeting the beam at rest) came out 11 % low. The deck's accelerations
-            // carry it (every mode is forced by it directly), so the envelope's stations are
-            // taken at every step too: D50's largest acceleration read 2.4·10⁻³ low.
-            if riding.is_some() {
-                self.trail_rider(t1, dense);
-            }
-            // The samples keep an even spacing, taken inside the step where they fall: the
-            // bodies' root mean square is the trapezoidal rule over them, which on an even
-            // grid of a smooth signal is spectrally accurate, and on the uneven step ends
-            // read the railcar's bogies 2·10⁻⁴ low even at rtol 10⁻¹⁰.
-            let first = match &self.last {
-                Some((t, _)) => (t + spacing).max(t0),
-                None if t1 - t0 < spacing => t1,
-                None => t0,
-            };
-            let mut times: Vec<f64> = (0..)
-                .map(|k| first + k as f64 * spacing)
-                .take_while(|&ts| ts <= t1)
-                .collect();
-            // A step that ends where the loads turn is sampled there too: what is watched may
-            // turn sharply there.
-            if times.last() != Some(&t1) && self.turns_at(t1) {
-                times.push(t1);
-            }
-            for ts in times {
-                let end = self.snapshot(
-                    ts,
-                    &dense.at(ts),
-                    self.rate(dense, ts).as_deref(),
-                    riding.is_none(),
-                );
-                self.sampled(end, ts, riding.is_some());
-            }
-            return;
+            self.sample_inside(t0, t1, dense, spacing, riding.is_some());
+        } else {
+            self.watch_in_pairs(t0, t1, dense, spacing);
         }
+    }
+
+    /// Sample the step [t0, t1] on the even grid of `spacing` that runs on from the last
+    /// sample, with a disk `riding` on or over the beam taking in the step's end as well.
+    fn sample_inside(&mut self, t0: f64, t1: f64, dense: &dyn Dense, spacing: f64, riding: bool) {
+        // The contact force rings at the frequencies of the disk on the beam's local
+        // stiffness, above any cutoff: sampled less often than every step, D44's largest
+        // (the disk meeting the beam at rest) came out 11 % low. The deck's accelerations
+        // carry it (every mode is forced by it directly), so the envelope's stations are
+        // taken at every step too: D50's largest acceleration read 2.4·10⁻³ low.
+        if riding {
+            self.trail_rider(t1, dense);
+        }
+        // The samples keep an even spacing, taken inside the step where they fall: the
+        // bodies' root mean square is the trapezoidal rule over them, which on an even
+        // grid of a smooth signal is spectrally accurate, and on the uneven step ends
+        // read the railcar's bogies 2·10⁻⁴ low even at rtol 10⁻¹⁰.
+        let first = match &self.last {
+            Some((t, _)) => (t + spacing).max(t0),
+            None if t1 - t0 < spacing => t1,
+            None => t0,
+        };
+        let mut times: Vec<f64> = (0..)
+            .map(|k| first + k as f64 * spacing)
+            .take_while(|&ts| ts <= t1)
+            .collect();
+        // A step that ends where the loads turn is sampled there too: what is watched may
+        // turn sharply there.
+        if times.last() != Some(&t1) && self.turns_at(t1) {
+            times.push(t1);
+        }
+        for ts in times {
+            let end = self.snapshot(ts, &dense.at(ts), self.rate(dense, ts).as_deref(), !riding);
+            self.sampled(end, ts, riding);
+        }
+    }
+
+    /// Watch the long step [t0, t1] in pairs of sub-steps no longer than [`SAMPLES_A_PAIR`]
+    /// samples of `spacing`, and book its bodies' squares and the trails the next step reads.
+    fn watch_in_pairs(&mut self, t0: f64, t1: f64, dense: &dyn Dense, spacing: f64) {
         let fresh = self.along_trail.is_empty();
         let last = self.last.take();
         let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0, 0, 0));
