@@ -194,6 +194,9 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
         (true, None) => writeln!(f, "  disk: none (no disk unknowns)")?,
         (false, _) => disks(f, setup)?,
     }
+    for w in setup.warnings() {
+        writeln!(f, "  warning: {w}")?;
+    }
     writeln!(
         f,
         "  loads: {}, probes: {}",
@@ -208,7 +211,7 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
     Ok(())
 }
 
-/// Each disk on the beam, its coupling, contact and patch, and what its results depend on.
+/// Each disk on the beam, its coupling, contact and patch.
 fn disks(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
     for (d, name) in setup.disks.iter().zip(setup.disk_names()) {
         writeln!(
@@ -230,9 +233,6 @@ fn disks(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
             writeln!(f, "  {}", contact_loss(d.contact_loss))?;
         }
         patch(f, setup, d)?;
-    }
-    for w in setup.warnings() {
-        writeln!(f, "  warning: {w}")?;
     }
     Ok(())
 }
