@@ -794,42 +794,58 @@ fn one_railcar(speed: f64) -> Scene {
 }
 
 /// Wheels with a mass of their own (a railway car's wheelsets) take an impulse wherever the
-/// deck turns under them, at its ends above all. At 300 m/s, three times a service speed, the
-/// defaults hold every number one car reports against the same scene by ESDIRK4 at rtol
-/// 10⁻¹⁰: each body's largest acceleration and root mean square against its own converged
-/// value, each wheel's extreme contact forces against its static load, midspan's extremes of w
-/// against the largest (measured at most 1.7·10⁻⁴, the leading bogie's a_rms). Beyond that the
-/// defaults miss (600 m/s: the deck's least rotation 1.5·10⁻³ off; 3000 m/s: the rear bogie's
-/// largest acceleration 13 times the converged), and the scene says so.
+/// deck turns under them, at its ends above all, and it grows with the speed: at the plan's
+/// three-thousandth of the accuracy one car at 600 m/s read the deck's least rotation
+/// 1.5·10⁻³ off, at 3000 m/s its rear bogie's largest acceleration 13 times the converged. The
+/// plan tightens rtol by (300 m/s / speed)² beyond 300 m/s; at 300, 1000 and 3000 m/s the
+/// defaults then hold every number the car reports against the same scene by ESDIRK4 at rtol
+/// 10⁻¹⁰, each within the accuracy of its family's scale: the bodies' largest accelerations
+/// and root mean squares against the largest of the car's converged (a bogie over the far
+/// abutment barely moves, and its own value is not settled even between the two converged
+/// methods: 5.7·10⁻³ apart at 3000 m/s), each wheel's contact force against its static load,
+/// midspan's extremes of w against the larger. Past 3000 m/s, the fastest measured, the scene
+/// says so.
 #[test]
-fn a_railway_car_holds_the_accuracy_to_300_m_s_and_is_warned_about_beyond() {
+fn a_railway_car_holds_the_accuracy_at_speed() {
     let accuracy = 1e-3;
-    let scene = one_railcar(300.0);
-    let (fast, converged) = common::side_by_side(
-        || at_defaults(&scene),
-        || run_beam(&scene, Method::Esdirk4, 1e-10, 1e-13),
-    );
-    let statics = &scene.beam().expect("a beam").vehicles[0].static_loads;
-    let (v, c) = (&fast.vehicles[0], &converged.vehicles[0]);
-    for ((name, a, rms), (_, ca, crms)) in v.bodies.iter().zip(&c.bodies) {
-        let (peak, cpeak) = (a.largest_magnitude().0, ca.largest_magnitude().0);
-        assert!(
-            (peak / cpeak - 1.0).abs() < accuracy && (rms / crms - 1.0).abs() < accuracy,
-            "{name}: a_max {peak} against {cpeak}, a_rms {rms} against {crms}"
+    for speed in [300.0, 1000.0, 3000.0] {
+        let scene = one_railcar(speed);
+        let (fast, converged) = common::side_by_side(
+            || at_defaults(&scene),
+            || run_beam(&scene, Method::Esdirk4, 1e-10, 1e-13),
         );
-    }
-    for (((name, r), (_, cr)), p) in v.axles.iter().zip(&c.axles).zip(statics) {
-        for (x, y) in [(r.min, cr.min), (r.max, cr.max)] {
-            assert!((x - y).abs() < accuracy * p, "{name}: {x} against {y}");
+        let statics = &scene.beam().expect("a beam").vehicles[0].static_loads;
+        let (v, c) = (&fast.vehicles[0], &converged.vehicles[0]);
+        let largest =
+            |f: &dyn Fn(&(String, _, f64)) -> f64| c.bodies.iter().map(f).fold(0.0, f64::max);
+        let (a_scale, rms_scale) = (
+            largest(&|(_, a, _)| a.largest_magnitude().0),
+            largest(&|(_, _, rms)| *rms),
+        );
+        for ((name, a, rms), (_, ca, crms)) in v.bodies.iter().zip(&c.bodies) {
+            let (peak, cpeak) = (a.largest_magnitude().0, ca.largest_magnitude().0);
+            assert!(
+                (peak - cpeak).abs() < accuracy * a_scale
+                    && (rms - crms).abs() < accuracy * rms_scale,
+                "{speed} m/s, {name}: a_max {peak} against {cpeak}, a_rms {rms} against {crms}"
+            );
         }
-    }
-    let (m, cm) = (mid_headlines(&fast), mid_headlines(&converged));
-    let scale = cm[0].abs().max(cm[1].abs());
-    for (x, y) in [(m[0], cm[0]), (m[1], cm[1])] {
-        assert!(
-            (x - y).abs() < accuracy * scale,
-            "midspan w {x:e} against {y:e}"
-        );
+        for (((name, r), (_, cr)), p) in v.axles.iter().zip(&c.axles).zip(statics) {
+            for (x, y) in [(r.min, cr.min), (r.max, cr.max)] {
+                assert!(
+                    (x - y).abs() < accuracy * p,
+                    "{speed} m/s, {name}: {x} against {y}"
+                );
+            }
+        }
+        let (m, cm) = (mid_headlines(&fast), mid_headlines(&converged));
+        let scale = cm[0].abs().max(cm[1].abs());
+        for (x, y) in [(m[0], cm[0]), (m[1], cm[1])] {
+            assert!(
+                (x - y).abs() < accuracy * scale,
+                "{speed} m/s: midspan w {x:e} against {y:e}"
+            );
+        }
     }
     let warned = |speed: f64| {
         one_railcar(speed)
@@ -839,5 +855,5 @@ fn a_railway_car_holds_the_accuracy_to_300_m_s_and_is_warned_about_beyond() {
             .iter()
             .any(|w| w.contains("mass of their own"))
     };
-    assert!(!warned(300.0) && warned(600.0) && warned(3000.0));
+    assert!(!warned(3000.0) && warned(6000.0));
 }
