@@ -161,9 +161,7 @@ const FREE_EXACT: &str = "exact-modal once the riders have left: the modal beam 
 /// Whether a vehicle has an axle with a mass of its own: such a wheel takes an impulse at each
 /// kink of its track (and lands with one), which sets every mode of the deck ringing.
 fn unsprung(b: &BeamScene) -> bool {
-    b.vehicles
-        .iter()
-        .any(|v| v.axles.iter().any(|a| a.mass > 0.0))
+    b.vehicles.iter().any(|v| v.has_unsprung_mass())
 }
 
 /// The fastest a vehicle on wheels with a mass of their own runs at a three-thousandth of the

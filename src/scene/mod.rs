@@ -256,8 +256,7 @@ impl BeamScene {
         // The plan tightens rtol with the speed of wheels with a mass of their own, measured
         // up to this speed only (`plan::rtol_for`).
         for v in &self.vehicles {
-            if v.speed.abs() > MAX_SPEED_WITH_UNSPRUNG_MASS && v.axles.iter().any(|a| a.mass > 0.0)
-            {
+            if v.speed.abs() > MAX_SPEED_WITH_UNSPRUNG_MASS && v.has_unsprung_mass() {
                 out.push(format!("vehicle `{}` runs at {} m/s on wheels with a mass of their own: the plan's tolerance for their impulses at the deck's ends and kinks is measured to {MAX_SPEED_WITH_UNSPRUNG_MASS} m/s; beyond, compare a run at a tenth of `solver.rtol`", v.name, v.speed.abs()));
             }
         }

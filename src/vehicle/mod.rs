@@ -91,6 +91,11 @@ pub struct Vehicle {
 pub type Refusal = String;
 
 impl Vehicle {
+    /// Whether an axle has a mass of its own, which takes an impulse wherever the track turns.
+    pub fn has_unsprung_mass(&self) -> bool {
+        self.axles.iter().any(|a| a.mass > 0.0)
+    }
+
     /// The vehicle, its static axle loads found under `gravity`; refused where a body is not
     /// held by springs or an axle would have to pull on the track.
     #[allow(clippy::too_many_arguments)]

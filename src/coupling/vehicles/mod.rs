@@ -498,9 +498,7 @@ impl<'a> VehiclesOnBeam<'a> {
     }
 
     fn unsprung(&self) -> bool {
-        self.vehicles
-            .iter()
-            .any(|v| v.axles.iter().any(|a| a.mass > 0.0))
+        self.vehicles.iter().any(|v| v.has_unsprung_mass())
     }
 
     /// z̈ at (t, z, ż).
