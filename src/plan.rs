@@ -174,12 +174,20 @@ const UNSPRUNG_SPEED: f64 = 300.0;
 /// least rotation 1.5·10⁻³ off and 3000 m/s a bogie's largest acceleration 13 times the
 /// converged; with the factor, 600, 1000 and 3000 m/s land within 5.1·10⁻⁴ of each number's
 /// scale (the car's bodies' largest, the wheels' static loads, midspan's largest |w|).
+/// The speed is the fastest such a vehicle runs on the deck: a vehicle without unsprung
+/// masses, however fast, deals the deck no impulses.
 fn unsprung_speed_factor(b: &BeamScene) -> f64 {
-    if !unsprung(b) {
-        return 1.0;
+    let fastest = b
+        .vehicles
+        .iter()
+        .filter(|v| v.has_unsprung_mass())
+        .map(|v| b.top_speed_on_deck(v))
+        .fold(0.0, f64::max);
+    if fastest > 0.0 {
+        (UNSPRUNG_SPEED / fastest).powi(2).min(1.0)
+    } else {
+        1.0
     }
-    let fastest = b.vehicles.iter().map(|v| v.speed.abs()).fold(0.0, f64::max);
-    (UNSPRUNG_SPEED / fastest).powi(2).min(1.0)
 }
 
 /// What rides on the beam, as the static load the mesh and model are chosen for: the disk's

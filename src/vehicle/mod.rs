@@ -292,6 +292,11 @@ impl Vehicle {
         }
     }
 
+    /// The fastest it runs from t = 0 to `until`: its speed changes one way, so at either end.
+    pub fn top_speed(&self, until: f64) -> f64 {
+        self.travel(0.0).1.abs().max(self.travel(until).1.abs())
+    }
+
     /// When the vehicle stops, braking: `None` while it keeps going.
     pub fn stops_at(&self) -> Option<f64> {
         (self.acceleration < 0.0).then(|| -self.speed / self.acceleration)
