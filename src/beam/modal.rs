@@ -176,10 +176,9 @@ impl ModalBasis {
         let Some(lu) = &self.flexibility else { return };
         let acting = f.iter().filter(|v| **v != 0.0).count();
         if f.len() > KEPT_COLUMNS_UP_TO || acting > FEW_FORCES {
-            let mut full = f.to_vec();
-            lu.solve_in_place(&mut full);
-            self.subtract_modal_part(f, &mut full);
-            q.iter_mut().zip(&full).for_each(|(a, b)| *a += b);
+            if let Some(full) = self.residual_flexibility(f) {
+                q.iter_mut().zip(&full).for_each(|(a, b)| *a += b);
+            }
             return;
         }
         let mut columns = self.columns_of_r.borrow_mut();
@@ -200,6 +199,16 @@ impl ModalBasis {
                 .zip(column.iter())
                 .for_each(|(a, r)| *a += r * fj);
         }
+    }
+
+    /// R f, the static response of the modes left out to f (`None` where no flexibility is
+    /// kept: a beam free to move as a rigid body).
+    pub fn residual_flexibility(&self, f: &[f64]) -> Option<Vec<f64>> {
+        let lu = self.flexibility.as_ref()?;
+        let mut full = f.to_vec();
+        lu.solve_in_place(&mut full);
+        self.subtract_modal_part(f, &mut full);
+        Some(full)
     }
 
     /// x −= Φ Ω⁻² Φᵀ f.

@@ -205,27 +205,31 @@ impl Stepper for ExactModal {
         let mut m = std::mem::take(&mut self.trial);
         m.h = t_new - m.t0;
         self.accepted = m;
-        self.evaluated.replace(None);
+        // No time is NaN: the buffers stay for the next step's evaluations.
+        if let Some(e) = self.evaluated.borrow_mut().as_mut() {
+            e.0 = f64::NAN;
+        }
         self.phasors.replace(None);
     }
 
     fn interpolate(&self, t: f64, out: &mut [f64]) {
-        let (x, v) = self.at(t);
-        let n = x.len();
-        out[..n].copy_from_slice(&x);
-        out[n..2 * n].copy_from_slice(&v);
+        let half = self.y_new.len() / 2;
+        let (x, v) = out.split_at_mut(half);
+        self.at_into(t, x, &mut v[..half]);
     }
 
     fn interpolate_rate(&self, t: f64, out: &mut [f64]) {
         let Some(linear) = &self.linear else { return };
-        let (x, v) = self.at(t);
-        let n = x.len();
+        // The rate's second half holds x until it is turned into the acceleration.
+        let half = self.y_new.len() / 2;
+        let (v, a) = out.split_at_mut(half);
+        let a = &mut a[..half];
+        self.at_into(t, a, v);
         let m = &self.accepted;
         let sigma = if m.h > 0.0 { (t - m.t0) / m.h } else { 0.0 };
-        for k in 0..n {
-            let g = horner(&m.force[k], sigma);
-            out[k] = v[k];
-            out[n + k] = g - linear.damping[k] * v[k] - linear.stiffness[k] * x[k];
+        for (k, (ak, vk)) in a.iter_mut().zip(v.iter()).enumerate() {
+            let g = m.force.get(k).map_or(0.0, |f| horner(f, sigma));
+            *ak = g - linear.damping[k] * vk - linear.stiffness[k] * *ak;
         }
     }
 
@@ -260,23 +264,36 @@ impl ExactModal {
     }
 
     /// Displacements and rates of every oscillator at t within the accepted step.
+    #[cfg(test)]
     fn at(&self, t: f64) -> (Vec<f64>, Vec<f64>) {
+        let half = self.y_new.len() / 2;
+        let (mut x, mut v) = (vec![0.0; half], vec![0.0; half]);
+        self.at_into(t, &mut x, &mut v);
+        (x, v)
+    }
+
+    /// Displacements `x` and rates `v` of every oscillator at t within the accepted step.
+    fn at_into(&self, t: f64, x: &mut [f64], v: &mut [f64]) {
         let m = &self.accepted;
         let n = m.motions.len();
         if n == 0 || !(m.h > 0.0) {
             let half = self.y_new.len() / 2;
-            return (self.y_new[..half].to_vec(), self.y_new[half..].to_vec());
+            x.copy_from_slice(&self.y_new[..half]);
+            v.copy_from_slice(&self.y_new[half..]);
+            return;
         }
         let Some(linear) = &self.linear else {
-            return (vec![0.0; n], vec![0.0; n]);
+            x.fill(0.0);
+            v.fill(0.0);
+            return;
         };
-        if let Some((_, x, v)) = self.evaluated.borrow().as_ref().filter(|e| e.0 == t) {
-            return (x.clone(), v.clone());
+        if let Some((_, xe, ve)) = self.evaluated.borrow().as_ref().filter(|e| e.0 == t) {
+            x.copy_from_slice(xe);
+            v.copy_from_slice(ve);
+            return;
         }
         let sigma = ((t - m.t0) / m.h).clamp(0.0, 1.0);
         let phasors = self.phasors_at(t, sigma * m.h);
-        let mut x = vec![0.0; n];
-        let mut v = vec![0.0; n];
         for k in 0..n {
             let (w2, c) = (linear.stiffness[k], linear.damping[k]);
             (x[k], v[k]) = match (&m.motions[k], phasors.at[k]) {
@@ -289,8 +306,15 @@ impl ExactModal {
             };
         }
         self.phasors.replace(Some(phasors));
-        self.evaluated.replace(Some((t, x.clone(), v.clone())));
-        (x, v)
+        let mut evaluated = self.evaluated.borrow_mut();
+        match evaluated.as_mut() {
+            Some((te, xe, ve)) => {
+                *te = t;
+                xe.copy_from_slice(x);
+                ve.copy_from_slice(v);
+            }
+            None => *evaluated = Some((t, x.to_vec(), v.to_vec())),
+        }
     }
 
     /// The phasors at t (τ = t − the step's start): carried on from the last time asked where

@@ -15,6 +15,7 @@ mod acceleration;
 mod flight;
 mod fly;
 mod ledger;
+mod modal_probes;
 mod phase;
 mod recorder;
 mod sensors;

@@ -2,6 +2,7 @@
 //! over every step, the energy ledger, and the progress bar.
 
 use super::ledger::LOBATTO;
+use super::modal_probes::ModalProbes;
 use super::*;
 use crate::ode::same_breakpoint;
 
@@ -106,6 +107,8 @@ pub(super) struct Recorder<'a> {
     pub(super) stations: Stations,
     /// What of the acceleration is recorded.
     pub(super) filter: Option<AccelerationFilter>,
+    /// On a modal beam, the probes read from the amplitudes.
+    pub(super) modal_probes: Option<ModalProbes>,
     pub(super) history: History<'a>,
     pub(super) envelope: Envelope,
     pub(super) pictures: Pictures<'a>,
@@ -149,6 +152,14 @@ impl Recorder<'_> {
         rate: Option<&[f64]>,
         along: bool,
     ) -> Snapshot {
+        if let Some(probes) = self.probes_alone(t, y, rate, along) {
+            return Snapshot {
+                probes,
+                disk: None,
+                along: Vec::new(),
+                vehicles: Vec::new(),
+            };
+        }
         let phase = &self.phase;
         let (disks, gap) = phase.disks(t, y);
         let q = phase.displaced(t, y, &disks, rate);
@@ -205,6 +216,32 @@ impl Recorder<'_> {
             along,
             vehicles,
         }
+    }
+
+    /// The probes' values at (t, y) read from a modal beam's amplitudes, where they are all a
+    /// snapshot sees: the beam alone, its accelerations from the dense output, the stations
+    /// not asked for.
+    fn probes_alone(
+        &self,
+        t: f64,
+        y: &[f64],
+        rate: Option<&[f64]>,
+        along: bool,
+    ) -> Option<Vec<f64>> {
+        let phase = &self.phase;
+        let alone = phase.coupled.is_none() && phase.flying.is_none() && phase.vehicles.is_none();
+        let (probes, yp) = self.modal_probes.as_ref().zip(rate)?;
+        if !alone || (along && self.watch_along) {
+            return None;
+        }
+        let n = phase.loaded.dim();
+        let kept = self.filter.as_ref().map_or(n, |f| f.kept.min(n));
+        let f = phase.correct.then(|| {
+            let mut f = vec![0.0; phase.beam.dim()];
+            phase.loaded.external(t, &mut f);
+            f
+        });
+        Some(probes.read(&y[..n], &phase.split(yp).1[..n], kept, f.as_deref()))
     }
 
     /// What the watches see of the vehicles: per vehicle its bodies' accelerations then its
@@ -661,12 +698,17 @@ impl Observer for Recorder<'_> {
         let q = phase.displaced(t, y, &disks, None);
         let a = phase.acceleration(t, y);
         let reactions = phase.reactions(t, y, &q, &a, &disks);
-        let along = phase.beam.displacements(&self.stations, &q);
+        // The stations are read for the envelope and the pictures alone: a sweep's case, which
+        // watches no envelope and draws nothing, skips them.
+        let along = if self.watch_along || self.pictures.draws_at(t) {
+            phase.beam.displacements(&self.stations, &q)
+        } else {
+            Vec::new()
+        };
         let a = match &self.filter {
             Some(f) => f.filtered(phase.loaded, &a),
             None => phase.loaded.to_mesh(&a).into_owned(),
         };
-        let along_a = phase.beam.deflections(&self.stations, &a);
         let vehicles = phase.vehicles(t, y, None);
         let watched = self.vehicle_values(t, vehicles.as_ref());
         self.watches.vehicles.record_point(t, &watched);
@@ -691,9 +733,12 @@ impl Observer for Recorder<'_> {
             .flat_map(|(d, a)| [d.u, d.w, d.phi, *a])
             .collect();
         self.watches.probes.record_point(t, &probes);
-        self.watches
-            .along
-            .record_point(t, &stations_watched(&self.envelope.x, &along, &along_a));
+        if self.watch_along {
+            let along_a = phase.beam.deflections(&self.stations, &a);
+            self.watches
+                .along
+                .record_point(t, &stations_watched(&self.envelope.x, &along, &along_a));
+        }
         if self.exit_t.is_some_and(|te| t >= te) {
             let w: Vec<f64> = row.probes.iter().map(|d| d.w).collect();
             self.watches.after_exit.record_point(t, &w);
@@ -867,8 +912,10 @@ pub(super) fn recorder<'a>(
     kinks.retain(|k| k.is_finite());
     kinks.sort_by(f64::total_cmp);
     kinks.dedup();
+    let probe_xs: Vec<f64> = setup.probes.iter().map(|p| p.x).collect();
     Recorder {
         ledger: Ledger::new(&phase, &setup.loads, y0),
+        modal_probes: ModalProbes::new(phase.loaded, &probe_xs),
         filter,
         stations: beam.stations(&xs),
         history: History {

@@ -151,6 +151,16 @@ pub(super) struct Pictures<'a> {
 }
 
 impl Pictures<'_> {
+    /// Whether a sample at t is drawn: a frame of the animation or a shape asked for.
+    pub fn draws_at(&self, t: f64) -> bool {
+        self.next_frame(t) || self.shape_times.iter().any(|&st| (st - t).abs() < 1e-9)
+    }
+
+    fn next_frame(&self, t: f64) -> bool {
+        self.frame_every
+            .is_some_and(|every| self.frames.last().is_none_or(|f| t >= f.t + every - 1e-9))
+    }
+
     /// Record the sample.
     pub fn record(&mut self, s: &Sample) {
         let t = s.t;
@@ -160,10 +170,7 @@ impl Pictures<'_> {
                 *turned = (t, d.omega, angle + 0.5 * (w0 + d.omega) * (t - t0));
             }
         }
-        if self
-            .frame_every
-            .is_some_and(|every| self.frames.last().is_none_or(|f| t >= f.t + every - 1e-9))
-        {
+        if self.next_frame(t) {
             self.frames.push(Frame {
                 t,
                 along: s.along.to_vec(),
