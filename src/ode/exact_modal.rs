@@ -520,12 +520,18 @@ fn series(w2: f64, c: f64, hp: f64, g: &[f64], x0: f64, v0: f64) -> Vec<f64> {
 
 /// x and its rate in t at ς of a series over a piece of length hp.
 fn series_at(s: &[f64], hp: f64, sigma: f64) -> (f64, f64) {
-    let x = horner(s, sigma);
-    let mut rate = 0.0;
-    for k in (1..s.len()).rev() {
-        rate = rate * sigma + k as f64 * s[k];
+    let (x, slope) = value_and_slope(s, sigma);
+    (x, slope / hp)
+}
+
+/// A polynomial's value and derivative at x, by one Horner pass for both.
+fn value_and_slope(c: &[f64], x: f64) -> (f64, f64) {
+    let (mut p, mut dp) = (0.0, 0.0);
+    for &ci in c.iter().rev() {
+        dp = dp * x + p;
+        p = p * x + ci;
     }
-    (x, rate / hp)
+    (p, dp)
 }
 
 /// The polynomial solution in σ of x''/h² + c x'/h + ω² x = g(σ), from the top degree down.
@@ -565,11 +571,8 @@ fn evaluate(m: &Motion, w2: f64, c: f64, h: f64, sigma: f64) -> (f64, f64) {
 
 /// A polynomial in σ and its rate in t at σ, over a step of length h.
 fn polynomial_at(p: &[f64], h: f64, sigma: f64) -> (f64, f64) {
-    let mut rate = 0.0;
-    for k in (1..p.len()).rev() {
-        rate = rate * sigma + k as f64 * p[k];
-    }
-    (horner(p, sigma), rate / h)
+    let (x, slope) = value_and_slope(p, sigma);
+    (x, slope / h)
 }
 
 /// [`free`] under-damped, from its phasor (e^{−cτ/2} cos ω_d τ, e^{−cτ/2} sin ω_d τ).
