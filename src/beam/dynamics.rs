@@ -182,8 +182,8 @@ impl<'a> LoadedBeam<'a> {
         } else {
             self.segment.get()
         };
-        (0..train.axles.len())
-            .filter(|&a| (0.0..=length).contains(&train.position(a, when)))
+        train
+            .on(length, when)
             .map(|a| (train.position(a, t).clamp(0.0, length), train.loads[a]))
             .collect()
     }
@@ -616,7 +616,7 @@ impl LoadedBeam<'_> {
     pub fn load_passage(&self, t: f64) -> Option<f64> {
         let train = self.train?;
         let length = self.beam.length;
-        let on = (0..train.axles.len()).any(|a| (0.0..=length).contains(&train.position(a, t)));
+        let on = !train.on(length, t).is_empty();
         (on && train.speed > 0.0).then(|| self.finest_length() / train.speed)
     }
 

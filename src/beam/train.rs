@@ -104,6 +104,16 @@ impl Train {
         self.speed * t - self.axles[a]
     }
 
+    /// The axles on a beam of length `length` at t, 0 ≤ position ≤ length: a run of them, as
+    /// the positions fall with the distance behind the first (found by bisection: a train
+    /// may have thousands of axles, the beam holds a few).
+    pub fn on(&self, length: f64, t: f64) -> std::ops::Range<usize> {
+        let ahead = self.speed * t;
+        let first = self.axles.partition_point(|d| ahead - d > length);
+        let end = self.axles.partition_point(|d| ahead - d >= 0.0);
+        first..end.max(first)
+    }
+
     /// When the last axle leaves a beam of length `length`.
     pub fn gone(&self, length: f64) -> f64 {
         (self.length() + length) / self.speed
@@ -175,6 +185,34 @@ impl RidingAxle {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The axles on the beam found by bisection are those whose position lies on it, at every
+    /// time of a crossing and at the instants an axle stands on either end.
+    #[test]
+    fn the_axles_on_the_beam_by_bisection() {
+        let (axles, load) = hslm("A1").expect("a known train");
+        let train = Train {
+            name: "A1".into(),
+            loads: vec![load; axles.len()],
+            axles,
+            speed: 83.0,
+            model: TrainModel::MovingForce,
+            masses: Vec::new(),
+            patch: 0.0,
+        };
+        let length = 15.0;
+        let ends = train
+            .axles
+            .iter()
+            .flat_map(|d| [d / train.speed, (d + length) / train.speed]);
+        let times = (0..5000).map(|i| i as f64 * 6e-4 - 0.1).chain(ends);
+        for t in times {
+            let brute: Vec<usize> = (0..train.axles.len())
+                .filter(|&a| (0.0..=length).contains(&train.position(a, t)))
+                .collect();
+            assert_eq!(train.on(length, t).collect::<Vec<_>>(), brute, "t = {t}");
+        }
+    }
 
     /// EN 1991-2 Table E.1 gives each train 2N + 14 axles: A1 50, A2 48, A3 46, A4 44, A5 42,
     /// A6 40, A7 40, A8 38, A9 36, A10 36; the axles increase, and each train is its own
