@@ -26,6 +26,18 @@ const SERIES_REACH: f64 = 4.0;
 /// Terms of a series past which what is left is below round-off (4^k/k! < 1e-17 from here).
 const SERIES_TERMS: usize = 48;
 
+/// 1 / ((k + 2)(k + 1)), the series' recurrence's divisors: a division in the recurrence's
+/// chain of dependent terms costs several multiplications.
+const SERIES_DIVISORS: [f64; SERIES_TERMS - 2] = {
+    let mut d = [0.0; SERIES_TERMS - 2];
+    let mut k = 0;
+    while k < SERIES_TERMS - 2 {
+        d[k] = 1.0 / ((k + 2) * (k + 1)) as f64;
+        k += 1;
+    }
+    d
+};
+
 /// One oscillator's motion over an accepted step, in the step's own time σ ∈ [0, 1].
 #[derive(Clone, Debug)]
 enum Motion {
@@ -317,8 +329,8 @@ impl ExactModal {
         }
     }
 
-    /// The phasors at t (τ = t − the step's start): carried on from the last time asked where
-    /// t is one more of its spacing, formed afresh otherwise.
+    /// The phasors at t (τ = t − the step's start): carried on from the last time asked, by a
+    /// spacing met before or by the turn of a new one; formed afresh at a time before it.
     fn phasors_at(&self, t: f64, tau: f64) -> Phasors {
         let Some(linear) = &self.linear else {
             return Phasors {
@@ -363,21 +375,37 @@ impl ExactModal {
             },
             None => None,
         };
-        let at: Vec<Option<(f64, f64)>> = (0..n).map(|k| lambda(k).map(|l| exp(l, tau))).collect();
-        let turns = match last {
+        match last {
+            // Later in the step by a new spacing: its turn, kept for the next, carries the
+            // phasors on too (one exponential and sinusoid per mode instead of two).
             Some(mut p) if t > p.t => {
                 let dt = t - p.t;
                 if p.turns.len() == TURNS {
                     p.turns.remove(0);
                 }
-                p.turns
-                    .push((dt, (0..n).map(|k| lambda(k).map(|l| exp(l, dt))).collect()));
-                p.turns
+                let turn: Vec<Option<(f64, f64)>> =
+                    (0..n).map(|k| lambda(k).map(|l| exp(l, dt))).collect();
+                let at =
+                    p.at.iter()
+                        .zip(&turn)
+                        .map(|(z, r)| {
+                            z.zip(*r)
+                                .map(|(z, r)| (z.0 * r.0 - z.1 * r.1, z.0 * r.1 + z.1 * r.0))
+                        })
+                        .collect();
+                p.turns.push((dt, turn));
+                Phasors {
+                    t,
+                    at,
+                    turns: p.turns,
+                }
             }
-            Some(p) => p.turns,
-            None => Vec::new(),
-        };
-        Phasors { t, at, turns }
+            last => Phasors {
+                t,
+                at: (0..n).map(|k| lambda(k).map(|l| exp(l, tau))).collect(),
+                turns: last.map_or_else(Vec::new, |p| p.turns),
+            },
+        }
     }
 }
 
@@ -505,7 +533,7 @@ fn series(w2: f64, c: f64, hp: f64, g: &[f64], x0: f64, v0: f64) -> Vec<f64> {
     let (w2h2, ch) = (w2 * hp * hp, c * hp);
     for k in 0..SERIES_TERMS - 2 {
         let gk = g.get(k).copied().unwrap_or(0.0) * hp * hp;
-        s[k + 2] = (gk - ch * (k + 1) as f64 * s[k + 1] - w2h2 * s[k]) / ((k + 2) * (k + 1)) as f64;
+        s[k + 2] = (gk - ch * (k + 1) as f64 * s[k + 1] - w2h2 * s[k]) * SERIES_DIVISORS[k];
     }
     // The terms past the last above round-off of the largest add nothing at ς ≤ 1 (nor to the
     // rate, k ≤ SERIES_TERMS times them); every evaluation within the step sums fewer.
