@@ -20,6 +20,7 @@ mod phase;
 mod recorder;
 mod sensors;
 mod vehicles;
+mod watch;
 
 use super::extremes::{Range, Turning, Watch};
 use super::{FlightRecord, Overrides, Progress, RunHeader, Stop, MAX_FLIGHTS};
@@ -55,6 +56,7 @@ use fly::*;
 use recorder::*;
 use vehicles::*;
 pub use vehicles::{AxleFlight, VehicleReport};
+use watch::*;
 
 /// Points along the beam where envelopes and shapes are sampled.
 pub const SAMPLES: usize = 201;

@@ -1,10 +1,9 @@
 //! The run's observers in one: what the sensors record at output times, the extremes watched
-//! over every step, the energy ledger, and the progress bar.
+//! over every step (`watch.rs`), the energy ledger's pieces, and the progress bar.
 
 use super::ledger::LOBATTO;
 use super::modal_probes::ModalProbes;
 use super::*;
-use crate::ode::same_breakpoint;
 
 /// Samples of the energy ledger while an axle or a wheel passes the beam's shortest wave.
 const SAMPLES_PER_PASSAGE: f64 = 8.0;
@@ -17,24 +16,6 @@ const LOBATTO_REACH: f64 = 8.0;
 /// tolerance a lone axle at 1000 m/s over the HSLM bridge, integrated exactly, balances
 /// within 3e-5.
 const QUADRATURE_TOLERANCE: f64 = 1e-5;
-
-/// Samples of the extremes' watch a period of the acceleration's cutoff, where the steps are
-/// shorter (see `Recorder::watch`).
-pub(super) const SAMPLES_PER_CUTOFF_PERIOD: f64 = 32.0;
-
-/// Samples of the watch, where the steps are shorter, to the time a disk takes to cross its
-/// contact patch's half-width.
-pub(super) const SAMPLES_PER_PATCH: f64 = 20.0;
-
-/// Samples a pair of a long step's sub-steps spans: an eighth of the cutoff's period, over
-/// which the parabola through its three points turns at most once where the filtered signal
-/// does. Over the HSLM sweep the largest accelerations come within 8·10⁻⁶ of those watched at
-/// every sample, and within 4.2·10⁻⁴ at pairs twice as long.
-const SAMPLES_A_PAIR: f64 = 4.0;
-
-/// The most pairs of samples one long step is watched in (a bound on a step far longer than
-/// the cutoff's period, which is then watched at this many points).
-const MAX_STEP_PAIRS: f64 = 2048.0;
 
 /// What the watches see of the run at one time: each probe's (u, w, φ, a); each disk's (rn,
 /// rt, μ needed, w under it), NaN once it has left, then the flying disk's gap, while a disk
@@ -53,48 +34,6 @@ impl Snapshot {
     /// Each probe's w.
     pub(super) fn deflections(&self) -> Vec<f64> {
         self.probes.iter().skip(1).step_by(4).copied().collect()
-    }
-}
-
-/// What the watches take at the end of every step a disk rides: the probes' (u, w, φ, a) and
-/// the disks' values as a [`Snapshot`] holds them.
-pub(super) struct Trailed {
-    t: f64,
-    probes: Vec<f64>,
-    disk: Vec<f64>,
-}
-
-/// A snapshot's disk values split into the disks' (rn, rt, μ needed, w under it) and the gap.
-fn and_gap(disk: &[f64]) -> (&[f64], &[f64]) {
-    disk.split_at(disk.len() - 1)
-}
-
-/// The quantities watched for their extremes (`extremes.rs`); `along` takes the parabola's
-/// turning values, as it holds every station of the envelope.
-pub(super) struct Watches {
-    pub(super) probes: Watch,
-    pub(super) after_exit: Watch,
-    pub(super) disk: Watch,
-    /// The gap of the current flight.
-    pub(super) gap: Watch,
-    pub(super) along: Watch,
-    pub(super) vehicles: Watch,
-}
-
-impl Watches {
-    pub(super) fn new(probes: usize, stations: usize, vehicles: usize, disks: usize) -> Self {
-        Watches {
-            vehicles: Watch::new(vehicles, Turning::OnTheSolution),
-            probes: Watch::new(4 * probes, Turning::OnTheSolution),
-            after_exit: Watch::new(probes, Turning::OnTheSolution),
-            disk: Watch::new(4 * disks, Turning::OnTheSolution),
-            gap: Watch::new(1, Turning::OnTheSolution),
-            // No stations, no stretch through them.
-            along: Watch::new(
-                if stations == 0 { 0 } else { 4 * stations + 1 },
-                Turning::OnTheParabola,
-            ),
-        }
     }
 }
 
@@ -261,7 +200,7 @@ impl Recorder<'_> {
     }
 
     /// Where each body's acceleration is among the vehicles' values.
-    fn body_slots(&self) -> Vec<usize> {
+    pub(super) fn body_slots(&self) -> Vec<usize> {
         let Some(v) = self.phase.vehicles else {
             return Vec::new();
         };
@@ -272,186 +211,6 @@ impl Recorder<'_> {
             at += veh.bodies.len() + veh.axles.len();
         }
         slots
-    }
-
-    /// Add ∫ a² dt over [t0, t1] for each body, from its values at the ends (the trapezoidal
-    /// rule) or at the ends and the middle (Simpson's).
-    fn add_squares(&mut self, t: (f64, f64), values: [&[f64]; 2], middle: Option<&[f64]>) {
-        let h = t.1 - t.0;
-        for (k, slot) in self.body_slots().into_iter().enumerate() {
-            let (a0, a1) = (values[0][slot], values[1][slot]);
-            let integral = match middle {
-                Some(m) => h / 6.0 * (a0 * a0 + 4.0 * m[slot] * m[slot] + a1 * a1),
-                None => 0.5 * h * (a0 * a0 + a1 * a1),
-            };
-            if integral.is_finite() {
-                self.squares[k].0 += integral;
-                self.squares[k].1 += h;
-            }
-        }
-    }
-
-    /// Take in the step [t0, t1] of the dense output `dense`: its start, middle and end, and
-    /// the turning points between them that set an extreme.
-    pub(super) fn watch(&mut self, t0: f64, t1: f64, dense: &dyn Dense, sample: f64) {
-        if !(t1 > t0) {
-            return;
-        }
-        // Steps far shorter than the fastest thing reported (a sudden load's, at the defaults)
-        // are watched every `spacing` s only, the parabola through the last three samples
-        // taken as it is: at 32 samples a period of the acceleration's cutoff it is within
-        // 10⁻⁴ of that mode's amplitude, and on every step and middle the watching cost a
-        // third of such a run. While an axle or a wheel crosses the beam the samples are also
-        // [`SAMPLES_PER_PASSAGE`] to its passage of the shortest wave: the deck's acceleration
-        // under a load is forced by it directly, and at 10⁶ m/s, where the wheel is on the
-        // deck for 25 µs, samples at the cutoff's pace stepped over it (0.0037 m/s² for 3.4).
-        // With a disk on or over the beam the samples are also [`SAMPLES_PER_PATCH`] to the
-        // patch's crossing (the beam's accelerations carry the contact force), and the disk's
-        // own values are taken at every step's end.
-        let spacing = if self.spacing > 0.0 { sample } else { 0.0 };
-        let riding = (self.phase.coupled).or(self.phase.flying.as_ref().map(|f| f.coupled));
-        let spacing = riding.map_or(spacing, |c| {
-            let crossing = (0..c.count())
-                .filter(|&k| !c.has_left(k))
-                .map(|k| c.spec_of(k).patch / c.spec_of(k).v0().abs())
-                .fold(f64::INFINITY, f64::min);
-            spacing.min(crossing / SAMPLES_PER_PATCH)
-        });
-        // A load that crosses faster than the cutoff's pace sets the samples
-        // (`sample_spacing`): its directly forced acceleration and the truncated modes' static
-        // response under it are pulses as short as its passage, which a long step's three
-        // points do not resolve, so such a step is sampled on the grid too.
-        let passing = riding.is_none() && spacing < self.spacing;
-        if t1 - t0 < spacing || passing {
-            self.sample_inside(t0, t1, dense, spacing, riding.is_some());
-        } else {
-            self.watch_in_pairs(t0, t1, dense, spacing);
-        }
-    }
-
-    /// Sample the step [t0, t1] on the even grid of `spacing` that runs on from the last
-    /// sample, with a disk `riding` on or over the beam taking in the step's end as well.
-    fn sample_inside(&mut self, t0: f64, t1: f64, dense: &dyn Dense, spacing: f64, riding: bool) {
-        // The contact force rings at the frequencies of the disk on the beam's local
-        // stiffness, above any cutoff: sampled less often than every step, D44's largest
-        // (the disk meeting the beam at rest) came out 11 % low. The deck's accelerations
-        // carry it (every mode is forced by it directly), so the envelope's stations are
-        // taken at every step too: D50's largest acceleration read 2.4·10⁻³ low.
-        if riding {
-            self.trail_rider(t1, dense);
-        }
-        // The samples keep an even spacing, taken inside the step where they fall: the
-        // bodies' root mean square is the trapezoidal rule over them, which on an even
-        // grid of a smooth signal is spectrally accurate, and on the uneven step ends
-        // read the railcar's bogies 2·10⁻⁴ low even at rtol 10⁻¹⁰.
-        let first = match &self.last {
-            Some((t, _)) => (t + spacing).max(t0),
-            None if t1 - t0 < spacing => t1,
-            None => t0,
-        };
-        let mut times: Vec<f64> = (0..)
-            .map(|k| first + k as f64 * spacing)
-            .take_while(|&ts| ts <= t1)
-            .collect();
-        // A step that ends where the loads turn is sampled there too: what is watched may
-        // turn sharply there.
-        if times.last() != Some(&t1) && self.turns_at(t1) {
-            times.push(t1);
-        }
-        for ts in times {
-            let end = self.snapshot(ts, &dense.at(ts), self.rate(dense, ts).as_deref(), !riding);
-            self.sampled(end, ts, riding);
-        }
-    }
-
-    /// Watch the long step [t0, t1] in pairs of sub-steps no longer than [`SAMPLES_A_PAIR`]
-    /// samples of `spacing`, and book its bodies' squares and the trails the next step reads.
-    fn watch_in_pairs(&mut self, t0: f64, t1: f64, dense: &dyn Dense, spacing: f64) {
-        let fresh = self.along_trail.is_empty();
-        let last = self.last.take();
-        let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0, 0, 0));
-        let see = |t: f64, along: bool| {
-            self.snapshot(t, &dense.at(t), self.rate(dense, t).as_deref(), along)
-        };
-        let (start, sampled_before) = match last {
-            Some((t, s)) if t == t0 => (s, None),
-            Some((t, s)) => (see(t0, fresh), Some((t, s))),
-            None => (see(t0, fresh), None),
-        };
-        // A long step is watched in pairs of sub-steps no longer than a sample, each pair's
-        // turning points refined on the solution: on three points alone a step the exact
-        // integration takes between two node crossings (two thirds of the cutoff's period on
-        // HSLM's bridge) read HSLM-A1's largest acceleration at 114 m/s 4.3·10⁻³ low, and the
-        // envelope's stations on its ends alone overshot the deck's by 3·10⁻³.
-        let pairs = if spacing > 0.0 {
-            ((t1 - t0) / (SAMPLES_A_PAIR * spacing))
-                .ceil()
-                .clamp(1.0, MAX_STEP_PAIRS) as usize
-        } else {
-            1
-        };
-        let n = 2 * pairs;
-        let times: Vec<f64> = (0..=n)
-            .map(|k| {
-                if k == n {
-                    t1
-                } else {
-                    t0 + (t1 - t0) * k as f64 / n as f64
-                }
-            })
-            .collect();
-        let mut shots = vec![start];
-        shots.extend(times[1..n].iter().map(|&tk| see(tk, true)));
-        shots.push(see(t1, true));
-        let after_exit = self.exit_t.is_some_and(|te| t0 >= te);
-        for i in (0..n).step_by(2) {
-            let steps = StepWatch {
-                t: [times[i], times[i + 1], times[i + 2]],
-                after_exit,
-                flying: self.phase.flying.is_some(),
-            };
-            steps.record(&mut w, [&shots[i], &shots[i + 1], &shots[i + 2]], |tt| {
-                see(tt, false)
-            });
-        }
-        self.watches = w;
-        if self.watch_along {
-            if fresh {
-                self.trail_along(t0, shots[0].along.clone());
-            }
-            for k in 1..=n {
-                self.trail_along(times[k], shots[k].along.clone());
-            }
-        }
-        if !shots[0].vehicles.is_empty() {
-            // Short steps before this one left their last sample short of its start: the time
-            // between belongs to the root mean square too (left out, the railcar's bogies
-            // under ESDIRK4, whose steps alternate short and long, read 1·10⁻² low).
-            if let Some((t, s)) = &sampled_before {
-                self.add_squares((*t, t0), [&s.vehicles, &shots[0].vehicles], None);
-            }
-            for i in (0..n).step_by(2) {
-                self.add_squares(
-                    (times[i], times[i + 2]),
-                    [&shots[i].vehicles, &shots[i + 2].vehicles],
-                    Some(&shots[i + 1].vehicles),
-                );
-            }
-        }
-        let end = shots.pop().expect("the step's end");
-        let before = shots.pop().expect("a sample before the end");
-        self.trail = end
-            .disk
-            .clone()
-            .map(|disk| Trailed {
-                t: t1,
-                probes: end.probes.clone(),
-                disk,
-            })
-            .into_iter()
-            .collect();
-        self.before = Some((times[n - 1], before));
-        self.last = Some((t1, end));
     }
 
     /// How a step's work and damping are booked: `None`, by the trapezoidal rule over the
@@ -496,155 +255,6 @@ impl Recorder<'_> {
             .chain(wheels)
             .map(|p| p / SAMPLES_PER_PASSAGE)
             .fold(self.spacing, shorter)
-    }
-
-    /// The dense output's y'(t) where a snapshot reads it: not with the disk on the beam,
-    /// whose observation solves for the accelerations itself.
-    fn rate(&self, dense: &dyn Dense, t: f64) -> Option<Vec<f64>> {
-        self.phase
-            .coupled
-            .is_none()
-            .then(|| dense.rate(t))
-            .flatten()
-    }
-
-    /// Take in the envelope's stations at t: with the two samples before it, the parabola
-    /// through the three.
-    fn trail_along(&mut self, t: f64, along: Vec<f64>) {
-        match &self.along_trail[..] {
-            [(ta, a), (tb, b)] if self.smooth_between(*ta, t) => {
-                self.watches
-                    .along
-                    .record_parabola([*ta, *tb, t], [a, b, &along]);
-                self.along_trail.remove(0);
-            }
-            [_, _] => {
-                self.watches.along.record_point(t, &along);
-                self.along_trail.remove(0);
-            }
-            _ => self.watches.along.record_point(t, &along),
-        }
-        self.along_trail.push((t, along));
-    }
-
-    /// Whether the loads turn at t, as the driver ends a step there: on the breakpoint, or a
-    /// round-off away where two breakpoints lie that close ([`same_breakpoint`]).
-    fn turns_at(&self, t: f64) -> bool {
-        let next = self.kinks.partition_point(|&k| k < t);
-        [next.checked_sub(1), Some(next)]
-            .into_iter()
-            .flatten()
-            .filter_map(|i| self.kinks.get(i))
-            .any(|&k| same_breakpoint(k, t))
-    }
-
-    /// Whether the loads turn nowhere after ta up to tb ([`Recorder::kinks`]): a window that
-    /// ends where they turn holds a sample taken there as well as the grid's last, which may
-    /// lie a round-off before it, and the parabola through two such samples is ill-conditioned.
-    fn smooth_between(&self, ta: f64, tb: f64) -> bool {
-        let from = self.kinks.partition_point(|&k| k <= ta);
-        self.kinks.get(from).is_none_or(|&k| k > tb)
-    }
-
-    /// Take in the probes, the envelope's stations and the disk at the end t of a short step:
-    /// with the two step ends before it, the parabola through the three. The beam's
-    /// accelerations carry the contact force, and with it its ringing.
-    fn trail_rider(&mut self, t: f64, dense: &dyn Dense) {
-        let now = self.snapshot(t, &dense.at(t), self.rate(dense, t).as_deref(), true);
-        if self.watch_along {
-            self.trail_along(t, now.along);
-        }
-        let Some(disk) = now.disk else {
-            self.trail.clear();
-            return;
-        };
-        let now = Trailed {
-            t,
-            probes: now.probes,
-            disk,
-        };
-        let flying = self.phase.flying.is_some();
-        let w = &mut self.watches;
-        let (values, gap) = and_gap(&now.disk);
-        match &self.trail[..] {
-            [a, b] if a.disk.len() == now.disk.len() && b.disk.len() == now.disk.len() => {
-                let times = [a.t, b.t, t];
-                w.probes
-                    .record_parabola(times, [&a.probes, &b.probes, &now.probes]);
-                let [(va, ga), (vb, gb)] = [and_gap(&a.disk), and_gap(&b.disk)];
-                w.disk.record_parabola(times, [va, vb, values]);
-                if flying {
-                    w.gap.record_parabola(times, [ga, gb, gap]);
-                }
-                self.trail.remove(0);
-            }
-            _ => {
-                w.probes.record_point(t, &now.probes);
-                w.disk.record_point(t, values);
-                if flying {
-                    w.gap.record_point(t, gap);
-                }
-            }
-        }
-        self.trail.push(now);
-    }
-
-    /// The run goes on from a state that jumped (a wheel landed, or its law changed as it
-    /// lifted off): the steps before it are not joined to those after.
-    pub(super) fn restart(&mut self) {
-        self.last = None;
-        self.before = None;
-        self.trail.clear();
-        self.along_trail.clear();
-    }
-
-    /// Take in a sample at t of the beam alone, on its own (a short step's end): with the
-    /// two before it, the parabola through the three. The probes are left out where the
-    /// rider's trail has taken them (`trailed`).
-    pub(super) fn sampled(&mut self, end: Snapshot, t: f64, trailed: bool) {
-        if let Some((tl, last)) = self.last.take() {
-            if !end.vehicles.is_empty() {
-                self.add_squares((tl, t), [&last.vehicles, &end.vehicles], None);
-            }
-            self.last = Some((tl, last));
-        }
-        let smooth = (self.before.as_ref()).is_some_and(|(ta, _)| self.smooth_between(*ta, t));
-        let w = &mut self.watches;
-        let after = self.exit_t.is_some_and(|te| t >= te);
-        match (self.before.take(), self.last.take()) {
-            (Some((ta, a)), Some((tb, b))) if smooth => {
-                let times = [ta, tb, t];
-                if !trailed {
-                    w.probes
-                        .record_parabola(times, [&a.probes, &b.probes, &end.probes]);
-                }
-                if !end.vehicles.is_empty() {
-                    w.vehicles
-                        .record_parabola(times, [&a.vehicles, &b.vehicles, &end.vehicles]);
-                }
-                if after && ta >= self.exit_t.unwrap_or(f64::INFINITY) {
-                    w.after_exit.record_parabola(
-                        times,
-                        [&a.deflections(), &b.deflections(), &end.deflections()],
-                    );
-                }
-                self.before = Some((tb, b));
-            }
-            (_, last) => {
-                if !trailed {
-                    w.probes.record_point(t, &end.probes);
-                }
-                w.vehicles.record_point(t, &end.vehicles);
-                self.before = last;
-            }
-        }
-        if after {
-            w.after_exit.record_point(t, &end.deflections());
-        }
-        if self.watch_along && !trailed {
-            self.trail_along(t, end.along.clone());
-        }
-        self.last = Some((t, end));
     }
 
     /// The extremes watched, and the envelope from the stations'.
@@ -806,62 +416,6 @@ impl Observer for Recorder<'_> {
                 .map(|p| history.beam.displacement_at(&q, p.x).w)
                 .collect()
         });
-    }
-}
-
-/// A long step's three samples (start, middle, end) and what the headline watches take from
-/// them; each watch refines its turning points on the solution through `see`.
-struct StepWatch {
-    t: [f64; 3],
-    /// The last load has left: the residual vibration is watched.
-    after_exit: bool,
-    /// A disk flies: its gap is watched.
-    flying: bool,
-}
-
-impl StepWatch {
-    fn record(&self, w: &mut Watches, s: [&Snapshot; 3], see: impl Fn(f64) -> Snapshot) {
-        let t = self.t;
-        let [s0, s1, s2] = s;
-        w.probes
-            .record_step(t, [&s0.probes, &s1.probes, &s2.probes], |tt| see(tt).probes);
-        if !s0.vehicles.is_empty() {
-            w.vehicles
-                .record_step(t, [&s0.vehicles, &s1.vehicles, &s2.vehicles], |tt| {
-                    see(tt).vehicles
-                });
-        }
-        if self.after_exit {
-            w.after_exit.record_step(
-                t,
-                [&s0.deflections(), &s1.deflections(), &s2.deflections()],
-                |tt| see(tt).deflections(),
-            );
-        }
-        match (&s0.disk, &s1.disk, &s2.disk) {
-            (Some(d0), Some(d1), Some(d2)) if d0.len() == d2.len() && d1.len() == d2.len() => {
-                let [(v0, g0), (v1, g1), (v2, g2)] = [and_gap(d0), and_gap(d1), and_gap(d2)];
-                let disk_at = |tt: f64| {
-                    see(tt)
-                        .disk
-                        .filter(|d| d.len() == d2.len())
-                        .unwrap_or_else(|| vec![f64::NAN; d2.len()])
-                };
-                w.disk
-                    .record_step(t, [v0, v1, v2], |tt| and_gap(&disk_at(tt)).0.to_vec());
-                if self.flying {
-                    w.gap
-                        .record_step(t, [g0, g1, g2], |tt| and_gap(&disk_at(tt)).1.to_vec());
-                }
-            }
-            disks => {
-                for (tt, d) in t.iter().zip([disks.0, disks.1, disks.2]) {
-                    if let Some(d) = d {
-                        w.disk.record_point(*tt, and_gap(d).0);
-                    }
-                }
-            }
-        }
     }
 }
 
