@@ -398,6 +398,10 @@ impl Dense for StepperDense<'_> {
         }
         Some(yp)
     }
+
+    fn power_integrals(&self, ta: f64, tb: f64) -> Option<super::PowerIntegrals> {
+        self.stepper.power_integrals(ta, tb)
+    }
 }
 
 /// The breakpoints strictly inside (t0, t_end), ascending.

@@ -351,6 +351,20 @@ pub trait Dense {
     fn rate(&self, _t: f64) -> Option<Vec<f64>> {
         None
     }
+    /// Over [ta, tb] within the step, in closed form where the stepper holds the motion as
+    /// one ([`Stepper::power_integrals`]).
+    fn power_integrals(&self, _ta: f64, _tb: f64) -> Option<PowerIntegrals> {
+        None
+    }
+}
+
+/// What a linear modal problem's forces and damping did over an interval: Σ_k ∫ g_k ẋ_k dt,
+/// the work of the force that does not depend on the state, and Σ_k c_k ∫ ẋ_k² dt, the energy
+/// the damping took.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PowerIntegrals {
+    pub work: f64,
+    pub dissipated: f64,
 }
 
 /// A dense output given as a function of t alone.
@@ -416,6 +430,11 @@ pub(crate) trait Stepper {
     /// Implicit methods keep a factorised iteration matrix valid while h stays put.
     fn keep_step(&self, _h_old: f64, h_new: f64) -> f64 {
         h_new
+    }
+    /// The force's work and the damping's energy over [ta, tb] within the accepted step, where
+    /// the stepper holds its motion in closed form (`exact-modal`); `None` elsewhere.
+    fn power_integrals(&self, _ta: f64, _tb: f64) -> Option<PowerIntegrals> {
+        None
     }
     /// The most an accepted step may grow the next one by.
     fn max_growth(&self) -> f64 {

@@ -4,7 +4,9 @@
 //! so is the work of the beam's own weight (a constant load: its dot product with the
 //! displacement since the start); the work of a prescribed moving load is its power on the
 //! beam, and the energy damping takes is its power vᵀCv, both by the trapezoidal rule over the
-//! steps, or over a long step by the Gauss–Lobatto rule on pieces of it (`pending`). A disk that leaves the beam takes its energy with it, which the budget keeps from
+//! steps, or over a long step by the Gauss–Lobatto rule on pieces of it (`pending`); where the
+//! integrator holds the motion in closed form (`exact-modal`, the beam alone under moving
+//! forces) both are its closed-form integrals. A disk that leaves the beam takes its energy with it, which the budget keeps from
 //! then on; so does a disk that flies over it, whose flight keeps it constant, until it lands,
 //! and what a landing takes is booked as `impact`.
 
@@ -14,6 +16,7 @@ use crate::beam::{Beam, PointDisplacement};
 use crate::coupling::DiskOnBeam;
 use crate::disk::DiskObservation;
 use crate::ode::second_order::Structure;
+use crate::ode::PowerIntegrals;
 use crate::run::EnergyCheck;
 
 /// The energy terms at one time.
@@ -68,13 +71,20 @@ struct StepEnd {
 }
 
 /// A piece of a long step, read when the step is taken (the loads on the beam are those of
-/// its stretch between breakpoints): its end, the moving loads' and the damping's powers at
-/// its interior [`LOBATTO`] points and its end, and the point loads' displacements at its end.
+/// its stretch between breakpoints): its end, how the moving loads' work and the damping's
+/// energy over it are booked, and the point loads' displacements at its end.
 pub(super) struct Piece {
     end: f64,
-    moving: ([f64; 3], f64),
-    damping: ([f64; 3], f64),
+    moving: Booking,
+    damping: Booking,
     at_loads: Vec<PointDisplacement>,
+}
+
+/// What a piece adds to an energy: by the [`LOBATTO`] rule from the power at the rule's
+/// interior points and the piece's end, or known in closed form, with the power at the end.
+enum Booking {
+    Lobatto([f64; 3], f64),
+    Exact { energy: f64, power: f64 },
 }
 
 /// The five-point Gauss–Lobatto rule on a piece [0, 1]: its interior points and their
@@ -334,14 +344,42 @@ impl<'a> Ledger<'a> {
     pub fn piece(&self, phase: &Phase, inner: [(f64, &[f64]); 3], t: f64, y: &[f64]) -> Piece {
         Piece {
             end: t,
-            moving: (
+            moving: Booking::Lobatto(
                 inner.map(|(ti, yi)| Self::moving_power(phase, ti, yi)),
                 Self::moving_power(phase, t, y),
             ),
-            damping: (
+            damping: Booking::Lobatto(
                 inner.map(|(ti, yi)| Self::damping_power(phase, ti, yi)),
                 Self::damping_power(phase, t, y),
             ),
+            at_loads: self.at_loads(phase, y),
+        }
+    }
+
+    /// Whether the integrator's own force is the moving loads' alone, so that its work in
+    /// closed form ([`PowerIntegrals`]) is theirs: the beam alone under a train of moving
+    /// forces, no point load and no weight (whose work the ledger books from displacements).
+    pub fn books_in_closed_form(&self, phase: &Phase) -> bool {
+        self.loads.is_empty()
+            && phase.coupled.is_none()
+            && phase.vehicles.is_none()
+            && phase.flying.is_none()
+            && phase.loaded.beam.weight().is_none()
+    }
+
+    /// The piece of a step from the last point booked to (t, y), whose moving loads' work and
+    /// damping's energy the integrator knows in closed form.
+    pub fn exact_piece(&self, phase: &Phase, t: f64, y: &[f64], by: PowerIntegrals) -> Piece {
+        Piece {
+            end: t,
+            moving: Booking::Exact {
+                energy: by.work,
+                power: Self::moving_power(phase, t, y),
+            },
+            damping: Booking::Exact {
+                energy: by.dissipated,
+                power: Self::damping_power(phase, t, y),
+            },
             at_loads: self.at_loads(phase, y),
         }
     }
@@ -353,17 +391,20 @@ impl<'a> Ledger<'a> {
                 self.pending.push_front(piece);
                 return;
             }
-            let lobatto = |(t0, p0, done): (f64, f64, f64), (inner, p1): ([f64; 3], f64)| {
-                let (_, weights, ends) = LOBATTO;
-                let sum: f64 = weights.iter().zip(inner).map(|(w, p)| w * p).sum();
-                (
-                    piece.end,
-                    p1,
-                    done + (piece.end - t0) * (ends * (p0 + p1) + sum),
-                )
+            let book = |(t0, p0, done): (f64, f64, f64), booking: Booking| match booking {
+                Booking::Lobatto(inner, p1) => {
+                    let (_, weights, ends) = LOBATTO;
+                    let sum: f64 = weights.iter().zip(inner).map(|(w, p)| w * p).sum();
+                    (
+                        piece.end,
+                        p1,
+                        done + (piece.end - t0) * (ends * (p0 + p1) + sum),
+                    )
+                }
+                Booking::Exact { energy, power } => (piece.end, power, done + energy),
             };
-            self.moving = lobatto(self.moving, piece.moving);
-            self.damped = lobatto(self.damped, piece.damping);
+            self.moving = book(self.moving, piece.moving);
+            self.damped = book(self.damped, piece.damping);
             self.done += work_since(
                 self.loads,
                 self.t,

@@ -1,7 +1,7 @@
 //! The run's observers in one: what the sensors record at output times, the extremes watched
 //! over every step (`watch.rs`), the energy ledger's pieces, and the progress bar.
 
-use super::ledger::LOBATTO;
+use super::ledger::{Piece, LOBATTO};
 use super::modal_probes::ModalProbes;
 use super::*;
 
@@ -239,6 +239,25 @@ impl Recorder<'_> {
         Some(piece)
     }
 
+    /// The step [t0, t1] in pieces ending at the output times within it, each booked in
+    /// closed form, where the integrator holds the motion as one and its force is the moving
+    /// loads' alone (`Ledger::books_in_closed_form`).
+    fn exact_pieces(&self, t0: f64, t1: f64, dense: &dyn Dense) -> Option<Vec<Piece>> {
+        if !self.ledger.books_in_closed_form(&self.phase) {
+            return None;
+        }
+        let from = self.outputs.partition_point(|&o| o <= t0);
+        let to = self.outputs.partition_point(|&o| o < t1);
+        let mut pieces = Vec::new();
+        let mut a = t0;
+        for b in self.outputs[from..to].iter().copied().chain([t1]) {
+            let by = dense.power_integrals(a, b)?;
+            pieces.push(self.ledger.exact_piece(&self.phase, b, &dense.at(b), by));
+            a = b;
+        }
+        Some(pieces)
+    }
+
     /// The time between samples from t0 on: `spacing`, and an eighth of the time the fastest
     /// axle or wheel on the beam takes to pass its shortest wave, over which the loads' power
     /// and the deck's directly forced acceleration change. 0 where neither is set.
@@ -381,7 +400,9 @@ impl Observer for Recorder<'_> {
         self.ledger.step_ends(&self.phase, t1, &dense.at(t1));
         // A long step books the work and the damping on the way (see `ledger_pieces`).
         let sample = self.sample_spacing(t0, dense);
-        if let Some(piece) = self.ledger_pieces(t0, t1, dense, sample) {
+        if let Some(pieces) = self.exact_pieces(t0, t1, dense) {
+            self.ledger.book_in_pieces(pieces);
+        } else if let Some(piece) = self.ledger_pieces(t0, t1, dense, sample) {
             let from = self.outputs.partition_point(|&o| o <= t0);
             let to = self.outputs.partition_point(|&o| o < t1);
             let ends: Vec<f64> = self.outputs[from..to].iter().copied().chain([t1]).collect();
