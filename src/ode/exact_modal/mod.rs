@@ -17,9 +17,14 @@
 //!
 //! The error estimate is what the two highest Chebyshev coefficients of the force would move:
 //! for a force that is a polynomial of the degree the problem names, nothing.
+//!
+//! `energy.rs`: each oscillator's work and damping over a step in closed form, for the ledger.
 
 use super::second_order::{LinearModal, Structure};
 use super::{Attempt, Ctx, Dynamics, PowerIntegrals, SolveError, Stepper};
+use energy::{sum_at, ModeEnergy};
+
+mod energy;
 
 /// How far (ωh or ch) a Taylor series is summed in one piece.
 const SERIES_REACH: f64 = 4.0;
@@ -608,310 +613,6 @@ fn value_and_slope(c: &[f64], x: f64) -> (f64, f64) {
     (p, dp)
 }
 
-/// Below this |κ|^½ h (κ = c²/4 − ω²) a mode is too near critical damping for its free motion
-/// to be split into two exponentials: their coefficients, ±b/(2√κ), cancel by about 1/(√κ h)
-/// of round-off, 20 here.
-const SPLIT_REACH: f64 = 0.05;
-
-/// One oscillator's ∫₀^σh g ẋ dt and c ∫₀^σh ẋ² dt over its motion in a step, as functions of
-/// σ formed once a step: the ledger reads them at every output time within it.
-#[derive(Clone, Debug)]
-enum ModeEnergy {
-    /// Per piece of the series, the antiderivatives in its own time of g ẋ dt/dς and of
-    /// c ẋ² dt/dς, and what the pieces before it added.
-    Series(Vec<SeriesPiece>),
-    /// x = p(σ) + Σ A e^{λτ} over the roots λ = −c/2 ± √κ, ẋ = p'(σ)/h + Σ V e^{μσ}, μ = λh.
-    Particular {
-        h: f64,
-        c: f64,
-        /// The antiderivatives of g p' and of p'².
-        polynomial: (Vec<f64>, Vec<f64>),
-        /// Both roots, or the first of a conjugate pair.
-        roots: Vec<Root>,
-    },
-}
-
-/// A root of a free motion: its term's rate V, μ = λh, and g and p' against e^{μσ}.
-#[derive(Clone, Debug)]
-struct Root {
-    v: C64,
-    mu: C64,
-    g: Against,
-    slope: Against,
-}
-
-#[derive(Clone, Debug)]
-struct SeriesPiece {
-    work: Vec<f64>,
-    dissipated: Vec<f64>,
-    before: (f64, f64),
-}
-
-/// ∫₀^σ P(σ) e^{μσ} dσ for a polynomial P: Q(σ) e^{μσ} − Q(0) with Q' + μQ = P, formed from the
-/// top degree down (an error carried on by (j + 1)/|μ| a degree), where |μ| ≥ 2; by the series
-/// of [`exp_moments`] at each σ where |μ| is smaller.
-#[derive(Clone, Debug)]
-enum Against {
-    Antiderivative(Vec<C64>),
-    Moments(Vec<f64>),
-}
-
-impl Against {
-    fn new(poly: &[f64], mu: C64) -> Against {
-        if mu.norm() < 2.0 {
-            return Against::Moments(poly.to_vec());
-        }
-        let inverse = mu.inv();
-        let mut q = vec![C64::new(0.0, 0.0); poly.len()];
-        let mut above = C64::new(0.0, 0.0);
-        for j in (0..poly.len()).rev() {
-            above = (C64::new(poly[j], 0.0) - above * (j + 1) as f64) * inverse;
-            q[j] = above;
-        }
-        Against::Antiderivative(q)
-    }
-
-    /// The integral to σ, with e^{μσ} given.
-    fn at(&self, mu: C64, sigma: f64, e: C64) -> C64 {
-        match self {
-            Against::Antiderivative(q) => {
-                let value = q
-                    .iter()
-                    .rev()
-                    .fold(C64::new(0.0, 0.0), |acc, qj| acc * sigma + qj);
-                value * e - q.first().copied().unwrap_or_default()
-            }
-            Against::Moments(poly) => exp_moments(mu, sigma, poly.len())
-                .iter()
-                .zip(poly)
-                .map(|(k, a)| k * *a)
-                .sum(),
-        }
-    }
-}
-
-impl ModeEnergy {
-    /// `None` for a free motion too near critical damping to split ([`SPLIT_REACH`]).
-    fn new(m: &Motion, g: &[f64], (w2, c): (f64, f64), h: f64) -> Option<ModeEnergy> {
-        match m {
-            Motion::Series(pieces) => {
-                let count = pieces.len();
-                let part = 1.0 / count as f64;
-                let hp = h * part;
-                let mut before = (0.0, 0.0);
-                let mut out = Vec::with_capacity(count);
-                for (i, s) in pieces.iter().enumerate() {
-                    // The force and the rate in the piece's own time ς, as `motion` formed
-                    // them: dt = hp dς and ẋ = x'(ς)/hp.
-                    let mut gi = shifted(g, i as f64 * part);
-                    let mut scale = 1.0;
-                    for coefficient in gi.iter_mut() {
-                        *coefficient *= scale;
-                        scale *= part;
-                    }
-                    let slope = derivative(s);
-                    let work = antiderivative_of_product(&gi, &slope, 1.0);
-                    let dissipated = antiderivative_of_product(&slope, &slope, c / hp);
-                    let piece = SeriesPiece {
-                        before,
-                        work,
-                        dissipated,
-                    };
-                    before.0 += horner(&piece.work, 1.0);
-                    before.1 += horner(&piece.dissipated, 1.0);
-                    out.push(piece);
-                }
-                Some(ModeEnergy::Series(out))
-            }
-            Motion::Particular { p, e0, e1 } => {
-                let half = 0.5 * c;
-                let kappa = half * half - w2;
-                let root = if kappa < 0.0 {
-                    C64::new(0.0, (-kappa).sqrt())
-                } else {
-                    C64::new(kappa.sqrt(), 0.0)
-                };
-                if root.norm() * h < SPLIT_REACH {
-                    return None;
-                }
-                let b = e1 + half * e0;
-                let slope = derivative(p);
-                // Under-damped, the second root and its term are the first's conjugates: the
-                // first alone is kept.
-                let signs: &[f64] = if kappa < 0.0 { &[1.0] } else { &[1.0, -1.0] };
-                let roots = signs
-                    .iter()
-                    .map(|&sign| {
-                        let lambda = C64::new(-half, 0.0) + root * sign;
-                        let amplitude = (C64::new(*e0, 0.0) + C64::new(b, 0.0) / root * sign) * 0.5;
-                        let mu = lambda * h;
-                        Root {
-                            v: lambda * amplitude,
-                            mu,
-                            g: Against::new(g, mu),
-                            slope: Against::new(&slope, mu),
-                        }
-                    })
-                    .collect();
-                Some(ModeEnergy::Particular {
-                    h,
-                    c,
-                    polynomial: (
-                        antiderivative_of_product(g, &slope, 1.0),
-                        antiderivative_of_product(&slope, &slope, 1.0),
-                    ),
-                    roots,
-                })
-            }
-        }
-    }
-
-    /// (∫ g ẋ dt, c ∫ ẋ² dt) from the step's start to σ.
-    fn at(&self, sigma: f64) -> (f64, f64) {
-        match self {
-            ModeEnergy::Series(pieces) => {
-                let at = sigma * pieces.len() as f64;
-                let i = (at.floor() as usize).min(pieces.len() - 1);
-                let piece = &pieces[i];
-                let local = at - i as f64;
-                (
-                    piece.before.0 + horner(&piece.work, local),
-                    piece.before.1 + horner(&piece.dissipated, local),
-                )
-            }
-            ModeEnergy::Particular {
-                h,
-                c,
-                polynomial,
-                roots,
-            } => {
-                let a = &roots[0];
-                let pair = roots.len() == 1;
-                let ea = (a.mu * sigma).exp();
-                let terms = |r: &Root, e: C64| {
-                    (
-                        r.v * r.g.at(r.mu, sigma, e),
-                        r.v * r.slope.at(r.mu, sigma, e),
-                    )
-                };
-                let (wa, ca) = terms(a, ea);
-                let (work, cross, vb, mb, eb) = match roots.get(1) {
-                    Some(b) => {
-                        let eb = (b.mu * sigma).exp();
-                        let (wb, cb) = terms(b, eb);
-                        ((wa + wb).re, (ca + cb).re, b.v, b.mu, eb)
-                    }
-                    None => (2.0 * wa.re, 2.0 * ca.re, a.v.conj(), a.mu.conj(), ea.conj()),
-                };
-                let (va, ma) = (a.v, a.mu);
-                // ∫ (Σ V e^{μσ})² dσ: the roots' squares and their product twice, each
-                // ∫₀^σ e^{νσ} dσ = (e^{νσ} − 1)/ν from the roots' own exponentials where |ν| ≥ 2
-                // (the error of the difference is then a round-off of 1/|ν|, of the step's).
-                let exp_integral = |nu: C64, e: C64| {
-                    if nu.norm() >= 2.0 {
-                        (e - 1.0) / nu
-                    } else {
-                        exp_moments(nu, sigma, 1)[0]
-                    }
-                };
-                let squares = if pair {
-                    2.0 * (va * va * exp_integral(ma * 2.0, ea * ea)).re
-                        + 2.0 * (va * vb * exp_integral(ma + mb, ea * eb)).re
-                } else {
-                    (va * va * exp_integral(ma * 2.0, ea * ea)
-                        + vb * vb * exp_integral(mb * 2.0, eb * eb)
-                        + va * vb * exp_integral(ma + mb, ea * eb) * 2.0)
-                        .re
-                };
-                (
-                    horner(&polynomial.0, sigma) + h * work,
-                    c * (horner(&polynomial.1, sigma) / h + 2.0 * cross + h * squares),
-                )
-            }
-        }
-    }
-}
-
-/// Every mode's work and dissipation from the step's start to σ.
-fn sum_at(modes: &[ModeEnergy], sigma: f64) -> PowerIntegrals {
-    modes
-        .iter()
-        .map(|m| m.at(sigma))
-        .fold(PowerIntegrals::default(), |acc, (w, d)| PowerIntegrals {
-            work: acc.work + w,
-            dissipated: acc.dissipated + d,
-        })
-}
-
-type C64 = nalgebra::Complex<f64>;
-
-/// ∫₀ˢ σʲ e^{μσ} dσ for j < count, Re μ ≤ 0: by the series of e^{μσ} where |μs| ≤ 2 (every
-/// term bounded by 2^m/m!), else by the recurrence K_j = (sʲ e^{μs} − j K_{j−1})/μ, which
-/// carries an error on by j/|μs| < count/2 a degree.
-fn exp_moments(mu: C64, s: f64, count: usize) -> Vec<C64> {
-    let z = mu * s;
-    let mut out = vec![C64::new(0.0, 0.0); count];
-    if s == 0.0 {
-        return out;
-    }
-    if z.norm() <= 2.0 {
-        // K_j = s^{j+1} Σ_m z^m / (m! (j + m + 1)).
-        let mut term = C64::new(1.0, 0.0);
-        for m in 0..SERIES_TERMS {
-            for (j, k) in out.iter_mut().enumerate() {
-                *k += term / (j + m + 1) as f64;
-            }
-            term = term * z / (m + 1) as f64;
-            if term.norm() < 1e-18 {
-                break;
-            }
-        }
-        let mut power = s;
-        for k in out.iter_mut() {
-            *k *= power;
-            power *= s;
-        }
-        return out;
-    }
-    let e = z.exp();
-    let mut previous = (e - 1.0) / mu;
-    out[0] = previous;
-    let mut power = 1.0;
-    for (j, k) in out.iter_mut().enumerate().skip(1) {
-        power *= s;
-        previous = (e * power - previous * j as f64) / mu;
-        *k = previous;
-    }
-    out
-}
-
-/// The coefficients of a polynomial's derivative.
-fn derivative(c: &[f64]) -> Vec<f64> {
-    c.iter()
-        .enumerate()
-        .skip(1)
-        .map(|(j, a)| j as f64 * a)
-        .collect()
-}
-
-/// The antiderivative that vanishes at 0 of `scale` times the product of two polynomials.
-fn antiderivative_of_product(a: &[f64], b: &[f64], scale: f64) -> Vec<f64> {
-    if a.is_empty() || b.is_empty() {
-        return Vec::new();
-    }
-    let mut out = vec![0.0; a.len() + b.len()];
-    for (i, ai) in a.iter().enumerate() {
-        let ai = scale * ai;
-        for (j, bj) in b.iter().enumerate() {
-            out[i + j + 1] += ai * bj;
-        }
-    }
-    for (k, c) in out.iter_mut().enumerate().skip(2) {
-        *c /= k as f64;
-    }
-    out
-}
-
 /// The polynomial solution in σ of x''/h² + c x'/h + ω² x = g(σ), from the top degree down.
 fn particular(w2: f64, c: f64, h: f64, g: &[f64]) -> Vec<f64> {
     let d = g.len() - 1;
@@ -992,6 +693,21 @@ fn free(w2: f64, c: f64, e0: f64, e1: f64, tau: f64) -> (f64, f64) {
     let v = -half * x + e0 * kappa * es + b * ec;
     (x, v)
 }
+
+/// (ω², c) of oscillators of every kind the closed forms hold: under-damped (lightly and
+/// heavily), critically and over-damped, undamped, and a free mass; and the steps they are
+/// taken over.
+#[cfg(test)]
+const TEST_MODES: [(f64, f64); 6] = [
+    (1.0, 0.0),
+    (100.0, 0.4),
+    (1.0e4, 200.0),
+    (1.0e4, 500.0),
+    (0.0, 0.0),
+    (4.0e6, 10.0),
+];
+#[cfg(test)]
+const TEST_STEPS: [f64; 4] = [1e-3, 0.01, 0.1, 1.0];
 
 #[cfg(test)]
 mod tests {
@@ -1077,79 +793,9 @@ mod tests {
     #[test]
     fn motions_satisfy_their_equation() {
         let g = [1.0, -2.0, 0.5, 3.0, -1.0];
-        for &(w2, c) in &[
-            (1.0, 0.0),
-            (100.0, 0.4),
-            (1.0e4, 200.0),
-            (1.0e4, 500.0),
-            (0.0, 0.0),
-            (4.0e6, 10.0),
-        ] {
-            for &h in &[1e-3, 0.01, 0.1, 1.0] {
+        for &(w2, c) in &TEST_MODES {
+            for &h in &TEST_STEPS {
                 check_motion(w2, c, h, &g);
-            }
-        }
-    }
-
-    /// The force's work ∫ g ẋ dt and the damping's c ∫ ẋ² dt in closed form, against the
-    /// composite four-point Gauss–Legendre rule on the motion itself (pieces of a tenth of a
-    /// period and of the decay time, where the rule errs by ~10⁻¹⁴): series and particular
-    /// forms, under- and over-damped, undamped and a free mass, over a whole step and a part;
-    /// critical damping has none.
-    /// Within 10⁻¹¹ of ∫ |g ẋ| dt and of c ∫ ẋ² dt (the worst measured, 1.2·10⁻¹³, over-damped):
-    /// what the ledger's balance reads of an exactly integrated run.
-    #[test]
-    fn power_integrals_in_closed_form_match_quadrature() {
-        let g = [1.0, -2.0, 0.5, 3.0, -1.0];
-        let nodes = [
-            (0.069_431_844_202_973_71, 0.173_927_422_568_726_93),
-            (0.330_009_478_207_571_9, 0.326_072_577_431_273_1),
-            (0.669_990_521_792_428_1, 0.326_072_577_431_273_1),
-            (0.930_568_155_797_026_3, 0.173_927_422_568_726_93),
-        ];
-        for &(w2, c) in &[
-            (1.0, 0.0),
-            (100.0, 0.4),
-            (1.0e4, 200.0),
-            (1.0e4, 500.0),
-            (0.0, 0.0),
-            (4.0e6, 10.0),
-            (4.0e6, 1.0e4),
-        ] {
-            for &h in &[1e-3, 0.01, 0.1, 1.0] {
-                let m = motion(w2, c, h, &g, 0.3, -1.7);
-                for &sigma in &[0.37, 1.0] {
-                    let Some((work, dissipated)) =
-                        ModeEnergy::new(&m, &g, (w2, c), h).map(|e| e.at(sigma))
-                    else {
-                        // Critically damped: the one form left to the quadrature.
-                        let split = (0.25 * c * c - w2).abs().sqrt() * h;
-                        assert!(split < SPLIT_REACH, "ω² {w2}, c {c}, h {h}: no closed form");
-                        continue;
-                    };
-                    let fast = (w2.sqrt() + c) * h * sigma;
-                    let n = (10.0 * fast).ceil().max(64.0) as usize;
-                    let (mut w, mut d, mut size) = (0.0, 0.0, 0.0);
-                    for i in 0..n {
-                        for &(x, weight) in &nodes {
-                            let at = sigma * (i as f64 + x) / n as f64;
-                            let v = evaluate(&m, w2, c, h, at).1;
-                            let dt = weight * h * sigma / n as f64;
-                            w += dt * horner(&g, at) * v;
-                            size += dt * (horner(&g, at) * v).abs();
-                            d += dt * c * v * v;
-                        }
-                    }
-                    let case = format!("ω² {w2}, c {c}, h {h}, σ {sigma}");
-                    assert!(
-                        (work - w).abs() <= 1e-11 * size,
-                        "{case}: work {work:e} against {w:e}"
-                    );
-                    assert!(
-                        (dissipated - d).abs() <= 1e-11 * d + 1e-300,
-                        "{case}: dissipated {dissipated:e} against {d:e}"
-                    );
-                }
             }
         }
     }
