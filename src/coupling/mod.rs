@@ -679,6 +679,31 @@ impl<'a> DiskOnBeam<'a> {
         (obs, zdd)
     }
 
+    /// Each disk's centre velocity and contact frame (tangent, normal), global, at (t, z, ż)
+    /// (`None` for one that has left): what needs no acceleration, so no solve for it.
+    pub fn velocities_and_frames(
+        &self,
+        t: f64,
+        z: &[f64],
+        zd: &[f64],
+    ) -> Vec<Option<([f64; 2], [[f64; 2]; 2])>> {
+        let unknown = vec![f64::NAN; self.dim()];
+        let beam = self.beam();
+        self.disks
+            .iter()
+            .map(|d| {
+                (!d.gone.get()).then(|| {
+                    let at = self.observed_contact(d, t, z, zd);
+                    let motion = self.motion(d, &at, zd, &unknown);
+                    (
+                        beam.to_global(motion.velocity),
+                        [beam.to_global(at.tangent()), beam.to_global(at.normal())],
+                    )
+                })
+            })
+            .collect()
+    }
+
     /// The kinetic and potential energy at (t, z, ż) of the disks on the beam that belong to
     /// the system (the rolling ones). The energy ledger reads them at every step; unlike the
     /// observation's forces they need no acceleration, so the solve for it is left out.

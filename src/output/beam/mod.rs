@@ -49,7 +49,20 @@ struct BeamDiskSummary {
     /// The lowest deflection of the beam under the disk, and when.
     w_under_min: f64,
     w_under_min_t: f64,
+    /// The contact force averaged over a period of the acceleration's cutoff: what the
+    /// accuracy holds where the instantaneous force rings in a mesh's highest modes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    contact_mean: Option<ContactMeanSummary>,
     patch: PatchSummary,
+}
+
+#[derive(Serialize)]
+struct ContactMeanSummary {
+    window_s: f64,
+    rn_min: f64,
+    rn_max: f64,
+    rt_min: f64,
+    rt_max: f64,
 }
 
 /// The contact patch and how much the results depend on it (`coupling::patch`).
@@ -99,6 +112,20 @@ fn disk_summary(r: &BeamRun, k: usize) -> Option<BeamDiskSummary> {
         },
         w_under_min: w_under.min,
         w_under_min_t: w_under.min_t,
+        contact_mean: r
+            .extremes
+            .contact_means
+            .get(k)
+            .copied()
+            .flatten()
+            .zip(r.acceleration.as_ref())
+            .map(|([rn, rt], cutoff)| ContactMeanSummary {
+                window_s: 1.0 / cutoff.cutoff_hz,
+                rn_min: rn.min,
+                rn_max: rn.max,
+                rt_min: rt.min,
+                rt_max: rt.max,
+            }),
         patch: {
             let s = r.setup.patch_sensitivity_of(spec);
             PatchSummary {

@@ -12,6 +12,7 @@
 //! the start state, ride (integrate while the disk is on), vibrate alone, collect.
 
 mod acceleration;
+mod contact_mean;
 mod flight;
 mod fly;
 mod ledger;
@@ -186,6 +187,10 @@ pub struct Extremes {
     /// Per vehicle, each body's vertical acceleration then each axle's contact force, from
     /// the time the vehicle came onto the deck.
     pub vehicles: Vec<Range>,
+    /// Per disk, its normal and tangential contact force averaged over a period of the
+    /// acceleration's cutoff ([`contact_mean`]), for the consistent coupling on the beam a
+    /// whole window (`None` otherwise; empty without a cutoff).
+    pub contact_means: Vec<Option<[Range; 2]>>,
 }
 
 impl Extremes {

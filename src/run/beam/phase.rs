@@ -6,6 +6,7 @@
 
 use std::borrow::Cow;
 
+use super::contact_mean::Seen;
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::Beam;
 use crate::coupling::vehicles::{VehicleObservation, VehiclesOnBeam};
@@ -97,6 +98,30 @@ impl<'a> Phase<'a> {
                 .map_or_else(Vec::new, |c| c.observe_all(t, z, zd)),
             0.0,
         )
+    }
+
+    /// Each disk's centre velocity and contact frame at (t, y), as the contact force's means
+    /// read them (`None` for a disk not on or over the beam, no frame while it flies).
+    pub fn seen_disks(&self, t: f64, y: &[f64]) -> Vec<Option<Seen>> {
+        if let Some(f) = &self.flying {
+            let (d, _) = f.observe(t, &y[..self.loaded.dim()]);
+            return vec![Some(Seen {
+                velocity: [d.vx, d.vy],
+                frame: None,
+            })];
+        }
+        let (z, zd) = self.split(y);
+        self.coupled.map_or_else(Vec::new, |c| {
+            c.velocities_and_frames(t, z, zd)
+                .into_iter()
+                .map(|seen| {
+                    seen.map(|(velocity, frame)| Seen {
+                        velocity,
+                        frame: Some(frame),
+                    })
+                })
+                .collect()
+        })
     }
 
     /// The disk rides on the beam again.

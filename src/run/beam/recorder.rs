@@ -1,6 +1,7 @@
 //! The run's observers in one: what the sensors record at output times, the extremes watched
 //! over every step (`watch.rs`), the energy ledger's pieces, and the progress bar.
 
+use super::contact_mean::ContactMeans;
 use super::ledger::{Piece, LOBATTO};
 use super::modal_probes::ModalProbes;
 use super::*;
@@ -52,6 +53,8 @@ pub(super) struct Recorder<'a> {
     pub(super) envelope: Envelope,
     pub(super) pictures: Pictures<'a>,
     pub(super) means: Option<WindowedMeans>,
+    /// The rolling disks' contact forces averaged over the cutoff's period.
+    pub(super) contact_means: Option<ContactMeans>,
     pub(super) watches: Watches,
     /// Whether the envelope along the beam is watched (not in a sweep's case).
     pub(super) watch_along: bool,
@@ -299,6 +302,10 @@ impl Recorder<'_> {
                 .map(|r| r.iter().any(Range::seen).then(|| [r[0], r[1], r[2], r[3]]))
                 .collect(),
             vehicles: w.vehicles.ranges.clone(),
+            contact_means: self
+                .contact_means
+                .as_ref()
+                .map_or_else(Vec::new, ContactMeans::ranges),
         };
         (extremes, self.envelope.from_stations(&w.along.ranges))
     }
@@ -423,6 +430,10 @@ impl Observer for Recorder<'_> {
             self.ledger.book_in_pieces(pieces);
         }
         self.watch(t0, t1, dense, sample);
+        if let Some(means) = &mut self.contact_means {
+            let phase = &self.phase;
+            means.record_span(t0, t1, |t| phase.seen_disks(t, &dense.at(t)));
+        }
         let (phase, history) = (&self.phase, &self.history);
         let Some(means) = &mut self.means else {
             return;
@@ -487,6 +498,14 @@ pub(super) fn recorder<'a>(
     kinks.retain(|k| k.is_finite());
     kinks.sort_by(f64::total_cmp);
     kinks.dedup();
+    let contact_means = filter.as_ref().map(|f| {
+        let rolling: Vec<Option<(f64, f64)>> = setup
+            .disks
+            .iter()
+            .map(|d| (d.coupling == Coupling::Consistent).then_some((d.disk.mass, d.gravity)))
+            .collect();
+        ContactMeans::new(1.0 / f.cutoff_hz, 0.0, &rolling)
+    });
     let probe_xs: Vec<f64> = setup.probes.iter().map(|p| p.x).collect();
     Recorder {
         ledger: Ledger::new(&phase, &setup.loads, y0),
@@ -515,6 +534,7 @@ pub(super) fn recorder<'a>(
         means: over
             .windowed_means
             .then(|| WindowedMeans::new(scene.duration, setup.probes.len())),
+        contact_means,
         watches: Watches::new(
             setup.probes.len(),
             if over.no_envelope { 0 } else { SAMPLES },

@@ -89,6 +89,10 @@ struct RecordDisk {
     name: String,
     rn_min: f64,
     rn_max: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    rn_mean_min: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    rn_mean_max: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     left_track_t: Option<f64>,
 }
@@ -125,6 +129,8 @@ impl Record {
                             name: d.name.clone(),
                             rn_min: d.rn_min,
                             rn_max: d.rn_max,
+                            rn_mean_min: finite(d.rn_mean_min),
+                            rn_mean_max: finite(d.rn_mean_max),
                             left_track_t: finite(d.left_track_t),
                         })
                         .collect(),
@@ -204,6 +210,8 @@ impl Record {
                         name: d.name.clone(),
                         rn_min: d.rn_min,
                         rn_max: d.rn_max,
+                        rn_mean_min: d.rn_mean_min.unwrap_or(f64::NAN),
+                        rn_mean_max: d.rn_mean_max.unwrap_or(f64::NAN),
                         left_track_t: d.left_track_t.unwrap_or(f64::NAN),
                     })
                     .collect(),

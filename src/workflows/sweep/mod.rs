@@ -213,6 +213,10 @@ pub struct DiskRow {
     pub name: String,
     pub rn_min: f64,
     pub rn_max: f64,
+    /// The normal contact force averaged over a period of the acceleration's cutoff: its
+    /// least and largest (NaN where the run has no such mean).
+    pub rn_mean_min: f64,
+    pub rn_mean_max: f64,
     pub left_track_t: f64,
 }
 
@@ -228,12 +232,17 @@ fn summarise(r: &Run) -> Summary {
                 probes.push((p.name.clone(), w.min, w.max, after, a.largest_magnitude().0));
             }
             let on = b.extremes.disks.iter().zip(&b.disks_left_t);
-            for (name, (extremes, left)) in b.setup.disk_names().into_iter().zip(on) {
+            for (k, (name, (extremes, left))) in
+                b.setup.disk_names().into_iter().zip(on).enumerate()
+            {
                 if let Some([rn, ..]) = extremes {
+                    let mean = b.extremes.contact_means.get(k).copied().flatten();
                     disks.push(DiskRow {
                         name,
                         rn_min: rn.min,
                         rn_max: rn.max,
+                        rn_mean_min: mean.map_or(f64::NAN, |[m, _]| m.min),
+                        rn_mean_max: mean.map_or(f64::NAN, |[m, _]| m.max),
                         left_track_t: left.unwrap_or(f64::NAN),
                     });
                 }
@@ -255,6 +264,8 @@ fn summarise(r: &Run) -> Summary {
                 name: "disk".into(),
                 rn_min: rn.min,
                 rn_max: rn.max,
+                rn_mean_min: f64::NAN,
+                rn_mean_max: f64::NAN,
                 left_track_t: f64::NAN,
             });
         }
@@ -524,7 +535,10 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
         keys.join(",")
     );
     for d in &disks {
-        let _ = write!(csv, ",{d}.rn_min,{d}.rn_max,{d}.left_track_t");
+        let _ = write!(
+            csv,
+            ",{d}.rn_min,{d}.rn_max,{d}.rn_mean_min,{d}.rn_mean_max,{d}.left_track_t"
+        );
     }
     for p in probe_names {
         let _ = write!(
@@ -557,10 +571,17 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
                 for name in &disks {
                     match s.disks.iter().find(|d| d.name == *name) {
                         Some(d) => {
-                            let (lo, hi, left) = (d.rn_min, d.rn_max, d.left_track_t);
-                            let _ = write!(csv, ",{},{},{}", cell(lo), cell(hi), cell(left));
+                            let _ = write!(
+                                csv,
+                                ",{},{},{},{},{}",
+                                cell(d.rn_min),
+                                cell(d.rn_max),
+                                cell(d.rn_mean_min),
+                                cell(d.rn_mean_max),
+                                cell(d.left_track_t)
+                            );
                         }
-                        None => csv.push_str(",,,"),
+                        None => csv.push_str(",,,,,"),
                     }
                 }
                 for p in &s.probes {
@@ -573,7 +594,7 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
             Err(e) => {
                 let _ = write!(csv, "{values},\"failed: {}\",,,,,", e.replace('"', "'"));
                 for _ in &disks {
-                    csv.push_str(",,,");
+                    csv.push_str(",,,,,");
                 }
                 for _ in probe_names {
                     csv.push_str(",,,,");
