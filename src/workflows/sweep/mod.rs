@@ -503,16 +503,25 @@ fn body_names(rows: &[SweepRow]) -> Vec<String> {
 }
 
 /// The disks any case that ran reports, in the order first met.
-fn disk_names(rows: &[SweepRow]) -> Vec<String> {
-    let mut names: Vec<String> = Vec::new();
+/// The disks some case reported, each with whether some case averaged its contact force (a
+/// disk that never did has no mean columns).
+fn disk_names(rows: &[SweepRow]) -> Vec<(String, bool)> {
+    let mut names: Vec<(String, bool)> = Vec::new();
     for s in rows.iter().filter_map(|r| r.outcome.as_ref().ok()) {
         for d in &s.disks {
-            if !names.contains(&d.name) {
-                names.push(d.name.clone());
+            let averaged = d.rn_mean_min.is_finite();
+            match names.iter_mut().find(|(name, _)| *name == d.name) {
+                Some((_, seen)) => *seen |= averaged,
+                None => names.push((d.name.clone(), averaged)),
             }
         }
     }
     names
+}
+
+/// A disk's cells in a row that has none of its numbers.
+fn empty_disk_cells(averaged: bool) -> String {
+    if averaged { ",,,,," } else { ",,," }.to_string()
 }
 
 /// The probes of the first case that ran.
@@ -534,11 +543,12 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
         "{},status,stopped,t_end,energy_drift,steps,wall_s",
         keys.join(",")
     );
-    for d in &disks {
-        let _ = write!(
-            csv,
-            ",{d}.rn_min,{d}.rn_max,{d}.rn_mean_min,{d}.rn_mean_max,{d}.left_track_t"
-        );
+    for (d, averaged) in &disks {
+        let _ = write!(csv, ",{d}.rn_min,{d}.rn_max");
+        if *averaged {
+            let _ = write!(csv, ",{d}.rn_mean_min,{d}.rn_mean_max");
+        }
+        let _ = write!(csv, ",{d}.left_track_t");
     }
     for p in probe_names {
         let _ = write!(
@@ -568,20 +578,17 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
                     "{values},ok,{},{},{},{},{}",
                     s.stop, s.t_end, s.energy_drift, s.steps, s.wall_s,
                 );
-                for name in &disks {
+                for (name, averaged) in &disks {
                     match s.disks.iter().find(|d| d.name == *name) {
                         Some(d) => {
-                            let _ = write!(
-                                csv,
-                                ",{},{},{},{},{}",
-                                cell(d.rn_min),
-                                cell(d.rn_max),
-                                cell(d.rn_mean_min),
-                                cell(d.rn_mean_max),
-                                cell(d.left_track_t)
-                            );
+                            let _ = write!(csv, ",{},{}", cell(d.rn_min), cell(d.rn_max));
+                            if *averaged {
+                                let (lo, hi) = (d.rn_mean_min, d.rn_mean_max);
+                                let _ = write!(csv, ",{},{}", cell(lo), cell(hi));
+                            }
+                            let _ = write!(csv, ",{}", cell(d.left_track_t));
                         }
-                        None => csv.push_str(",,,,,"),
+                        None => csv.push_str(&empty_disk_cells(*averaged)),
                     }
                 }
                 for p in &s.probes {
@@ -593,8 +600,8 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
             }
             Err(e) => {
                 let _ = write!(csv, "{values},\"failed: {}\",,,,,", e.replace('"', "'"));
-                for _ in &disks {
-                    csv.push_str(",,,,,");
+                for (_, averaged) in &disks {
+                    csv.push_str(&empty_disk_cells(*averaged));
                 }
                 for _ in probe_names {
                     csv.push_str(",,,,");
