@@ -462,7 +462,8 @@ fn leaving_at_either_end_and_slipping() {
 /// `rollbeam sweep` runs the same scene as a single run would, in parallel: over the bridge's
 /// two speeds with the moving force its rows hold the residual vibration of the single runs
 /// exactly (the same arithmetic on another thread), and the cancellation of the closed form
-/// shows as the residual growing six-fold from −44 to −50 1/s.
+/// shows as the residual growing six-fold from −44 to −50 1/s. A consistent disk's row holds
+/// the contact force averaged over the cutoff's period exactly as its single run reports it.
 #[test]
 fn sweep_matches_single_runs() {
     use rollbeam::workflows::sweep::{run_sweep, Setting};
@@ -488,6 +489,24 @@ fn sweep_matches_single_runs() {
         amplitude(0),
         amplitude(1)
     );
+
+    // The consistent disk's row holds its contact force averaged over the cutoff's period,
+    // as its single run has it.
+    spec.set_name("disk.coupling", "consistent").expect("a key");
+    spec.set("duration", 0.5).expect("a key");
+    let setting = Setting::parse("disk.omega0=-44:-44:1").expect("setting");
+    let rows = run_sweep(&spec, &setting, &rollbeam::run::Overrides::default(), false)
+        .expect("sweep runs");
+    let disk = &rows[0].outcome.as_ref().expect("run ok").disks[0];
+    spec.set("disk.omega0", -44.0).expect("a key");
+    let single = run_beam(
+        &Planner::default().plan(&spec).expect("a valid scene"),
+        Method::GenAlpha,
+        1e-5,
+        1e-9,
+    );
+    let [rn, _] = single.extremes.contact_means[0].expect("a mean");
+    assert_eq!((disk.rn_mean_min, disk.rn_mean_max), (rn.min, rn.max));
 }
 
 /// `rollbeam static` with a disk on the beam loads it with the disk's weight at s0: at
