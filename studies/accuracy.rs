@@ -310,12 +310,7 @@ fn a_switched_load_s_extremes_within_the_accuracy_at_the_defaults() {
     };
     let (w_scale, phi_scale) = (largest(&converged, 1), largest(&converged, 2));
     let a_scale = converged.envelope.a_max.0;
-    let mut pairs = vec![(
-        "the envelope's largest acceleration",
-        planned.envelope.a_max.0,
-        a_scale,
-        a_scale,
-    )];
+    let mut pairs = vec![envelope_acceleration(&planned, a_scale)];
     for (p, c) in planned
         .extremes
         .probes
@@ -596,21 +591,8 @@ fn the_zip_line_s_headlines_within_the_accuracy_at_the_defaults() {
     // atol: rtol times the largest static deflection at a probe (0.584 m), as the plan's.
     let converged = run_beam(&scene, Method::Esdirk4, 1e-5, 1e-5 * 0.584);
     let (w_scale, a_scale) = (deepest(&converged), converged.envelope.a_max.0);
-    let mut pairs = vec![(
-        "the envelope's largest acceleration",
-        planned.envelope.a_max.0,
-        a_scale,
-        a_scale,
-    )];
-    for (a, b) in planned
-        .extremes
-        .probes
-        .iter()
-        .zip(&converged.extremes.probes)
-    {
-        pairs.push(("a probe's lowest w", a[1].min, b[1].min, w_scale));
-        pairs.push(("a probe's highest w", a[1].max, b[1].max, w_scale));
-    }
+    let mut pairs = vec![envelope_acceleration(&planned, a_scale)];
+    pairs.extend(probe_w_pairs(&planned, &converged, w_scale));
     pairs.extend(contact_mean_pairs(&planned, &converged, weight));
     within_the_accuracy("zip-line set down at rest", &pairs);
 
@@ -705,6 +687,25 @@ fn probe_pairs(
     w_scale: f64,
     a_scale: f64,
 ) -> Vec<Compared> {
+    let mut pairs = probe_w_pairs(planned, converged, w_scale);
+    for (a, b) in planned
+        .extremes
+        .probes
+        .iter()
+        .zip(&converged.extremes.probes)
+    {
+        pairs.push((
+            "a probe's largest acceleration",
+            a[3].largest_magnitude().0,
+            b[3].largest_magnitude().0,
+            a_scale,
+        ));
+    }
+    pairs
+}
+
+/// Each probe's lowest and highest w, at the defaults and converged.
+fn probe_w_pairs(planned: &BeamRun, converged: &BeamRun, w_scale: f64) -> Vec<Compared> {
     let mut pairs = Vec::new();
     for (a, b) in planned
         .extremes
@@ -714,12 +715,6 @@ fn probe_pairs(
     {
         pairs.push(("a probe's lowest w", a[1].min, b[1].min, w_scale));
         pairs.push(("a probe's highest w", a[1].max, b[1].max, w_scale));
-        pairs.push((
-            "a probe's largest acceleration",
-            a[3].largest_magnitude().0,
-            b[3].largest_magnitude().0,
-            a_scale,
-        ));
     }
     pairs
 }
@@ -734,12 +729,7 @@ fn disk_headlines(
     weight: f64,
 ) -> Vec<Compared> {
     let a_scale = converged.envelope.a_max.0;
-    let mut pairs = vec![(
-        "the envelope's largest acceleration",
-        planned.envelope.a_max.0,
-        a_scale,
-        a_scale,
-    )];
+    let mut pairs = vec![envelope_acceleration(planned, a_scale)];
     pairs.extend(probe_pairs(planned, converged, w_scale, a_scale));
     let (d, e) = (
         planned.extremes.disk().expect("a disk"),
@@ -779,6 +769,16 @@ fn contact_mean_pairs(planned: &BeamRun, converged: &BeamRun, weight: f64) -> Ve
             weight,
         ),
     ]
+}
+
+/// The envelope's largest acceleration at the defaults against the converged one, `a_scale`.
+fn envelope_acceleration(planned: &BeamRun, a_scale: f64) -> Compared {
+    (
+        "the envelope's largest acceleration",
+        planned.envelope.a_max.0,
+        a_scale,
+        a_scale,
+    )
 }
 
 /// Every headline at the defaults within the accuracy (10⁻³) of its scale from the converged.
