@@ -742,7 +742,8 @@ fn disk_headlines(
 }
 
 /// The extremes of the first disk's normal and tangential contact force averaged over a
-/// period of the acceleration's cutoff, of the disk's `weight`.
+/// period of the acceleration's cutoff, of the disk's `weight`, and the largest friction
+/// coefficient those need, whose error times the least mean normal force is a force.
 fn contact_mean_pairs(planned: &BeamRun, converged: &BeamRun, weight: f64) -> Vec<Compared> {
     let mean = |r: &BeamRun| {
         r.extremes
@@ -767,6 +768,12 @@ fn contact_mean_pairs(planned: &BeamRun, converged: &BeamRun, weight: f64) -> Ve
             d[1].max,
             e[1].max,
             weight,
+        ),
+        (
+            "the friction the means need",
+            d[2].max,
+            e[2].max,
+            weight / e[0].min,
         ),
     ]
 }

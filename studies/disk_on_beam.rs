@@ -505,7 +505,7 @@ fn sweep_matches_single_runs() {
         1e-5,
         1e-9,
     );
-    let [rn, _] = single.extremes.contact_means[0].expect("a mean");
+    let [rn, ..] = single.extremes.contact_means[0].expect("a mean");
     assert_eq!((disk.rn_mean_min, disk.rn_mean_max), (rn.min, rn.max));
 }
 

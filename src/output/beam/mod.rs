@@ -63,6 +63,8 @@ struct ContactMeanSummary {
     rn_max: f64,
     rt_min: f64,
     rt_max: f64,
+    /// The largest |R̄_t| / R̄_n while R̄_n > 0; null if the mean never pressed.
+    mu_needed_max: Option<f64>,
 }
 
 /// The contact patch and how much the results depend on it (`coupling::patch`).
@@ -119,12 +121,13 @@ fn disk_summary(r: &BeamRun, k: usize) -> Option<BeamDiskSummary> {
             .copied()
             .flatten()
             .zip(r.acceleration.as_ref())
-            .map(|([rn, rt], cutoff)| ContactMeanSummary {
+            .map(|([rn, rt, mu], cutoff)| ContactMeanSummary {
                 window_s: 1.0 / cutoff.cutoff_hz,
                 rn_min: rn.min,
                 rn_max: rn.max,
                 rt_min: rt.min,
                 rt_max: rt.max,
+                mu_needed_max: mu.seen().then_some(mu.max),
             }),
         patch: {
             let s = r.setup.patch_sensitivity_of(spec);

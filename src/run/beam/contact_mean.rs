@@ -42,7 +42,7 @@ struct DiskMean {
     mass: f64,
     gravity: f64,
     samples: VecDeque<(f64, Seen)>,
-    means: VecDeque<(f64, [f64; 2])>,
+    means: VecDeque<(f64, [f64; 3])>,
     watch: Watch,
 }
 
@@ -62,7 +62,7 @@ impl ContactMeans {
                         gravity,
                         samples: VecDeque::with_capacity(SAMPLES_PER_WINDOW + 1),
                         means: VecDeque::with_capacity(3),
-                        watch: Watch::new(2, Turning::OnTheParabola),
+                        watch: Watch::new(3, Turning::OnTheParabola),
                     })
                 })
                 .collect(),
@@ -94,15 +94,16 @@ impl ContactMeans {
         }
     }
 
-    /// Per disk, the least and greatest mean normal and tangential force (`None` for a disk
-    /// without a mean, or never on the beam a whole window).
-    pub fn ranges(&self) -> Vec<Option<[Range; 2]>> {
+    /// Per disk, the least and greatest mean normal and tangential force and the friction
+    /// coefficient the means need, |R̄_t| / R̄_n where R̄_n > 0 (`None` for a disk without a
+    /// mean, or never on the beam a whole window).
+    pub fn ranges(&self) -> Vec<Option<[Range; 3]>> {
         self.disks
             .iter()
             .map(|d| {
                 d.as_ref().and_then(|d| {
-                    let [rn, rt] = [d.watch.ranges[0], d.watch.ranges[1]];
-                    rn.seen().then_some([rn, rt])
+                    let r = &d.watch.ranges;
+                    r[0].seen().then_some([r[0], r[1], r[2]])
                 })
             })
             .collect()
@@ -134,7 +135,9 @@ impl DiskMean {
             self.mass * (last.velocity[1] - first.velocity[1]) / window + self.mass * self.gravity,
         ];
         let along = |e: [f64; 2]| force[0] * e[0] + force[1] * e[1];
-        let mean = [along(normal), along(tangent)];
+        let (rn, rt) = (along(normal), along(tangent));
+        let mu = if rn > 0.0 { rt.abs() / rn } else { f64::NAN };
+        let mean = [rn, rt, mu];
         if self.means.len() == 3 {
             self.means.pop_front();
         }
@@ -182,7 +185,8 @@ mod tests {
         }
         let ranges = means.ranges();
         assert!(ranges[1].is_none());
-        let [rn, rt] = ranges[0].expect("a mean");
+        let [rn, rt, mu] = ranges[0].expect("a mean");
+        assert_eq!((mu.min, mu.max), (0.0, 0.0));
         let spacing = window / SAMPLES_PER_WINDOW as f64;
         assert!(
             (rn.min_t - window / 2.0).abs() < 1e-12,

@@ -189,9 +189,10 @@ pub struct Extremes {
     /// the time the vehicle came onto the deck.
     pub vehicles: Vec<Range>,
     /// Per disk, its normal and tangential contact force averaged over a period of the
-    /// acceleration's cutoff ([`contact_mean`]), for the consistent coupling on the beam a
-    /// whole window (`None` otherwise; empty without a cutoff).
-    pub contact_means: Vec<Option<[Range; 2]>>,
+    /// acceleration's cutoff ([`contact_mean`]) and the friction coefficient those need, for
+    /// the consistent coupling on the beam a whole window (`None` otherwise; empty without a
+    /// cutoff).
+    pub contact_means: Vec<Option<[Range; 3]>>,
 }
 
 impl Extremes {

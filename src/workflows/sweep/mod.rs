@@ -241,8 +241,8 @@ fn summarise(r: &Run) -> Summary {
                         name,
                         rn_min: rn.min,
                         rn_max: rn.max,
-                        rn_mean_min: mean.map_or(f64::NAN, |[m, _]| m.min),
-                        rn_mean_max: mean.map_or(f64::NAN, |[m, _]| m.max),
+                        rn_mean_min: mean.map_or(f64::NAN, |[m, ..]| m.min),
+                        rn_mean_max: mean.map_or(f64::NAN, |[m, ..]| m.max),
                         left_track_t: left.unwrap_or(f64::NAN),
                     });
                 }
