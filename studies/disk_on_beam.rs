@@ -831,9 +831,10 @@ fn the_disk_that_loses_contact_is_named() {
     let stopped = summary.split_once("stopped:\n").unwrap().1;
     let disk_line = stopped.lines().take(3).find(|l| l.starts_with("  disk:"));
     assert_eq!(disk_line, Some("  disk: disk1"), "{summary}");
+    // Each disk's own field, not its `contact_mean`'s (indented a level deeper).
     let mu: Vec<&str> = summary
         .lines()
-        .filter_map(|l| l.trim().strip_prefix("mu_needed_max: "))
+        .filter_map(|l| l.strip_prefix("  mu_needed_max: "))
         .collect();
     assert_eq!(mu.len(), 2, "{summary}");
     assert_eq!(mu[0], "null", "{summary}");
