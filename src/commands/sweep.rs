@@ -15,8 +15,9 @@ use crate::workflows::sweep::{cluster, run_grid, write_grid, Setting, SweepRow};
 pub struct SweepArgs {
     /// The scene (not with --merge, nor with --plan and --shard).
     scene: Option<PathBuf>,
-    /// KEY=FROM:TO:COUNT (any number the scene holds, e.g. disk.omega0=-10:-120:111) or
-    /// KEY=NAME,NAME (a name, e.g. train.hslm=A1,A2); several make a grid.
+    /// KEY=FROM:TO:COUNT (any number the scene holds, e.g. disk.omega0=-10:-120:111), KEY=X,X
+    /// (numbers listed, e.g. train.speed=80,90) or KEY=NAME,NAME (a name, e.g.
+    /// train.hslm=A1,A2); several make a grid.
     #[arg(long = "set")]
     set: Vec<String>,
     /// Output folder (default out/<scene name>-sweep; with --merge, the plan folder).
@@ -156,9 +157,10 @@ fn report(name: &str, rows: &[SweepRow], settings: &[Setting], dir: &Path) {
         .map(|s| format!("{} {}", s.key, s.describe()))
         .collect();
     say!(
-        "{}: {} runs over {}, {} failed; wrote {}",
+        "{}: {} run{} over {}, {} failed; wrote {}",
         name,
         rows.len(),
+        if rows.len() == 1 { "" } else { "s" },
         over_keys.join(" × "),
         failed,
         dir.display()

@@ -132,6 +132,11 @@ pub fn find(dotted: &str) -> Option<Found<'_>> {
     })
 }
 
+/// Whether a dotted key holds a number (`train.speed`), where a sweep lists numbers for it.
+pub fn holds_number(dotted: &str) -> bool {
+    find(dotted).is_some_and(|f| matches!(f.key.holds, Number | Whole))
+}
+
 /// A key's place in the file.
 enum Slot<'f> {
     /// A number the file must give.

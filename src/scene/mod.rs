@@ -39,6 +39,7 @@ mod checker;
 mod disks;
 mod file;
 mod keys;
+pub use keys::holds_number;
 mod rolling;
 mod train;
 mod vehicles;

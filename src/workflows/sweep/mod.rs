@@ -1,6 +1,6 @@
 //! `rollbeam sweep SCENE.yaml --set KEY=FROM:TO:COUNT [--set KEY=A,B,…]`: one scene over a
 //! grid of its values, the runs spread over every core. A number is swept over an evenly
-//! spaced range, a name (`train.hslm`, `disk.coupling`, …) over a list; several `--set` make
+//! spaced range or the values listed, a name (`train.hslm`, `disk.coupling`, …) over a list; several `--set` make
 //! the grid of every combination. Each case's values are set at their keys of the scene
 //! ([`SceneSpec::set`], [`SceneSpec::set_name`]) and the scene checked and planned again, so a
 //! value the scene cannot take is refused with the same sentence a scene file would get. One
@@ -17,7 +17,7 @@ use crate::output::plots::{line_chart, line_chart_with_references};
 use crate::output::write;
 use crate::plan::Planner;
 use crate::run::{self, Overrides, Run};
-use crate::scene::SceneSpec;
+use crate::scene::{holds_number, SceneSpec};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -32,11 +32,13 @@ const BALLASTED_LIMIT: f64 = 3.5;
 pub enum Sweep {
     /// FROM:TO:COUNT, evenly spaced.
     Range { from: f64, to: f64, count: usize },
+    /// A number key's values listed (`train.speed=80,90,100`, or one value).
+    Numbers(Vec<f64>),
     /// A list of names.
     Names(Vec<String>),
 }
 
-/// KEY=FROM:TO:COUNT or KEY=A,B,….
+/// KEY=FROM:TO:COUNT or KEY=A,B,… (numbers for a number key, names for a name key).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Setting {
     pub key: String,
@@ -63,7 +65,7 @@ impl Setting {
     pub fn parse(arg: &str) -> Result<Setting, Error> {
         let bad = |why: &str| {
             Error::Input(format!(
-                "--set {} {why}; write KEY=FROM:TO:COUNT (e.g. disk.omega0=-10:-120:111) or KEY=NAME,NAME (e.g. train.hslm=A1,A2)",
+                "--set {} {why}; write KEY=FROM:TO:COUNT (e.g. disk.omega0=-10:-120:111), KEY=X,X (e.g. train.speed=80,90) or KEY=NAME,NAME (e.g. train.hslm=A1,A2)",
                 quote(arg)
             ))
         };
@@ -72,6 +74,13 @@ impl Setting {
             return Err(bad("has an empty key"));
         }
         let key = key.trim().to_string();
+        let number = |s: &str| {
+            s.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| bad(&format!("has {} where a finite number belongs", quote(s))))
+        };
         if !range.contains(':') {
             let names: Vec<String> = range.split(',').map(|n| n.trim().to_string()).collect();
             if names.iter().any(|n| n.is_empty()) {
@@ -80,21 +89,16 @@ impl Setting {
             if names.len() > MAX_CASES {
                 return Err(bad(&format!("lists more than {MAX_CASES} names")));
             }
-            return Ok(Setting {
-                key,
-                sweep: Sweep::Names(names),
-            });
+            let sweep = if holds_number(&key) {
+                Sweep::Numbers(names.iter().map(|n| number(n)).collect::<Result<_, _>>()?)
+            } else {
+                Sweep::Names(names)
+            };
+            return Ok(Setting { key, sweep });
         }
         let parts: Vec<&str> = range.split(':').collect();
         let [from, to, count] = parts[..] else {
             return Err(bad("needs three fields after '='"));
-        };
-        let number = |s: &str| {
-            s.trim()
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| bad(&format!("has {} where a finite number belongs", quote(s))))
         };
         let count = count
             .trim()
@@ -117,22 +121,28 @@ impl Setting {
         })
     }
 
-    /// The numbers of a range (none for a list of names).
+    /// The numbers swept, in the order given (none for a list of names).
     pub fn values(&self) -> Vec<f64> {
-        match self.sweep {
-            Sweep::Range { from, count: 1, .. } => vec![from],
-            Sweep::Range { from, to, count } => (0..count)
+        match &self.sweep {
+            Sweep::Range { from, count: 1, .. } => vec![*from],
+            &Sweep::Range { from, to, count } => (0..count)
                 .map(|i| from + (to - from) * i as f64 / (count - 1) as f64)
                 .collect(),
+            Sweep::Numbers(values) => values.clone(),
             Sweep::Names(_) => Vec::new(),
         }
+    }
+
+    /// Whether the key is swept over numbers (a range or a list).
+    pub fn numeric(&self) -> bool {
+        !matches!(self.sweep, Sweep::Names(_))
     }
 
     /// Every value, in the order swept.
     pub fn all(&self) -> Vec<Value> {
         match &self.sweep {
-            Sweep::Range { .. } => self.values().into_iter().map(Value::Number).collect(),
             Sweep::Names(names) => names.iter().cloned().map(Value::Name).collect(),
+            _ => self.values().into_iter().map(Value::Number).collect(),
         }
     }
 
@@ -144,7 +154,7 @@ impl Setting {
     /// Every value, in the order the rows report them: numbers ascending, names as given.
     fn in_row_order(&self) -> Vec<Value> {
         let mut values = self.all();
-        if let Sweep::Range { .. } = self.sweep {
+        if self.numeric() {
             values.sort_by(|a, b| match (a, b) {
                 (Value::Number(x), Value::Number(y)) => x.total_cmp(y),
                 _ => std::cmp::Ordering::Equal,
@@ -157,6 +167,10 @@ impl Setting {
     pub fn describe(&self) -> String {
         match &self.sweep {
             Sweep::Range { from, to, .. } => format!("from {from} to {to}"),
+            Sweep::Numbers(values) => {
+                let values: Vec<String> = values.iter().map(f64::to_string).collect();
+                values.join(", ")
+            }
             Sweep::Names(names) => names.join(", "),
         }
     }
@@ -441,9 +455,7 @@ pub fn write_grid(rows: &[SweepRow], settings: &[Setting], dir: &Path) -> Result
     comfort(rows, settings, dir)?;
     match settings {
         [speed, names] | [names, speed]
-            if matches!(speed.sweep, Sweep::Range { .. })
-                && matches!(names.sweep, Sweep::Names(_))
-                && !probe_names.is_empty() =>
+            if speed.numeric() && !names.numeric() && !probe_names.is_empty() =>
         {
             let x = settings.iter().position(|s| s == speed).unwrap_or(0);
             train_charts(rows, speed, x, &probe_names[0], dir)
@@ -456,9 +468,7 @@ pub fn write_grid(rows: &[SweepRow], settings: &[Setting], dir: &Path) -> Result
 /// key swept over a range (over a grid, one series per value of the others), with EN 1990's
 /// comfort levels.
 fn comfort(rows: &[SweepRow], settings: &[Setting], dir: &Path) -> Result<(), Error> {
-    let x = settings
-        .iter()
-        .position(|s| matches!(s.sweep, Sweep::Range { .. }));
+    let x = settings.iter().position(Setting::numeric);
     let Some(x) = x.filter(|_| !body_names(rows).is_empty()) else {
         return Ok(());
     };
@@ -677,7 +687,9 @@ fn train_charts(
             .collect();
         let mut references = vec![("envelope".to_string(), envelope)];
         if file == "sweep.svg" {
-            let (lo, hi) = (speed.values()[0], speed.values()[speed.values().len() - 1]);
+            let speeds = speed.values();
+            let lo = speeds.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = speeds.iter().copied().fold(f64::NEG_INFINITY, f64::max);
             references.push((
                 "EN 1991-2 limit, ballasted track".to_string(),
                 vec![(lo, BALLASTED_LIMIT), (hi, BALLASTED_LIMIT)],
@@ -798,5 +810,29 @@ mod tests {
             -120.0
         );
         assert!(Setting::parse("disk.omega0=-10:-120").is_err());
+    }
+
+    /// A number key takes one value or a list, swept in ascending order; a name key keeps
+    /// its names even where they read as numbers, and a word in a number list is refused.
+    #[test]
+    fn a_number_key_takes_a_list() {
+        let speeds = Setting::parse("train.speed=100,80.5,90").unwrap();
+        assert_eq!(speeds.values(), vec![100.0, 80.5, 90.0]);
+        let ordered: Vec<String> = speeds
+            .in_row_order()
+            .iter()
+            .map(|v| v.to_string())
+            .collect();
+        assert_eq!(ordered, ["80.5", "90", "100"]);
+        assert_eq!(
+            Setting::parse("train.speed=90").unwrap().values(),
+            vec![90.0]
+        );
+        assert_eq!(
+            Setting::parse("name=1,2").unwrap().sweep,
+            Sweep::Names(vec!["1".into(), "2".into()])
+        );
+        assert!(Setting::parse("train.speed=90,fast").is_err());
+        assert!(Setting::parse("train.speed=90,inf").is_err());
     }
 }
