@@ -190,8 +190,9 @@ fn unsprung_speed_factor(b: &BeamScene) -> f64 {
     }
 }
 
-/// What rides on the beam, as the static load the mesh and model are chosen for: the disk's
-/// weight, or the heaviest of a train's axles and the vehicles' wheels, standing at each probe.
+/// What rides on the beam, as the static load the mesh and model are chosen for: the disks'
+/// weight, or the heaviest of a train's axles and the vehicles' wheels, whichever is larger,
+/// standing at each probe.
 fn riding_weight(b: &BeamScene) -> Option<f64> {
     let axles = b
         .train
@@ -203,7 +204,10 @@ fn riding_weight(b: &BeamScene) -> Option<f64> {
         });
     let disks =
         (!b.disks.is_empty()).then(|| b.disks.iter().map(|d| d.disk.mass * d.gravity).sum::<f64>());
-    disks.or(axles)
+    match (disks, axles) {
+        (Some(d), Some(a)) => Some(d.max(a)),
+        (d, a) => d.or(a),
+    }
 }
 
 /// How long the beam carries what moves over it, from the first entry to the last exit,

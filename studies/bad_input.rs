@@ -686,12 +686,12 @@ fn bad_trains() {
         &["train.speed", "infinite"],
     );
     rejected(
-        "train-and-disk",
+        "moving-masses-beside-a-disk",
         &beam_scene(
             &[],
-            "disk:\n  mass: 1500\n  radius: 0.4\n  s0: 1\ntrain:\n  hslm: A1\n  speed: 50\n",
+            "disk:\n  mass: 1500\n  radius: 0.4\n  s0: 1\ntrain:\n  hslm: A1\n  speed: 50\n  model: moving-mass\n",
         ),
-        &["disk", "both given"],
+        &["`train.model`", "carrying a disk", "moving-force"],
     );
     rejected(
         "hslm-and-axles",
@@ -1161,12 +1161,12 @@ fn bad_disk_lists() {
         &["`disks`", "beam tracks only"],
     );
     rejected(
-        "disks-and-train",
+        "disks-and-moving-masses",
         &beam_scene(
             &[],
-            &format!("disks: [{one}]\ntrain: {{axles: [0.0], load: 1.0e3, speed: 10.0}}\n"),
+            &format!("disks: [{one}]\ntrain: {{axles: [0.0], load: 1.0e3, speed: 10.0, model: moving-mass}}\n"),
         ),
-        &["`disks`", "`train` are both given"],
+        &["`train.model`", "carrying a disk"],
     );
 }
 

@@ -188,11 +188,13 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
     if setup.profile != crate::vehicle::profile::Profile::Smooth {
         writeln!(f, "  profile: {}", profile(&setup.profile))?;
     }
-    match (setup.disks.is_empty(), &setup.train) {
-        (true, Some(t)) => train(f, t, b.length)?,
-        (true, None) if !setup.vehicles.is_empty() => {}
-        (true, None) => writeln!(f, "  disk: none (no disk unknowns)")?,
-        (false, _) => disks(f, setup)?,
+    if let Some(t) = &setup.train {
+        train(f, t, b.length)?;
+    }
+    if !setup.disks.is_empty() {
+        disks(f, setup)?;
+    } else if setup.train.is_none() && setup.vehicles.is_empty() {
+        writeln!(f, "  disk: none (no disk unknowns)")?;
     }
     for w in setup.warnings() {
         writeln!(f, "  warning: {w}")?;

@@ -30,20 +30,9 @@ pub(super) fn train(
     gravity: f64,
 ) -> Result<Train, Error> {
     let t = &file.value;
-    if let Some((line, key)) = raw
-        .disk
-        .as_ref()
-        .map(|d| (d.referenced.line(), "disk"))
-        .or(raw.disks.as_ref().map(|d| (d.referenced.line(), "disks")))
-    {
-        return c.err(
-            line,
-            key,
-            "and `train` are both given: a scene has one rider, a disk or a train",
-        );
-    }
     let speed = c.positive(&t.speed, "train.speed")?;
-    let model = train_model(c, t, gravity)?;
+    let with_disk = raw.disk.is_some() || raw.disks.is_some();
+    let model = train_model(c, t, gravity, with_disk)?;
     let (name, axles, loads) =
         match (&t.hslm, &t.axles, &t.load) {
             (Some(h), None, None) => {
@@ -115,7 +104,14 @@ pub(super) fn train(
 
 /// How a train's axles act: moving forces (the default) or moving masses, whose masses are
 /// their loads over a positive gravity.
-fn train_model(c: &Checker, t: &TrainFile, gravity: f64) -> Result<TrainModel, Error> {
+/// How the axles act. Beside a disk they are moving forces: the coupled equations hold the
+/// disks' inertia, not the moving masses'.
+fn train_model(
+    c: &Checker,
+    t: &TrainFile,
+    gravity: f64,
+    with_disk: bool,
+) -> Result<TrainModel, Error> {
     Ok(match &t.model {
         None => TrainModel::MovingForce,
         Some(m) if m.value == "moving-force" => TrainModel::MovingForce,
@@ -125,6 +121,13 @@ fn train_model(c: &Checker, t: &TrainFile, gravity: f64) -> Result<TrainModel, E
                     m.referenced.line(),
                     "train.model",
                     format!("is moving-mass, whose axle masses are their loads over gravity, and gravity is {gravity}: give a positive `gravity`, or use moving-force"),
+                );
+            }
+            if with_disk {
+                return c.err(
+                    m.referenced.line(),
+                    "train.model",
+                    "is moving-mass, which a beam carrying a disk does not model: its axles ride beside the disk as moving forces (`model: moving-force`)",
                 );
             }
             TrainModel::MovingMass

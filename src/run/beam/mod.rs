@@ -730,7 +730,7 @@ impl<'a> OnTheBeam<'a, '_> {
         for l in self.left.iter_mut().filter(|l| l.is_none()) {
             *l = Some(t);
         }
-        self.rec.exit_t = Some(t);
+        self.rec.last_load_leaves(t);
         Next::Ends(Ridden {
             stop: Stop::End,
             left_track_t: Some(t),

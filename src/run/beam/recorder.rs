@@ -86,6 +86,16 @@ pub(super) struct Recorder<'a> {
 }
 
 impl Recorder<'_> {
+    /// A rider leaves the beam at t: the residual vibration is what follows the last load
+    /// out, so where a train left before it, what was watched since is not residual.
+    pub(super) fn last_load_leaves(&mut self, t: f64) {
+        if self.exit_t.is_some_and(|te| te >= t) {
+            return;
+        }
+        self.exit_t = Some(t);
+        self.watches.after_exit = Watch::new(self.history.probes.len(), Turning::OnTheSolution);
+    }
+
     /// What the watches see at (t, y); the stations only when `along` asks for them.
     pub(super) fn snapshot(
         &self,
