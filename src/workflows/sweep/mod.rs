@@ -84,7 +84,7 @@ impl Setting {
         if !range.contains(':') {
             let names: Vec<String> = range.split(',').map(|n| n.trim().to_string()).collect();
             if names.iter().any(|n| n.is_empty()) {
-                return Err(bad("has an empty name"));
+                return Err(bad("has an empty value"));
             }
             if names.len() > MAX_CASES {
                 return Err(bad(&format!("lists more than {MAX_CASES} names")));
