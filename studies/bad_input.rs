@@ -691,7 +691,7 @@ fn bad_trains() {
             &[],
             "disk:\n  mass: 1500\n  radius: 0.4\n  s0: 1\ntrain:\n  hslm: A1\n  speed: 50\n  model: moving-mass\n",
         ),
-        &["`train.model`", "carrying a disk", "moving-force"],
+        &["`train.model`", "flies off the beam", "contact_loss: stop"],
     );
     rejected(
         "hslm-and-axles",
@@ -1159,14 +1159,6 @@ fn bad_disk_lists() {
         "disks-on-curve",
         &format!("duration: 1\n{PARABOLA}disks: [{one}]\n"),
         &["`disks`", "beam tracks only"],
-    );
-    rejected(
-        "disks-and-moving-masses",
-        &beam_scene(
-            &[],
-            &format!("disks: [{one}]\ntrain: {{axles: [0.0], load: 1.0e3, speed: 10.0, model: moving-mass}}\n"),
-        ),
-        &["`train.model`", "carrying a disk"],
     );
 }
 

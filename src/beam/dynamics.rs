@@ -228,7 +228,7 @@ impl<'a> LoadedBeam<'a> {
 
     /// The inertia the riding axles add to the mass at t, in the model's unknowns: m g gᵀ for
     /// each axle and each direction of the beam frame (on a modal beam the rows are Φᵀ g).
-    fn axle_inertia(&self, t: f64) -> LowRank {
+    pub fn axle_inertia(&self, t: f64) -> LowRank {
         let mut out = LowRank::new();
         for r in self.riding(t).iter() {
             for row in r.rows() {

@@ -487,6 +487,7 @@ impl<'a> DiskOnBeam<'a> {
             contacts
                 .iter()
                 .flat_map(|(d, at)| self.added_mass(d, at))
+                .chain(self.loaded.axle_inertia(t))
                 .collect()
         });
         contacts
@@ -508,6 +509,7 @@ impl<'a> DiskOnBeam<'a> {
             let still = vec![0.0; z.len()];
             self.on()
                 .flat_map(|(_, d)| self.added_mass(d, &self.contact_of(d, t, z, &still)))
+                .chain(self.loaded.axle_inertia(t))
                 .collect()
         })
     }
@@ -545,7 +547,7 @@ impl<'a> DiskOnBeam<'a> {
     /// once.
     fn acceleration(&self, t: f64, z: &[f64], zd: &[f64]) -> Option<Vec<f64>> {
         let mut force = Vec::new();
-        let mut added = AddedMass::new();
+        let mut added = self.loaded.axle_inertia(t);
         for (_, d) in self.on() {
             let at = self.observed_contact(d, t, z, zd);
             force.extend(self.force_at(d, &at));

@@ -92,9 +92,13 @@ pub(super) fn beam_scene(
     }
     let start = beam_start(c, b, &beam)?;
     let loads = point_loads(c, raw, length)?;
+    let disks = disks_on_beam(c, raw, &beam, length, gravity)?;
+    let flies = disks
+        .iter()
+        .any(|d| matches!(d.contact_loss, ContactLoss::Fly { .. }));
     let train = match &raw.train {
         None => None,
-        Some(t) => Some(train(c, raw, t, &beam, gravity)?),
+        Some(t) => Some(train(c, t, flies, &beam, gravity)?),
     };
     let vehicles = vehicles(c, raw, &beam, gravity)?;
     let profile = profile(c, raw, &raw.track.value)?;
@@ -102,7 +106,6 @@ pub(super) fn beam_scene(
     let duration = run_length(c, raw, duration, (&beam, length), train.as_ref(), &vehicles)?;
     let (probes, shapes, magnify) = outputs(c, raw, length, duration)?;
     let rho_inf = rho_inf(c, raw)?;
-    let disks = disks_on_beam(c, raw, &beam, length, gravity)?;
     let accuracy = accuracy(c, raw)?;
     let given = MeshAsGiven {
         elements: b.elements.as_ref().map(|_| beam.elements),

@@ -24,15 +24,14 @@ pub(super) fn most_within(x: &[f64], span: f64) -> usize {
 /// The train as the file gives it: an HSLM name, or axles and their load; its speed and model.
 pub(super) fn train(
     c: &Checker,
-    raw: &SceneFile,
     file: &Spanned<TrainFile>,
+    flies: bool,
     beam: &BeamSpec,
     gravity: f64,
 ) -> Result<Train, Error> {
     let t = &file.value;
     let speed = c.positive(&t.speed, "train.speed")?;
-    let with_disk = raw.disk.is_some() || raw.disks.is_some();
-    let model = train_model(c, t, gravity, with_disk)?;
+    let model = train_model(c, t, gravity, flies)?;
     let (name, axles, loads) =
         match (&t.hslm, &t.axles, &t.load) {
             (Some(h), None, None) => {
@@ -104,14 +103,8 @@ pub(super) fn train(
 
 /// How a train's axles act: moving forces (the default) or moving masses, whose masses are
 /// their loads over a positive gravity.
-/// How the axles act. Beside a disk they are moving forces: the coupled equations hold the
-/// disks' inertia, not the moving masses'.
-fn train_model(
-    c: &Checker,
-    t: &TrainFile,
-    gravity: f64,
-    with_disk: bool,
-) -> Result<TrainModel, Error> {
+/// How the axles act; `flies`: beside a disk that may fly, where moving masses are refused.
+fn train_model(c: &Checker, t: &TrainFile, gravity: f64, flies: bool) -> Result<TrainModel, Error> {
     Ok(match &t.model {
         None => TrainModel::MovingForce,
         Some(m) if m.value == "moving-force" => TrainModel::MovingForce,
@@ -123,11 +116,11 @@ fn train_model(
                     format!("is moving-mass, whose axle masses are their loads over gravity, and gravity is {gravity}: give a positive `gravity`, or use moving-force"),
                 );
             }
-            if with_disk {
+            if flies {
                 return c.err(
                     m.referenced.line(),
                     "train.model",
-                    "is moving-mass, which a beam carrying a disk does not model: its axles ride beside the disk as moving forces (`model: moving-force`)",
+                    "is moving-mass beside a disk that flies off the beam (`contact_loss: fly`), whose landing impulse does not take in the axles' inertia: write `contact_loss: stop` or `model: moving-force`",
                 );
             }
             TrainModel::MovingMass
