@@ -71,6 +71,7 @@ impl<'a> OnTheBeam<'a, '_> {
         let rec = &mut *self.rec;
         rec.phase.free();
         rec.phase.flying = Some(disk.clone());
+        rec.train_goes_on(launch.t, &[&launch.q[..], &launch.v[..]].concat());
         self.flights.push(FlightRecord {
             lift_off_t: launch.t,
             lift_off_s: launch.s,
@@ -180,6 +181,7 @@ impl<'a> OnTheBeam<'a, '_> {
         self.rec.phase.couple(c);
         let after = c.observe(t, &landing.z, &landing.zd);
         let y: Vec<f64> = landing.z.iter().chain(&landing.zd).copied().collect();
+        self.rec.train_goes_on(t, &y);
         if slips(c, &landing, t, before, [after.vx, after.vy]) {
             return Ok(self.stopped(t, y, Stop::Event(StopReason::Slip), Some(0)));
         }

@@ -843,11 +843,7 @@ fn vibrate_alone(
     stats: &mut Stats,
 ) -> Result<(f64, Vec<f64>), Error> {
     rec.phase.free();
-    if loaded.train.is_some() {
-        // The riders may leave with the train on: its power goes on, on the beam alone.
-        let y: Vec<f64> = q0.iter().chain(v0).copied().collect();
-        rec.ledger.restart(&rec.phase, t0, &y);
-    }
+    rec.train_goes_on(t0, &[q0, v0].concat());
     let exact = ode::Options {
         method: Method::ExactModal,
         ..opts.clone()

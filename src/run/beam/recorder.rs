@@ -86,6 +86,14 @@ pub(super) struct Recorder<'a> {
 }
 
 impl Recorder<'_> {
+    /// The disks' part changed at t, the state y after it (one left, lifted off or landed):
+    /// a train on the beam goes on, its power read again from y rather than carried over.
+    pub(super) fn train_goes_on(&mut self, t: f64, y: &[f64]) {
+        if self.phase.loaded.train.is_some() {
+            self.ledger.restart(&self.phase, t, y);
+        }
+    }
+
     /// A rider leaves the beam at t: the residual vibration is what follows the last load
     /// out, so where a train left before it, what was watched since is not residual.
     pub(super) fn last_load_leaves(&mut self, t: f64) {
