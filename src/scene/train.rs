@@ -102,8 +102,7 @@ pub(super) fn train(
 }
 
 /// How a train's axles act: moving forces (the default) or moving masses, whose masses are
-/// their loads over a positive gravity.
-/// How the axles act; `flies`: beside a disk that may fly, where moving masses are refused.
+/// their loads over a positive gravity, refused beside a disk that may fly (`flies`).
 fn train_model(c: &Checker, t: &TrainFile, gravity: f64, flies: bool) -> Result<TrainModel, Error> {
     Ok(match &t.model {
         None => TrainModel::MovingForce,

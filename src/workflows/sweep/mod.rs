@@ -1,10 +1,10 @@
 //! `rollbeam sweep SCENE.yaml --set KEY=FROM:TO:COUNT [--set KEY=A,B,…]`: one scene over a
 //! grid of its values, the runs spread over every core. A number is swept over an evenly
-//! spaced range or the values listed, a name (`train.hslm`, `disk.coupling`, …) over a list; several `--set` make
-//! the grid of every combination. Each case's values are set at their keys of the scene
-//! ([`SceneSpec::set`], [`SceneSpec::set_name`]) and the scene checked and planned again, so a
-//! value the scene cannot take is refused with the same sentence a scene file would get. One
-//! summary row per case; a run that fails is a row with its reason.
+//! spaced range or the values listed, a name (`train.hslm`, `disk.coupling`, …) over a list;
+//! several `--set` make the grid of every combination. Each case's values are set at their
+//! keys of the scene ([`SceneSpec::set`], [`SceneSpec::set_name`]) and the scene checked and
+//! planned again, so a value the scene cannot take is refused with the same sentence a scene
+//! file would get. One summary row per case; a run that fails is a row with its reason.
 //!
 //! A sweep larger than one machine is planned into case files, run in shards anywhere and
 //! merged (`cluster.rs`); the Python package's `sweep` runs the same cases through the same
@@ -87,7 +87,7 @@ impl Setting {
                 return Err(bad("has an empty value"));
             }
             if names.len() > MAX_CASES {
-                return Err(bad(&format!("lists more than {MAX_CASES} names")));
+                return Err(bad(&format!("lists more than {MAX_CASES} values")));
             }
             let sweep = if holds_number(&key) {
                 Sweep::Numbers(names.iter().map(|n| number(n)).collect::<Result<_, _>>()?)
