@@ -133,7 +133,7 @@ fn tell(name: &str, result: &Run) {
                     );
                 }
             }
-            for w in b.setup.warnings() {
+            for w in b.warnings() {
                 say!("  warning: {w}");
             }
         }

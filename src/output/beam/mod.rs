@@ -428,7 +428,7 @@ pub fn summary_yaml(r: &BeamRun) -> Result<String, Error> {
         vehicles: vehicle_summaries(r),
         envelope: envelope_summary(r),
         acceleration: r.acceleration.clone(),
-        warnings: r.setup.warnings(),
+        warnings: r.warnings(),
     };
     yaml(&summary)
 }
