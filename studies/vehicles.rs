@@ -221,6 +221,68 @@ fn a_stiff_suspension_is_the_moving_mass_and_a_soft_one_the_moving_force() {
     );
 }
 
+/// A vehicle beside a train of moving forces on one beam, the benchmark's bridge reduced to 8
+/// modes. The beam, the suspension and the massless wheel's contact are linear and the axles'
+/// loads prescribed, so the deflection is linear in the axle load P: w(2P) − 2 w(P) + w(0) = 0
+/// at every output time, to 1e-8 of the peak (round-off and rtol 1e-10). That alone would hold
+/// with the train ignored, so on a suspension of 1 N/m (the vehicle the moving force of its
+/// weight, see above) the train's share w(P) − w(0) is also the train's deflection on the bare
+/// bridge, within 1e-4 of the peak (measured 2.8·10⁻⁸). The train runs faster and leaves first:
+/// the runs share their length.
+#[test]
+fn a_vehicle_beside_a_train_is_linear_in_the_train() {
+    let bridge = BRIDGE.replace(
+        "    supports:",
+        "    model: modal\n    modes: 8\n    supports:",
+    );
+    let with = |duration: f64, riders: String| {
+        parse(&format!(
+            "name: both\nduration: {duration}\n{bridge}{riders}output:\n  probes: [{{name: mid, x: 12.5}}]\n"
+        ))
+    };
+    let train = |load: f64| format!("train: {{axles: [0.0, 3.0], load: {load}, speed: 40.0}}\n");
+    let run = |s: &Scene| run_beam(s, Method::Esdirk4, 1e-10, 1e-14);
+    // The largest |Σ c_i w_i| over the output times, and the largest |w| of the first run.
+    let combined = |runs: &[(f64, &BeamRun)]| {
+        let rows = runs[0].1.rows.len();
+        assert!(runs.iter().all(|(_, r)| r.rows.len() == rows));
+        let mut worst = 0.0_f64;
+        for i in 0..rows {
+            let t = runs[0].1.rows[i].t;
+            assert!(runs.iter().all(|(_, r)| (r.rows[i].t - t).abs() < 1e-9));
+            let sum: f64 = runs.iter().map(|(c, r)| c * r.rows[i].probes[0].w).sum();
+            worst = worst.max(sum.abs());
+        }
+        let peak = runs[0]
+            .1
+            .rows
+            .iter()
+            .map(|r| r.probes[0].w.abs())
+            .fold(0.0, f64::max);
+        (worst, peak)
+    };
+    for k in [1595.0e3, 1.0] {
+        let car = sprung(5750.0, k, 0.0, 27.78);
+        let [none, once, twice] =
+            [0.0, 5.0e4, 1.0e5].map(|p| run(&with(0.3, format!("{car}{}", train(p)))));
+        let (worst, peak) = combined(&[(1.0, &twice), (-2.0, &once), (1.0, &none)]);
+        eprintln!(
+            "k = {k} N/m: w(2P) − 2 w(P) + w(0) off by {:.2e} of the peak",
+            worst / peak
+        );
+        assert!(worst <= 1e-8 * peak, "k = {k}: {worst:.3e} of {peak:.3e}");
+        if k == 1.0 {
+            let bare = run(&with(once.header.t_end - 28.0 / 40.0, train(5.0e4)));
+            let (worst, peak) = combined(&[(1.0, &once), (-1.0, &none), (-1.0, &bare)]);
+            eprintln!(
+                "the train's share against the bare bridge: {:.2e} of the peak",
+                worst / peak
+            );
+            assert!(worst <= 1e-4 * peak, "{worst:.3e} of {peak:.3e}");
+        }
+    }
+}
+
 /// The sprung mass driven over a ramp of height h = 10 mm and length 5 m on the rigid
 /// approach, at 20 m/s: the base moves by h t/T over the ramp's T = 0.25 s, and the body,
 /// undamped at ω, follows x = (h/T)(t − sin ωt / ω) on it and
