@@ -449,6 +449,16 @@ fn item_5_no_infinities_written() {
         1,
         &["`disk.radius`", "moment of inertia"],
     );
+    // A train of 10¹⁵ N axles beside a vehicle throws its wheel off within the first step:
+    // the body's root mean square over no time at all was 0/0, and the run failed on it.
+    let thrown = scene(
+        "thrown",
+        &beam(
+            "",
+            "vehicles:\n  - {name: car, speed: 27.78, bodies: [{name: body, mass: 5750.0}], axles: [{name: wheel, x: 0.0}], springs: [{upper: body, lower: wheel, x: 0.0, k: 1595.0e3}]}\ntrain: {axles: [0.0, 3.0], load: 1.0e15, speed: 20.0}\n",
+        ),
+    );
+    runs_finite(&["run", &thrown, "--out", &out("thrown")], &out("thrown"));
 }
 
 /// 6. The reader's errors are rollbeam's sentences with the key and the line.

@@ -606,8 +606,9 @@ pub(super) struct Recorded {
     pub(super) y_end: Vec<f64>,
     pub(super) acceleration: Option<CutoffReport>,
     pub(super) energy: crate::run::EnergyCheck,
-    /// Per body of every vehicle, the root mean square of its acceleration since it arrived.
-    pub(super) vehicle_rms: Vec<f64>,
+    /// Per body of every vehicle, the root mean square of its acceleration since it arrived;
+    /// `None` where no step was booked (a run stopped within its first).
+    pub(super) vehicle_rms: Vec<Option<f64>>,
 }
 
 impl Recorded {
@@ -630,13 +631,7 @@ impl Recorded {
             vehicle_rms: rec
                 .squares
                 .iter()
-                .map(|&(sq, time)| {
-                    if time > 0.0 {
-                        (sq / time).sqrt()
-                    } else {
-                        f64::NAN
-                    }
-                })
+                .map(|&(sq, time)| (time > 0.0).then(|| (sq / time).sqrt()))
                 .collect(),
         }
     }

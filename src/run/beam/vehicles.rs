@@ -154,7 +154,7 @@ pub(super) fn drive<'a>(
 pub(super) fn vehicle_reports(
     setup: &BeamScene,
     ranges: &[Range],
-    rms: &[f64],
+    rms: &[Option<f64>],
     lost: Option<(usize, String)>,
     wheel_flights: &[WheelFlight],
     t_end: f64,
@@ -191,11 +191,14 @@ pub(super) fn vehicle_reports(
                     .iter()
                     .map(|body| {
                         let range = r.next().copied().unwrap_or(Range::EMPTY);
-                        (
-                            body.name.clone(),
-                            range,
-                            b.next().copied().unwrap_or(f64::NAN),
-                        )
+                        // Over a vanishing time the root mean square tends to the magnitude
+                        // at that instant, the largest the run saw.
+                        let rms = b
+                            .next()
+                            .copied()
+                            .flatten()
+                            .unwrap_or_else(|| range.largest_magnitude().0);
+                        (body.name.clone(), range, rms)
                     })
                     .collect(),
                 axles: v
