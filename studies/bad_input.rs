@@ -689,9 +689,9 @@ fn bad_trains() {
         "moving-masses-beside-a-disk",
         &beam_scene(
             &[],
-            "disk:\n  mass: 1500\n  radius: 0.4\n  s0: 1\ntrain:\n  hslm: A1\n  speed: 50\n  model: moving-mass\n",
+            "disk:\n  mass: 1500\n  radius: 0.4\n  s0: 1\n  restitution: 0.5\ntrain:\n  hslm: A1\n  speed: 50\n  model: moving-mass\n",
         ),
-        &["`train.model`", "flies off the beam", "contact_loss: stop"],
+        &["`train.model`", "bounces off the beam", "restitution: 0"],
     );
     rejected(
         "hslm-and-axles",

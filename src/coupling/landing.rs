@@ -39,8 +39,11 @@ pub struct Landing {
     /// The coupled state (z, ż) just after it, in the model's unknowns.
     pub z: Vec<f64>,
     pub zd: Vec<f64>,
-    /// Kinetic energy it took (J).
+    /// Kinetic energy it took (J), the moving masses' share of the beam's included.
     pub energy_lost: f64,
+    /// What the train's moving masses, riding with the beam, did on it as the impulse changed
+    /// the beam's velocity under them: minus the change of ½ m (g·v)² (J).
+    pub axle_work: f64,
 }
 
 /// Newton iterations for the nearest point; each step is limited to a radius along the beam.
@@ -114,22 +117,39 @@ impl DiskOnBeam<'_> {
         let added = self.added_mass(&self.disks[0], &self.contact(0, t, &z, &still));
         let local = self.beam().to_local(velocity);
         let disk = [local[0], local[1], omega];
+        // The train's moving masses ride with the beam: their inertia m g gᵀ joins the
+        // beam's on both sides of the impulse (their prescribed motion along the track is the
+        // same just before and after it, and drops out).
+        let axles = self.loaded.axle_inertia(t);
+        let axle_kinetic = |v: &[f64]| -> f64 {
+            axles
+                .iter()
+                .map(|(m, row)| 0.5 * m * row.iter().map(|&(i, g)| g * v[i]).sum::<f64>().powi(2))
+                .sum()
+        };
         let mut momenta = vec![0.0; n + 1];
         linalg::mul(self.loaded.model_mass(), v, &mut momenta[..n]);
-        let beam_kinetic = 0.5 * v.iter().zip(&momenta).map(|(a, b)| a * b).sum::<f64>();
+        let beam_kinetic =
+            0.5 * v.iter().zip(&momenta).map(|(a, b)| a * b).sum::<f64>() + axle_kinetic(v);
+        for (m, row) in &axles {
+            let along = row.iter().map(|&(i, g)| g * v[i]).sum::<f64>();
+            row.iter().for_each(|&(i, g)| momenta[i] += m * along * g);
+        }
         for ((w, row), u) in added.iter().zip(disk) {
             for &(i, g) in row {
                 momenta[i] += w * u * g;
             }
         }
         let mut zd = momenta.clone();
-        SparseLu::factor(&self.mass_matrix(&added), None)?.solve_in_place(&mut zd);
+        let coupled: Vec<_> = added.iter().chain(&axles).cloned().collect();
+        SparseLu::factor(&self.mass_matrix(&coupled), None)?.solve_in_place(&mut zd);
         let (m, c) = (self.spec().disk.mass, self.spec().disk.inertia());
         let before = beam_kinetic
             + 0.5 * m * (velocity[0] * velocity[0] + velocity[1] * velocity[1])
             + 0.5 * c * omega * omega;
         let after = 0.5 * zd.iter().zip(&momenta).map(|(a, b)| a * b).sum::<f64>();
         zd.iter().all(|x| x.is_finite()).then_some(Landing {
+            axle_work: axle_kinetic(v) - axle_kinetic(&zd[..n]),
             z,
             zd,
             energy_lost: before - after,

@@ -93,12 +93,12 @@ pub(super) fn beam_scene(
     let start = beam_start(c, b, &beam)?;
     let loads = point_loads(c, raw, length)?;
     let disks = disks_on_beam(c, raw, &beam, length, gravity)?;
-    let flies = disks
+    let bounces = disks
         .iter()
-        .any(|d| matches!(d.contact_loss, ContactLoss::Fly { .. }));
+        .any(|d| matches!(d.contact_loss, ContactLoss::Fly { restitution } if restitution > 0.0));
     let train = match &raw.train {
         None => None,
-        Some(t) => Some(train(c, t, flies, &beam, gravity)?),
+        Some(t) => Some(train(c, t, bounces, &beam, gravity)?),
     };
     let vehicles = vehicles(c, raw, &beam, gravity)?;
     let profile = profile(c, raw, &raw.track.value)?;

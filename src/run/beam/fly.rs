@@ -177,7 +177,9 @@ impl<'a> OnTheBeam<'a, '_> {
             return Ok(self.bounce_off((t, s), q, &landing, before, b));
         }
         record.energy_lost = Some(landing.energy_lost);
-        self.rec.ledger.disk_lands(landing.energy_lost);
+        self.rec
+            .ledger
+            .disk_lands(landing.energy_lost, landing.axle_work);
         self.rec.phase.couple(c);
         let after = c.observe(t, &landing.z, &landing.zd);
         let y: Vec<f64> = landing.z.iter().chain(&landing.zd).copied().collect();
@@ -211,7 +213,9 @@ impl<'a> OnTheBeam<'a, '_> {
         let c = self.c;
         let after = c.observe(t, &landing.z, &landing.zd);
         if slips(c, landing, t, before, b.velocity) {
-            self.rec.ledger.disk_lands(landing.energy_lost);
+            self.rec
+                .ledger
+                .disk_lands(landing.energy_lost, landing.axle_work);
             self.rec.phase.couple(c);
             let y = landing.z.iter().chain(&landing.zd).copied().collect();
             return self.stopped(t, y, Stop::Event(StopReason::Slip), Some(0));

@@ -471,10 +471,12 @@ impl<'a> Ledger<'a> {
     }
 
     /// The disk lands on the beam at t and rides on it again, the landing having taken
-    /// `lost` of the kinetic energy: its energy is the system's again, observed live.
-    pub fn disk_lands(&mut self, lost: f64) {
+    /// `lost` of the kinetic energy, and the train's moving masses having done `work` on the
+    /// beam through the impulse: its energy is the system's again, observed live.
+    pub fn disk_lands(&mut self, lost: f64, work: f64) {
         self.left_with = (0.0, 0.0);
         self.impact += lost;
+        self.moving.2 += work;
     }
 
     /// A vehicle's wheel lands at t: the impact took `lost`, and the drive, holding the
