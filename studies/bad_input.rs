@@ -686,14 +686,6 @@ fn bad_trains() {
         &["train.speed", "infinite"],
     );
     rejected(
-        "moving-masses-beside-a-disk",
-        &beam_scene(
-            &[],
-            "disk:\n  mass: 1500\n  radius: 0.4\n  s0: 1\n  restitution: 0.5\ntrain:\n  hslm: A1\n  speed: 50\n  model: moving-mass\n",
-        ),
-        &["`train.model`", "bounces off the beam", "restitution: 0"],
-    );
-    rejected(
         "hslm-and-axles",
         &train("  hslm: A1\n  axles: [0, 3]\n  load: 1.0e5\n  speed: 50\n"),
         &["train.hslm", "leave `axles` and `load` out"],

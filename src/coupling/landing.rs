@@ -21,7 +21,7 @@
 
 use super::contact::AxisPoint;
 use super::{Coupling, DiskOnBeam};
-use crate::linalg::{self, SparseLu};
+use crate::linalg::{self, Assembly, LowRank, SparseLu};
 
 /// A flying disk against the beam.
 #[derive(Clone, Copy, Debug)]
@@ -121,12 +121,7 @@ impl DiskOnBeam<'_> {
         // beam's on both sides of the impulse (their prescribed motion along the track is the
         // same just before and after it, and drops out).
         let axles = self.loaded.axle_inertia(t);
-        let axle_kinetic = |v: &[f64]| -> f64 {
-            axles
-                .iter()
-                .map(|(m, row)| 0.5 * m * row.iter().map(|&(i, g)| g * v[i]).sum::<f64>().powi(2))
-                .sum()
-        };
+        let axle_kinetic = |v: &[f64]| axle_kinetic(&axles, v);
         let mut momenta = vec![0.0; n + 1];
         linalg::mul(self.loaded.model_mass(), v, &mut momenta[..n]);
         let beam_kinetic =
@@ -157,6 +152,15 @@ impl DiskOnBeam<'_> {
     }
 }
 
+/// ½ m (g·v)² summed over the moving masses' rows (`axle_inertia`): their kinetic energy as
+/// the beam's velocities v move them, what an impulse on the beam changes of it.
+fn axle_kinetic(axles: &LowRank, v: &[f64]) -> f64 {
+    axles
+        .iter()
+        .map(|(m, row)| 0.5 * m * row.iter().map(|&(i, g)| g * v[i]).sum::<f64>().powi(2))
+        .sum()
+}
+
 /// What a bounce leaves: the disk free again, the beam moving on.
 pub struct Bounce {
     /// The disk's centre velocity (global) and spin.
@@ -168,6 +172,9 @@ pub struct Bounce {
     pub leaving: f64,
     /// Kinetic energy the whole impact took, the plastic part included (J).
     pub energy_lost: f64,
+    /// What the train's moving masses did on the beam through both impulses (see
+    /// [`Landing::axle_work`]).
+    pub axle_work: f64,
 }
 
 impl DiskOnBeam<'_> {
@@ -221,7 +228,8 @@ impl DiskOnBeam<'_> {
     /// track velocity under the impulse spread over the patch), such that the disk leaves
     /// with −e times the normal relative speed it came with and the contact still sticks
     /// tangentially. J is internal to disk and beam, so the momenta stay as the plastic
-    /// landing left them. `mass` is the beam's mass matrix (the model's unknowns), factorised.
+    /// landing left them. `mass` is the beam's mass matrix (the model's unknowns), factorised;
+    /// the train's moving masses, riding with the beam, join it at t.
     #[allow(clippy::too_many_arguments)]
     pub fn bounce(
         &self,
@@ -251,6 +259,16 @@ impl DiskOnBeam<'_> {
         let still = vec![0.0; mesh.len()];
         let at = AxisPoint::at(beam, &mesh, &still, s, 0.0, self.spec().patch);
         let (tg, nm) = (at.tangent(), at.normal());
+        let axles = self.loaded.axle_inertia(t);
+        let with_axles = if axles.is_empty() {
+            None
+        } else {
+            let mut a = Assembly::new(n);
+            a.add_sparse(self.loaded.model_mass(), 1.0, 0, 0);
+            linalg::low_rank_entries(&axles).for_each(|(i, j, v)| a.add(i, j, v));
+            Some(SparseLu::factor(&a.build(), None)?)
+        };
+        let mass = with_axles.as_ref().unwrap_or(mass);
         // W, column by column: the relative velocity a unit impulse along t, then n, makes.
         let mut w = [[0.0; 2]; 2];
         for (k, dir) in [tg, nm].into_iter().enumerate() {
@@ -277,12 +295,14 @@ impl DiskOnBeam<'_> {
             let mut mv = vec![0.0; n];
             linalg::mul(self.loaded.model_mass(), v, &mut mv);
             0.5 * v.iter().zip(&mv).map(|(a, b)| a * b).sum::<f64>()
+                + axle_kinetic(&axles, v)
                 + 0.5 * m * (d[0] * d[0] + d[1] * d[1])
                 + 0.5 * c * w * w
         };
         let before = kinetic(v, beam.to_local(velocity), omega);
         let after = kinetic(&beam_after, disk_after, omega_after);
         let leaving = self.relative(q, &beam_after, s, disk_after, omega_after)[1];
+        let axle_work = axle_kinetic(&axles, v) - axle_kinetic(&axles, &beam_after);
         [disk_after[0], disk_after[1], omega_after, leaving]
             .iter()
             .chain(&beam_after)
@@ -293,6 +313,7 @@ impl DiskOnBeam<'_> {
                 beam: beam_after,
                 leaving,
                 energy_lost: before - after,
+                axle_work,
             })
     }
 }

@@ -93,12 +93,9 @@ pub(super) fn beam_scene(
     let start = beam_start(c, b, &beam)?;
     let loads = point_loads(c, raw, length)?;
     let disks = disks_on_beam(c, raw, &beam, length, gravity)?;
-    let bounces = disks
-        .iter()
-        .any(|d| matches!(d.contact_loss, ContactLoss::Fly { restitution } if restitution > 0.0));
     let train = match &raw.train {
         None => None,
-        Some(t) => Some(train(c, t, bounces, &beam, gravity)?),
+        Some(t) => Some(train(c, t, &beam, gravity)?),
     };
     let vehicles = vehicles(c, raw, &beam, gravity)?;
     let profile = profile(c, raw, &raw.track.value)?;

@@ -25,13 +25,12 @@ pub(super) fn most_within(x: &[f64], span: f64) -> usize {
 pub(super) fn train(
     c: &Checker,
     file: &Spanned<TrainFile>,
-    bounces: bool,
     beam: &BeamSpec,
     gravity: f64,
 ) -> Result<Train, Error> {
     let t = &file.value;
     let speed = c.positive(&t.speed, "train.speed")?;
-    let model = train_model(c, t, gravity, bounces)?;
+    let model = train_model(c, t, gravity)?;
     let (name, axles, loads) =
         match (&t.hslm, &t.axles, &t.load) {
             (Some(h), None, None) => {
@@ -102,13 +101,8 @@ pub(super) fn train(
 }
 
 /// How a train's axles act: moving forces (the default) or moving masses, whose masses are
-/// their loads over a positive gravity, refused beside a disk that may bounce (`bounces`).
-fn train_model(
-    c: &Checker,
-    t: &TrainFile,
-    gravity: f64,
-    bounces: bool,
-) -> Result<TrainModel, Error> {
+/// their loads over a positive gravity.
+fn train_model(c: &Checker, t: &TrainFile, gravity: f64) -> Result<TrainModel, Error> {
     Ok(match &t.model {
         None => TrainModel::MovingForce,
         Some(m) if m.value == "moving-force" => TrainModel::MovingForce,
@@ -118,13 +112,6 @@ fn train_model(
                     m.referenced.line(),
                     "train.model",
                     format!("is moving-mass, whose axle masses are their loads over gravity, and gravity is {gravity}: give a positive `gravity`, or use moving-force"),
-                );
-            }
-            if bounces {
-                return c.err(
-                    m.referenced.line(),
-                    "train.model",
-                    "is moving-mass beside a disk that bounces off the beam (`restitution` above 0), whose rebound impulse does not take in the axles' inertia: write `restitution: 0` or `model: moving-force`",
                 );
             }
             TrainModel::MovingMass

@@ -225,7 +225,7 @@ impl<'a> OnTheBeam<'a, '_> {
             + 0.5 * c.spec().disk.inertia() * b.omega * b.omega;
         self.rec
             .ledger
-            .disk_bounces(b.energy_lost, (kinetic, after.potential));
+            .disk_bounces(b.energy_lost, b.axle_work, (kinetic, after.potential));
         Next::Flies(Launch {
             t,
             q,

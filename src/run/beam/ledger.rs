@@ -494,11 +494,12 @@ impl<'a> Ledger<'a> {
         self.end_power = None;
     }
 
-    /// The disk bounces off the beam at t: the impact took `lost` of the kinetic energy, and
-    /// the disk flies off again with `disk` (kinetic, potential), which the budget holds
-    /// constant while it flies.
-    pub fn disk_bounces(&mut self, lost: f64, disk: (f64, f64)) {
+    /// The disk bounces off the beam at t: the impact took `lost` of the kinetic energy, the
+    /// train's moving masses did `work` on the beam through it, and the disk flies off again
+    /// with `disk` (kinetic, potential), which the budget holds constant while it flies.
+    pub fn disk_bounces(&mut self, lost: f64, work: f64, disk: (f64, f64)) {
         self.left_with = disk;
         self.impact += lost;
+        self.moving.2 += work;
     }
 }
