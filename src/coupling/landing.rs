@@ -17,7 +17,9 @@
 //! consistent coupling's own (its added mass m g_Xᵀ g_X + m g_Yᵀ g_Y + C g_θᵀ g_θ), so
 //! Jᵀ M_free u = M v + m u_X g_X + m u_Y g_Y + C Ω g_θ. Any rigid motion of disk and free beam
 //! together is a coupled motion, so linear and angular momentum are conserved across the
-//! landing; the kinetic energy lost is ½uᵀM_free u − ½ż'ᵀM_c ż'.
+//! landing; the kinetic energy lost is ½uᵀM_free u − ½ż'ᵀM_c ż'. A train's moving masses ride
+//! with the beam: their inertia m g gᵀ is the beam's on both sides of the impulse, and the work
+//! they do on it through the impulse is minus the change of their ½ m (g·v)².
 
 use super::contact::AxisPoint;
 use super::{Coupling, DiskOnBeam};
@@ -121,14 +123,14 @@ impl DiskOnBeam<'_> {
         // beam's on both sides of the impulse (their prescribed motion along the track is the
         // same just before and after it, and drops out).
         let axles = self.loaded.axle_inertia(t);
-        let axle_kinetic = |v: &[f64]| axle_kinetic(&axles, v);
+        let masses = |v: &[f64]| axle_kinetic(&axles, v);
         let mut momenta = vec![0.0; n + 1];
         linalg::mul(self.loaded.model_mass(), v, &mut momenta[..n]);
         let beam_kinetic =
-            0.5 * v.iter().zip(&momenta).map(|(a, b)| a * b).sum::<f64>() + axle_kinetic(v);
+            0.5 * v.iter().zip(&momenta).map(|(a, b)| a * b).sum::<f64>() + masses(v);
         for (m, row) in &axles {
-            let along = row.iter().map(|&(i, g)| g * v[i]).sum::<f64>();
-            row.iter().for_each(|&(i, g)| momenta[i] += m * along * g);
+            let rate = row.iter().map(|&(i, g)| g * v[i]).sum::<f64>();
+            row.iter().for_each(|&(i, g)| momenta[i] += m * rate * g);
         }
         for ((w, row), u) in added.iter().zip(disk) {
             for &(i, g) in row {
@@ -144,7 +146,7 @@ impl DiskOnBeam<'_> {
             + 0.5 * c * omega * omega;
         let after = 0.5 * zd.iter().zip(&momenta).map(|(a, b)| a * b).sum::<f64>();
         zd.iter().all(|x| x.is_finite()).then_some(Landing {
-            axle_work: axle_kinetic(v) - axle_kinetic(&zd[..n]),
+            axle_work: masses(v) - masses(&zd[..n]),
             z,
             zd,
             energy_lost: before - after,
