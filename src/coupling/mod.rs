@@ -829,6 +829,11 @@ impl<'a> DiskOnBeam<'a> {
             .sum()
     }
 
+    /// A disk whose path is prescribed is on the beam: its power on the beam is the budget's.
+    pub fn carries_prescribed(&self) -> bool {
+        self.on().any(|(_, d)| d.slot.is_none())
+    }
+
     /// Disk k's energy belongs to the system's budget (its path is an unknown).
     pub fn in_system(&self, k: usize) -> bool {
         self.disks[k].slot.is_some()

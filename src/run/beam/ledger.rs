@@ -58,6 +58,8 @@ pub(super) struct Ledger<'a> {
     /// kinetic energy.)
     end_power: Option<StepEnd>,
     pub check: EnergyCheck,
+    /// The integrator's order (`Method::order`): how a step is booked.
+    pub order: u32,
 }
 
 /// The end of a step on its own stretch (`Ledger::end_power`).
@@ -81,9 +83,11 @@ pub(super) struct Piece {
 }
 
 /// What a piece adds to an energy: by the [`LOBATTO`] rule from the power at the rule's
-/// interior points and the piece's end, or known in closed form, with the power at the end.
+/// interior points and the piece's end, by Simpson's rule from the power at its midpoint and
+/// end, or known in closed form, with the power at the end.
 enum Booking {
     Lobatto([f64; 3], f64),
+    Simpson(f64, f64),
     Exact { energy: f64, power: f64 },
 }
 
@@ -148,6 +152,7 @@ impl<'a> Ledger<'a> {
             pending: std::collections::VecDeque::new(),
             end_power: None,
             check,
+            order: 2,
         };
         ledger.at_loads = ledger.at_loads(phase, y0);
         ledger
@@ -356,6 +361,44 @@ impl<'a> Ledger<'a> {
         }
     }
 
+    /// A whole step from the last point read to (t, y), through the state `mid` at its
+    /// midpoint: Simpson's rule errs by h⁵ a step where the trapezoidal rule errs by h³, so that
+    /// the budget's quadrature shrinks faster than the fourth-order integrator's own error
+    /// (with the trapezoidal rule a vehicle's balance shrank as rtol^½, the quadrature's error).
+    pub fn simpson_piece(&self, phase: &Phase, mid: (f64, &[f64]), t: f64, y: &[f64]) -> Piece {
+        Piece {
+            end: t,
+            moving: Booking::Simpson(
+                Self::moving_power(phase, mid.0, mid.1),
+                Self::moving_power(phase, t, y),
+            ),
+            damping: Booking::Simpson(
+                Self::damping_power(phase, mid.0, mid.1),
+                Self::damping_power(phase, t, y),
+            ),
+            at_loads: self.at_loads(phase, y),
+        }
+    }
+
+    /// Whether a step is booked by Simpson's rule ([`Self::simpson_piece`]): where the
+    /// integrator's order is above two, and something works on the model or takes its energy
+    /// at a rate the budget integrates (moving loads, a train, vehicles, damping). A
+    /// second-order method's own error is of the trapezoidal rule's order, and
+    /// generalized-α's discrete energy balance is the trapezoidal rule's: D44's damped moving
+    /// force on the exact beam, by Simpson's rule, read a drift of 2.9e-4 where the
+    /// trapezoidal rule reads 8.0e-6.
+    pub fn books_by_simpson(&self, phase: &Phase) -> bool {
+        self.order > 2 && self.has_powers(phase)
+    }
+
+    /// Something works on the model or takes its energy at a rate the budget integrates.
+    fn has_powers(&self, phase: &Phase) -> bool {
+        phase.vehicles.is_some()
+            || phase.loaded.train.is_some()
+            || phase.loaded.damping().is_some()
+            || phase.coupled.is_some_and(|c| c.carries_prescribed())
+    }
+
     /// Whether the integrator's own force is the moving loads' alone, so that its work in
     /// closed form ([`PowerIntegrals`]) is theirs: the beam alone under a train of moving
     /// forces, no point load and no weight (whose work the ledger books from displacements).
@@ -401,6 +444,11 @@ impl<'a> Ledger<'a> {
                         done + (piece.end - t0) * (ends * (p0 + p1) + sum),
                     )
                 }
+                Booking::Simpson(mid, p1) => (
+                    piece.end,
+                    p1,
+                    done + (piece.end - t0) * (p0 + 4.0 * mid + p1) / 6.0,
+                ),
                 Booking::Exact { energy, power } => (piece.end, power, done + energy),
             };
             self.moving = book(self.moving, piece.moving);

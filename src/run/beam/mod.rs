@@ -339,6 +339,7 @@ fn integrate<E: Copy + std::fmt::Debug>(
     rec: &mut Recorder,
 ) -> Result<ode::Outcome<E>, ode::SolveError> {
     let y0: Vec<f64> = q0.iter().chain(v0).copied().collect();
+    rec.ledger.order = opts.method.order();
     ode::solve(&FirstOrder::new(p), t0, &y0, t_end, outputs, opts, rec)
 }
 

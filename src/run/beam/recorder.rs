@@ -234,7 +234,7 @@ impl Recorder<'_> {
         slots
     }
 
-    /// How a step's work and damping are booked: `None`, by the trapezoidal rule over the
+    /// How a step's work and damping are booked: `None`, over the whole
     /// step, where it spans two samples or less (a sample: `spacing`, and an eighth of the
     /// time a fast axle or wheel takes to pass the beam's shortest wave, over which its power
     /// on the modes changes); otherwise the longest piece the Gauss–Lobatto rule ([`LOBATTO`])
@@ -446,6 +446,12 @@ impl Observer for Recorder<'_> {
                 a = b;
             }
             self.ledger.book_in_pieces(pieces);
+        } else if self.ledger.books_by_simpson(&self.phase) {
+            let tm = 0.5 * (t0 + t1);
+            let piece =
+                self.ledger
+                    .simpson_piece(&self.phase, (tm, &dense.at(tm)), t1, &dense.at(t1));
+            self.ledger.book_in_pieces(vec![piece]);
         }
         self.watch(t0, t1, dense, sample);
         if let Some(means) = &mut self.contact_means {
