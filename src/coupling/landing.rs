@@ -24,6 +24,7 @@
 use super::contact::AxisPoint;
 use super::{Coupling, DiskOnBeam};
 use crate::linalg::{self, Assembly, LowRank, SparseLu};
+use crate::ode::second_order::Structure;
 
 /// A flying disk against the beam.
 #[derive(Clone, Copy, Debug)]
@@ -52,17 +53,18 @@ pub struct Landing {
 const NEAREST_ITERATIONS: usize = 50;
 
 impl DiskOnBeam<'_> {
-    /// The gap of a flying disk's centre (global) over the beam displaced `q` (the model's
-    /// unknowns), its nearest point searched from `s`.
-    pub fn gap(&self, q: &[f64], centre: [f64; 2], s: f64) -> BeamGap {
+    /// The gap of disk k's flying centre (global) over the beam displaced `q` (the beam's
+    /// unknowns of the model), its nearest point searched from `s`.
+    pub fn gap(&self, k: usize, q: &[f64], centre: [f64; 2], s: f64) -> BeamGap {
         let beam = self.beam();
-        let a = self.spec().disk.radius;
+        let spec = self.spec_of(k);
+        let a = spec.disk.radius;
         let origin = beam.spec.from;
         let c = beam.to_local([centre[0] - origin[0], centre[1] - origin[1]]);
         let q = self.loaded.to_mesh(q);
         let still = vec![0.0; q.len()];
         let length = beam.length;
-        let at = |s: f64| AxisPoint::at(beam, &q, &still, s, 0.0, self.spec().patch);
+        let at = |s: f64| AxisPoint::at(beam, &q, &still, s, 0.0, spec.patch);
         let mut s = s.clamp(0.0, length);
         for _ in 0..NEAREST_ITERATIONS {
             let p = at(s);
@@ -97,26 +99,28 @@ impl DiskOnBeam<'_> {
         }
     }
 
-    /// The plastic landing at t of the disk flying at `velocity` (global) with spin `omega`
-    /// on the beam at displacements `q` and velocities `v` (the model's unknowns), touching
-    /// at material point `s`. `None` for a coupling other than the consistent one, whose rows
-    /// are not the disk's velocities, or where the coupled mass cannot be factorised.
+    /// The plastic landing at t of disk k flying at `velocity` (global) with spin `omega`
+    /// on what rides on without it, in the state `rest` = (z, ż): the beam's unknowns alone,
+    /// or with the contact coordinates of the disks rolling on it; touching at material point
+    /// `s`. `None` for a coupling other than the consistent one, whose rows are not the disk's
+    /// velocities, or where the coupled mass cannot be factorised. Disk k must be on the beam
+    /// again (not left), the others as they ride.
     pub fn land(
         &self,
+        k: usize,
         t: f64,
-        q: &[f64],
-        v: &[f64],
+        rest: (&[f64], &[f64]),
         s: f64,
         velocity: [f64; 2],
         omega: f64,
     ) -> Option<Landing> {
-        if self.spec().coupling != Coupling::Consistent {
-            return None;
-        }
+        let d = &self.disks[k];
+        let slot = d.slot.filter(|_| d.spec.coupling == Coupling::Consistent)?;
         let n = self.n;
-        let z: Vec<f64> = q.iter().copied().chain([s]).collect();
-        let still: Vec<f64> = v.iter().copied().chain([0.0]).collect();
-        let added = self.added_mass(&self.disks[0], &self.contact(0, t, &z, &still));
+        let (z, still) = self.with_contact_at(rest, slot, s);
+        let v = &still[..n];
+        let added = self.added_mass(d, &self.contact(k, t, &z, &still));
+        let others = self.others_inertia(k, t, &z);
         let local = self.beam().to_local(velocity);
         let disk = [local[0], local[1], omega];
         // The train's moving masses ride with the beam: their inertia m g gᵀ joins the
@@ -124,12 +128,13 @@ impl DiskOnBeam<'_> {
         // same just before and after it, and drops out).
         let axles = self.loaded.axle_inertia(t);
         let masses = |v: &[f64]| axle_kinetic(&axles, v);
-        let mut momenta = vec![0.0; n + 1];
+        let mut momenta = vec![0.0; z.len()];
         linalg::mul(self.loaded.model_mass(), v, &mut momenta[..n]);
-        let beam_kinetic =
-            0.5 * v.iter().zip(&momenta).map(|(a, b)| a * b).sum::<f64>() + masses(v);
-        for (m, row) in &axles {
-            let rate = row.iter().map(|&(i, g)| g * v[i]).sum::<f64>();
+        let beam_kinetic = 0.5 * v.iter().zip(&momenta).map(|(a, b)| a * b).sum::<f64>()
+            + masses(v)
+            + quadratic(&others, &still);
+        for (m, row) in axles.iter().chain(&others) {
+            let rate = row.iter().map(|&(i, g)| g * still[i]).sum::<f64>();
             row.iter().for_each(|&(i, g)| momenta[i] += m * rate * g);
         }
         for ((w, row), u) in added.iter().zip(disk) {
@@ -138,9 +143,9 @@ impl DiskOnBeam<'_> {
             }
         }
         let mut zd = momenta.clone();
-        let coupled: Vec<_> = added.iter().chain(&axles).cloned().collect();
+        let coupled: Vec<_> = added.iter().chain(&axles).chain(&others).cloned().collect();
         SparseLu::factor(&self.mass_matrix(&coupled), None)?.solve_in_place(&mut zd);
-        let (m, c) = (self.spec().disk.mass, self.spec().disk.inertia());
+        let (m, c) = (d.spec.disk.mass, d.spec.disk.inertia());
         let before = beam_kinetic
             + 0.5 * m * (velocity[0] * velocity[0] + velocity[1] * velocity[1])
             + 0.5 * c * omega * omega;
@@ -157,10 +162,42 @@ impl DiskOnBeam<'_> {
 /// ½ m (g·v)² summed over the moving masses' rows (`axle_inertia`): their kinetic energy as
 /// the beam's velocities v move them, what an impulse on the beam changes of it.
 fn axle_kinetic(axles: &LowRank, v: &[f64]) -> f64 {
-    axles
+    quadratic(axles, v)
+}
+
+/// ½ żᵀ A ż of a low-rank inertia A = Σ w g gᵀ: the kinetic energy of what it holds.
+fn quadratic(inertia: &LowRank, zd: &[f64]) -> f64 {
+    inertia
         .iter()
-        .map(|(m, row)| 0.5 * m * row.iter().map(|&(i, g)| g * v[i]).sum::<f64>().powi(2))
+        .map(|(m, row)| 0.5 * m * row.iter().map(|&(i, g)| g * zd[i]).sum::<f64>().powi(2))
         .sum()
+}
+
+impl DiskOnBeam<'_> {
+    /// The model's (z, ż) from what rides on without disk k, `rest`, with k's contact
+    /// coordinate (at `slot`) at s and at rest: where the beam alone rode on (`rest` holds the
+    /// beam's unknowns only), the disks that left rest at 0.
+    fn with_contact_at(&self, rest: (&[f64], &[f64]), slot: usize, s: f64) -> (Vec<f64>, Vec<f64>) {
+        let mut z = vec![0.0; self.dim()];
+        let mut zd = vec![0.0; self.dim()];
+        z[..rest.0.len()].copy_from_slice(rest.0);
+        zd[..rest.1.len()].copy_from_slice(rest.1);
+        z[slot] = s;
+        zd[slot] = 0.0;
+        (z, zd)
+    }
+
+    /// The inertia of the disks rolling beside disk k at (t, z): they ride through its impulse
+    /// with the beam, as the train's moving masses do. Only the consistent coupling and the
+    /// moving force ride beside a flight (`DiskOnBeam::rides_beside_a_flight`): the first's
+    /// added mass is its kinetic energy, the second has none.
+    fn others_inertia(&self, k: usize, t: f64, z: &[f64]) -> LowRank {
+        let still = vec![0.0; z.len()];
+        self.on()
+            .filter(|&(j, _)| j != k)
+            .flat_map(|(_, d)| self.added_mass(d, &self.contact_of(d, t, z, &still)))
+            .collect()
+    }
 }
 
 /// What a bounce leaves: the disk free again, the beam moving on.
@@ -180,20 +217,21 @@ pub struct Bounce {
 }
 
 impl DiskOnBeam<'_> {
-    /// The contact point's velocity relative to the beam's averaged track at s, in the
+    /// Disk k's contact point's velocity relative to the beam's averaged track at s, in the
     /// track's (tangent, normal) components, local axes: the disk's centre `velocity` (local)
-    /// and spin against the beam's velocities `v` (the model's unknowns).
+    /// and spin against the beam's velocities `v` (the beam's unknowns of the model).
     pub fn relative(
         &self,
-        q: &[f64],
-        v: &[f64],
+        k: usize,
+        (q, v): (&[f64], &[f64]),
         s: f64,
         velocity: [f64; 2],
         omega: f64,
     ) -> [f64; 2] {
-        let a = self.spec().disk.radius;
+        let spec = self.spec_of(k);
+        let a = spec.disk.radius;
         let (q, v) = (self.loaded.to_mesh(q), self.loaded.to_mesh(v));
-        let at = AxisPoint::at(self.beam(), &q, &v, s, 0.0, self.spec().patch);
+        let at = AxisPoint::at(self.beam(), &q, &v, s, 0.0, spec.patch);
         let (t, n) = (at.tangent(), at.normal());
         let track = at.material_velocity();
         let rel = [
@@ -203,12 +241,13 @@ impl DiskOnBeam<'_> {
         [rel[0] * t[0] + rel[1] * t[1], rel[0] * n[0] + rel[1] * n[1]]
     }
 
-    /// The beam's velocity change (the model's unknowns) under an impulse `j` (local axes) the
-    /// disk puts on it at s, spread over the contact patch.
-    fn beam_kick(&self, q: &[f64], s: f64, j: [f64; 2], mass: &SparseLu) -> Vec<f64> {
+    /// The velocity change of what rides on under an impulse `j` (local axes) disk k puts on
+    /// the beam at s, spread over its contact patch: `mass` is the inertia of what rides on
+    /// (the beam's, or with the disks rolling on it), factorised.
+    fn kick(&self, k: usize, q: &[f64], s: f64, j: [f64; 2], mass: &Rest) -> Vec<f64> {
         let mesh = self.loaded.to_mesh(q);
         let still = vec![0.0; mesh.len()];
-        let at = AxisPoint::at(self.beam(), &mesh, &still, s, 0.0, self.spec().patch);
+        let at = AxisPoint::at(self.beam(), &mesh, &still, s, 0.0, self.spec_of(k).patch);
         let mut f = vec![0.0; mesh.len()];
         at.spread(j, &mut f);
         let mut dv = match self.loaded.modal {
@@ -219,25 +258,29 @@ impl DiskOnBeam<'_> {
             }
             None => f,
         };
-        mass.solve_in_place(&mut dv);
+        dv.resize(mass.dim, 0.0);
+        mass.lu().solve_in_place(&mut dv);
         dv
     }
 
-    /// A landing with restitution e > 0 (Newton's law at the contact, sticking): after the
-    /// plastic `landing`, a second impulse J between disk and beam at the contact, found from
-    /// the 2 × 2 Delassus matrix W of the contact (the contact point's relative velocity per
-    /// unit impulse: the disk's 1/m + a²/C tangentially and 1/m normally, plus the beam's
-    /// track velocity under the impulse spread over the patch), such that the disk leaves
-    /// with −e times the normal relative speed it came with and the contact still sticks
-    /// tangentially. J is internal to disk and beam, so the momenta stay as the plastic
-    /// landing left them. `mass` is the beam's mass matrix (the model's unknowns), factorised;
-    /// the train's moving masses, riding with the beam, join it at t.
+    /// A landing of disk k with restitution e > 0 (Newton's law at the contact, sticking):
+    /// after the plastic `landing`, a second impulse J between disk and beam at the contact,
+    /// found from the 2 × 2 Delassus matrix W of the contact (the contact point's relative
+    /// velocity per unit impulse: the disk's 1/m + a²/C tangentially and 1/m normally, plus
+    /// the beam's track velocity under the impulse spread over the patch), such that the disk
+    /// leaves with −e times the normal relative speed it came with and the contact still
+    /// sticks tangentially. J is internal to disk and beam, so the momenta stay as the plastic
+    /// landing left them. `rest` is the state the disk flew over (as [`Self::land`] takes
+    /// it); `mass` the beam's mass matrix (the model's unknowns), factorised. What rides with
+    /// the beam takes the impulse with it: the train's moving masses at t, and the disks
+    /// rolling beside k (then the bounce leaves them the velocities `Bounce::beam`, in the
+    /// layout of `rest`).
     #[allow(clippy::too_many_arguments)]
     pub fn bounce(
         &self,
+        k: usize,
         t: f64,
-        q: &[f64],
-        v: &[f64],
+        rest: (&[f64], &[f64]),
         s: f64,
         velocity: [f64; 2],
         omega: f64,
@@ -247,37 +290,35 @@ impl DiskOnBeam<'_> {
     ) -> Option<Bounce> {
         let n = self.n;
         let beam = self.beam();
-        let (m, a, c) = (
-            self.spec().disk.mass,
-            self.spec().disk.radius,
-            self.spec().disk.inertia(),
-        );
-        let came = self.relative(q, v, s, beam.to_local(velocity), omega)[1];
-        let plastic = self.observe(t, &landing.z, &landing.zd);
-        let v_plastic = &landing.zd[..n];
+        let d = &self.disks[k];
+        let (m, a, c) = (d.spec.disk.mass, d.spec.disk.radius, d.spec.disk.inertia());
+        let q = &rest.0[..n];
+        let came = self.relative(k, (q, &rest.1[..n]), s, beam.to_local(velocity), omega)[1];
+        let plastic = self.observe_all(t, &landing.z, &landing.zd)[k]?;
+        let mut v_plastic = landing.zd[..rest.1.len()].to_vec();
+        if let Some(slot) = d.slot.filter(|&i| i < v_plastic.len()) {
+            v_plastic[slot] = 0.0;
+        }
         let disk_plastic = beam.to_local([plastic.vx, plastic.vy]);
-        let rel = self.relative(q, v_plastic, s, disk_plastic, plastic.omega);
+        let rel = self.relative(k, (q, &v_plastic[..n]), s, disk_plastic, plastic.omega);
         let mesh = self.loaded.to_mesh(q);
         let still = vec![0.0; mesh.len()];
-        let at = AxisPoint::at(beam, &mesh, &still, s, 0.0, self.spec().patch);
+        let at = AxisPoint::at(beam, &mesh, &still, s, 0.0, d.spec.patch);
         let (tg, nm) = (at.tangent(), at.normal());
         let axles = self.loaded.axle_inertia(t);
-        let with_axles = if axles.is_empty() {
-            None
+        let others = if rest.0.len() > n {
+            self.others_inertia(k, t, &landing.z)
         } else {
-            let mut a = Assembly::new(n);
-            a.add_sparse(self.loaded.model_mass(), 1.0, 0, 0);
-            linalg::low_rank_entries(&axles).for_each(|(i, j, v)| a.add(i, j, v));
-            Some(SparseLu::factor(&a.build(), None)?)
+            Vec::new()
         };
-        let mass = with_axles.as_ref().unwrap_or(mass);
+        let riding = self.riding_mass(k, rest.0.len(), &axles, &others, mass)?;
         // W, column by column: the relative velocity a unit impulse along t, then n, makes.
         let mut w = [[0.0; 2]; 2];
-        for (k, dir) in [tg, nm].into_iter().enumerate() {
-            let kick = self.beam_kick(q, s, [-dir[0], -dir[1]], mass);
-            let track = self.relative(q, &kick, s, [0.0, 0.0], 0.0);
-            w[0][k] = track[0];
-            w[1][k] = track[1];
+        for (col, dir) in [tg, nm].into_iter().enumerate() {
+            let kick = self.kick(k, q, s, [-dir[0], -dir[1]], &riding);
+            let track = self.relative(k, (q, &kick[..n]), s, [0.0, 0.0], 0.0);
+            w[0][col] = track[0];
+            w[1][col] = track[1];
         }
         w[0][0] += 1.0 / m + a * a / c;
         w[1][1] += 1.0 / m;
@@ -291,20 +332,21 @@ impl DiskOnBeam<'_> {
         let j = [jt * tg[0] + jn * nm[0], jt * tg[1] + jn * nm[1]];
         let disk_after = [disk_plastic[0] + j[0] / m, disk_plastic[1] + j[1] / m];
         let omega_after = plastic.omega + a * jt / c;
-        let kick = self.beam_kick(q, s, [-j[0], -j[1]], mass);
+        let kick = self.kick(k, q, s, [-j[0], -j[1]], &riding);
         let beam_after: Vec<f64> = v_plastic.iter().zip(&kick).map(|(a, b)| a + b).collect();
         let kinetic = |v: &[f64], d: [f64; 2], w: f64| {
             let mut mv = vec![0.0; n];
-            linalg::mul(self.loaded.model_mass(), v, &mut mv);
-            0.5 * v.iter().zip(&mv).map(|(a, b)| a * b).sum::<f64>()
+            linalg::mul(self.loaded.model_mass(), &v[..n], &mut mv);
+            0.5 * v[..n].iter().zip(&mv).map(|(a, b)| a * b).sum::<f64>()
                 + axle_kinetic(&axles, v)
+                + quadratic(&others, v)
                 + 0.5 * m * (d[0] * d[0] + d[1] * d[1])
                 + 0.5 * c * w * w
         };
-        let before = kinetic(v, beam.to_local(velocity), omega);
+        let before = kinetic(rest.1, beam.to_local(velocity), omega);
         let after = kinetic(&beam_after, disk_after, omega_after);
-        let leaving = self.relative(q, &beam_after, s, disk_after, omega_after)[1];
-        let axle_work = axle_kinetic(&axles, v) - axle_kinetic(&axles, &beam_after);
+        let leaving = self.relative(k, (q, &beam_after[..n]), s, disk_after, omega_after)[1];
+        let axle_work = axle_kinetic(&axles, rest.1) - axle_kinetic(&axles, &beam_after);
         [disk_after[0], disk_after[1], omega_after, leaving]
             .iter()
             .chain(&beam_after)
@@ -317,5 +359,55 @@ impl DiskOnBeam<'_> {
                 energy_lost: before - after,
                 axle_work,
             })
+    }
+
+    /// The inertia that rides through disk k's impulse, factorised, over `dim` unknowns (the
+    /// beam's, or the model's where disks roll beside k): the beam's mass (`mass`, given
+    /// factorised), the train's moving masses `axles` at t, the rolling disks' `others`, and
+    /// under k's own contact coordinate a unit mass that keeps it at rest.
+    fn riding_mass<'m>(
+        &self,
+        k: usize,
+        dim: usize,
+        axles: &LowRank,
+        others: &LowRank,
+        mass: &'m SparseLu,
+    ) -> Option<Rest<'m>> {
+        if axles.is_empty() && dim == self.n {
+            return Some(Rest {
+                given: mass,
+                own: None,
+                dim,
+            });
+        }
+        let mut a = Assembly::new(dim);
+        a.add_sparse(self.loaded.model_mass(), 1.0, 0, 0);
+        linalg::low_rank_entries(axles).for_each(|(i, j, v)| a.add(i, j, v));
+        linalg::low_rank_entries(others).for_each(|(i, j, v)| a.add(i, j, v));
+        for (j, d) in self.disks.iter().enumerate() {
+            match d.slot {
+                Some(i) if i < dim && (j == k || self.has_left(j)) => a.add(i, i, 1.0),
+                _ => {}
+            }
+        }
+        Some(Rest {
+            given: mass,
+            own: Some(SparseLu::factor(&a.build(), None)?),
+            dim,
+        })
+    }
+}
+
+/// The inertia of what rides on the beam through an impulse, factorised, over its unknowns:
+/// the beam's mass as given, or its own where more rides with the beam.
+struct Rest<'m> {
+    given: &'m SparseLu,
+    own: Option<SparseLu>,
+    dim: usize,
+}
+
+impl Rest<'_> {
+    fn lu(&self) -> &SparseLu {
+        self.own.as_ref().unwrap_or(self.given)
     }
 }

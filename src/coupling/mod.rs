@@ -293,8 +293,8 @@ impl<'a> DiskOnBeam<'a> {
         &self.disks[k].spec
     }
 
-    /// The first disk as the scene gave it: the disk, where it is alone. Flight, landing and
-    /// the literal thesis system are for a lone disk.
+    /// The first disk as the scene gave it: the disk, where it is alone. The literal thesis
+    /// system is for a lone disk.
     pub fn spec(&self) -> &DiskOnBeamSpec {
         self.spec_of(0)
     }
@@ -321,6 +321,25 @@ impl<'a> DiskOnBeam<'a> {
         self.cache.borrow_mut().take();
         self.inertia.forget();
         d.observed.forget();
+    }
+
+    /// Disk k, which left the beam (flying over it), rides on it again; what was kept of the
+    /// riders is forgotten.
+    pub fn rejoin(&self, k: usize) {
+        self.disks[k].gone.set(false);
+        self.cache.borrow_mut().take();
+        self.inertia.forget();
+        self.disks[k].observed.forget();
+    }
+
+    /// Disk j may roll on while another flies over the beam: its inertia is its kinetic
+    /// energy (the consistent coupling) or it has none (the moving force), so the impulse of
+    /// a landing beside it is shared with it as with the beam (`landing`).
+    pub fn rides_beside_a_flight(&self, j: usize) -> bool {
+        matches!(
+            self.disks[j].spec.coupling,
+            Coupling::Consistent | Coupling::MovingForce
+        )
     }
 
     /// Every disk has left the beam.

@@ -159,6 +159,9 @@ impl Overrides {
 /// One flight of the disk, from lift-off to landing (`summary.yaml`, `disk.flights`).
 #[derive(Clone, Copy, Debug, serde::Serialize)]
 pub struct FlightRecord {
+    /// Which disk flew (of a beam's several; the summary lists each disk's own).
+    #[serde(skip)]
+    pub disk: usize,
     pub lift_off_t: f64,
     pub lift_off_s: f64,
     pub land_t: Option<f64>,

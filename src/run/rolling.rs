@@ -421,6 +421,7 @@ impl life::Track for Curve<'_> {
         }
         let (end, max_gap) = flight::land(r, &flight, from.0, scene.duration);
         self.flights.push(FlightRecord {
+            disk: 0,
             lift_off_t: flight.t0,
             lift_off_s: from.0,
             land_t: None,
@@ -640,6 +641,7 @@ impl Curve<'_> {
             rec.impact,
         );
         self.flights.push(FlightRecord {
+            disk: 0,
             lift_off_t: b.t,
             lift_off_s: b.s,
             land_t: (settled <= scene.duration).then_some(settled),

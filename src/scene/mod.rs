@@ -281,7 +281,15 @@ impl BeamScene {
                 .iter()
                 .any(|d| matches!(d.contact_loss, crate::disk::ContactLoss::Fly { .. }))
         {
-            out.push("of several disks, one that loses contact ends the run (`contact-lost`): their flight is modelled for a lone disk".to_string());
+            let beside_mass = self
+                .disks
+                .iter()
+                .any(|d| d.coupling == Coupling::MovingMass);
+            out.push(if beside_mass {
+                "of several disks, one that loses contact beside a moving-mass disk ends the run (`contact-lost`): a landing's impulse is shared with the beam and the disks rolling on it, not with a moving mass's prescribed path"
+            } else {
+                "of several disks one flies at a time: another that loses contact while one flies ends the run (`contact-lost`)"
+            }.to_string());
         }
         // The plan tightens rtol with the speed of wheels with a mass of their own, measured
         // up to this speed only (`plan::rtol_for`).

@@ -77,13 +77,23 @@ struct PatchSummary {
     contact_force_sensitivity: f64,
 }
 
-/// Whether disk k lifted off while rolling ([`crate::run::lifted_off_rolling`]): the lone
-/// disk's flights say so, and of several disks a lift-off stops the run at that disk's event.
+/// Whether disk k lifted off while rolling ([`crate::run::lifted_off_rolling`]): its flights
+/// say so, or the run stopped at its loss of contact (not at another disk's).
 fn lifted_off_rolling(r: &BeamRun, k: usize) -> bool {
-    match r.header.stop {
-        crate::run::Stop::Event(crate::disk::StopReason::ContactLost) => r.stopped_disk == Some(k),
-        stop => k == 0 && crate::run::lifted_off_rolling(&r.flights, stop),
-    }
+    let stop = match r.header.stop {
+        crate::run::Stop::Event(crate::disk::StopReason::ContactLost)
+            if r.stopped_disk != Some(k) =>
+        {
+            crate::run::Stop::End
+        }
+        stop => stop,
+    };
+    crate::run::lifted_off_rolling(&flights_of(r, k), stop)
+}
+
+/// Disk k's flights.
+fn flights_of(r: &BeamRun, k: usize) -> Vec<crate::run::FlightRecord> {
+    r.flights.iter().filter(|f| f.disk == k).copied().collect()
 }
 
 fn disk_summary(r: &BeamRun, k: usize) -> Option<BeamDiskSummary> {
@@ -110,7 +120,7 @@ fn disk_summary(r: &BeamRun, k: usize) -> Option<BeamDiskSummary> {
             rt_max: rt.max,
             mu_needed_max,
             left_track_t: r.disks_left_t.get(k).copied().flatten(),
-            flights: r.flights.clone(),
+            flights: flights_of(r, k),
         },
         w_under_min: w_under.min,
         w_under_min_t: w_under.min_t,
@@ -504,7 +514,7 @@ pub fn csv(r: &BeamRun) -> String {
                             d.rt,
                             d.rn,
                             d.mu_needed().unwrap_or(f64::NAN),
-                            row.gap,
+                            if row.flying == Some(k) { row.gap } else { 0.0 },
                         ]
                     }),
             );

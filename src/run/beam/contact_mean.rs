@@ -23,6 +23,7 @@ const SAMPLES_PER_WINDOW: usize = 16;
 
 /// What the run shows of a disk at a sample: its centre's velocity (global) and the contact
 /// frame (tangent, normal; global), `None` while it flies.
+#[derive(Clone, Copy)]
 pub(super) struct Seen {
     pub velocity: [f64; 2],
     pub frame: Option<[[f64; 2]; 2]>,

@@ -186,12 +186,12 @@ impl<'a> Ledger<'a> {
     }
 
     /// The kinetic and potential energy of the disks observed as `disks` that belong to the
-    /// system (the rolling ones on the beam).
+    /// system (the rolling ones on the beam, not one flying over it).
     fn in_system(c: &DiskOnBeam, disks: &[Option<DiskObservation>]) -> (f64, f64) {
         disks
             .iter()
             .enumerate()
-            .filter(|&(k, _)| c.in_system(k))
+            .filter(|&(k, _)| c.in_system(k) && !c.has_left(k))
             .filter_map(|(_, d)| d.as_ref())
             .fold((0.0, 0.0), |(k, p), d| (k + d.kinetic, p + d.potential))
     }
@@ -518,11 +518,12 @@ impl<'a> Ledger<'a> {
         }
     }
 
-    /// The disk lands on the beam at t and rides on it again, the landing having taken
-    /// `lost` of the kinetic energy, and the train's moving masses having done `work` on the
-    /// beam through the impulse: its energy is the system's again, observed live.
-    pub fn disk_lands(&mut self, lost: f64, work: f64) {
-        self.left_with = (0.0, 0.0);
+    /// A disk lands on the beam at t and rides on it again, the landing having taken `lost`
+    /// of the kinetic energy, and the train's moving masses having done `work` on the beam
+    /// through the impulse: the energy it `carried` while it flew is the system's again,
+    /// observed live.
+    pub fn disk_lands(&mut self, lost: f64, work: f64, carried: (f64, f64)) {
+        self.left_with = (self.left_with.0 - carried.0, self.left_with.1 - carried.1);
         self.impact += lost;
         self.moving.2 += work;
     }
@@ -542,11 +543,15 @@ impl<'a> Ledger<'a> {
         self.end_power = None;
     }
 
-    /// The disk bounces off the beam at t: the impact took `lost` of the kinetic energy, the
-    /// train's moving masses did `work` on the beam through it, and the disk flies off again
-    /// with `disk` (kinetic, potential), which the budget holds constant while it flies.
-    pub fn disk_bounces(&mut self, lost: f64, work: f64, disk: (f64, f64)) {
-        self.left_with = disk;
+    /// A disk bounces off the beam at t: the impact took `lost` of the kinetic energy, the
+    /// train's moving masses did `work` on the beam through it, and the disk, which `carried`
+    /// its energy into the air, flies off again with `disk` (kinetic, potential), which the
+    /// budget holds constant while it flies.
+    pub fn disk_bounces(&mut self, lost: f64, work: f64, carried: (f64, f64), disk: (f64, f64)) {
+        self.left_with = (
+            self.left_with.0 - carried.0 + disk.0,
+            self.left_with.1 - carried.1 + disk.1,
+        );
         self.impact += lost;
         self.moving.2 += work;
     }

@@ -98,6 +98,8 @@ pub struct BeamRow {
     pub impact: f64,
     /// The flying disk's gap to the beam (0 while it rolls).
     pub gap: f64,
+    /// Which disk flies, while one does.
+    pub flying: Option<usize>,
     /// One per probe: the vertical (global Y) acceleration, with the modes above the cutoff
     /// left out (see [`AccelerationFilter`]).
     pub accelerations: Vec<f64>,
@@ -214,8 +216,13 @@ impl BeamRun {
     pub fn warnings(&self) -> Vec<String> {
         let mut out = self.setup.warnings();
         if let [first, _, ..] = &self.flights[..] {
+            let who = if self.setup.disks.len() > 1 {
+                "the disks"
+            } else {
+                "the disk"
+            };
             out.push(format!(
-                "the disk lifted off the beam {} times: each landing's time and impulse, and the motion after it, carry the error of every step before it, so the extremes from the first lift-off at t = {:.6} s on are not held to the accuracy (a 5 t disk hopping on the HSLM bridge under A1: 15 flights at the defaults against 16 at rtol 1e-8, the deck's largest acceleration 7.7 % apart)",
+                "{who} lifted off the beam {} times: each landing's time and impulse, and the motion after it, carry the error of every step before it, so the extremes from the first lift-off at t = {:.6} s on are not held to the accuracy (a 5 t disk hopping on the HSLM bridge under A1: 15 flights at the defaults against 16 at rtol 1e-8, the deck's largest acceleration 7.7 % apart)",
                 self.flights.len(),
                 first.lift_off_t
             ));
@@ -664,7 +671,7 @@ fn initial_state(
     }
 }
 
-/// Integrate while a disk is on the beam: rolling, and flying and landing where a lone disk
+/// Integrate while a disk is on the beam: rolling, and flying and landing where a disk
 /// loses contact and flies, until the last leaves the beam, one stops, or the run ends.
 #[allow(clippy::too_many_arguments)]
 fn ride<'a>(
@@ -715,9 +722,12 @@ struct OnTheBeam<'a, 'r> {
 }
 
 impl<'a> OnTheBeam<'a, '_> {
-    /// A lone disk whose scene lets it fly does; several disks on the beam stop at a lift-off.
-    fn flies(&self) -> bool {
-        self.c.count() == 1 && matches!(self.c.spec().contact_loss, ContactLoss::Fly { .. })
+    /// Disk k flies where its scene lets it, beside disks that can ride on through its
+    /// landing (`DiskOnBeam::rides_beside_a_flight`); beside others a lift-off stops the run.
+    fn flies(&self, k: usize) -> bool {
+        let c = self.c;
+        matches!(c.spec_of(k).contact_loss, ContactLoss::Fly { .. })
+            && (0..c.count()).all(|j| j == k || c.has_left(j) || c.rides_beside_a_flight(j))
     }
 
     /// The run stops at t in the state y of the coupled phase, for `stop`, where `disk`'s
@@ -784,14 +794,14 @@ impl<'a> life::Track for OnTheBeam<'a, '_> {
                 t,
                 y,
                 stop: Stop::Event(StopReason::ContactLost),
-                ..
-            } if self.flies() => {
+                disk: Some(k),
+            } if self.flies(k) => {
                 // The damping the plan chose is for loads that move: once the disk has
                 // left the beam, what it lands with or leaves behind vibrates freely.
                 if self.setup.rho_inf_chosen.is_some() {
                     self.opts.rho_inf = 1.0;
                 }
-                Next::Flies(lift_off(self.c, self.rec, t, &y))
+                Next::Flies(lift_off(self.c, self.rec, t, &y, k))
             }
             CoupledEnd::Stopped { t, y, stop, disk } => self.stopped(t, y, stop, disk),
             CoupledEnd::Left { t, y, disk } => {

@@ -88,28 +88,36 @@ impl<'a> Phase<'a> {
     /// has left), and the flying disk's gap to the beam (0 while it rolls or has left); no
     /// disks once they have all left.
     pub fn disks(&self, t: f64, y: &[f64]) -> (Vec<Option<DiskObservation>>, f64) {
-        if let Some(f) = &self.flying {
-            let (d, gap) = f.observe(t, &y[..self.loaded.dim()]);
-            return (vec![Some(d)], gap);
-        }
         let (z, zd) = self.split(y);
-        (
-            self.coupled
-                .map_or_else(Vec::new, |c| c.observe_all(t, z, zd)),
-            0.0,
-        )
+        let mut disks = self
+            .coupled
+            .map_or_else(Vec::new, |c| c.observe_all(t, z, zd));
+        let Some(f) = &self.flying else {
+            return (disks, 0.0);
+        };
+        let (d, gap) = f.observe(t, &y[..self.loaded.dim()]);
+        disks.resize(f.coupled.count(), None);
+        disks[f.k] = Some(d);
+        (disks, gap)
     }
 
     /// Each disk's centre velocity and contact frame at (t, y), as the contact force's means
     /// read them (`None` for a disk not on or over the beam, no frame while it flies).
     pub fn seen_disks(&self, t: f64, y: &[f64]) -> Vec<Option<Seen>> {
+        let mut seen = self.seen_rolling(t, y);
         if let Some(f) = &self.flying {
             let (d, _) = f.observe(t, &y[..self.loaded.dim()]);
-            return vec![Some(Seen {
+            seen.resize(f.coupled.count(), None);
+            seen[f.k] = Some(Seen {
                 velocity: [d.vx, d.vy],
                 frame: None,
-            })];
+            });
         }
+        seen
+    }
+
+    /// [`Self::seen_disks`] of the disks rolling on the beam.
+    fn seen_rolling(&self, t: f64, y: &[f64]) -> Vec<Option<Seen>> {
         let (z, zd) = self.split(y);
         self.coupled.map_or_else(Vec::new, |c| {
             c.velocities_and_frames(t, z, zd)

@@ -374,6 +374,7 @@ impl Observer for Recorder<'_> {
             along: &along,
             disks,
             gap,
+            flying: phase.flying.as_ref().map(|f| f.k),
             energy,
             reactions,
         };

@@ -19,8 +19,9 @@ pub(super) struct Sample<'s> {
     pub along: &'s [PointDisplacement],
     /// Each disk while it is on or over the beam (none once they have all left).
     pub disks: Vec<Option<DiskObservation>>,
-    /// The flying disk's gap to the beam (0 while it rolls).
+    /// The flying disk's gap to the beam (0 while it rolls), and which disk flies.
     pub gap: f64,
+    pub flying: Option<usize>,
     pub energy: Energy,
     pub reactions: [[f64; 3]; 2],
     pub vehicles: Option<crate::coupling::vehicles::VehicleObservation>,
@@ -56,6 +57,7 @@ impl History<'_> {
             dissipated: s.energy.dissipated,
             impact: s.energy.impact,
             gap: s.gap,
+            flying: s.flying,
             accelerations: self
                 .probes
                 .iter()
@@ -181,7 +183,8 @@ impl Pictures<'_> {
                     .enumerate()
                     .map(|(k, turned)| {
                         let d = s.disks.get(k).copied().flatten();
-                        d.map(|d| (d.s, turned.2, s.gap))
+                        let gap = if s.flying == Some(k) { s.gap } else { 0.0 };
+                        d.map(|d| (d.s, turned.2, gap))
                     })
                     .collect(),
                 wheels: s.vehicles.as_ref().map_or_else(Vec::new, |v| {
