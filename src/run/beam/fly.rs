@@ -226,6 +226,16 @@ impl<'a> OnTheBeam<'a, '_> {
                 self.left[k] = Some(t);
                 let (z, zd) = self.rec.phase.split(&y);
                 let (z, zd) = (z.to_vec(), zd.to_vec());
+                if c.all_left() {
+                    // The others left the beam while it flew: the beam vibrates alone.
+                    self.rec.ledger.disk_leaves(&self.rec.phase, t, &y);
+                    let n = self.loaded.dim();
+                    return Ok(Beside::Then(self.left_beam(
+                        t,
+                        z[..n].to_vec(),
+                        zd[..n].to_vec(),
+                    )));
+                }
                 self.rec.ledger.restart(&self.rec.phase, t, &y);
                 Ok(Beside::Then(Next::Rolls(Some((t, z, zd)))))
             }
