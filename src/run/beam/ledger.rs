@@ -60,6 +60,8 @@ pub(super) struct Ledger<'a> {
     pub check: EnergyCheck,
     /// The integrator's order (`Method::order`): how a step is booked.
     pub order: u32,
+    /// The powers at the midpoint of the step under way, where it is booked by Simpson's rule.
+    mid: Option<Midpoint>,
 }
 
 /// The end of a step on its own stretch (`Ledger::end_power`).
@@ -83,12 +85,18 @@ pub(super) struct Piece {
 }
 
 /// What a piece adds to an energy: by the [`LOBATTO`] rule from the power at the rule's
-/// interior points and the piece's end, by Simpson's rule from the power at its midpoint and
-/// end, or known in closed form, with the power at the end.
+/// interior points and the piece's end, or known in closed form, with the power at the end.
 enum Booking {
     Lobatto([f64; 3], f64),
-    Simpson(f64, f64),
     Exact { energy: f64, power: f64 },
+}
+
+/// The powers at the midpoint of the step ending at `end`, for Simpson's rule
+/// ([`Ledger::step_midpoint`]).
+struct Midpoint {
+    end: f64,
+    moving: f64,
+    damping: f64,
 }
 
 /// The five-point Gauss–Lobatto rule on a piece [0, 1]: its interior points and their
@@ -153,6 +161,7 @@ impl<'a> Ledger<'a> {
             end_power: None,
             check,
             order: 2,
+            mid: None,
         };
         ledger.at_loads = ledger.at_loads(phase, y0);
         ledger
@@ -316,11 +325,19 @@ impl<'a> Ledger<'a> {
                 (p, p, 0.0)
             }
         };
-        self.moving = (t, power, self.moving_work(t, end_power) + kick);
+        let mid = self.mid.take().filter(|m| m.end == t);
+        let over_step = |(t0, p0, done): (f64, f64, f64), at_mid: Option<f64>, p1: f64| {
+            done + match at_mid {
+                Some(pm) => (t - t0) * (p0 + 4.0 * pm + p1) / 6.0,
+                None => 0.5 * (p0 + p1) * (t - t0),
+            }
+        };
+        let moving_done = over_step(self.moving, mid.as_ref().map(|m| m.moving), end_power);
+        self.moving = (t, power, moving_done + kick);
         let now = Self::damping_power(phase, t, y);
-        let (t0, p0, done) = self.damped;
         let p1 = end.as_ref().map_or(now, |e| e.damping);
-        self.damped = (t, now, done + 0.5 * (p0 + p1) * (t - t0));
+        let damped_done = over_step(self.damped, mid.as_ref().map(|m| m.damping), p1);
+        self.damped = (t, now, damped_done);
     }
 
     /// The step just taken ends at (t, y), read on its own stretch (with vehicles only: see
@@ -361,26 +378,20 @@ impl<'a> Ledger<'a> {
         }
     }
 
-    /// A whole step from the last point read to (t, y), through the state `mid` at its
-    /// midpoint: Simpson's rule errs by h⁵ a step where the trapezoidal rule errs by h³, so that
-    /// the budget's quadrature shrinks faster than the fourth-order integrator's own error
-    /// (with the trapezoidal rule a vehicle's balance shrank as rtol^½, the quadrature's error).
-    pub fn simpson_piece(&self, phase: &Phase, mid: (f64, &[f64]), t: f64, y: &[f64]) -> Piece {
-        Piece {
-            end: t,
-            moving: Booking::Simpson(
-                Self::moving_power(phase, mid.0, mid.1),
-                Self::moving_power(phase, t, y),
-            ),
-            damping: Booking::Simpson(
-                Self::damping_power(phase, mid.0, mid.1),
-                Self::damping_power(phase, t, y),
-            ),
-            at_loads: self.at_loads(phase, y),
-        }
+    /// The step under way, ending at `end`, passes its midpoint (t, y): its powers there, so
+    /// that the step is booked by Simpson's rule when it ends (its error h⁵ a step where the
+    /// trapezoidal rule's is h³). The budget's quadrature then shrinks faster than the
+    /// fourth-order integrator's own error: by the trapezoidal rule a vehicle's balance
+    /// shrank as rtol^½, the quadrature's error, not the solution's.
+    pub fn step_midpoint(&mut self, phase: &Phase, end: f64, t: f64, y: &[f64]) {
+        self.mid = Some(Midpoint {
+            end,
+            moving: Self::moving_power(phase, t, y),
+            damping: Self::damping_power(phase, t, y),
+        });
     }
 
-    /// Whether a step is booked by Simpson's rule ([`Self::simpson_piece`]): where the
+    /// Whether a step is booked by Simpson's rule ([`Self::step_midpoint`]): where the
     /// integrator's order is above two, and something works on the model or takes its energy
     /// at a rate the budget integrates (moving loads, a train, vehicles, damping). A
     /// second-order method's own error is of the trapezoidal rule's order, and
@@ -444,11 +455,6 @@ impl<'a> Ledger<'a> {
                         done + (piece.end - t0) * (ends * (p0 + p1) + sum),
                     )
                 }
-                Booking::Simpson(mid, p1) => (
-                    piece.end,
-                    p1,
-                    done + (piece.end - t0) * (p0 + 4.0 * mid + p1) / 6.0,
-                ),
                 Booking::Exact { energy, power } => (piece.end, power, done + energy),
             };
             self.moving = book(self.moving, piece.moving);
@@ -538,6 +544,7 @@ impl<'a> Ledger<'a> {
     /// The run goes on at t from y, where a wheel's law changed (it lifted off or landed):
     /// the powers booked from here are those after the change.
     pub fn restart(&mut self, phase: &Phase, t: f64, y: &[f64]) {
+        self.mid = None;
         self.moving = (t, Self::moving_power(phase, t, y), self.moving.2);
         self.damped = (t, Self::damping_power(phase, t, y), self.damped.2);
         self.end_power = None;

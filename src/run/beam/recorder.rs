@@ -449,10 +449,8 @@ impl Observer for Recorder<'_> {
             self.ledger.book_in_pieces(pieces);
         } else if self.ledger.books_by_simpson(&self.phase) {
             let tm = 0.5 * (t0 + t1);
-            let piece =
-                self.ledger
-                    .simpson_piece(&self.phase, (tm, &dense.at(tm)), t1, &dense.at(t1));
-            self.ledger.book_in_pieces(vec![piece]);
+            self.ledger
+                .step_midpoint(&self.phase, t1, tm, &dense.at(tm));
         }
         self.watch(t0, t1, dense, sample);
         if let Some(means) = &mut self.contact_means {
