@@ -88,8 +88,10 @@ impl<'a> OnTheBeam<'a, '_> {
         let (scene, c) = (self.scene, self.c);
         if self.flights.len() >= MAX_FLIGHTS {
             return Err(Error::Solver(format!(
-                "scene {}: the disks lifted off the beam {MAX_FLIGHTS} times by t = {:.6} s; the run stops rather than count more flights",
-                scene.name, launch.t
+                "scene {}: {} lifted off the beam {MAX_FLIGHTS} times by t = {:.6} s; the run stops rather than count more flights",
+                scene.name,
+                if c.count() > 1 { "the disks" } else { "the disk" },
+                launch.t
             )));
         }
         let disk = FlyingDisk {
