@@ -459,6 +459,35 @@ fn item_5_no_infinities_written() {
         ),
     );
     runs_finite(&["run", &thrown, "--out", &out("thrown")], &out("thrown"));
+    // Disks hopping on the HSLM bridge under A1, flying one at a time beside the others: a
+    // hundred bouncing at e = 0.5, two at e = 1, 5e7 kg beside 1 mg, two on one spot. Each
+    // run ends (at the end, or at a second disk's lift-off during a flight) with finite
+    // numbers.
+    let hslm = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/studies/hslm-15m.yaml"
+    ))
+    .expect("the HSLM study");
+    let hundred: String = (0..100)
+        .map(|k| {
+            format!(
+                "  - {{mass: 5000, radius: 0.5, s0: {}, omega0: -8, restitution: 0.5}}\n",
+                0.14 * k as f64
+            )
+        })
+        .collect();
+    for (name, disks) in [
+        ("hundred", hundred.as_str()),
+        ("elastic", "  - {mass: 5000, radius: 0.5, s0: 0.0, omega0: -8, restitution: 1.0}\n  - {mass: 5000, radius: 0.5, s0: 12.0, omega0: -2, restitution: 1.0}\n"),
+        ("lopsided", "  - {mass: 5.0e7, radius: 0.5, s0: 0.0, omega0: -8}\n  - {mass: 1.0e-6, radius: 0.5, s0: 12.0, omega0: -2}\n"),
+        ("one-spot", "  - {mass: 5000, radius: 0.5, s0: 5.0, omega0: -8}\n  - {mass: 5000, radius: 0.5, s0: 5.0, omega0: -8}\n"),
+    ] {
+        let path = scene(
+            name,
+            &hslm.replacen("output:", &format!("disks:\n{disks}output:"), 1),
+        );
+        runs_finite(&["run", &path, "--out", &out(name)], &out(name));
+    }
 }
 
 /// 6. The reader's errors are rollbeam's sentences with the key and the line.
