@@ -7,21 +7,25 @@
 
 use std::collections::BTreeMap;
 use std::path::Path;
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 use crate::analysis::discretisation::{choose, passage_share, response_size, Discretisation};
 use crate::analysis::model_choice;
+use crate::beam::train::TrainModel;
 use crate::beam::BeamModel;
 use crate::coupling::Coupling;
 use crate::error::Error;
 use crate::scene::{BeamScene, Checked, Model, Scene, SceneSpec};
+
+/// A beam model chosen, why, and what its count of modes was chosen from.
+type ChosenModel = (BeamModel, String, Option<Arc<model_choice::Recount>>);
 
 /// Plans scenes, keeping the choices made (mesh, model, ρ∞) by everything they depend on: the
 /// eigenproblems and static solves behind a choice cost seconds on a fine mesh.
 #[derive(Default)]
 pub struct Planner {
     chosen: Mutex<BTreeMap<String, Discretisation>>,
-    models: Mutex<BTreeMap<String, (BeamModel, String)>>,
+    models: Mutex<BTreeMap<String, ChosenModel>>,
     dampings: Mutex<BTreeMap<String, (f64, String)>>,
 }
 
@@ -73,16 +77,27 @@ impl Planner {
         let given = model_given.then_some(b.beam.model);
         if !model_given || b.beam.model == (BeamModel::Modal { modes: 0 }) {
             let key = format!(
-                "model {:?} {given:?} {:?} {weight:?} {xs:?} {:?} {:?}",
-                b.beam, b.loads, b.accuracy, b.start
+                "model {:?} {given:?} {:?} {weight:?} {xs:?} {:?} {:?} {:?}",
+                b.beam, b.loads, b.accuracy, b.start, b.acceleration_cutoff_hz
             );
-            let (model, why) = kept(&self.models, key, || {
+            let (mut model, mut why, recount) = kept(&self.models, key, || {
                 let thesis = b.disks.iter().any(|d| d.coupling == Coupling::Thesis);
                 let c = model_choice::choose(
-                    &b.beam, given, &b.loads, weight, &xs, b.accuracy, b.start, thesis,
+                    &b.beam,
+                    given,
+                    &b.loads,
+                    weight,
+                    &xs,
+                    b.accuracy,
+                    b.start,
+                    thesis,
+                    b.acceleration_cutoff_hz,
                 );
-                (c.model, c.why)
+                (c.model, c.why, c.recount.map(Arc::new))
             });
+            if let (Some(r), Some(v)) = (recount, passing_speed(b)) {
+                (model, why) = r.at(Some(v));
+            }
             b.beam.model = model;
             b.model_choice = Some(why);
         }
@@ -233,6 +248,15 @@ fn loaded_for(b: &BeamScene) -> Option<f64> {
     let first = spans.iter().map(|s| s.0).fold(f64::INFINITY, f64::min);
     let last = spans.iter().map(|s| s.1).fold(0.0, f64::max);
     (last > first).then_some(last - first)
+}
+
+/// The speed of the moving forces where they are all that changes on the beam: a train of
+/// them alone, nothing riding with inertia. The modes they leave to the static correction
+/// are counted at it (`model_choice::ModeShares::count`).
+fn passing_speed(b: &BeamScene) -> Option<f64> {
+    let train = b.train.as_ref()?;
+    (train.model == TrainModel::MovingForce && b.disks.is_empty() && b.vehicles.is_empty())
+        .then_some(train.speed.abs())
 }
 
 /// Where the probes are along the beam: where the mesh, the model and ρ∞ are judged.

@@ -17,7 +17,10 @@
 //!    static part about it, undamped). On a mesh past 400 nodes the estimate is made on
 //!    the finest one within them. The
 //!    static correction of the modes left out (`beam/modal.rs`) holds their quasi-static
-//!    part, so what the count must carry is the dynamics.
+//!    part, so what the count must carry is the dynamics: where moving forces at speed v are
+//!    all that changes, each mode's part counts by how far they set it vibrating about it,
+//!    min(1, 2 v κ/ω) ([`ModeShares::count`]). Never fewer modes than lie below the deck
+//!    acceleration's cutoff, which the accelerations are made of.
 
 use crate::analysis::discretisation::{weight_drops, MAX_NODES};
 use crate::analysis::modes::modes;
@@ -33,6 +36,30 @@ const SHARE: f64 = 0.25;
 pub struct Choice {
     pub model: BeamModel,
     pub why: String,
+    /// For a modal beam whose count was chosen, what it was chosen from and the reason before
+    /// it: a scene whose moving forces' speed changes (a sweep's cases) counts again from them.
+    pub recount: Option<Recount>,
+}
+
+/// What a modal beam's count of modes is chosen from, for any speed of its moving forces.
+#[derive(Clone, Debug)]
+pub struct Recount {
+    pub shares: ModeShares,
+    /// Why the beam is modal, which the count's reason follows.
+    pub why_modal: String,
+    pub accuracy: f64,
+}
+
+impl Recount {
+    /// The modal beam for moving forces passing at `speed` (`None`: loads that do not move
+    /// at a speed), and why.
+    pub fn at(&self, speed: Option<f64>) -> (BeamModel, String) {
+        let (modes, why) = self.shares.count(self.accuracy, speed);
+        (
+            BeamModel::Modal { modes },
+            format!("{}{why}", self.why_modal),
+        )
+    }
 }
 
 /// Every load as (x, global force, moment).
@@ -82,15 +109,38 @@ fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Option<(f64, 
     (size.is_finite() && size > 0.0).then_some((size, gap))
 }
 
-/// The number of modes the loading excites on the scene's mesh, and why.
-fn mode_count(
+/// Each mode's part of the static deflection at the probes under the loads that change during
+/// the run, and how far a load passing over the mode's shape makes it vibrate about that part:
+/// what the count of modes is chosen from, at any speed of the loads.
+#[derive(Clone, Debug)]
+pub struct ModeShares {
+    /// Per mode, in ascending frequency, the (u, w) it adds at each probe.
+    parts: Vec<Vec<[f64; 2]>>,
+    /// Per mode, κ/ω: the steepest slope of its deflection over its largest deflection, over
+    /// its circular frequency. A force entering the span at speed v, where the shape is 0 and
+    /// its slope κ times its largest value, sets the mode vibrating about its static part by
+    /// v κ/ω of that part, and as much again as it leaves.
+    passing: Vec<f64>,
+    /// The largest static deflection at a probe, all modes together.
+    scale: f64,
+    /// How many modes lie at or below the deck acceleration's cutoff: the accelerations are
+    /// made of them.
+    below_cutoff: usize,
+    /// The most modes a modal beam may keep on this mesh.
+    limit: usize,
+    /// The loads switch on or off during the run (the beam's weight dropping included).
+    switched: bool,
+}
+
+/// The modes the loading excites on the scene's mesh, or why they cannot be counted.
+fn mode_shares(
     spec: &BeamSpec,
     excite: &Pattern,
     weight_drops: bool,
     xs: &[f64],
-    accuracy: f64,
     switched: bool,
-) -> (usize, String) {
+    cutoff: Option<f64>,
+) -> Result<ModeShares, (usize, String)> {
     // The estimate is dense: as for the mesh's own choice, no mesh past MAX_NODES nodes is
     // analysed; a finer mesh is estimated on the coarsest one within it.
     let elements = if spec.elements * spec.order < MAX_NODES {
@@ -107,7 +157,7 @@ fn mode_count(
     let limit = n.min(crate::beam::modal::MAX_MODES);
     let fallback = |why: &str| (limit.min(12), why.to_string());
     let Some(m) = modes(&beam, limit) else {
-        return fallback("12 modes (or as many as the mesh has): the natural modes could not be computed for an estimate");
+        return Err(fallback("12 modes (or as many as the mesh has): the natural modes could not be computed for an estimate"));
     };
     let mut f = vec![0.0; n];
     for &(x, force, mz) in excite {
@@ -116,62 +166,145 @@ fn mode_count(
     if weight_drops {
         beam.add_weight(&mut f);
     }
-    // The deflection at the probes after the first k modes, for every k.
-    let mut partial = vec![0.0; n];
-    let mut after = Vec::with_capacity(m.omega.len());
+    let stations: Vec<f64> = (0..=PASSING_SAMPLES * elements)
+        .map(|i| beam.length * i as f64 / (PASSING_SAMPLES * elements) as f64)
+        .collect();
+    let mut parts = Vec::with_capacity(m.omega.len());
+    let mut passing = Vec::with_capacity(m.omega.len());
+    let mut total = vec![[0.0; 2]; xs.len()];
     for k in 0..m.omega.len() {
-        let shape = m.shapes.column(k);
+        let shape: Vec<f64> = m.shapes.column(k).iter().copied().collect();
         let w2 = m.omega[k] * m.omega[k];
-        if w2 > 0.0 {
+        let part = if w2 > 0.0 {
             let participation: f64 = shape.iter().zip(&f).map(|(a, b)| a * b).sum();
-            for (p, s) in partial.iter_mut().zip(shape.iter()) {
-                *p += s * participation / w2;
-            }
+            let statics: Vec<f64> = shape.iter().map(|s| s * participation / w2).collect();
+            displacements_at(&beam, &statics, xs)
+        } else {
+            vec![[0.0; 2]; xs.len()]
+        };
+        for (t, p) in total.iter_mut().zip(&part) {
+            t[0] += p[0];
+            t[1] += p[1];
         }
-        after.push(displacements_at(&beam, &partial, xs));
+        parts.push(part);
+        passing.push(passing_rate(&beam, &shape, &stations) / m.omega[k]);
     }
-    let scale = after.last().map_or(0.0, |d| {
-        d.iter().fold(0.0_f64, |s, v| s.max(v[0].hypot(v[1])))
-    });
+    let scale = total.iter().fold(0.0_f64, |s, v| s.max(v[0].hypot(v[1])));
     if !(scale > 0.0) {
-        return fallback("12 modes (or as many as the mesh has): the loads that change during the run do not deflect the probes");
+        return Err(fallback("12 modes (or as many as the mesh has): the loads that change during the run do not deflect the probes"));
     }
-    let moved = |a: usize, b: usize| -> f64 {
-        let none = vec![[0.0; 2]; xs.len()];
-        let pa = if a == 0 { &none } else { &after[a - 1] };
-        pa.iter()
-            .zip(&after[b - 1])
-            .fold(0.0_f64, |m, (x, y)| m.max((x[0] - y[0]).hypot(x[1] - y[1])))
-            / scale
-    };
-    // A load switched on or off sets every mode it excites swinging by up to its whole static
-    // part (twice it at the peak), undamped: the share is halved.
-    let tol = SHARE * accuracy * if switched { 0.5 } else { 1.0 };
-    let single = (1..=after.len())
-        .rev()
-        .find(|&k| moved(k - 1, k) > tol)
-        .unwrap_or(1);
-    let mut count = single;
-    while 2 * count <= after.len() && moved(count, 2 * count) > tol {
-        count *= 2;
-    }
-    let count = count.min(limit);
-    let confirm = if 2 * count <= after.len() {
-        format!(
-            "modes {}–{} together add {:.1e}",
-            count + 1,
-            2 * count,
-            moved(count, 2 * count)
-        )
+    let below_cutoff =
+        crate::analysis::modes::acceleration_cutoff(&beam, cutoff).map_or(0, |(hz, _)| {
+            m.omega
+                .iter()
+                .take_while(|w| **w / std::f64::consts::TAU <= hz)
+                .count()
+        });
+    Ok(ModeShares {
+        parts,
+        passing,
+        scale,
+        below_cutoff,
+        limit,
+        switched,
+    })
+}
+
+/// Stations an element the steepest slope of a mode's deflection is sought at.
+const PASSING_SAMPLES: usize = 16;
+
+/// κ of one mode: the steepest slope of its deflection across the axis between `stations`
+/// over its largest deflection (infinite where it does not deflect the axis: an axial mode,
+/// which the loads across it do not excite either).
+fn passing_rate(beam: &Beam, shape: &[f64], stations: &[f64]) -> f64 {
+    let across: Vec<f64> = stations
+        .iter()
+        .map(|&x| {
+            let d = beam.displacement_at(shape, x);
+            beam.to_local([d.u, d.w])[1]
+        })
+        .collect();
+    let largest = across.iter().fold(0.0_f64, |m, w| m.max(w.abs()));
+    let steepest = across
+        .windows(2)
+        .zip(stations.windows(2))
+        .fold(0.0_f64, |m, (w, x)| {
+            m.max((w[1] - w[0]).abs() / (x[1] - x[0]))
+        });
+    if largest > 0.0 {
+        steepest / largest
     } else {
-        format!("the mesh has {} modes", after.len())
-    };
-    (
-        count,
-        format!(
-            "{count} modes: the loads excite {single} (each adds more than {tol:.1e} of the peak static deflection at the probes); {confirm}"
-        ),
-    )
+        f64::INFINITY
+    }
+}
+
+impl ModeShares {
+    /// How many modes the dynamics asks for at `accuracy`, and why. With `passing` (the speed
+    /// of moving forces, the only loads that change), each mode's part counts by how far they
+    /// set it vibrating about it, 2 v κ/ω (entering and leaving, at most all of it): the static
+    /// correction of the modes left out holds the rest. Otherwise a mode counts whole.
+    pub fn count(&self, accuracy: f64, passing: Option<f64>) -> (usize, String) {
+        let passing = passing.filter(|_| !self.switched);
+        let weight = |k: usize| passing.map_or(1.0, |v| (2.0 * v * self.passing[k]).min(1.0));
+        // The deflection at the probes after the first k modes, each weighted, for every k.
+        let mut after: Vec<Vec<[f64; 2]>> = Vec::with_capacity(self.parts.len());
+        let mut partial = vec![[0.0; 2]; self.parts.first().map_or(0, Vec::len)];
+        for (k, part) in self.parts.iter().enumerate() {
+            for (p, d) in partial.iter_mut().zip(part) {
+                p[0] += weight(k) * d[0];
+                p[1] += weight(k) * d[1];
+            }
+            after.push(partial.clone());
+        }
+        let moved = |a: usize, b: usize| -> f64 {
+            let none = vec![[0.0; 2]; partial.len()];
+            let pa = if a == 0 { &none } else { &after[a - 1] };
+            pa.iter()
+                .zip(&after[b - 1])
+                .fold(0.0_f64, |m, (x, y)| m.max((x[0] - y[0]).hypot(x[1] - y[1])))
+                / self.scale
+        };
+        // A load switched on or off sets every mode it excites swinging by up to its whole
+        // static part (twice it at the peak), undamped: the share is halved.
+        let tol = SHARE * accuracy * if self.switched { 0.5 } else { 1.0 };
+        let single = (1..=after.len())
+            .rev()
+            .find(|&k| moved(k - 1, k) > tol)
+            .unwrap_or(1);
+        let mut count = single;
+        while 2 * count <= after.len() && moved(count, 2 * count) > tol {
+            count *= 2;
+        }
+        let confirm = if 2 * count <= after.len() {
+            format!(
+                "modes {}–{} together add {:.1e}",
+                count + 1,
+                2 * count,
+                moved(count, 2 * count)
+            )
+        } else {
+            format!("the mesh has {} modes", after.len())
+        };
+        let counted = match passing {
+            Some(v) => format!(
+                "each adds more than {tol:.1e} of the peak static deflection at the probes in its vibration about its static part, which forces passing at {v} m/s make up to 2 v κ/ω of it (κ its shape's steepest slope over its largest deflection), the static correction holding the rest"
+            ),
+            None => format!("each adds more than {tol:.1e} of the peak static deflection at the probes"),
+        };
+        let cutoff = if self.below_cutoff > count.min(self.limit) {
+            format!(
+                "; {} lie below the deck acceleration's cutoff, which the accelerations are made of",
+                self.below_cutoff
+            )
+        } else {
+            String::new()
+        };
+        let count = count.max(self.below_cutoff).min(self.limit);
+        (
+            count,
+            format!("{count} modes: the loads excite {single} ({counted}); {confirm}{cutoff}"),
+        )
+    }
 }
 
 /// The largest load the scene applies: all its loads together, with what rides on the beam
@@ -220,6 +353,7 @@ pub fn choose(
     accuracy: f64,
     start: BeamStart,
     thesis_coupling: bool,
+    cutoff: Option<f64>,
 ) -> Choice {
     let cases = largest_loads(loads, weight, xs);
     let switching: Vec<&PointLoad> = loads
@@ -232,12 +366,25 @@ pub fn choose(
     if let Some(weight) = weight {
         excite.extend(xs.iter().map(|&x| (x, [0.0, -weight], 0.0)));
     }
-    let modal = |why: String| {
-        let (modes, count_why) = mode_count(spec, &excite, drops, xs, accuracy, switched);
-        Choice {
+    let modal = |why: String| match mode_shares(spec, &excite, drops, xs, switched, cutoff) {
+        Ok(shares) => {
+            let recount = Recount {
+                shares,
+                why_modal: why,
+                accuracy,
+            };
+            let (model, why) = recount.at(None);
+            Choice {
+                model,
+                why,
+                recount: Some(recount),
+            }
+        }
+        Err((modes, count_why)) => Choice {
             model: BeamModel::Modal { modes },
             why: format!("{why}{count_why}"),
-        }
+            recount: None,
+        },
     };
     if given == Some(BeamModel::Modal { modes: 0 }) {
         return modal(String::new());
@@ -246,6 +393,7 @@ pub fn choose(
         return Choice {
             model: BeamModel::Exact,
             why: "exact: the thesis coupling is the thesis' equations, which are written for the exact beam".into(),
+            recount: None,
         };
     }
     let tol = SHARE * accuracy;
@@ -253,6 +401,7 @@ pub fn choose(
         None => Choice {
             model: BeamModel::Exact,
             why: "exact: the beam has no static response to measure its nonlinearity by (the supports leave a mechanism, or it does not carry the load statically)".into(),
+            recount: None,
         },
         Some((size, gap)) if !linear_enough(gap / size, accuracy) => Choice {
             model: BeamModel::Exact,
@@ -260,6 +409,7 @@ pub fn choose(
                 "exact: under the largest load the scene applies the linear beam's static deflection at the probes is off the exact one by {:.1e} of it, more than {tol:.1e}",
                 gap / size
             ),
+            recount: None,
         },
         Some((size, gap)) => modal(format!(
             "modal: under the largest load the scene applies the linear and the exact static deflections at the probes differ by {:.1e} of them (within {tol:.1e}); ",

@@ -187,6 +187,34 @@ pub fn rayleigh(beam: &Beam) -> Result<Option<Rayleigh>, String> {
     }
 }
 
+/// EN 1991-2's lower bound of the deck acceleration's cutoff (Hz).
+const CUTOFF_FLOOR_HZ: f64 = 30.0;
+
+/// The frequency (Hz) above which the deck's acceleration leaves the modes out, and why: `given`,
+/// or EN 1991-2 §6.4.6.4's max(30 Hz, 1.5 f1, f3), f1 and f3 the first and third bending modes.
+/// `None` where the modes cannot be computed.
+pub fn acceleration_cutoff(beam: &Beam, given: Option<f64>) -> Option<(f64, String)> {
+    if let Some(f) = given {
+        return Some((
+            f,
+            "as the scene gives (output.acceleration_cutoff_hz)".to_string(),
+        ));
+    }
+    let f: Vec<f64> = lowest_bending(beam, 3)?
+        .iter()
+        .map(|w| w / std::f64::consts::TAU)
+        .collect();
+    let f1 = f.first().copied().unwrap_or(0.0);
+    let f3 = f.get(2).copied().unwrap_or(f1);
+    Some((
+        CUTOFF_FLOOR_HZ.max(1.5 * f1).max(f3),
+        format!(
+            "EN 1991-2 §6.4.6.4: max(30 Hz, 1.5 f1 = {:.2} Hz, f3 = {f3:.2} Hz), f1 and f3 the first and third bending modes",
+            1.5 * f1
+        ),
+    ))
+}
+
 /// The circular frequencies of the lowest `count` bending modes (fewer where the mesh has
 /// fewer), ascending: the modes EN 1991-2's rules and a damping ratio's anchors mean.
 pub fn lowest_bending(beam: &Beam, count: usize) -> Option<Vec<f64>> {

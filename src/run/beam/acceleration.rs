@@ -7,14 +7,11 @@
 
 use nalgebra::DMatrix;
 
-use crate::analysis::modes::modes;
+use crate::analysis::modes::{acceleration_cutoff, modes};
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::modal::MAX_MODES;
 use crate::beam::Beam;
 use crate::linalg;
-
-/// EN 1991-2's lower bound of the cutoff (Hz).
-const CUTOFF_FLOOR_HZ: f64 = 30.0;
 
 /// What the recorded accelerations count, for the summary.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -44,27 +41,7 @@ impl AccelerationFilter {
         let hz = |m: &crate::analysis::modes::Modes| -> Vec<f64> {
             m.omega.iter().map(|w| w / std::f64::consts::TAU).collect()
         };
-        let (cutoff_hz, rule) = match given {
-            Some(f) => (
-                f,
-                "as the scene gives (output.acceleration_cutoff_hz)".to_string(),
-            ),
-            None => {
-                let f: Vec<f64> = crate::analysis::modes::lowest_bending(beam, 3)?
-                    .iter()
-                    .map(|w| w / std::f64::consts::TAU)
-                    .collect();
-                let f1 = f.first().copied().unwrap_or(0.0);
-                let f3 = f.get(2).copied().unwrap_or(f1);
-                (
-                    CUTOFF_FLOOR_HZ.max(1.5 * f1).max(f3),
-                    format!(
-                        "EN 1991-2 §6.4.6.4: max(30 Hz, 1.5 f1 = {:.2} Hz, f3 = {f3:.2} Hz), f1 and f3 the first and third bending modes",
-                        1.5 * f1
-                    ),
-                )
-            }
-        };
+        let (cutoff_hz, rule) = acceleration_cutoff(beam, given)?;
         // Modes until one is past the cutoff (or the mesh, or the bound, runs out).
         while m.omega.len() < available && hz(&m).last().is_some_and(|f| *f <= cutoff_hz) {
             m = modes(beam, (2 * m.omega.len()).min(available))?;
