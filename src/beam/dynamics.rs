@@ -134,17 +134,24 @@ impl<'a> LoadedBeam<'a> {
     /// weight where the scene puts it on.
     pub fn external(&self, t: f64, f: &mut [f64]) {
         f.fill(0.0);
+        self.external_terms(t, |i, v| f[i] += v);
+    }
+
+    /// The terms (unknown, value) of the loads on the mesh at t, as [`Self::external`] adds
+    /// them, handed to `add` one by one: a reader of a few rows against the loads (a probe's
+    /// static correction) then touches the few unknowns under each load, not the whole mesh.
+    pub fn external_terms(&self, t: f64, mut add: impl FnMut(usize, f64)) {
         for l in self.active(t) {
-            self.beam.add_point_load(l.x, l.force, l.mz, f);
+            self.beam.point_load_terms(l.x, l.force, l.mz, &mut add);
         }
-        self.beam.add_weight(f);
+        if let Some(weight) = self.beam.weight() {
+            weight.iter().enumerate().for_each(|(i, &v)| add(i, v));
+        }
         for (x, p) in self.axles(t) {
-            self.beam.add_point_load(x, [0.0, -p], 0.0, f);
+            self.beam.point_load_terms(x, [0.0, -p], 0.0, &mut add);
         }
         for r in self.riding(t).iter() {
-            r.spread(self.beam.to_local([0.0, -r.load]), [0.0; 2], |i, v| {
-                f[i] += v
-            });
+            r.spread(self.beam.to_local([0.0, -r.load]), [0.0; 2], &mut add);
         }
     }
 

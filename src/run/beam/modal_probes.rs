@@ -1,8 +1,9 @@
 //! The probes of a modal beam read from its amplitudes: each probe's u, w and φ as a row over
 //! the modes, and the static response of the modes left out as a row over the mesh's loads,
 //! both formed once. A snapshot that reads the probes alone (a sweep's case, the envelope
-//! unwatched, no disk or vehicle on the beam) then costs a few dot products where expanding
-//! the modes over the mesh and solving for the static correction cost most of a snapshot.
+//! unwatched, no disk or vehicle on the beam) then costs a few dot products over the modes
+//! and, for the correction, a product at each unknown a load touches, where expanding the
+//! modes over the mesh and solving for the static correction cost most of a snapshot.
 
 use crate::beam::dynamics::LoadedBeam;
 
@@ -64,15 +65,27 @@ impl ModalProbes {
 
     /// Per probe (u, w, φ, the acceleration's w) from the amplitudes `z`, their accelerations
     /// `a` (the first `kept` of them: the acceleration's cutoff) and, to correct for the modes
-    /// left out, the mesh's loads `f`.
-    pub fn read(&self, z: &[f64], a: &[f64], kept: usize, f: Option<&[f64]>) -> Vec<f64> {
+    /// left out, the mesh's loads, which `loads` hands term by term to the function it is given.
+    pub fn read(
+        &self,
+        z: &[f64],
+        a: &[f64],
+        kept: usize,
+        loads: Option<&dyn Fn(&mut dyn FnMut(usize, f64))>,
+    ) -> Vec<f64> {
         let dot = |r: &[f64], v: &[f64]| -> f64 { r.iter().zip(v).map(|(x, y)| x * y).sum() };
         let mut out = Vec::with_capacity(4 * self.modes.len());
         for (p, rows) in self.modes.iter().enumerate() {
-            let residual = self.residual.as_ref().map(|r| &r[p]).zip(f);
-            for (c, row) in rows.iter().enumerate() {
-                let corrected = residual.map_or(0.0, |(r, f)| dot(&r[c], f));
-                out.push(dot(row, z) + corrected);
+            let mut corrected = [0.0; 3];
+            if let (Some(r), Some(loads)) = (self.residual.as_ref().map(|r| &r[p]), loads) {
+                loads(&mut |i, v| {
+                    for (c, row) in r.iter().enumerate() {
+                        corrected[c] += row[i] * v;
+                    }
+                });
+            }
+            for (row, correction) in rows.iter().zip(corrected) {
+                out.push(dot(row, z) + correction);
             }
             out.push(dot(&rows[1][..kept], &a[..kept]));
         }

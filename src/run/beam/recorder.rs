@@ -206,12 +206,9 @@ impl Recorder<'_> {
         }
         let n = phase.loaded.dim();
         let kept = self.filter.as_ref().map_or(n, |f| f.kept.min(n));
-        let f = phase.correct.then(|| {
-            let mut f = vec![0.0; phase.beam.dim()];
-            phase.loaded.external(t, &mut f);
-            f
-        });
-        Some(probes.read(&y[..n], &phase.split(yp).1[..n], kept, f.as_deref()))
+        let loads = |add: &mut dyn FnMut(usize, f64)| phase.loaded.external_terms(t, add);
+        let loads: Option<&dyn Fn(&mut dyn FnMut(usize, f64))> = phase.correct.then_some(&loads);
+        Some(probes.read(&y[..n], &phase.split(yp).1[..n], kept, loads))
     }
 
     /// What the watches see of the vehicles: per vehicle its bodies' accelerations then its
