@@ -20,13 +20,15 @@ use crate::scene::{BeamScene, Checked, Model, Scene, SceneSpec};
 /// A beam model chosen, why, and what its count of modes was chosen from.
 type ChosenModel = (BeamModel, String, Option<Arc<model_choice::Recount>>);
 
-/// Plans scenes, keeping the choices made (mesh, model, ρ∞) by everything they depend on: the
-/// eigenproblems and static solves behind a choice cost seconds on a fine mesh.
+/// Plans scenes, keeping the choices made (mesh, model, ρ∞, the response's size) by everything
+/// they depend on: the eigenproblems and static solves behind a choice cost seconds on a fine
+/// mesh, and a sweep's cases share them.
 #[derive(Default)]
 pub struct Planner {
     chosen: Mutex<BTreeMap<String, Discretisation>>,
     models: Mutex<BTreeMap<String, ChosenModel>>,
     dampings: Mutex<BTreeMap<String, (f64, String)>>,
+    responses: Mutex<BTreeMap<String, Option<f64>>>,
 }
 
 impl Planner {
@@ -110,7 +112,10 @@ impl Planner {
             b.rho_inf = rho;
             b.rho_inf_chosen = Some(why);
         }
-        b.response = response_size(&b.beam, &b.loads, weight, &xs);
+        let key = format!("{:?} {:?} {weight:?} {xs:?}", b.beam, b.loads);
+        b.response = kept(&self.responses, key, || {
+            response_size(&b.beam, &b.loads, weight, &xs)
+        });
         b.passage = loaded_for(b).and_then(|crossing| {
             passage_share(&b.beam, crossing)
                 .filter(|&share| share < 1.0)
