@@ -179,20 +179,21 @@ impl<'a> LoadedBeam<'a> {
     /// An axle enters and leaves only at a breakpoint, so which axles are on is decided within
     /// the current stretch between breakpoints: where an end is free, an axle entering there
     /// is a jump of the load that no stage may see on the wrong side.
-    pub fn axles(&self, t: f64) -> Vec<(f64, f64)> {
-        let Some(train) = self.train.filter(|tr| tr.model == TrainModel::MovingForce) else {
-            return Vec::new();
-        };
+    pub fn axles(&self, t: f64) -> impl Iterator<Item = (f64, f64)> + '_ {
         let length = self.beam.length;
         let when = if self.segment.get().is_nan() {
             t
         } else {
             self.segment.get()
         };
-        train
-            .on(length, when)
-            .map(|a| (train.position(a, t).clamp(0.0, length), train.loads[a]))
-            .collect()
+        self.train
+            .filter(|tr| tr.model == TrainModel::MovingForce)
+            .into_iter()
+            .flat_map(move |train| {
+                train
+                    .on(length, when)
+                    .map(move |a| (train.position(a, t).clamp(0.0, length), train.loads[a]))
+            })
     }
 
     /// The train's axles riding on the beam at t as moving masses (none for moving forces):
@@ -289,7 +290,6 @@ impl<'a> LoadedBeam<'a> {
     pub fn axle_forces(&self, t: f64, q: &[f64], v: &[f64], a: &[f64]) -> Vec<(f64, [f64; 2])> {
         let mut out: Vec<(f64, [f64; 2])> = self
             .axles(t)
-            .into_iter()
             .map(|(x, p)| (x, [0.0, -p]))
             .collect();
         if let Some(speed) = self.moving_masses() {
