@@ -510,6 +510,34 @@ fn the_modes_left_to_the_static_correction_move_no_headline() {
     }
 }
 
+/// EN 1991-2's deck acceleration is made of the modes at or below its cutoff (three on the
+/// HSLM bridge: 5.0, 19.8 and 43.8 Hz). A modal beam the scene gives two modes reads its
+/// accelerations from those two, midspan's largest moving by more than the accuracy, and the
+/// run says so; the plan keeps at least the three and says nothing.
+#[test]
+fn fewer_modes_than_the_cutoff_s_are_said_to_leave_accelerations_out() {
+    let train = "{hslm: A1, speed: 90.0}";
+    let on = |modes: usize| {
+        at_defaults(&hslm_bridge(
+            train,
+            0.5,
+            &format!("    model: modal\n    modes: {modes}\n"),
+        ))
+    };
+    let (two, three, planned) = (on(2), on(3), at_defaults(&hslm_bridge(train, 0.5, "")));
+    let says = |r: &BeamRun| {
+        r.warnings()
+            .iter()
+            .any(|w| w.contains("fewer than the 3 at or below"))
+    };
+    assert!(says(&two) && !says(&three) && !says(&planned));
+    let (a2, a3) = (mid_headlines(&two)[3], mid_headlines(&three)[3]);
+    assert!(
+        (a2 - a3).abs() > 1e-3 * a3,
+        "a_max on two modes {a2}, on three {a3}"
+    );
+}
+
 /// HSLM-A1 at 90 m/s integrated exactly, whose steps span up to a sixteenth of the lowest
 /// period once the train has left: the envelope's largest acceleration (the deck's, over all
 /// its stations) against generalized-α at rtol 10⁻⁸, whose steps are short, within 10⁻⁴ of it.

@@ -288,10 +288,7 @@ impl<'a> LoadedBeam<'a> {
     /// moving mass's force taken at its centre, which is exact for the support reactions once
     /// its patch is clear of the supports.
     pub fn axle_forces(&self, t: f64, q: &[f64], v: &[f64], a: &[f64]) -> Vec<(f64, [f64; 2])> {
-        let mut out: Vec<(f64, [f64; 2])> = self
-            .axles(t)
-            .map(|(x, p)| (x, [0.0, -p]))
-            .collect();
+        let mut out: Vec<(f64, [f64; 2])> = self.axles(t).map(|(x, p)| (x, [0.0, -p])).collect();
         if let Some(speed) = self.moving_masses() {
             for r in self.riding(t).iter() {
                 let (force, _) = self.riding_force(r, speed, q, v, a);

@@ -20,12 +20,18 @@ pub struct CutoffReport {
     /// The modes below the cutoff, which the accelerations are made of.
     pub modes: usize,
     pub rule: String,
+    /// The modes of the mesh at or below the cutoff: more than `modes` where a modal beam
+    /// keeps fewer, whose accelerations then leave the others out.
+    #[serde(skip)]
+    pub below: usize,
 }
 
 pub(super) struct AccelerationFilter {
     pub cutoff_hz: f64,
     /// How many modes are kept.
     pub kept: usize,
+    /// How many modes of the mesh lie at or below the cutoff.
+    below: usize,
     /// On the mesh, the kept modes' shapes; on a modal beam, nothing more.
     mesh: Option<DMatrix<f64>>,
     /// Why the cutoff is what it is.
@@ -51,12 +57,14 @@ impl AccelerationFilter {
             Some(modal) => AccelerationFilter {
                 cutoff_hz,
                 kept: below.min(modal.dim()),
+                below,
                 mesh: None,
                 rule,
             },
             None => AccelerationFilter {
                 cutoff_hz,
                 kept: below,
+                below,
                 mesh: Some(m.shapes.columns(0, below).into_owned()),
                 rule,
             },
@@ -68,6 +76,7 @@ impl AccelerationFilter {
             cutoff_hz: self.cutoff_hz,
             modes: self.kept,
             rule: self.rule.clone(),
+            below: self.below,
         }
     }
 

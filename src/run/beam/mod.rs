@@ -227,6 +227,12 @@ impl BeamRun {
                 first.lift_off_t
             ));
         }
+        if let Some(c) = self.acceleration.as_ref().filter(|c| c.below > c.modes) {
+            out.push(format!(
+                "the modal beam keeps {} modes, fewer than the {} at or below the deck acceleration's cutoff ({:.2} Hz): the accelerations leave the others out; `track.beam.modes: {}` or more counts them all",
+                c.modes, c.below, c.cutoff_hz, c.below
+            ));
+        }
         out
     }
 }
