@@ -131,10 +131,6 @@ pub struct Overrides {
     /// disk alone, and the envelope's stations, watched at every step end, are most of what
     /// such a run costs.
     pub no_envelope: bool,
-    /// Keep no rows of the history: a sweep's case writes none. The energy balance is still
-    /// checked at every output time, so the case's drift is the run's; what a row would hold
-    /// of the probes, the disks and the vehicles the watches take at every step anyway.
-    pub no_history: bool,
 }
 
 impl Overrides {

@@ -740,7 +740,7 @@ impl<'a> OnTheBeam<'a, '_> {
     /// event stopped it.
     fn stopped(&mut self, t: f64, y: Vec<f64>, stop: Stop, disk: Option<usize>) -> Next<Self> {
         // The run stops between output times: its last row is the stop itself.
-        if self.rec.outputs_before(t) {
+        if self.rec.history.rows.last().is_none_or(|r| r.t < t) {
             self.rec.output(t, &y);
         }
         Next::Ends(Ridden {
@@ -887,7 +887,7 @@ fn vibrate_alone(
     let rest: Vec<f64> = outputs
         .iter()
         .copied()
-        .filter(|&o| o >= t0 && rec.outputs_before(o))
+        .filter(|&o| o >= t0 && rec.history.rows.last().is_none_or(|r| r.t < o))
         .collect();
     let out = integrate(loaded, t0, q0, v0, scene.duration, &rest, opts, rec)
         .map_err(|e| solver_error(scene, e))?;

@@ -58,10 +58,6 @@ pub(super) struct Recorder<'a> {
     pub(super) watches: Watches,
     /// Whether the envelope along the beam is watched (not in a sweep's case).
     pub(super) watch_along: bool,
-    /// Whether the history's rows are kept (not in a sweep's case).
-    pub(super) keep_rows: bool,
-    /// The last output time recorded, kept or not.
-    pub(super) last_output: Option<f64>,
     /// The snapshot at the end of the last step watched.
     pub(super) last: Option<(f64, Snapshot)>,
     /// The snapshot before that: with the stations, the start of the last step watched.
@@ -90,12 +86,6 @@ pub(super) struct Recorder<'a> {
 }
 
 impl Recorder<'_> {
-    /// Whether the output at t is still to record: a phase or a stop ends between output
-    /// times, and its end is recorded once.
-    pub(super) fn outputs_before(&self, t: f64) -> bool {
-        self.last_output.is_none_or(|last| last < t)
-    }
-
     /// The disks' part changed at t, the state y after it (one left, lifted off or landed):
     /// a train on the beam goes on, its power read again from y rather than carried over.
     pub(super) fn train_goes_on(&mut self, t: f64, y: &[f64]) {
@@ -356,10 +346,6 @@ impl Observer for Recorder<'_> {
         let phase = &self.phase;
         let (disks, gap) = phase.disks(t, y);
         let energy = self.ledger.at_output(phase, t, y, &disks);
-        self.last_output = Some(t);
-        if !self.keep_rows {
-            return;
-        }
         let q = phase.displaced(t, y, &disks, None);
         let a = phase.acceleration(t, y);
         let reactions = phase.reactions(t, y, &q, &a, &disks);
@@ -580,8 +566,6 @@ pub(super) fn recorder<'a>(
             setup.disks.len(),
         ),
         watch_along: !over.no_envelope,
-        keep_rows: !over.no_history,
-        last_output: None,
         last: None,
         before: None,
         trail: Vec::new(),

@@ -98,7 +98,7 @@ pub(super) fn drive<'a>(
         if !v.can_fly(k) {
             break (Stop::Event(StopReason::ContactLost), Some(v.wheel(k)));
         }
-        if rec.outputs_before(t) {
+        if rec.history.rows.last().is_none_or(|r| r.t < t) {
             rec.output(t, &y);
         }
         rec.restart();
@@ -134,7 +134,7 @@ pub(super) fn drive<'a>(
         }
         rec.ledger.restart(&rec.phase, t, &y);
     };
-    if rec.outputs_before(t) {
+    if rec.history.rows.last().is_none_or(|r| r.t < t) {
         rec.output(t, &y);
     }
     Ok(Ridden {

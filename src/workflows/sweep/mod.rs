@@ -423,7 +423,6 @@ fn planned_case(
 pub(crate) fn run_planned(scene: &crate::scene::Scene, over: &Overrides) -> Result<Summary, Error> {
     let over = Overrides {
         no_envelope: true,
-        no_history: true,
         ..over.clone()
     };
     run::run(scene, &over, false).map(|r| summarise(&r))
