@@ -116,6 +116,39 @@ fn cantilever_tip_deflection_with_shear() {
     assert!((w / exact - 1.0).abs() < 1e-6, "tip {w} vs {exact}");
 }
 
+/// A linear beam stiff in shear solves statically to Euler–Bernoulli. With G Av 10⁵ times
+/// the section's, its assembled K q loses the shear strain w′ − φ to cancellation, and Newton's
+/// corrections stop shrinking above the 10⁻⁹ of the solution a converging Newton reaches: the
+/// first solve is the answer to the solve's round-off, and the solver takes it rather than
+/// halving its load steps to a failure ("the structure may buckle or snap"). Simply
+/// supported, P at midspan on a node: w = P L³/(48 EI) + P L/(4 G Av), which the element
+/// reproduces to round-off; 10⁻⁶ allows the conditioning's loss (2.2·10⁻⁶ at 10⁶ times the
+/// shear stiffness, 2.6·10⁻⁵ at 10⁷).
+#[test]
+fn a_shear_rigid_linear_beam_solves_statically() {
+    let mut s = shs200();
+    s.gav *= 1e5;
+    let (l, p) = (8.0, -1.0e4);
+    let exact_model = beam(
+        l,
+        [Support::Pinned, Support::Roller],
+        8,
+        4,
+        Quadrature::Reduced,
+        s,
+    );
+    let b = Beam::new(BeamSpec {
+        model: BeamModel::Linear,
+        ..exact_model.spec.clone()
+    });
+    let mut f = vec![0.0; b.dim()];
+    b.add_point_load(0.5 * l, [0.0, p], 0.0, &mut f);
+    let q = statics::solve(&b, &f).expect("converges").q;
+    let w = b.displacement_at(&q, 0.5 * l).w;
+    let exact = p * l.powi(3) / (48.0 * s.ei) + p * l / (4.0 * s.gav);
+    assert!((w / exact - 1.0).abs() < 1e-6, "w {w} vs {exact}");
+}
+
 /// Clamped at 0, pinned at L, load P at a: by compatibility of a Timoshenko cantilever, the
 /// prop force is R = P[a²(3L − a)/(6EI) + a/GAv] / [L³/(3EI) + L/GAv] and the deflection under
 /// the load P a³/(3EI) + P a/GAv − R[a²(3L − a)/(6EI) + a/GAv]. With a mesh node under the
