@@ -729,6 +729,20 @@ fn replace_by_link(path: &Path, target: &Path) {
     std::os::unix::fs::symlink(target, path).expect("symlink");
 }
 
+/// `text` with the value of the first line that sets `key` replaced by `value`.
+fn set_first(text: &str, key: &str, value: &str) -> String {
+    let mut done = false;
+    text.lines()
+        .map(|l| match l.split_once(':') {
+            Some((k, _)) if !done && k.trim_start().trim_start_matches("- ") == key => {
+                done = true;
+                format!("{k}: {value}\n")
+            }
+            _ => format!("{l}\n"),
+        })
+        .collect()
+}
+
 fn mkfifo(path: &Path) {
     let _ = std::fs::remove_file(path);
     let status = Command::new("mkfifo").arg(path).status().expect("mkfifo");
@@ -740,10 +754,31 @@ fn mkfifo(path: &Path) {
 ///     case and its probes against the other records, and read regular files only, each
 ///     bounded, from the plan's own folders. Every edit below ended in a panic, a hang, an
 ///     800 MB read or records written elsewhere; each is now one sentence naming the file.
+///     A record holding what no run writes (a number not finite, a negative time, a least
+///     value above the largest) merged into sweep.csv, or stopped it with "the run's numbers
+///     overflowed"; it is now refused as such.
 #[test]
 fn item_11_planned_sweeps_trust_no_file() {
     type Edit = fn(&Path);
-    let cases: [(&str, Edit, &str, &str); 9] = [
+    let cases: [(&str, Edit, &str, &str); 12] = [
+        (
+            "nan-record",
+            |p| edit(&files(p, "done")[0], |t| set_first(t, "w_min", ".nan")),
+            "merge",
+            "its w_min is NaN, not a finite number",
+        ),
+        (
+            "negative-time",
+            |p| edit(&files(p, "done")[0], |t| set_first(t, "t_end", "-1")),
+            "merge",
+            "its t_end is -1, less than zero",
+        ),
+        (
+            "least-above-largest",
+            |p| edit(&files(p, "done")[1], |t| set_first(t, "w_min", "1.0")),
+            "merge",
+            "lies above its w_max",
+        ),
         (
             "probes",
             |p| {

@@ -101,6 +101,50 @@ fn finite(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
 }
 
+impl RecordSummary {
+    /// What in the summary no run records, if anything.
+    fn implausible(&self) -> Option<String> {
+        let mut sizes = vec![
+            ("t_end", Some(self.t_end)),
+            ("energy_drift", Some(self.energy_drift)),
+            ("wall_s", Some(self.wall_s)),
+        ];
+        let mut ranges = Vec::new();
+        for p in &self.probes {
+            sizes.push(("a_max", Some(p.a_max)));
+            sizes.push(("w_amplitude_after_exit", p.w_amplitude_after_exit));
+            ranges.push(("w_min", p.w_min, "w_max", p.w_max));
+        }
+        for d in &self.disks {
+            sizes.push(("left_track_t", d.left_track_t));
+            ranges.push(("rn_min", d.rn_min, "rn_max", d.rn_max));
+            if let (Some(lo), Some(hi)) = (d.rn_mean_min, d.rn_mean_max) {
+                ranges.push(("rn_mean_min", lo, "rn_mean_max", hi));
+            }
+        }
+        sizes.extend(self.bodies.iter().map(|b| ("a_max", b.a_max)));
+        let values = sizes
+            .iter()
+            .filter_map(|(name, v)| v.map(|v| (*name, v)))
+            .chain(ranges.iter().flat_map(|&(a, lo, b, hi)| [(a, lo), (b, hi)]));
+        for (name, v) in values {
+            if !v.is_finite() {
+                return Some(format!("its {name} is {v}, not a finite number"));
+            }
+        }
+        if let Some((name, v)) = sizes
+            .iter()
+            .find_map(|(name, v)| v.filter(|v| *v < 0.0).map(|v| (name, v)))
+        {
+            return Some(format!("its {name} is {v}, less than zero"));
+        }
+        ranges
+            .iter()
+            .find(|(_, lo, _, hi)| lo > hi)
+            .map(|(a, lo, b, hi)| format!("its {a} = {lo} lies above its {b} = {hi}"))
+    }
+}
+
 impl Record {
     pub fn of(row: &SweepRow) -> Record {
         let (ok, failed) = match &row.outcome {
@@ -168,9 +212,18 @@ impl Record {
         }
     }
 
+    /// The record in `text`, read from `source`, refused where it holds what no run
+    /// records: a number that is not finite (a run's overflow is recorded as its failure), a
+    /// negative time, drift or acceleration, or a least value above the largest.
     pub fn from_yaml(text: &str, source: &str) -> Result<Record, Error> {
-        serde_saphyr::from_str(text)
-            .map_err(|e| Error::Input(format!("{source} is not a case record: {e}")))
+        let record: Record = serde_saphyr::from_str(text)
+            .map_err(|e| Error::Input(format!("{source} is not a case record: {e}")))?;
+        match record.ok.as_ref().and_then(RecordSummary::implausible) {
+            None => Ok(record),
+            Some(why) => Err(Error::Input(format!(
+                "{source} is not a record a run writes: {why}; remove it and run the case again"
+            ))),
+        }
     }
 
     /// The row it records; a value that reads as a number is one.
