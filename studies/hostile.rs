@@ -1021,3 +1021,33 @@ fn item_13_work_and_damping_are_bounded() {
         &["track.beam.supports.intermediate", "7.5123456"],
     );
 }
+
+/// 14. A run longer than its steps can follow names its length. The finest step a run takes is
+///     10⁻¹⁴ of its length, where t + h keeps too few digits to step on: a vehicle at
+///     10⁻²⁰ m/s (a crossing of 10²¹ s) and a duration of 10¹⁵ s stopped with "the solution
+///     is not smooth enough to follow there", which sent the user looking at the physics;
+///     each now says how long the run is and what its finest step is.
+#[test]
+fn item_14_an_endless_run_names_its_length() {
+    let creeping = scene(
+        "creeping",
+        &beam(
+            "",
+            "vehicles: [{name: car, speed: 1.0e-20, bodies: [{name: body, mass: 5750.0}], axles: [{name: wheel, x: 0.0}], springs: [{upper: body, lower: wheel, x: 0.0, k: 1.6e6}]}]\n",
+        ),
+    );
+    fails(
+        &["run", &creeping, "--out", &out("creeping")],
+        2,
+        &["s long can take", "shorten the run"],
+    );
+    let long = scene(
+        "long",
+        &beam("", DISK).replace("duration: 0.5", "duration: 1.0e15"),
+    );
+    fails(
+        &["run", &long, "--out", &out("long")],
+        2,
+        &["a run 1.000e15 s long", "shorten the run"],
+    );
+}

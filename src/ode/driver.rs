@@ -288,7 +288,11 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             };
             let h = h_try * factor;
             if h < self.h_min {
-                return Err(SolveError::StepSizeUnderflow { t, h });
+                return Err(SolveError::StepSizeUnderflow {
+                    t,
+                    h,
+                    floor: self.h_min,
+                });
             }
             return Ok(Trial::Rejected { h, on_error: true });
         }

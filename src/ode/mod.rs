@@ -270,9 +270,12 @@ pub struct Outcome<E> {
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum SolveError {
+    /// The step fell below `floor`, the finest a run can take: 10⁻¹⁴ of its latest time
+    /// (or of 1 s), where t + h no longer differs from t by enough digits to step on.
     StepSizeUnderflow {
         t: f64,
         h: f64,
+        floor: f64,
     },
     NewtonFailed {
         t: f64,
@@ -297,7 +300,10 @@ pub enum SolveError {
 impl fmt::Display for SolveError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            SolveError::StepSizeUnderflow { t, h } => {
+            SolveError::StepSizeUnderflow { t, h, floor } if *floor > 1e-14 => {
+                write!(f, "the step size fell to {h:.3e} s at t = {t:.6} s, below the finest step a run {:.3e} s long can take ({floor:.3e} s, 1e-14 of it): shorten the run (its duration, or a crossing a near-zero speed makes endless), or the solution is not smooth enough to follow there", floor / 1e-14)
+            }
+            SolveError::StepSizeUnderflow { t, h, .. } => {
                 write!(f, "the step size fell to {h:.3e} s at t = {t:.6} s: the solution is not smooth enough to follow there")
             }
             SolveError::NewtonFailed { t } => {
