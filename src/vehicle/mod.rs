@@ -165,6 +165,16 @@ impl Vehicle {
         out
     }
 
+    /// The fastest natural frequency (Hz) of the bodies on their springs with the axles held:
+    /// the time scale the steps must follow for the bodies' accelerations to hold.
+    pub fn fastest_suspension_hz(&self) -> f64 {
+        let k = self.on_rigid_track(true);
+        let m = self.mass_diagonal();
+        let scaled = DMatrix::from_fn(m.len(), m.len(), |i, j| k[(i, j)] / (m[i] * m[j]).sqrt());
+        let largest = scaled.symmetric_eigenvalues().max();
+        largest.max(0.0).sqrt() / std::f64::consts::TAU
+    }
+
     /// Σ w l lᵀ over the springs between bodies and of the bodies' ends of the springs on
     /// axles (the axles held still), with w = k (`stiff`) or c: the vehicle's stiffness or
     /// damping on a rigid track.
