@@ -41,6 +41,9 @@ pub struct LoadedBeam<'a> {
     /// The longest step anything may take on this beam: a share of its lowest mode's period
     /// ([`STEPS_PER_PERIOD`]), once [`LoadedBeam::resolving`] has set it.
     longest_step: f64,
+    /// Whether the steps may stride past `longest_step`: set where the integration is exact
+    /// and no load is left to come ([`LoadedBeam::stride_freely`]).
+    striding: Cell<bool>,
     /// The lowest mode's circular frequency, and the highest whose accelerations are reported
     /// (the cutoff's): where a modal beam's errors are weighed (see `norm_weights`).
     lowest: f64,
@@ -92,6 +95,7 @@ impl<'a> LoadedBeam<'a> {
             damped: RefCell::new(vec![0.0; modal.map_or(beam.dim(), |m| m.dim())]),
             riding_at: RefCell::new(None),
             longest_step: f64::INFINITY,
+            striding: Cell::new(false),
             lowest: 0.0,
             reported: 0.0,
         }
@@ -104,6 +108,13 @@ impl<'a> LoadedBeam<'a> {
             self.lowest = omega1;
         }
         self
+    }
+
+    /// Let the steps from here on be as long as the integrator allows: where it integrates the
+    /// modes exactly, with no load left to come and nothing left to watch, a share of the
+    /// lowest period resolves nothing the run reports.
+    pub fn stride_freely(&self) {
+        self.striding.set(true);
     }
 
     /// The beam whose accelerations are reported up to the circular frequency `cutoff`.
@@ -560,6 +571,9 @@ impl LoadedBeam<'_> {
     /// with a kink at each node, so no step may carry it over a node unseen, and none can
     /// jump it across the span.
     pub fn load_step_bound(&self, t: f64) -> f64 {
+        if self.striding.get() {
+            return f64::INFINITY;
+        }
         let Some(train) = self.train else {
             return self.longest_step;
         };

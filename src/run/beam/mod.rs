@@ -21,6 +21,7 @@ mod modal_probes;
 mod phase;
 mod recorder;
 mod sensors;
+mod settled;
 mod vehicles;
 mod watch;
 

@@ -7,8 +7,8 @@
 
 use crate::beam::dynamics::LoadedBeam;
 
-/// u, w and φ at one probe.
-type Rows = [Vec<f64>; 3];
+/// u, w and φ at one point, a row over the modes.
+pub(super) type Rows = [Vec<f64>; 3];
 
 pub(super) struct ModalProbes {
     /// Per probe, its u, w and φ per unit amplitude of each mode.
@@ -24,27 +24,8 @@ impl ModalProbes {
     pub fn new(loaded: &LoadedBeam, xs: &[f64]) -> Option<ModalProbes> {
         let modal = loaded.modal?;
         let beam = loaded.beam;
-        let (m, n) = (modal.dim(), beam.dim());
-        let shapes: Vec<Vec<f64>> = (0..m)
-            .map(|k| {
-                let mut eta = vec![0.0; m];
-                eta[k] = 1.0;
-                let mut q = vec![0.0; n];
-                modal.expand(&eta, &mut q);
-                q
-            })
-            .collect();
-        let modes = xs
-            .iter()
-            .map(|&x| {
-                let d: Vec<_> = shapes.iter().map(|q| beam.displacement_at(q, x)).collect();
-                [
-                    d.iter().map(|p| p.u).collect(),
-                    d.iter().map(|p| p.w).collect(),
-                    d.iter().map(|p| p.phi).collect(),
-                ]
-            })
-            .collect();
+        let n = beam.dim();
+        let modes = mode_rows(loaded, xs)?;
         let residual = xs
             .iter()
             .map(|&x| {
@@ -61,6 +42,11 @@ impl ModalProbes {
             })
             .collect();
         Some(ModalProbes { modes, residual })
+    }
+
+    /// Per probe, its u, w and φ per unit amplitude of each mode.
+    pub fn rows(&self) -> &[Rows] {
+        &self.modes
     }
 
     /// Per probe (u, w, φ, the acceleration's w) from the amplitudes `z`, their accelerations
@@ -91,4 +77,33 @@ impl ModalProbes {
         }
         out
     }
+}
+
+/// Per point x of `xs`, its u, w and φ per unit amplitude of each mode of a modal beam (`None`
+/// on the mesh).
+pub(super) fn mode_rows(loaded: &LoadedBeam, xs: &[f64]) -> Option<Vec<Rows>> {
+    let modal = loaded.modal?;
+    let beam = loaded.beam;
+    let (m, n) = (modal.dim(), beam.dim());
+    let shapes: Vec<Vec<f64>> = (0..m)
+        .map(|k| {
+            let mut eta = vec![0.0; m];
+            eta[k] = 1.0;
+            let mut q = vec![0.0; n];
+            modal.expand(&eta, &mut q);
+            q
+        })
+        .collect();
+    Some(
+        xs.iter()
+            .map(|&x| {
+                let d: Vec<_> = shapes.iter().map(|q| beam.displacement_at(q, x)).collect();
+                [
+                    d.iter().map(|p| p.u).collect(),
+                    d.iter().map(|p| p.w).collect(),
+                    d.iter().map(|p| p.phi).collect(),
+                ]
+            })
+            .collect(),
+    )
 }

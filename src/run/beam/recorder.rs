@@ -74,6 +74,11 @@ pub(super) struct Recorder<'a> {
     pub(super) along_trail: Vec<(f64, Vec<f64>)>,
     /// When the last load left the beam: from then on the residual vibration is watched.
     pub(super) exit_t: Option<f64>,
+    /// Whether the free vibration can no longer move any extreme watched (`settled.rs`):
+    /// from then on nothing is watched.
+    pub(super) settled: bool,
+    /// The envelope's stations as rows over a modal beam's modes, once `settled.rs` asks.
+    pub(super) station_rows: Option<Vec<super::modal_probes::Rows>>,
     pub(super) progress: Option<Progress>,
     /// When each vehicle came onto the deck (`None`: it never does).
     pub(super) arrivals: Vec<Option<f64>>,
@@ -425,6 +430,15 @@ impl Observer for Recorder<'_> {
         let sample = self.sample_spacing(t0, dense);
         if let Some(pieces) = self.exact_pieces(t0, t1, dense) {
             self.ledger.book_in_pieces(pieces);
+            if self.settled {
+                return;
+            }
+            // The step is exact: from a settled state on, the integration may stride over
+            // the rest of the run.
+            if self.settles(t1, &dense.at(t1)) {
+                self.settled = true;
+                self.phase.loaded.stride_freely();
+            }
         } else if let Some(piece) = self.ledger_pieces(t0, t1, dense, sample) {
             let from = self.outputs.partition_point(|&o| o <= t0);
             let to = self.outputs.partition_point(|&o| o < t1);
@@ -573,6 +587,8 @@ pub(super) fn recorder<'a>(
         spacing,
         outputs: outputs.to_vec(),
         exit_t,
+        settled: false,
+        station_rows: None,
         arrivals,
         kinks,
         squares: vec![(0.0, 0.0); setup.vehicles.iter().map(|v| v.bodies.len()).sum()],

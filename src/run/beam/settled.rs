@@ -1,0 +1,155 @@
+//! When a free vibration can no longer move an extreme: on a modal beam with no load left to
+//! come, each mode's energy e_k = ½(η̇_k² + ω_k² η_k²) only falls (its damping c_k ≥ 0 takes it
+//! and nothing feeds it), so from a time on every mode stays within |η_k| ≤ √(2e_k)/ω_k and
+//! |η̇_k| ≤ √(2e_k), and every quantity watched, a row over the modes, within the sum of the
+//! row's magnitudes times those. Once each watched range already reaches past those bounds on
+//! both sides, watching the rest of the run can change nothing it reports, and the exact
+//! integration needs no step shorter than the run: a long damped free vibration costs its
+//! output rows, not a sixteenth of a period at a time.
+
+use super::modal_probes::{mode_rows, Rows};
+use super::*;
+
+/// What an extreme may still move by, of its own size, once the vibration is settled: below
+/// the digits any output prints, and far below any accuracy asked. A quantity that a mode never
+/// excited stays at its start (an axial mode under vertical loads: the stretch's least value is
+/// 0 from the start), and its bound is then round-off above it.
+const SLACK: f64 = 1e-9;
+
+/// The bounds of the free vibration from a state on: per mode, the largest displacement and
+/// the largest acceleration its energy allows.
+struct ModeBounds {
+    displacement: Vec<f64>,
+    acceleration: Vec<f64>,
+}
+
+impl ModeBounds {
+    /// From the modal state (η, η̇), with stiffness ω² and damping c per mode; `None` where a
+    /// mode has no stiffness or negative damping (its energy is then not bounded by its start).
+    fn new(eta: &[f64], eta_dot: &[f64], omega: &[f64], damping: &[f64]) -> Option<ModeBounds> {
+        let mut displacement = Vec::with_capacity(omega.len());
+        let mut acceleration = Vec::with_capacity(omega.len());
+        for (((x, v), w), c) in eta.iter().zip(eta_dot).zip(omega).zip(damping) {
+            if !(*w > 0.0 && *c >= 0.0) {
+                return None;
+            }
+            let speed = (v * v + (w * x).powi(2)).sqrt();
+            displacement.push(speed / w);
+            // η̈ = −ω² η − c η̇: at most ω² √(2e)/ω + c √(2e).
+            acceleration.push(speed * (w + c));
+        }
+        Some(ModeBounds {
+            displacement,
+            acceleration,
+        })
+    }
+
+    fn of(row: &[f64], bounds: &[f64]) -> f64 {
+        row.iter().zip(bounds).map(|(r, b)| r.abs() * b).sum()
+    }
+
+    /// (u, w, φ, a) at a point whose rows over the modes are `rows`, the acceleration over
+    /// the first `kept` modes.
+    fn at(&self, rows: &Rows, kept: usize) -> [f64; 4] {
+        let kept = kept.min(self.acceleration.len());
+        [
+            Self::of(&rows[0], &self.displacement),
+            Self::of(&rows[1], &self.displacement),
+            Self::of(&rows[2], &self.displacement),
+            Self::of(&rows[1][..kept], &self.acceleration[..kept]),
+        ]
+    }
+}
+
+impl Recorder<'_> {
+    /// Whether the run is settled at (t, y), the end of a step the integrator took exactly:
+    /// no load left to come, and no extreme watched that the free vibration from here on can
+    /// still move (see the module's note).
+    pub(super) fn settles(&mut self, t: f64, y: &[f64]) -> bool {
+        let phase = &self.phase;
+        let loaded = phase.loaded;
+        let to_come = loaded
+            .train
+            .is_some_and(|train| t < train.gone(loaded.beam.length));
+        if to_come || self.means.is_some() || !self.ledger.books_in_closed_form(phase) {
+            return false;
+        }
+        let (Some(modal), Some(probes)) = (loaded.modal, &self.modal_probes) else {
+            return false;
+        };
+        let n = loaded.dim();
+        let (z, zd) = phase.split(y);
+        let rayleigh = loaded.rayleigh();
+        let damping: Vec<f64> = (modal.omega.iter())
+            .map(|w| rayleigh.map_or(0.0, |r| r.alpha + r.beta * w * w))
+            .collect();
+        let Some(bounds) = ModeBounds::new(&z[..n], &zd[..n], &modal.omega, &damping) else {
+            return false;
+        };
+        let kept = self.filter.as_ref().map_or(n, |f| f.kept.min(n));
+        let w = &self.watches;
+        let probes_held = probes.rows().iter().enumerate().all(|(p, rows)| {
+            let b = bounds.at(rows, kept);
+            let after = w.after_exit.ranges.get(p);
+            (0..4).all(|c| within(&w.probes.ranges[4 * p + c], -b[c], b[c]))
+                && (self.exit_t.is_none() || after.is_some_and(|r| within(r, -b[1], b[1])))
+        });
+        probes_held && self.stations_held(&bounds, kept)
+    }
+
+    /// Whether the envelope's stations (when watched) and the stretch through them already
+    /// reach past what the free vibration within `bounds` can make of them.
+    fn stations_held(&mut self, bounds: &ModeBounds, kept: usize) -> bool {
+        if self.watches.along.ranges.is_empty() {
+            return true;
+        }
+        if self.station_rows.is_none() {
+            self.station_rows = mode_rows(self.phase.loaded, &self.envelope.x);
+        }
+        let Some(rows) = &self.station_rows else {
+            return false;
+        };
+        let ranges = &self.watches.along.ranges;
+        let each = rows.iter().enumerate().all(|(s, r)| {
+            let b = bounds.at(r, kept);
+            (0..4).all(|c| within(&ranges[4 * s + c], -b[c], b[c]))
+        });
+        each && self
+            .stretch_bounds(rows, bounds)
+            .is_some_and(|(lo, hi)| within(&ranges[4 * rows.len()], lo, hi))
+    }
+
+    /// The least and largest stretch of the axis through the stations the free vibration can
+    /// make: each piece of length h adds (δu(2h + δu) + δw²)/(c + h), c ≥ h − |δu| its chord,
+    /// δu and δw the differences of u and w across it. `None` where an axial difference could
+    /// reach the piece's length.
+    fn stretch_bounds(&self, rows: &[Rows], bounds: &ModeBounds) -> Option<(f64, f64)> {
+        let x = &self.envelope.x;
+        let difference = |c: usize, i: usize| -> f64 {
+            let (a, b) = (&rows[i][c], &rows[i + 1][c]);
+            (a.iter().zip(b).zip(&bounds.displacement))
+                .map(|((a, b), d)| (b - a).abs() * d)
+                .sum()
+        };
+        let (mut lo, mut hi) = (0.0, 0.0);
+        for i in 0..rows.len().saturating_sub(1) {
+            let (h, du, dw) = (x[i + 1] - x[i], difference(0, i), difference(1, i));
+            if du >= h {
+                return None;
+            }
+            let chord_and_h = 2.0 * h - du;
+            lo -= du * (2.0 * h + du) / chord_and_h;
+            hi += (du * (2.0 * h + du) + dw * dw) / chord_and_h;
+        }
+        Some((lo, hi))
+    }
+}
+
+/// Whether a range already holds [lo, hi], within [`SLACK`]; never one that has seen nothing.
+fn within(range: &Range, lo: f64, hi: f64) -> bool {
+    if !(range.seen() && range.min.is_finite() && range.max.is_finite()) {
+        return false;
+    }
+    let slack = SLACK * range.min.abs().max(range.max.abs());
+    range.min <= lo + slack && range.max >= hi - slack
+}
