@@ -10,10 +10,9 @@
 use super::modal_probes::{mode_rows, Rows};
 use super::*;
 
-/// What an extreme may still move by, of its own size, once the vibration is settled: below
-/// the digits any output prints, and far below any accuracy asked. A quantity that a mode never
-/// excited stays at its start (an axial mode under vertical loads: the stretch's least value is
-/// 0 from the start), and its bound is then round-off above it.
+/// What an extreme may still move by, of its own size, once the vibration is settled: a
+/// hundredth of the finest accuracy a scene may ask (10⁻⁷). Without it a quantity that its
+/// modes barely move would never settle: its extremes are round-off, and so is its bound.
 const SLACK: f64 = 1e-9;
 
 /// The bounds of the free vibration from a state on: per mode, the largest displacement and
@@ -152,4 +151,77 @@ fn within(range: &Range, lo: f64, hi: f64) -> bool {
     }
     let slack = SLACK * range.min.abs().max(range.max.abs());
     range.min <= lo + slack && range.max >= hi - slack
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Three damped modes in free vibration, in closed form, and a point whose rows over them
+    /// mix them: from every state on, its displacement and acceleration stay within the bounds
+    /// formed at that state (checked at 4000 later times), and the bounds are not loose by more
+    /// than the rows' mixing (the largest value seen reaches a fifth of them).
+    #[test]
+    fn a_free_vibration_stays_within_its_bounds() {
+        let omega: [f64; 3] = [31.3, 124.0, 275.0];
+        let damping: [f64; 3] = [0.9, 0.9 + 2.4e-4 * 124.0 * 124.0, 2.0];
+        let start = [(1.0e-3, -0.05), (-2.0e-4, 0.3), (5.0e-5, 0.01)];
+        let rows: Rows = [vec![0.0; 3], vec![1.0, -0.7, 0.4], vec![0.2, 0.5, -0.3]];
+        let motion = |k: usize, t: f64| -> (f64, f64, f64) {
+            let (w, c) = (omega[k], damping[k]);
+            let wd = (w * w - 0.25 * c * c).sqrt();
+            let (x0, v0) = start[k];
+            let b = (v0 + 0.5 * c * x0) / wd;
+            let e = (-0.5 * c * t).exp();
+            let (s, co) = (wd * t).sin_cos();
+            let x = e * (x0 * co + b * s);
+            let v = -0.5 * c * x + e * wd * (b * co - x0 * s);
+            (x, v, -w * w * x - c * v)
+        };
+        for t0 in [0.0, 0.05, 0.4] {
+            let state: Vec<(f64, f64, f64)> = (0..3).map(|k| motion(k, t0)).collect();
+            let eta: Vec<f64> = state.iter().map(|s| s.0).collect();
+            let eta_dot: Vec<f64> = state.iter().map(|s| s.1).collect();
+            let bounds = ModeBounds::new(&eta, &eta_dot, &omega, &damping).expect("bounded");
+            let b = bounds.at(&rows, 3);
+            let (mut w_seen, mut a_seen) = (0.0_f64, 0.0_f64);
+            for i in 0..4000 {
+                let t = t0 + 1e-3 * i as f64;
+                let (w, a) = (0..3).fold((0.0, 0.0), |(w, a), k| {
+                    let (x, _, acc) = motion(k, t);
+                    (w + rows[1][k] * x, a + rows[1][k] * acc)
+                });
+                assert!(
+                    w.abs() <= b[1] && a.abs() <= b[3],
+                    "t {t}: w {w:e} of {:e}",
+                    b[1]
+                );
+                (w_seen, a_seen) = (w_seen.max(w.abs()), a_seen.max(a.abs()));
+            }
+            assert!(
+                w_seen > 0.2 * b[1] && a_seen > 0.2 * b[3],
+                "{w_seen:e} of {:e}",
+                b[1]
+            );
+        }
+        assert!(ModeBounds::new(&[1.0], &[0.0], &[10.0], &[-0.1]).is_none());
+        assert!(ModeBounds::new(&[1.0], &[0.0], &[0.0], &[0.1]).is_none());
+    }
+
+    /// A range settles a bound it reaches past on both sides, or within the slack of its own
+    /// size; never one it falls short of, and never while it has seen nothing.
+    #[test]
+    fn a_range_holds_what_it_reaches_past() {
+        let range = Range {
+            min: -2.0,
+            min_t: 0.0,
+            max: 1.0,
+            max_t: 1.0,
+        };
+        assert!(within(&range, -1.0, 1.0));
+        assert!(within(&range, -2.0, 1.0 + 1e-10));
+        assert!(!within(&range, -1.0, 1.0 + 1e-6));
+        assert!(!within(&range, -2.1, 0.5));
+        assert!(!within(&Range::EMPTY, -1.0, 1.0));
+    }
 }
