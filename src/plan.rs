@@ -61,7 +61,7 @@ impl Planner {
             return scene;
         };
         let weight = riding_weight(b);
-        let xs = probe_xs(b);
+        let xs = b.planning_points();
         if elements.is_none() || order.is_none() {
             let key = format!(
                 "{:?} {elements:?} {order:?} {:?} {weight:?} {xs:?} {:?} {multiple} {:?}",
@@ -264,15 +264,10 @@ fn passing_speed(b: &BeamScene) -> Option<f64> {
         .then_some(train.speed.abs())
 }
 
-/// Where the probes are along the beam: where the mesh, the model and ρ∞ are judged.
-fn probe_xs(b: &BeamScene) -> Vec<f64> {
-    b.probes.iter().map(|p| p.x).collect()
-}
-
 /// How far the beam's static response to what rides on it and its loads is from linear
 /// (`model_choice::nonlinearity_of`).
 fn nonlinearity(b: &BeamScene) -> Option<f64> {
-    model_choice::nonlinearity_of(&b.beam, &b.loads, riding_weight(b), &probe_xs(b))
+    model_choice::nonlinearity_of(&b.beam, &b.loads, riding_weight(b), &b.planning_points())
 }
 
 /// Whether that nonlinearity is visible at the scene's accuracy, the test that also decides

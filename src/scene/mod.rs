@@ -135,6 +135,46 @@ pub struct BeamScene {
 }
 
 impl BeamScene {
+    /// Where the beam holds w: its ends whose supports hold it, and its bearings.
+    fn held_w(&self) -> Vec<f64> {
+        let b = &self.beam;
+        let length = (b.to[0] - b.from[0]).hypot(b.to[1] - b.from[1]);
+        let ends = [0.0, length].into_iter().zip(b.supports);
+        let mut held: Vec<f64> = (ends.filter(|(_, s)| s.held_components().contains(&1)))
+            .map(|(x, _)| x)
+            .chain(b.bearings.iter().copied())
+            .collect();
+        held.sort_by(f64::total_cmp);
+        held
+    }
+
+    /// Whether every probe sits where a support or a bearing holds w (to read an end's
+    /// rotation, say), so that no load deflects any of them.
+    pub fn probes_all_held(&self) -> bool {
+        let held = self.held_w();
+        let close = |x: f64, h: f64| (x - h).abs() <= 1e-9 * (1.0 + h.abs());
+        !self.probes.is_empty() && (self.probes.iter()).all(|p| held.iter().any(|&h| close(p.x, h)))
+    }
+
+    /// The points the plan measures the response at: the probes, or where they all sit where
+    /// w is held (`probes_all_held`), the middle of the longest stretch between such points,
+    /// for at the probes every choice would see no response.
+    pub fn planning_points(&self) -> Vec<f64> {
+        if !self.probes_all_held() {
+            return self.probes.iter().map(|p| p.x).collect();
+        }
+        let b = &self.beam;
+        let length = (b.to[0] - b.from[0]).hypot(b.to[1] - b.from[1]);
+        let mut ends = vec![0.0];
+        ends.extend(self.held_w());
+        ends.push(length);
+        let (a, z) = (ends.windows(2))
+            .map(|w| (w[0], w[1]))
+            .max_by(|p, q| (p.1 - p.0).total_cmp(&(q.1 - q.0)))
+            .unwrap_or((0.0, length));
+        vec![0.5 * (a + z)]
+    }
+
     /// The disk, where the scene has one; the first, where it has several.
     pub fn disk(&self) -> Option<&DiskOnBeamSpec> {
         self.disks.first()
@@ -290,6 +330,12 @@ impl BeamScene {
             } else {
                 "of several disks one flies at a time: another that loses contact while one flies ends the run (`contact-lost`)"
             }.to_string());
+        }
+        if self.probes_all_held() {
+            out.push(format!(
+                "every probe sits where a support holds w, which no load deflects: the plan chooses the mesh, the model and the tolerances from the response at x = {} m, the middle of the longest span, which the probes' rotations follow",
+                self.planning_points()[0]
+            ));
         }
         // The plan tightens rtol with the speed of wheels with a mass of their own, measured
         // up to this speed only (`plan::rtol_for`).
