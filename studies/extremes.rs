@@ -339,6 +339,7 @@ track:
     supports: {{from: pinned, to: roller, intermediate: [{span}]}}
     elements: 8
     order: 4
+    model: exact
     initial: static
 disk: {{mass: 0.01, radius: {a}, s0: 1.0, omega0: {}, contact_loss: stop}}
 loads:
