@@ -17,8 +17,14 @@ use crate::coupling::Coupling;
 use crate::error::Error;
 use crate::scene::{BeamScene, Checked, Model, Scene, SceneSpec};
 
-/// A beam model chosen, why, and what its count of modes was chosen from.
-type ChosenModel = (BeamModel, String, Option<Arc<model_choice::Recount>>);
+/// A beam model chosen, why, what its count of modes was chosen from, and why the loads are
+/// more than the beam carries, where they are.
+type ChosenModel = (
+    BeamModel,
+    String,
+    Option<Arc<model_choice::Recount>>,
+    Option<String>,
+);
 
 /// Plans scenes, keeping the choices made (mesh, model, ρ∞, the response's size) by everything
 /// they depend on: the eigenproblems and static solves behind a choice cost seconds on a fine
@@ -34,7 +40,7 @@ pub struct Planner {
 impl Planner {
     /// Check the scene as it now stands and plan it.
     pub fn plan(&self, spec: &SceneSpec) -> Result<Scene, Error> {
-        let scene = self.plan_checked(spec.check()?);
+        let scene = self.plan_checked(spec.check()?)?;
         // Whether the scene's `exact-modal` applies is known once the model is chosen: refused
         // here, `check` and every run say so alike.
         match scene.beam().and_then(|b| b.exact_modal_refusal()) {
@@ -45,7 +51,7 @@ impl Planner {
         }
     }
 
-    fn plan_checked(&self, checked: Checked) -> Scene {
+    fn plan_checked(&self, checked: Checked) -> Result<Scene, Error> {
         let Checked {
             mut scene,
             elements,
@@ -58,7 +64,7 @@ impl Planner {
             method_given,
         } = checked;
         let Model::Beam(b) = &mut scene.model else {
-            return scene;
+            return Ok(scene);
         };
         let weight = riding_weight(b);
         let xs = b.planning_points();
@@ -82,7 +88,7 @@ impl Planner {
                 "model {:?} {given:?} {:?} {weight:?} {xs:?} {:?} {:?} {:?}",
                 b.beam, b.loads, b.accuracy, b.start, b.acceleration_cutoff_hz
             );
-            let (mut model, mut why, recount) = kept(&self.models, key, || {
+            let (mut model, mut why, recount, uncarried) = kept(&self.models, key, || {
                 let thesis = b.disks.iter().any(|d| d.coupling == Coupling::Thesis);
                 let c = model_choice::choose(
                     &b.beam,
@@ -95,8 +101,11 @@ impl Planner {
                     thesis,
                     b.acceleration_cutoff_hz,
                 );
-                (c.model, c.why, c.recount.map(Arc::new))
+                (c.model, c.why, c.recount.map(Arc::new), c.uncarried)
             });
+            if let Some(why) = uncarried {
+                return Err(Error::Input(format!("scene {}: {why}", scene.name)));
+            }
             if let (Some(r), Some(v)) = (recount, passing_speed(b)) {
                 (model, why) = r.at(Some(v));
             }
@@ -152,7 +161,7 @@ impl Planner {
                 }
             }
         }
-        scene
+        Ok(scene)
     }
 }
 

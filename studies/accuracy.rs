@@ -6,7 +6,8 @@
 use crate::common;
 
 use common::{
-    at_defaults, changed, hslm_bridge, mid_headlines, parse, run_beam, run_with, Set, FRYBA_BRIDGE,
+    at_defaults, changed, hslm_bridge, hslm_bridge_probed, mid_headlines, parse, run_beam,
+    run_with, Set, FRYBA_BRIDGE,
 };
 use rollbeam::analysis::modes::{modes, ModeKind};
 use rollbeam::beam::Beam;
@@ -1022,28 +1023,8 @@ fn within_the_accuracy(scene: &str, pairs: &[Compared]) {
 /// within the accuracy of the linear beam's on 20 elements at rtol 10⁻⁸ (the plan's model).
 #[test]
 fn probes_on_the_supports_plan_from_the_span() {
-    let scene = |probes: &str, extra: &str| {
-        parse(&format!(
-            "name: end-rotation
-duration: 0.5
-track:
-  beam:
-    from: [0.0, 0.0]
-    to: [15.0, 0.0]
-    E: 35.0e9
-    G: 14.5833e9
-    rho: 2500
-    A: 6.0
-    Av: 5.0
-    I: 0.219830886
-    supports: {{from: pinned, to: roller}}
-    damping: {{ratio: 0.0185, modes: [1, 2]}}
-{extra}train: {{hslm: A1, speed: 90.0}}
-output:
-  probes: {probes}
-"
-        ))
-    };
+    let train = "{hslm: A1, speed: 90.0}";
+    let scene = |probes: &str, extra: &str| hslm_bridge_probed(train, 0.5, extra, probes);
     let ends = scene("[{name: left, x: 0.0}, {name: right, x: 15.0}]", "");
     let mid = scene("[{name: mid, x: 7.5}]", "");
     let (e, m) = (ends.beam().expect("a beam"), mid.beam().expect("a beam"));

@@ -26,6 +26,7 @@ use crate::analysis::discretisation::{weight_drops, MAX_NODES};
 use crate::analysis::modes::modes;
 use crate::analysis::statics;
 use crate::beam::load::{BeamStart, PointLoad};
+use crate::beam::supports::statically_supported;
 use crate::beam::{Beam, BeamModel, BeamSpec};
 use crate::linalg::SparseLu;
 
@@ -39,6 +40,8 @@ pub struct Choice {
     /// For a modal beam whose count was chosen, what it was chosen from and the reason before
     /// it: a scene whose moving forces' speed changes (a sweep's cases) counts again from them.
     pub recount: Option<Recount>,
+    /// Where the loads are more than the beam carries, why the scene is refused.
+    pub uncarried: Option<String>,
 }
 
 /// What a modal beam's count of modes is chosen from, for any speed of its moving forces.
@@ -74,10 +77,18 @@ fn displacements_at(beam: &Beam, q: &[f64], xs: &[f64]) -> Vec<[f64; 2]> {
         .collect()
 }
 
+/// Why the exact beam's static response could not be measured.
+enum Unmeasured {
+    /// A mechanism, a load it buckles under, or no response at the probes.
+    Nothing,
+    /// Loads that the linear beam says would deflect it past its own span, under which the
+    /// exact beam finds no equilibrium: the sentence that refuses them.
+    Uncarried(String),
+}
+
 /// The largest linear and exact static response at the probes, and their largest difference,
-/// over the load cases; `None` where the exact beam cannot be solved statically (a mechanism,
-/// or a load it buckles under).
-fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Option<(f64, f64)> {
+/// over the load cases.
+fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Result<(f64, f64), Unmeasured> {
     let across = |beam: &Beam, q: &[f64]| -> Vec<f64> {
         displacements_at(beam, q, xs)
             .iter()
@@ -89,7 +100,7 @@ fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Option<(f64, 
         ..spec.clone()
     });
     let n = exact.dim();
-    let lu = SparseLu::factor(&exact.tangent(&vec![0.0; n]), None)?;
+    let lu = SparseLu::factor(&exact.tangent(&vec![0.0; n]), None).ok_or(Unmeasured::Nothing)?;
     let (mut size, mut gap) = (0.0_f64, 0.0_f64);
     for case in cases {
         let mut f = vec![0.0; n];
@@ -99,14 +110,42 @@ fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Option<(f64, 
         }
         let mut linear = f.clone();
         lu.solve_in_place(&mut linear);
-        let solved = statics::solve(&exact, &f).ok()?;
-        let (a, b) = (across(&exact, &linear), across(&exact, &solved.q));
+        let a = across(&exact, &linear);
+        let Ok(solved) = statics::solve(&exact, &f) else {
+            return Err(uncarried(spec, case, &a, exact.length));
+        };
+        let b = across(&exact, &solved.q);
         for (l, e) in a.iter().zip(&b) {
             size = size.max(l.abs());
             gap = gap.max((l - e).abs());
         }
     }
-    (size.is_finite() && size > 0.0).then_some((size, gap))
+    if size.is_finite() && size > 0.0 {
+        Ok((size, gap))
+    } else {
+        Err(Unmeasured::Nothing)
+    }
+}
+
+/// Why a load case the exact beam finds no equilibrium under is refused, where the beam is
+/// held against moving as a body and the linear beam's deflection `linear` at the probes under
+/// it reaches past the span; `Nothing` where it does not (a load it may buckle under, which a
+/// run may follow, or a mechanism, whose tangent factors only to round-off).
+fn uncarried(spec: &BeamSpec, case: &Pattern, linear: &[f64], span: f64) -> Unmeasured {
+    let deepest = linear.iter().fold(0.0_f64, |m, w| m.max(w.abs()));
+    let held_along = spec
+        .supports
+        .iter()
+        .any(|s| s.held_components().contains(&0));
+    let held = statically_supported(spec.supports, spec.bearings.len()) && held_along;
+    if !(held && deepest > span) {
+        return Unmeasured::Nothing;
+    }
+    let total: f64 = case.iter().map(|(_, f, _)| f[0].hypot(f[1])).sum();
+    Unmeasured::Uncarried(format!(
+        "the beam does not carry the scene's loads statically: under {total:.3e} N in all the linear beam would deflect {deepest:.3e} m at the probes, {:.0} times its span, and the exact beam finds no equilibrium: the plan has no response to choose from, and a run follows the beam folding by metres in microsecond steps (a sprung mass 10⁶ times Biggs': 2 million steps, 4 minutes). Lighten the loads or stiffen the beam, or name `track.beam.model` to run it anyway",
+        deepest / span
+    ))
 }
 
 /// Each mode's part of the static deflection at the probes under the loads that change during
@@ -333,7 +372,9 @@ pub fn nonlinearity_of(
     weight: Option<f64>,
     xs: &[f64],
 ) -> Option<f64> {
-    nonlinearity(spec, &largest_loads(loads, weight, xs), xs).map(|(size, gap)| gap / size)
+    nonlinearity(spec, &largest_loads(loads, weight, xs), xs)
+        .ok()
+        .map(|(size, gap)| gap / size)
 }
 
 /// Whether a nonlinearity measured by [`nonlinearity_of`] is invisible at the accuracy asked.
@@ -378,12 +419,14 @@ pub fn choose(
                 model,
                 why,
                 recount: Some(recount),
+                uncarried: None,
             }
         }
         Err((modes, count_why)) => Choice {
             model: BeamModel::Modal { modes },
             why: format!("{why}{count_why}"),
             recount: None,
+            uncarried: None,
         },
     };
     if given == Some(BeamModel::Modal { modes: 0 }) {
@@ -394,24 +437,33 @@ pub fn choose(
             model: BeamModel::Exact,
             why: "exact: the thesis coupling is the thesis' equations, which are written for the exact beam".into(),
             recount: None,
+            uncarried: None,
         };
     }
     let tol = SHARE * accuracy;
     match nonlinearity(spec, &cases, xs) {
-        None => Choice {
+        Err(Unmeasured::Nothing) => Choice {
             model: BeamModel::Exact,
             why: "exact: the beam has no static response to measure its nonlinearity by (the supports leave a mechanism, or it does not carry the load statically)".into(),
             recount: None,
+            uncarried: None,
         },
-        Some((size, gap)) if !linear_enough(gap / size, accuracy) => Choice {
+        Err(Unmeasured::Uncarried(why)) => Choice {
+            model: BeamModel::Exact,
+            why: format!("exact: {why}"),
+            recount: None,
+            uncarried: Some(why),
+        },
+        Ok((size, gap)) if !linear_enough(gap / size, accuracy) => Choice {
             model: BeamModel::Exact,
             why: format!(
                 "exact: under the largest load the scene applies the linear beam's static deflection at the probes is off the exact one by {:.1e} of it, more than {tol:.1e}",
                 gap / size
             ),
             recount: None,
+            uncarried: None,
         },
-        Some((size, gap)) => modal(format!(
+        Ok((size, gap)) => modal(format!(
             "modal: under the largest load the scene applies the linear and the exact static deflections at the probes differ by {:.1e} of them (within {tol:.1e}); ",
             gap / size
         )),

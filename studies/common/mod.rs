@@ -197,6 +197,11 @@ pub fn hann_mean(r: &BeamRun, until: f64) -> f64 {
 /// The 15 m concrete bridge of the HSLM study under `train`, run for `duration` s after it;
 /// `beam` adds keys to the beam (e.g. "    model: modal\n").
 pub fn hslm_bridge(train: &str, duration: f64, beam: &str) -> Scene {
+    hslm_bridge_probed(train, duration, beam, "[{name: mid, x: 7.5}]")
+}
+
+/// [`hslm_bridge`] with the probes `probes` (a YAML list).
+pub fn hslm_bridge_probed(train: &str, duration: f64, beam: &str, probes: &str) -> Scene {
     parse(&format!(
         "name: hslm-bridge
 duration: {duration}
@@ -214,7 +219,7 @@ track:
     damping: {{ratio: 0.0185, modes: [1, 2]}}
 {beam}train: {train}
 output:
-  probes: [{{name: mid, x: 7.5}}]
+  probes: {probes}
 "
     ))
 }
