@@ -353,7 +353,11 @@ fn item_4_no_hangs() {
         "load-named",
         &beam("    model: exact\n", "loads: [{x: 10, fy: -1e300}]\n"),
     );
-    fails(&["run", &s, "--out", &out("load-named")], 2, &["solver failed"]);
+    fails(
+        &["run", &s, "--out", &out("load-named")],
+        2,
+        &["solver failed"],
+    );
     // On the exact beam the stiffness overflows the integrator's Newton; the linear models'
     // constant matrices hold it (the modal beam's 10¹⁵⁰ rad/s modes stay finite), so the
     // exact model is named.
