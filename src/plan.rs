@@ -17,13 +17,14 @@ use crate::coupling::Coupling;
 use crate::error::Error;
 use crate::scene::{BeamScene, Checked, Model, Scene, SceneSpec};
 
-/// A beam model chosen, why, what its count of modes was chosen from, and why the loads are
-/// more than the beam carries, where they are.
+/// A beam model chosen, why, what its count of modes was chosen from, why the loads are more
+/// than the beam carries, where they are, and the static nonlinearity it was chosen from.
 type ChosenModel = (
     BeamModel,
     String,
     Option<Arc<model_choice::Recount>>,
     Option<String>,
+    Option<(f64, f64)>,
 );
 
 /// Plans scenes, keeping the choices made (mesh, model, ρ∞, the response's size) by everything
@@ -88,7 +89,7 @@ impl Planner {
                 "model {:?} {given:?} {:?} {weight:?} {xs:?} {:?} {:?} {:?}",
                 b.beam, b.loads, b.accuracy, b.start, b.acceleration_cutoff_hz
             );
-            let (mut model, mut why, recount, uncarried) = kept(&self.models, key, || {
+            let (mut model, mut why, recount, uncarried, gap) = kept(&self.models, key, || {
                 let thesis = b.disks.iter().any(|d| d.coupling == Coupling::Thesis);
                 let c = model_choice::choose(
                     &b.beam,
@@ -101,7 +102,8 @@ impl Planner {
                     thesis,
                     b.acceleration_cutoff_hz,
                 );
-                (c.model, c.why, c.recount.map(Arc::new), c.uncarried)
+                let recount = c.recount.map(Arc::new);
+                (c.model, c.why, recount, c.uncarried, c.static_gap)
             });
             if let Some(why) = uncarried {
                 return Err(Error::Input(format!("scene {}: {why}", scene.name)));
@@ -111,6 +113,7 @@ impl Planner {
             }
             b.beam.model = model;
             b.model_choice = Some(why);
+            b.static_gap = gap;
         }
         if !rho_inf_given {
             let key = format!(

@@ -31,7 +31,7 @@ use crate::beam::{Beam, BeamModel, BeamSpec};
 use crate::linalg::SparseLu;
 
 /// The part of the accuracy each check of the choice may take.
-const SHARE: f64 = 0.25;
+pub const SHARE: f64 = 0.25;
 
 /// The model chosen, and why (one sentence for `check` and the summary).
 pub struct Choice {
@@ -42,6 +42,9 @@ pub struct Choice {
     pub recount: Option<Recount>,
     /// Where the loads are more than the beam carries, why the scene is refused.
     pub uncarried: Option<String>,
+    /// Where the beam is linear or modal: the static deflection the nonlinearity was measured
+    /// at (m) and the exact beam's gap from it, of it.
+    pub static_gap: Option<(f64, f64)>,
 }
 
 /// What a modal beam's count of modes is chosen from, for any speed of its moving forces.
@@ -420,6 +423,7 @@ pub fn choose(
                 why,
                 recount: Some(recount),
                 uncarried: None,
+                static_gap: None,
             }
         }
         Err((modes, count_why)) => Choice {
@@ -427,6 +431,7 @@ pub fn choose(
             why: format!("{why}{count_why}"),
             recount: None,
             uncarried: None,
+            static_gap: None,
         },
     };
     if given == Some(BeamModel::Modal { modes: 0 }) {
@@ -438,6 +443,7 @@ pub fn choose(
             why: "exact: the thesis coupling is the thesis' equations, which are written for the exact beam".into(),
             recount: None,
             uncarried: None,
+            static_gap: None,
         };
     }
     let tol = SHARE * accuracy;
@@ -447,12 +453,14 @@ pub fn choose(
             why: "exact: the beam has no static response to measure its nonlinearity by (the supports leave a mechanism, or it does not carry the load statically)".into(),
             recount: None,
             uncarried: None,
+            static_gap: None,
         },
         Err(Unmeasured::Uncarried(why)) => Choice {
             model: BeamModel::Exact,
             why: format!("exact: {why}"),
             recount: None,
             uncarried: Some(why),
+            static_gap: None,
         },
         Ok((size, gap)) if !linear_enough(gap / size, accuracy) => Choice {
             model: BeamModel::Exact,
@@ -462,10 +470,14 @@ pub fn choose(
             ),
             recount: None,
             uncarried: None,
+            static_gap: None,
         },
-        Ok((size, gap)) => modal(format!(
-            "modal: under the largest load the scene applies the linear and the exact static deflections at the probes differ by {:.1e} of them (within {tol:.1e}); ",
-            gap / size
-        )),
+        Ok((size, gap)) => Choice {
+            static_gap: Some((size, gap / size)),
+            ..modal(format!(
+                "modal: under the largest load the scene applies the linear and the exact static deflections at the probes differ by {:.1e} of them (within {tol:.1e}); ",
+                gap / size
+            ))
+        },
     }
 }

@@ -127,6 +127,7 @@ pub(super) fn beam_scene(
         accuracy,
         discretisation: None,
         model_choice: None,
+        static_gap: None,
         acceleration_cutoff_hz: match raw
             .output
             .as_ref()

@@ -123,6 +123,9 @@ pub struct BeamScene {
     pub discretisation: Option<Discretisation>,
     /// Why the beam has the model it has, when the plan chose it (or its modes).
     pub model_choice: Option<String>,
+    /// Where the plan chose a linear or modal beam: the largest static deflection at the
+    /// probes it measured the nonlinearity under (m), and the exact beam's gap from it, of it.
+    pub static_gap: Option<(f64, f64)>,
     /// The frequency (Hz) above which the modes are left out of the recorded accelerations;
     /// `None`: EN 1991-2's max(30 Hz, 1.5 f1, f3).
     pub acceleration_cutoff_hz: Option<f64>,
