@@ -1102,3 +1102,42 @@ fn a_resonant_train_says_what_the_modal_beam_leaves_out() {
     assert!(!warned(&passing), "{:?}", passing.warnings());
     assert!(passing.nonlinear_gap_foreseen().expect("a modal plan") < 1e-5);
 }
+
+/// A scene that names no probe gets `mid`. On two equal spans the beam's middle is the
+/// bearing, where w reads zero whatever crosses; the default probe sits at the middle of the
+/// first span instead. A slow force there deflects it as the continuous beam's static formula
+/// says: 23 P l³ / 1536 EI in bending (Roark, two equal spans, load at one's middle) and
+/// 274 P l / 1024 G Av in shear (the unit-load integral of the shear forces, 13/32 and 19/32
+/// of P either side of the load, 3/32 over the other span). A force at 2 m/s adds its
+/// dynamic share, some 0.3 % at a speed parameter v / 2 f₁ l of 0.013 (f₁ = 5.0 Hz): within 1 %.
+#[test]
+fn the_default_probe_of_two_spans_reads_a_span() {
+    let scene = parse(
+        "name: two-spans
+duration: 0.5
+track:
+  beam:
+    from: [0.0, 0.0]
+    to: [30.0, 0.0]
+    E: 35.0e9
+    G: 14.5833e9
+    rho: 2500
+    A: 6.0
+    Av: 5.0
+    I: 0.219830886
+    supports: {from: pinned, to: roller, intermediate: [15.0]}
+    damping: {ratio: 0.0185, modes: [1, 2]}
+train: {axles: [0.0], load: 1.0e5, speed: 2.0}
+",
+    );
+    let run = at_defaults(&scene);
+    let mid = &run.setup.probes[0];
+    assert_eq!((mid.name.as_str(), mid.x), ("mid", 7.5));
+    let (p, l, ei, gav) = (1.0e5, 15.0_f64, 35.0e9 * 0.219830886, 14.5833e9 * 5.0);
+    let statics = 23.0 * p * l.powi(3) / (1536.0 * ei) + 274.0 * p * l / (1024.0 * gav);
+    let w_min = run.extremes.probes[0][1].min;
+    assert!(
+        (w_min + statics).abs() <= 0.01 * statics,
+        "{w_min:e} against −{statics:e}"
+    );
+}

@@ -111,7 +111,7 @@ pub(super) fn beam_scene(
         model: model_given,
         duration,
     };
-    let scene = BeamScene {
+    let mut scene = BeamScene {
         beam,
         start,
         disks,
@@ -139,6 +139,7 @@ pub(super) fn beam_scene(
         response: None,
         passage: None,
     };
+    scene.probe_mid_when_none_given(length);
     Ok((scene, given))
 }
 
@@ -776,12 +777,6 @@ pub(super) fn outputs(
         if let Some(m) = &o.magnify {
             magnify = c.positive(m, "output.magnify")?;
         }
-    }
-    if probes.is_empty() {
-        probes.push(Probe {
-            name: "mid".into(),
-            x: 0.5 * length,
-        });
     }
     Ok((probes, shapes, magnify))
 }

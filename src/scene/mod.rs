@@ -160,8 +160,8 @@ impl BeamScene {
     }
 
     /// The points the plan measures the response at: the probes, or where they all sit where
-    /// w is held (`probes_all_held`), the middle of the longest stretch between such points,
-    /// for at the probes every choice would see no response.
+    /// w is held (`probes_all_held`), the middle of the longest stretch between such points
+    /// (the first of equal ones), for at the probes every choice would see no response.
     pub fn planning_points(&self) -> Vec<f64> {
         if !self.probes_all_held() {
             return self.probes.iter().map(|p| p.x).collect();
@@ -171,11 +171,25 @@ impl BeamScene {
         let mut ends = vec![0.0];
         ends.extend(self.held_w());
         ends.push(length);
-        let (a, z) = (ends.windows(2))
+        let (a, z) = (ends.windows(2).rev())
             .map(|w| (w[0], w[1]))
             .max_by(|p, q| (p.1 - p.0).total_cmp(&(q.1 - q.0)))
             .unwrap_or((0.0, length));
         vec![0.5 * (a + z)]
+    }
+
+    /// With no probe given, one named `mid` at the middle of the beam; where a support or a
+    /// bearing holds w there (two equal spans), at the middle of the longest span instead, for
+    /// there it would read only zeros.
+    fn probe_mid_when_none_given(&mut self, length: f64) {
+        if !self.probes.is_empty() {
+            return;
+        }
+        self.probes.push(Probe {
+            name: "mid".into(),
+            x: 0.5 * length,
+        });
+        self.probes[0].x = self.planning_points()[0];
     }
 
     /// The disk, where the scene has one; the first, where it has several.
