@@ -163,6 +163,10 @@ pub struct ModeShares {
     /// its slope κ times its largest value, sets the mode vibrating about its static part by
     /// v κ/ω of that part, and as much again as it leaves.
     passing: Vec<f64>,
+    /// Per mode, its deflection at the ends where no support holds w, over its largest: a
+    /// force leaving (or entering) there drops off (or on) at once, and sets the mode
+    /// vibrating by that share of its static part whatever the speed (a cantilever's tip).
+    stepping: Vec<f64>,
     /// The largest static deflection at a probe, all modes together.
     scale: f64,
     /// How many modes lie at or below the deck acceleration's cutoff: the accelerations are
@@ -213,6 +217,7 @@ fn mode_shares(
         .collect();
     let mut parts = Vec::with_capacity(m.omega.len());
     let mut passing = Vec::with_capacity(m.omega.len());
+    let mut stepping = Vec::with_capacity(m.omega.len());
     let mut total = vec![[0.0; 2]; xs.len()];
     for k in 0..m.omega.len() {
         let shape: Vec<f64> = m.shapes.column(k).iter().copied().collect();
@@ -229,7 +234,9 @@ fn mode_shares(
             t[1] += p[1];
         }
         parts.push(part);
-        passing.push(passing_rate(&beam, &shape, &stations) / m.omega[k]);
+        let (kappa, at_free_ends) = passing_rate(&beam, &shape, &stations);
+        passing.push(kappa / m.omega[k]);
+        stepping.push(at_free_ends);
     }
     let scale = total.iter().fold(0.0_f64, |s, v| s.max(v[0].hypot(v[1])));
     if !(scale > 0.0) {
@@ -245,6 +252,7 @@ fn mode_shares(
     Ok(ModeShares {
         parts,
         passing,
+        stepping,
         scale,
         below_cutoff,
         limit,
@@ -257,8 +265,9 @@ const PASSING_SAMPLES: usize = 16;
 
 /// κ of one mode: the steepest slope of its deflection across the axis between `stations`
 /// over its largest deflection (infinite where it does not deflect the axis: an axial mode,
-/// which the loads across it do not excite either).
-fn passing_rate(beam: &Beam, shape: &[f64], stations: &[f64]) -> f64 {
+/// which the loads across it do not excite either); and the larger of its deflections at the
+/// ends where no support holds w, over its largest (0 where both ends hold w).
+fn passing_rate(beam: &Beam, shape: &[f64], stations: &[f64]) -> (f64, f64) {
     let across: Vec<f64> = stations
         .iter()
         .map(|&x| {
@@ -273,21 +282,29 @@ fn passing_rate(beam: &Beam, shape: &[f64], stations: &[f64]) -> f64 {
         .fold(0.0_f64, |m, (w, x)| {
             m.max((w[1] - w[0]).abs() / (x[1] - x[0]))
         });
-    if largest > 0.0 {
-        steepest / largest
-    } else {
-        f64::INFINITY
+    if !(largest > 0.0) {
+        return (f64::INFINITY, 0.0);
     }
+    let ends = [(false, across.first()), (true, across.last())];
+    let at_free_ends = (ends.iter())
+        .filter(|(end, _)| !beam.holds_w_at(*end))
+        .fold(0.0_f64, |m, (_, w)| m.max(w.map_or(0.0, |w| w.abs())));
+    (steepest / largest, at_free_ends / largest)
 }
 
 impl ModeShares {
     /// How many modes the dynamics asks for at `accuracy`, and why. With `passing` (the speed
     /// of moving forces, the only loads that change), each mode's part counts by how far they
-    /// set it vibrating about it, 2 v κ/ω (entering and leaving, at most all of it): the static
-    /// correction of the modes left out holds the rest. Otherwise a mode counts whole.
+    /// set it vibrating about it, 2 v κ/ω (entering and leaving) and its share at an end where
+    /// w is free (dropping off there), at most all of it: the static correction of the modes
+    /// left out holds the rest. Otherwise a mode counts whole.
     pub fn count(&self, accuracy: f64, passing: Option<f64>) -> (usize, String) {
         let passing = passing.filter(|_| !self.switched);
-        let weight = |k: usize| passing.map_or(1.0, |v| (2.0 * v * self.passing[k]).min(1.0));
+        let weight = |k: usize| {
+            passing.map_or(1.0, |v| {
+                (2.0 * v * self.passing[k] + self.stepping[k]).min(1.0)
+            })
+        };
         // The deflection at the probes after the first k modes, each weighted, for every k.
         let mut after: Vec<Vec<[f64; 2]>> = Vec::with_capacity(self.parts.len());
         let mut partial = vec![[0.0; 2]; self.parts.first().map_or(0, Vec::len)];
