@@ -1,0 +1,249 @@
+//! What a beam run hands back: the run's rows, envelopes and extremes, and what it warns of
+//! beyond the accuracy asked.
+
+use super::acceleration::CutoffReport;
+use super::vehicles::VehicleReport;
+use crate::analysis::model_choice::SHARE;
+use crate::beam::damping::Rayleigh;
+use crate::beam::{Beam, PointDisplacement};
+use crate::coupling::vehicles::VehicleObservation;
+use crate::disk::DiskObservation;
+use crate::run::extremes::Range;
+use crate::run::{FlightRecord, RunHeader};
+use crate::scene::BeamScene;
+
+#[derive(Clone, Debug)]
+pub struct Frame {
+    pub t: f64,
+    pub along: Vec<PointDisplacement>,
+    /// Per disk, while it is on or over the beam: its contact point s (in flight, the nearest
+    /// point), the angle it has turned through, and its gap to the beam (0 while it rolls).
+    pub disks: Vec<Option<(f64, f64, f64)>>,
+    /// Where every vehicle's every wheel is along the beam (on the deck or off it).
+    pub wheels: Vec<f64>,
+}
+
+#[derive(Clone, Debug)]
+pub struct BeamRow {
+    pub t: f64,
+    /// One per probe, in the scene's order.
+    pub probes: Vec<PointDisplacement>,
+    /// Each disk, while it is on or over the beam (`None` once it has left; empty without
+    /// disks, or once they have all left).
+    pub disks: Vec<Option<DiskObservation>>,
+    /// Deflection w of the beam under each disk (NaN while it is not on the beam).
+    pub w_under: Vec<f64>,
+    pub kinetic: f64,
+    pub strain: f64,
+    /// The disk's gravity potential (zero without a disk in the system).
+    pub potential: f64,
+    pub work: f64,
+    /// What damping has taken since the start.
+    pub dissipated: f64,
+    /// What the disk's landings have taken since the start.
+    pub impact: f64,
+    /// The flying disk's gap to the beam (0 while it rolls).
+    pub gap: f64,
+    /// Which disk flies, while one does.
+    pub flying: Option<usize>,
+    /// One per probe: the vertical (global Y) acceleration, with the modes above the cutoff
+    /// left out (see [`AccelerationFilter`](super::acceleration::AccelerationFilter)).
+    pub accelerations: Vec<f64>,
+    /// What the supports exert on the beam, global (fx, fy, mz), at `from` and at `to`.
+    pub reactions: [[f64; 3]; 2],
+    /// The vehicles, where the scene has them.
+    pub vehicles: Option<VehicleObservation>,
+}
+
+impl BeamRow {
+    /// The first disk (the disk, where it is alone) while it is on or over the beam.
+    pub fn disk(&self) -> Option<DiskObservation> {
+        self.disks.first().copied().flatten()
+    }
+
+    /// The deflection under the first disk (NaN while it is not on the beam).
+    pub fn w_under_disk(&self) -> f64 {
+        self.w_under.first().copied().unwrap_or(f64::NAN)
+    }
+
+    pub fn total(&self) -> f64 {
+        self.kinetic + self.strain + self.potential - self.work + self.dissipated + self.impact
+    }
+}
+
+/// Min and max over time of u, w and φ at each sample point.
+#[derive(Clone, Debug)]
+pub struct Envelope {
+    pub x: Vec<f64>,
+    pub min: Vec<PointDisplacement>,
+    pub max: Vec<PointDisplacement>,
+    /// The largest length the deformed axis reached minus L (over the sample polyline).
+    pub stretch_max: f64,
+    /// The largest vertical acceleration over the sample points (filtered as the probes'),
+    /// with where and when: (|a|, x, t).
+    pub a_max: (f64, f64, f64),
+}
+
+pub struct BeamRun {
+    pub header: RunHeader,
+    pub setup: BeamScene,
+    pub beam: Beam,
+    pub rows: Vec<BeamRow>,
+    pub envelope: Envelope,
+    /// Displacements at the sample points at each requested shape time.
+    pub shapes: Vec<(f64, Vec<PointDisplacement>)>,
+    /// Displacements at the sample points on a coarse grid of times (at most
+    /// [`FRAMES`](super::FRAMES)), with the disk's contact point and turned angle while it is
+    /// on the beam: the animation. Empty unless
+    /// [`Overrides::animate`](crate::run::Overrides::animate) asked for them.
+    pub frames: Vec<Frame>,
+    /// Each probe's Hann-windowed mean deflection over [`MEAN_WINDOWS`](super::MEAN_WINDOWS)
+    /// equal windows of the run, probe-major, for the windows the run covered whole: a
+    /// headline the fast modes' phase leaves alone. Empty unless
+    /// [`Overrides::windowed_means`](crate::run::Overrides::windowed_means) asked for them.
+    pub windowed_means: Vec<f64>,
+    /// The extremes of what the run reports, located on the solution.
+    pub extremes: Extremes,
+    /// When the last disk left the beam, if it did.
+    pub left_track_t: Option<f64>,
+    /// When each disk left the beam, if it did.
+    pub disks_left_t: Vec<Option<f64>>,
+    /// The disk (in the scene's order) whose event stopped the run: it lost contact, slipped
+    /// or no longer fitted.
+    pub stopped_disk: Option<usize>,
+    /// The disk's flights over the beam.
+    pub flights: Vec<FlightRecord>,
+    /// (q, v) at the end of the run.
+    pub y_end: Vec<f64>,
+    /// What the recorded accelerations count.
+    pub acceleration: Option<CutoffReport>,
+    /// The Rayleigh damping the run had, α and β resolved.
+    pub damping: Option<Rayleigh>,
+    /// Each vehicle's extremes, in the scene's order.
+    pub vehicles: Vec<VehicleReport>,
+}
+
+/// The extremes over the run of what the summary reports, each located on the solution
+/// ([`crate::run::extremes`]).
+#[derive(Clone, Debug, Default)]
+pub struct Extremes {
+    /// Per probe: u, w, φ and the vertical acceleration (filtered as recorded).
+    pub probes: Vec<[Range; 4]>,
+    /// Per probe: w after the last load left the beam (the disk, or a train's last axle).
+    pub after_exit: Option<Vec<Range>>,
+    /// Per disk, its normal and tangential contact force, the friction coefficient its
+    /// rolling needs and the deflection under it, while it is on or over the beam (`None`
+    /// for a disk never watched there).
+    pub disks: Vec<Option<[Range; 4]>>,
+    /// Per vehicle, each body's vertical acceleration then each axle's contact force, from
+    /// the time the vehicle came onto the deck.
+    pub vehicles: Vec<Range>,
+    /// Per disk, its normal and tangential contact force averaged over a period of the
+    /// acceleration's cutoff ([`contact_mean`](super::contact_mean)) and the friction coefficient those need, for
+    /// the consistent coupling on the beam a whole window (`None` otherwise; empty without a
+    /// cutoff).
+    pub contact_means: Vec<Option<[Range; 3]>>,
+}
+
+impl Extremes {
+    /// The first disk's (the disk's, where it is alone), if it was watched on the beam.
+    pub fn disk(&self) -> Option<[Range; 4]> {
+        self.disks.first().copied().flatten()
+    }
+}
+
+impl BeamRun {
+    /// Half the range of w at probe k after the last load left the beam: the residual
+    /// vibration. `None` without an exit, or with nothing of the run after it.
+    pub fn amplitude_after_exit(&self, k: usize) -> Option<f64> {
+        self.extremes.after_exit.as_ref()?.get(k)?.half_range()
+    }
+
+    /// What the results depend on beyond the accuracy asked: the scene's (`BeamScene::warnings`)
+    /// and what the run itself met.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out = self.setup.warnings();
+        if let [first, _, ..] = &self.flights[..] {
+            let who = if self.setup.disks.len() > 1 {
+                "the disks"
+            } else {
+                "the disk"
+            };
+            out.push(format!(
+                "{who} lifted off the beam {} times: each landing's time and impulse, and the motion after it, carry the error of every step before it, so the extremes from the first lift-off at t = {:.6} s on are not held to the accuracy (a 5 t disk hopping on the HSLM bridge under A1: 15 flights at the defaults against 16 at rtol 1e-8, the deck's largest acceleration 7.7 % apart)",
+                self.flights.len(),
+                first.lift_off_t
+            ));
+        }
+        out.extend(self.suspensions_outrun());
+        out.extend(self.nonlinearity_outgrown());
+        if let Some(c) = self.acceleration.as_ref().filter(|c| c.below > c.modes) {
+            out.push(format!(
+                "the modal beam keeps {} modes, fewer than the {} at or below the deck acceleration's cutoff ({:.2} Hz): the accelerations leave the others out; `track.beam.modes: {}` or more counts them all",
+                c.modes, c.below, c.cutoff_hz, c.below
+            ));
+        }
+        out
+    }
+
+    /// Where the plan chose a linear or modal beam from the exact beam's static gap g at a
+    /// static deflection s, and the response grew to W at the probes: about how far the exact
+    /// beam's would lie from it, of it, g (W/s)³. The static gap grows as the square of the
+    /// amplitude, and a resonant build-up amplifies it as much again as it amplified the
+    /// response: over HSLM's bridge (s = 1.56 mm under one axle, g = 4.4·10⁻⁸) it foresees
+    /// 3·10⁻⁶, 9·10⁻⁵ and 1.1·10⁻³ for A1 at 60 m/s, A10 at 67 and A7 at 120, where the exact
+    /// beam lies 2.2·10⁻⁶, 1.2·10⁻⁴ and 8.3·10⁻⁴ from the linear one in deflection (7.6·10⁻⁶,
+    /// 1.6·10⁻⁴ and 9.9·10⁻⁴ in acceleration).
+    pub fn nonlinear_gap_foreseen(&self) -> Option<f64> {
+        self.growth().map(|(ratio, g)| g * ratio.powi(3))
+    }
+
+    /// W/s and g of [`Self::nonlinear_gap_foreseen`].
+    fn growth(&self) -> Option<(f64, f64)> {
+        let (s, g) = self.setup.static_gap?;
+        let peak = (self.extremes.probes.iter())
+            .map(|p| p[1].min.abs().max(p[1].max.abs()))
+            .filter(|w| w.is_finite())
+            .fold(0.0_f64, f64::max);
+        (s > 0.0 && peak > 0.0).then_some((peak / s, g))
+    }
+
+    /// A warning where [`Self::nonlinear_gap_foreseen`] passes the share of the accuracy the
+    /// plan chose the model by.
+    fn nonlinearity_outgrown(&self) -> Option<String> {
+        let (ratio, g) = self.growth()?;
+        let gap = g * ratio.powi(3);
+        let accuracy = self.setup.accuracy;
+        (gap > SHARE * accuracy).then(|| format!(
+            "the response grew to {ratio:.1} times the static deflection the plan judged the {} beam by: the geometric nonlinearity it leaves out grows about as the cube of that, here to some {gap:.1e} of the response, past a quarter of the accuracy {accuracy:e} (HSLM's bridge at A7's resonance: 1.1e-3 foreseen, the exact beam 8.3e-4 off in deflection, 9.9e-4 in acceleration); `track.beam.model: exact` holds it",
+            self.setup.beam.model.name()
+        ))
+    }
+
+    /// A warning for each vehicle whose bodies ring on their springs faster than the run's
+    /// steps follow: more than a third of a radian of that vibration a step on average. What a
+    /// kink of the track sets ringing is then carried with the error of steps that do not
+    /// resolve it, and the bodies' accelerations with it: Biggs' sprung mass on springs 10³,
+    /// 10⁴ and 10⁶ times as stiff (84 Hz, 266 Hz, 2.65 kHz) takes 0.25, 0.45 and 0.95 rad a
+    /// step at the defaults, and its largest acceleration lands within 1.7·10⁻⁴, 2.7·10⁻² and
+    /// 0.21 of the run at rtol 10⁻⁸ (itself 0.11 from the run at 10⁻⁹).
+    fn suspensions_outrun(&self) -> Vec<String> {
+        let steps = self.header.stats.steps;
+        if steps == 0 {
+            return Vec::new();
+        }
+        let mean = self.header.t_end / steps as f64;
+        self.setup
+            .vehicles
+            .iter()
+            .filter_map(|v| {
+                let f = v.fastest_suspension_hz();
+                let turn = std::f64::consts::TAU * f * mean;
+                (turn > 1.0 / 3.0).then(|| format!(
+                    "vehicle {}'s bodies ring on their springs at up to {f:.4e} Hz (the axles held), faster than the steps follow ({mean:.2e} s on average, {turn:.1} rad of that vibration a step): their accelerations are not held to the accuracy (Biggs' sprung mass on a spring 10⁴ times as stiff, 266 Hz, 0.45 rad a step: its largest acceleration 0.895 m/s² at the defaults, 0.871 at rtol 1e-8); a tighter `solver.rtol` follows it, and a spring that stiff is close to a rigid attachment",
+                    v.name
+                ))
+            })
+            .collect()
+    }
+}
