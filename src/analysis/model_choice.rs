@@ -156,8 +156,9 @@ fn uncarried(spec: &BeamSpec, case: &Pattern, linear: &[f64], span: f64) -> Unme
 /// what the count of modes is chosen from, at any speed of the loads.
 #[derive(Clone, Debug)]
 pub struct ModeShares {
-    /// Per mode, in ascending frequency, the (u, w) it adds at each probe.
-    parts: Vec<Vec<[f64; 2]>>,
+    /// Per mode, in ascending frequency, the (u, w) it adds at each probe, and its rotation
+    /// there times L/π (a first sine mode's rotation so turns into its deflection).
+    parts: Vec<Vec<[f64; 3]>>,
     /// Per mode, κ/ω: the steepest slope of its deflection over its largest deflection, over
     /// its circular frequency. A force entering the span at speed v, where the shape is 0 and
     /// its slope κ times its largest value, sets the mode vibrating about its static part by
@@ -225,9 +226,15 @@ fn mode_shares(
         let part = if w2 > 0.0 {
             let participation: f64 = shape.iter().zip(&f).map(|(a, b)| a * b).sum();
             let statics: Vec<f64> = shape.iter().map(|s| s * participation / w2).collect();
-            displacements_at(&beam, &statics, xs)
+            let turned = beam.length / std::f64::consts::PI;
+            (xs.iter())
+                .map(|&x| {
+                    let d = beam.displacement_at(&statics, x);
+                    [d.u, d.w, d.phi * turned]
+                })
+                .collect()
         } else {
-            vec![[0.0; 2]; xs.len()]
+            vec![[0.0; 3]; xs.len()]
         };
         for (t, p) in total.iter_mut().zip(&part) {
             t[0] += p[0];
@@ -306,49 +313,69 @@ impl ModeShares {
             })
         };
         // The deflection at the probes after the first k modes, each weighted, for every k.
-        let mut after: Vec<Vec<[f64; 2]>> = Vec::with_capacity(self.parts.len());
-        let mut partial = vec![[0.0; 2]; self.parts.first().map_or(0, Vec::len)];
+        let mut after: Vec<Vec<[f64; 3]>> = Vec::with_capacity(self.parts.len());
+        let mut partial = vec![[0.0; 3]; self.parts.first().map_or(0, Vec::len)];
         for (k, part) in self.parts.iter().enumerate() {
             for (p, d) in partial.iter_mut().zip(part) {
-                p[0] += weight(k) * d[0];
-                p[1] += weight(k) * d[1];
+                for (pc, dc) in p.iter_mut().zip(d) {
+                    *pc += weight(k) * dc;
+                }
             }
             after.push(partial.clone());
         }
-        let moved = |a: usize, b: usize| -> f64 {
-            let none = vec![[0.0; 2]; partial.len()];
+        // The largest change at a probe from the first a modes to the first b, of its
+        // deflection (`turned` false) or its rotation times L/π, over the peak deflection.
+        let moved = |a: usize, b: usize, turned: bool| -> f64 {
+            let none = vec![[0.0; 3]; partial.len()];
             let pa = if a == 0 { &none } else { &after[a - 1] };
-            pa.iter()
-                .zip(&after[b - 1])
-                .fold(0.0_f64, |m, (x, y)| m.max((x[0] - y[0]).hypot(x[1] - y[1])))
-                / self.scale
+            pa.iter().zip(&after[b - 1]).fold(0.0_f64, |m, (x, y)| {
+                m.max(if turned {
+                    (x[2] - y[2]).abs()
+                } else {
+                    (x[0] - y[0]).hypot(x[1] - y[1])
+                })
+            }) / self.scale
         };
         // A load switched on or off sets every mode it excites swinging by up to its whole
         // static part (twice it at the peak), undamped: the share is halved.
         let tol = SHARE * accuracy * if self.switched { 0.5 } else { 1.0 };
-        let single = (1..=after.len())
-            .rev()
-            .find(|&k| moved(k - 1, k) > tol)
-            .unwrap_or(1);
-        let mut count = single;
-        while 2 * count <= after.len() && moved(count, 2 * count) > tol {
-            count *= 2;
-        }
+        let counted_by = |turned: bool| {
+            let single = (1..=after.len())
+                .rev()
+                .find(|&k| moved(k - 1, k, turned) > tol)
+                .unwrap_or(1);
+            let mut count = single;
+            while 2 * count <= after.len() && moved(count, 2 * count, turned) > tol {
+                count *= 2;
+            }
+            (single, count)
+        };
+        // The probes' rotations are counted beside their deflections, and the larger count
+        // kept: the summary reports both, and a cantilever's tip turns in its higher modes
+        // more than it deflects.
+        let (by_deflection, by_rotation) = (counted_by(false), counted_by(true));
+        let turned = by_rotation.1 > by_deflection.1;
+        let (single, count) = if turned { by_rotation } else { by_deflection };
         let confirm = if 2 * count <= after.len() {
             format!(
                 "modes {}–{} together add {:.1e}",
                 count + 1,
                 2 * count,
-                moved(count, 2 * count)
+                moved(count, 2 * count, turned)
             )
         } else {
             format!("the mesh has {} modes", after.len())
         };
+        let what = if turned {
+            "of the peak static deflection at the probes (in their rotations times L/π)"
+        } else {
+            "of the peak static deflection at the probes"
+        };
         let counted = match passing {
             Some(v) => format!(
-                "each adds more than {tol:.1e} of the peak static deflection at the probes in its vibration about its static part, which forces passing at {v} m/s make up to 2 v κ/ω of it (κ its shape's steepest slope over its largest deflection), the static correction holding the rest"
+                "each adds more than {tol:.1e} {what} in its vibration about its static part, which forces passing at {v} m/s make up to 2 v κ/ω of it (κ its shape's steepest slope over its largest deflection), the static correction holding the rest"
             ),
-            None => format!("each adds more than {tol:.1e} of the peak static deflection at the probes"),
+            None => format!("each adds more than {tol:.1e} {what}"),
         };
         let cutoff = if self.below_cutoff > count.min(self.limit) {
             format!(
