@@ -1096,3 +1096,27 @@ fn item_15_loads_past_what_the_beam_carries() {
         assert_eq!(code, 0, "{name} with its model named: {err}");
     }
 }
+
+/// 16. A disk slow over the jump's crest hung. At Ω₀ = −40 and −50 1/s (the study's −80
+///     jumps) the disk creeps over the crest in steps of 10⁻⁴ s at t = 1.6 s, and locating
+///     the step's crossing of a curvature knot bisected to 10⁻¹² of the step, below the
+///     spacing of doubles there: the run never ended. Every speed from −20 to −120 1/s now
+///     ends (rolls on, leaves the track or jumps).
+#[test]
+fn item_16_a_slow_disk_over_the_crest_ends() {
+    let jump = concat!(env!("CARGO_MANIFEST_DIR"), "/studies/jump.yaml");
+    let o = out("slow-jump");
+    runs_finite(
+        &[
+            "sweep",
+            jump,
+            "--set",
+            "disk.omega0=-20:-120:101",
+            "--out",
+            &o,
+        ],
+        &o,
+    );
+    let rows = std::fs::read_to_string(format!("{o}/sweep.csv")).expect("sweep.csv");
+    assert_eq!(rows.lines().filter(|l| l.contains(",ok,")).count(), 101);
+}

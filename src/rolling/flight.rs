@@ -97,7 +97,9 @@ pub fn land(rolling: &Rolling, flight: &Flight, s0: f64, t_end: f64) -> (FlightE
     while t < t_end {
         let v = flight.velocity(t);
         let speed = v[0].hypot(v[1]).max((g * a).sqrt()).max(f64::MIN_POSITIVE);
-        let next = (t + 0.05 * a / speed).min(t_end);
+        // At least the next double: late in a long run a small disk's sample step falls
+        // below the times' spacing, where t + step is t again.
+        let next = (t + 0.05 * a / speed).min(t_end).max(t.next_up());
         let here = gap(rolling, flight.centre(next), s);
         if here.past_end {
             return (

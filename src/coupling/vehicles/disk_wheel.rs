@@ -108,6 +108,11 @@ impl VehiclesOnBeam<'_> {
             let golden = 0.5 * (5.0_f64.sqrt() - 1.0);
             while hi - lo > 1e-9 * a {
                 let (m1, m2) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
+                // Far along a long deck 1e-9 of a small radius is below the positions'
+                // spacing: the bracket stops shrinking there.
+                if !(lo < m1 && m1 < m2 && m2 < hi) {
+                    break;
+                }
                 if height(m1) < height(m2) {
                     lo = m1;
                 } else {
