@@ -241,7 +241,7 @@ fn mode_shares(
             t[1] += p[1];
         }
         parts.push(part);
-        let (kappa, at_free_ends) = passing_rate(&beam, &shape, &stations);
+        let (kappa, at_free_ends) = steepness_and_free_ends(&beam, &shape, &stations);
         passing.push(kappa / m.omega[k]);
         stepping.push(at_free_ends);
     }
@@ -274,7 +274,7 @@ const PASSING_SAMPLES: usize = 16;
 /// over its largest deflection (infinite where it does not deflect the axis: an axial mode,
 /// which the loads across it do not excite either); and the larger of its deflections at the
 /// ends where no support holds w, over its largest (0 where both ends hold w).
-fn passing_rate(beam: &Beam, shape: &[f64], stations: &[f64]) -> (f64, f64) {
+fn steepness_and_free_ends(beam: &Beam, shape: &[f64], stations: &[f64]) -> (f64, f64) {
     let across: Vec<f64> = stations
         .iter()
         .map(|&x| {
