@@ -833,6 +833,13 @@ fn sweep_ranges_and_keys() {
             vec!["--set mass", "is not a number the scene format holds"],
         ),
         (
+            "disk.nothing=1,1e3",
+            vec![
+                "--set disk.nothing",
+                "is not a number the scene format holds",
+            ],
+        ),
+        (
             "track.beam.elements=4.5:8:2",
             vec!["--set track.beam.elements", "takes a whole number"],
         ),

@@ -137,6 +137,11 @@ pub fn holds_number(dotted: &str) -> bool {
     find(dotted).is_some_and(|f| matches!(f.key.holds, Number | Whole))
 }
 
+/// Whether a dotted key is one of the scene format's, of any kind.
+pub fn is_key(dotted: &str) -> bool {
+    find(dotted).is_some()
+}
+
 /// A key's place in the file.
 enum Slot<'f> {
     /// A number the file must give.

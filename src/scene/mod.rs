@@ -39,7 +39,7 @@ mod checker;
 mod disks;
 mod file;
 mod keys;
-pub use keys::holds_number;
+pub use keys::{holds_number, is_key};
 mod rolling;
 mod train;
 mod vehicles;

@@ -17,7 +17,7 @@ use crate::output::plots::{line_chart, line_chart_with_references};
 use crate::output::write;
 use crate::plan::Planner;
 use crate::run::{self, Overrides, Run};
-use crate::scene::{holds_number, SceneSpec};
+use crate::scene::{holds_number, is_key, SceneSpec};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -89,7 +89,10 @@ impl Setting {
             if names.len() > MAX_CASES {
                 return Err(bad(&format!("lists more than {MAX_CASES} values")));
             }
-            let sweep = if holds_number(&key) {
+            // Numbers listed at a key the format does not know are refused as numbers (what
+            // the key is not), not as names.
+            let unknown_numbers = !is_key(&key) && names.iter().all(|n| number(n).is_ok());
+            let sweep = if holds_number(&key) || unknown_numbers {
                 Sweep::Numbers(names.iter().map(|n| number(n)).collect::<Result<_, _>>()?)
             } else {
                 Sweep::Names(names)
