@@ -131,6 +131,9 @@ pub struct Overrides {
     /// disk alone, and the envelope's stations, watched at every step end, are most of what
     /// such a run costs.
     pub no_envelope: bool,
+    /// Record no history between the run's first and last output times: a sweep's case
+    /// writes none, and its extremes are watched on the steps, not read off the rows.
+    pub no_history: bool,
 }
 
 impl Overrides {

@@ -111,7 +111,7 @@ impl ModeEnergy {
                     }
                     let slope = derivative(s);
                     let work = antiderivative_of_product(&gi, &slope, 1.0);
-                    let dissipated = antiderivative_of_product(&slope, &slope, c / hp);
+                    let dissipated = antiderivative_of_square(&slope, c / hp);
                     let piece = SeriesPiece {
                         before,
                         work,
@@ -158,7 +158,7 @@ impl ModeEnergy {
                     c,
                     polynomial: (
                         antiderivative_of_product(g, &slope, 1.0),
-                        antiderivative_of_product(&slope, &slope, 1.0),
+                        antiderivative_of_square(&slope, 1.0),
                     ),
                     roots,
                 })
@@ -294,6 +294,26 @@ fn derivative(c: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// 1/k for the degrees an antiderivative of a product of two series reaches: a division in
+/// its last pass costs several multiplications.
+const RECIPROCALS: [f64; 2 * SERIES_TERMS + 1] = {
+    let mut r = [0.0; 2 * SERIES_TERMS + 1];
+    let mut k = 1;
+    while k <= 2 * SERIES_TERMS {
+        r[k] = 1.0 / k as f64;
+        k += 1;
+    }
+    r
+};
+
+/// Turn Σ c_k σ^k, each c_k the coefficient of σ^(k−1) in the integrand, into the
+/// antiderivative's coefficients.
+fn divide_by_degree(out: &mut [f64]) {
+    for (k, c) in out.iter_mut().enumerate().skip(2) {
+        *c *= RECIPROCALS.get(k).copied().unwrap_or(1.0 / k as f64);
+    }
+}
+
 /// The antiderivative that vanishes at 0 of `scale` times the product of two polynomials.
 fn antiderivative_of_product(a: &[f64], b: &[f64], scale: f64) -> Vec<f64> {
     if a.is_empty() || b.is_empty() {
@@ -306,9 +326,27 @@ fn antiderivative_of_product(a: &[f64], b: &[f64], scale: f64) -> Vec<f64> {
             out[i + j + 1] += ai * bj;
         }
     }
-    for (k, c) in out.iter_mut().enumerate().skip(2) {
-        *c /= k as f64;
+    divide_by_degree(&mut out);
+    out
+}
+
+/// The antiderivative that vanishes at 0 of `scale` times a polynomial's square: each cross
+/// product formed once and doubled, half the products of [`antiderivative_of_product`] on a
+/// series of the step's length.
+fn antiderivative_of_square(a: &[f64], scale: f64) -> Vec<f64> {
+    if a.is_empty() {
+        return Vec::new();
     }
+    let mut out = vec![0.0; 2 * a.len()];
+    for (i, ai) in a.iter().enumerate() {
+        let ai = scale * ai;
+        out[2 * i + 1] += ai * a[i];
+        let twice = 2.0 * ai;
+        for (j, aj) in a.iter().enumerate().skip(i + 1) {
+            out[i + j + 1] += twice * aj;
+        }
+    }
+    divide_by_degree(&mut out);
     out
 }
 

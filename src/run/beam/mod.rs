@@ -363,7 +363,7 @@ pub fn run(
         rho_inf: setup.rho_inf,
         ..over.options(scene)
     };
-    let outputs = output_times(scene, setup);
+    let outputs = output_times(scene, setup, over.no_history);
     let mass_lu = SparseLu::factor(loaded.model_mass(), None).ok_or_else(|| {
         Error::Solver(format!("scene {}: the mass matrix is singular", scene.name))
     })?;
@@ -460,12 +460,16 @@ fn modes_and_damping(
     Ok((modal, damping, lowest.unwrap_or(0.0)))
 }
 
-/// The run's output times and the shapes' times, sorted, each once.
-fn output_times(scene: &Scene, setup: &BeamScene) -> Vec<f64> {
+/// The run's output times and the shapes' times, sorted, each once; with `no_history`, the
+/// first and the last of them alone.
+fn output_times(scene: &Scene, setup: &BeamScene, no_history: bool) -> Vec<f64> {
     let mut outputs = super::output_times(scene);
     outputs.extend(setup.shapes.iter().copied());
     outputs.sort_by(f64::total_cmp);
     outputs.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    if no_history && outputs.len() > 2 {
+        outputs.drain(1..outputs.len() - 1);
+    }
     outputs
 }
 

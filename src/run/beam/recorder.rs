@@ -64,9 +64,13 @@ pub(super) struct Recorder<'a> {
     pub(super) before: Option<(f64, Snapshot)>,
     /// The least time between samples of steps far shorter than it (see `Recorder::watch`).
     pub(super) spacing: f64,
-    /// The output times: the ledger's pieces end at each, so that the energy a row records
-    /// is booked by their rule up to its time.
+    /// The output times: the ledger reads a piece from its last booked time to each, so that
+    /// the energy a row records is booked by the pieces' rule up to its time.
     pub(super) outputs: Vec<f64>,
+    /// What the last output row showed the watches, taken in when the run ends: the watches
+    /// see the steps, and of the rows the first and the last alone, which every output grid
+    /// has, so that no number the run reports moves with the grid.
+    pub(super) last_row: Option<RowSeen>,
     /// The probes and the disk at the last two step ends watched while a disk is on or over
     /// the beam: then every step is.
     pub(super) trail: Vec<Trailed>,
@@ -262,23 +266,40 @@ impl Recorder<'_> {
         Some(piece)
     }
 
-    /// The step [t0, t1] in pieces ending at the output times within it, each booked in
-    /// closed form, where the integrator holds the motion as one and its force is the moving
-    /// loads' alone (`Ledger::books_in_closed_form`).
-    fn exact_pieces(&self, t0: f64, t1: f64, dense: &dyn Dense) -> Option<Vec<Piece>> {
+    /// The step [t0, t1] booked in closed form as one piece, where the integrator holds the
+    /// motion as one and its force is the moving loads' alone
+    /// (`Ledger::books_in_closed_form`); with the pieces from t0 to each output time inside
+    /// it, for the rows.
+    fn exact_pieces(&self, t0: f64, t1: f64, dense: &dyn Dense) -> Option<(Piece, Vec<Piece>)> {
         if !self.ledger.books_in_closed_form(&self.phase) {
             return None;
         }
+        let piece = |b: f64| -> Option<Piece> {
+            let by = dense.power_integrals(t0, b)?;
+            Some(self.ledger.exact_piece(&self.phase, b, &dense.at(b), by))
+        };
+        let whole = piece(t1)?;
+        let rows = self
+            .outputs_inside(t0, t1)
+            .iter()
+            .map(|&o| piece(o))
+            .collect::<Option<Vec<Piece>>>()?;
+        Some((whole, rows))
+    }
+
+    /// The output times within (t0, t1).
+    fn outputs_inside(&self, t0: f64, t1: f64) -> &[f64] {
         let from = self.outputs.partition_point(|&o| o <= t0);
         let to = self.outputs.partition_point(|&o| o < t1);
-        let mut pieces = Vec::new();
-        let mut a = t0;
-        for b in self.outputs[from..to].iter().copied().chain([t1]) {
-            let by = dense.power_integrals(a, b)?;
-            pieces.push(self.ledger.exact_piece(&self.phase, b, &dense.at(b), by));
-            a = b;
-        }
-        Some(pieces)
+        &self.outputs[from..to.max(from)]
+    }
+
+    /// The piece from `start` to t, by the Gauss–Lobatto rule on the dense output.
+    fn lobatto_piece(&self, start: f64, t: f64, dense: &dyn Dense) -> Piece {
+        let times = LOBATTO.0.map(|x| start + (t - start) * x);
+        let states = times.map(|ti| dense.at(ti));
+        let inner = [0, 1, 2].map(|k| (times[k], &states[k][..]));
+        self.ledger.piece(&self.phase, inner, t, &dense.at(t))
     }
 
     /// The time between samples from t0 on: `spacing`, and an eighth of the time the fastest
@@ -346,6 +367,38 @@ pub(super) fn stations_watched(
     out
 }
 
+/// What an output row shows the watches.
+pub(super) struct RowSeen {
+    t: f64,
+    vehicles: Vec<f64>,
+    probes: Vec<f64>,
+    along: Option<Vec<f64>>,
+    after_exit: Option<Vec<f64>>,
+    gap: Option<f64>,
+    disks: Option<Vec<f64>>,
+}
+
+impl Watches {
+    /// Take in what an output row shows.
+    fn see_row(&mut self, r: &RowSeen) {
+        let t = r.t;
+        self.vehicles.record_point(t, &r.vehicles);
+        self.probes.record_point(t, &r.probes);
+        if let Some(along) = &r.along {
+            self.along.record_point(t, along);
+        }
+        if let Some(w) = &r.after_exit {
+            self.after_exit.record_point(t, w);
+        }
+        if let Some(gap) = r.gap {
+            self.gap.record_point(t, &[gap]);
+        }
+        if let Some(values) = &r.disks {
+            self.disk.record_point(t, values);
+        }
+    }
+}
+
 impl Observer for Recorder<'_> {
     fn output(&mut self, t: f64, y: &[f64]) {
         let phase = &self.phase;
@@ -367,7 +420,6 @@ impl Observer for Recorder<'_> {
         };
         let vehicles = phase.vehicles(t, y, None);
         let watched = self.vehicle_values(t, vehicles.as_ref());
-        self.watches.vehicles.record_point(t, &watched);
         let sample = Sample {
             vehicles,
             t,
@@ -383,37 +435,39 @@ impl Observer for Recorder<'_> {
         self.history.record(&sample);
         self.pictures.record(&sample);
         let row = self.history.rows.last().expect("recorded above");
-        let probes: Vec<f64> = row
-            .probes
-            .iter()
-            .zip(&row.accelerations)
-            .flat_map(|(d, a)| [d.u, d.w, d.phi, *a])
-            .collect();
-        self.watches.probes.record_point(t, &probes);
-        if self.watch_along {
-            let along_a = phase.beam.deflections(&self.stations, &a);
-            self.watches
-                .along
-                .record_point(t, &stations_watched(&self.envelope.x, &along, &along_a));
-        }
-        if self.exit_t.is_some_and(|te| t >= te) {
-            let w: Vec<f64> = row.probes.iter().map(|d| d.w).collect();
-            self.watches.after_exit.record_point(t, &w);
-        }
-        if self.phase.flying.is_some() {
-            self.watches.gap.record_point(t, &[gap]);
-        }
-        if !row.disks.is_empty() {
-            let values: Vec<f64> = row
-                .disks
+        let seen = RowSeen {
+            t,
+            vehicles: watched,
+            probes: row
+                .probes
                 .iter()
-                .zip(&row.w_under)
-                .flat_map(|(d, w)| match d {
-                    Some(d) => [d.rn, d.rt, d.mu_needed().unwrap_or(f64::NAN), *w],
-                    None => [f64::NAN; 4],
-                })
-                .collect();
-            self.watches.disk.record_point(t, &values);
+                .zip(&row.accelerations)
+                .flat_map(|(d, a)| [d.u, d.w, d.phi, *a])
+                .collect(),
+            along: self.watch_along.then(|| {
+                let along_a = phase.beam.deflections(&self.stations, &a);
+                stations_watched(&self.envelope.x, &along, &along_a)
+            }),
+            after_exit: self
+                .exit_t
+                .is_some_and(|te| t >= te)
+                .then(|| row.probes.iter().map(|d| d.w).collect()),
+            gap: self.phase.flying.is_some().then_some(gap),
+            disks: (!row.disks.is_empty()).then(|| {
+                row.disks
+                    .iter()
+                    .zip(&row.w_under)
+                    .flat_map(|(d, w)| match d {
+                        Some(d) => [d.rn, d.rt, d.mu_needed().unwrap_or(f64::NAN), *w],
+                        None => [f64::NAN; 4],
+                    })
+                    .collect()
+            }),
+        };
+        if self.history.rows.len() == 1 {
+            self.watches.see_row(&seen);
+        } else {
+            self.last_row = Some(seen);
         }
     }
 
@@ -428,8 +482,9 @@ impl Observer for Recorder<'_> {
         self.ledger.step_ends(&self.phase, t1, &dense.at(t1));
         // A long step books the work and the damping on the way (see `ledger_pieces`).
         let sample = self.sample_spacing(t0, dense);
-        if let Some(pieces) = self.exact_pieces(t0, t1, dense) {
-            self.ledger.book_in_pieces(pieces);
+        if let Some((whole, rows)) = self.exact_pieces(t0, t1, dense) {
+            self.ledger.book_in_pieces(vec![whole]);
+            self.ledger.to_outputs(rows);
             if self.settled {
                 return;
             }
@@ -440,24 +495,33 @@ impl Observer for Recorder<'_> {
                 self.phase.loaded.stride_freely();
             }
         } else if let Some(piece) = self.ledger_pieces(t0, t1, dense, sample) {
-            let from = self.outputs.partition_point(|&o| o <= t0);
-            let to = self.outputs.partition_point(|&o| o < t1);
-            let ends: Vec<f64> = self.outputs[from..to].iter().copied().chain([t1]).collect();
-            let mut pieces = Vec::new();
-            let mut a = t0;
-            for b in ends {
-                let count = ((b - a) / piece).ceil().max(1.0);
-                let at = |i: f64| a + (b - a) * i / count;
-                for i in 1..=count as usize {
-                    let (start, t) = (at(i as f64 - 1.0), at(i as f64).min(b));
-                    let times = LOBATTO.0.map(|x| start + (t - start) * x);
-                    let states = times.map(|ti| dense.at(ti));
-                    let inner = [0, 1, 2].map(|k| (times[k], &states[k][..]));
-                    pieces.push(self.ledger.piece(&self.phase, inner, t, &dense.at(t)));
-                }
-                a = b;
-            }
+            // Even pieces over the step whatever the output times; an output inside one
+            // reads its own piece from that one's start.
+            let count = ((t1 - t0) / piece).ceil().max(1.0);
+            let at = |i: f64| t0 + (t1 - t0) * i / count;
+            let pieces: Vec<Piece> = (1..=count as usize)
+                .map(|i| self.lobatto_piece(at(i as f64 - 1.0), at(i as f64).min(t1), dense))
+                .collect();
+            let rows = self
+                .outputs_inside(t0, t1)
+                .iter()
+                .map(|&o| {
+                    // The last piece starting by o: those before it end by o, and the ledger
+                    // has booked them when it writes o's row.
+                    let mut i = ((o - t0) / (t1 - t0) * count)
+                        .floor()
+                        .clamp(0.0, count - 1.0);
+                    while i > 0.0 && at(i) > o {
+                        i -= 1.0;
+                    }
+                    while i + 1.0 < count && at(i + 1.0) <= o {
+                        i += 1.0;
+                    }
+                    self.lobatto_piece(at(i), o, dense)
+                })
+                .collect();
             self.ledger.book_in_pieces(pieces);
+            self.ledger.to_outputs(rows);
         } else if self.ledger.books_by_simpson(&self.phase) {
             let tm = 0.5 * (t0 + t1);
             self.ledger
@@ -586,6 +650,7 @@ pub(super) fn recorder<'a>(
         along_trail: Vec::new(),
         spacing,
         outputs: outputs.to_vec(),
+        last_row: None,
         exit_t,
         settled: false,
         station_rows: None,
@@ -630,11 +695,14 @@ pub(super) struct Recorded {
 }
 
 impl Recorded {
-    pub(super) fn from(rec: Recorder, y_end: &[f64]) -> Recorded {
+    pub(super) fn from(mut rec: Recorder, y_end: &[f64]) -> Recorded {
         if let Some(p) = &rec.progress {
             p.finish();
         }
         let y_end = on_mesh(&rec.phase, y_end);
+        if let Some(last) = rec.last_row.take() {
+            rec.watches.see_row(&last);
+        }
         let (extremes, envelope) = rec.extremes();
         Recorded {
             rows: rec.history.rows,
