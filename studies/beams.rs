@@ -53,8 +53,8 @@ fn peak(r: &BeamRun) -> f64 {
 /// scheme conserves the energy of a linear system exactly, so what drifts comes from the
 /// geometric nonlinearity and the Newton tolerance, both of which shrink with the step: the
 /// drift stays below the tolerance itself at rtol 1e-7, and falls with rtol (measured slopes
-/// 1.4–1.6 per decade, faster than the tol^{2/3} of the displacement error itself: C1–C3
-/// drift 1.3–1.6·10⁻⁵ at 1e-5 and 0.9–1.3·10⁻⁸ at 1e-7, B1–B3 1.1–1.6·10⁻⁶ and 1.4–2.0·10⁻⁹).
+/// 1.5–1.6 per decade, faster than the tol^{2/3} of the displacement error itself: C1–C3
+/// drift 1.3–1.6·10⁻⁵ at 1e-5 and 0.9–1.2·10⁻⁸ at 1e-7, B1–B3 4.5–7.0·10⁻⁷ and 4.2–6.6·10⁻¹⁰).
 /// The sudden load excites the beam's thickness-shear motion (√(GAv/ρI) ≈ 9·10⁵ rad/s), which a
 /// tolerance this tight must follow, so each study is checked over a window that keeps CI
 /// short: the first 0.2 s of B1–B3 (three periods of the first mode) and the first 1.1 s of
