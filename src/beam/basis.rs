@@ -49,6 +49,19 @@ impl Lagrange {
         }
     }
 
+    /// Every shape function's value at ξ, the same products as [`Self::eval`]'s without the
+    /// derivatives: a point load or a probe on the axis reads these alone.
+    pub fn values(&self, xi: f64, n: &mut [f64]) {
+        let k = self.nodes.len();
+        for a in 0..k {
+            let mut value = self.scale[a];
+            for b in (0..k).filter(|&b| b != a) {
+                value *= xi - self.nodes[b];
+            }
+            n[a] = value;
+        }
+    }
+
     /// Every shape function and its first three derivatives (in ξ) at ξ: the rolling disk
     /// needs the axis' curvature and how fast it changes.
     pub fn eval_derivatives(&self, xi: f64, out: &mut [[f64; 4]]) {
@@ -82,6 +95,9 @@ mod tests {
             let mut n = vec![0.0; p + 1];
             let mut dn = vec![0.0; p + 1];
             b.eval(0.3127, &mut n, &mut dn);
+            let mut values = vec![0.0; p + 1];
+            b.values(0.3127, &mut values);
+            assert_eq!(values, n, "p = {p}: the values alone are eval's");
             assert!((n.iter().sum::<f64>() - 1.0).abs() < 1e-12);
             assert!(dn.iter().sum::<f64>().abs() < 1e-10);
             let interp: f64 = (0..=p).map(|a| dn[a] * b.nodes[a].powi(p as i32)).sum();

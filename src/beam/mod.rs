@@ -487,8 +487,7 @@ impl Beam {
         let xi = 2.0 * (x - e as f64 * self.h) / self.h - 1.0;
         let len = self.spec.order + 1;
         let mut n = [0.0; MAX_ORDER + 1];
-        let mut dn = [0.0; MAX_ORDER + 1];
-        self.basis.eval(xi, &mut n[..len], &mut dn[..len]);
+        self.basis.values(xi, &mut n[..len]);
         (e, ShapeValues { n, len })
     }
 
@@ -605,9 +604,12 @@ impl Beam {
         let local = self.to_local(force);
         let (e, n) = self.locate(x);
         let first = e * self.spec.order;
+        // A component the load does not have adds nothing: an axle's force on a level deck is
+        // one of the three, and on a modal beam each term is a row over the modes.
+        let components = [(0, local[0]), (1, local[1]), (2, mz)];
         for (a, na) in n.iter().enumerate() {
             let node = first + a;
-            for (c, value) in [(0, local[0]), (1, local[1]), (2, mz)] {
+            for &(c, value) in components.iter().filter(|(_, v)| *v != 0.0) {
                 if let Some(i) = self.eq[3 * node + c] {
                     add(i, na * value);
                 }
