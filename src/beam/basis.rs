@@ -55,8 +55,10 @@ impl Lagrange {
         let k = self.nodes.len();
         for a in 0..k {
             let mut value = self.scale[a];
-            for b in (0..k).filter(|&b| b != a) {
-                value *= xi - self.nodes[b];
+            for (b, node) in self.nodes.iter().enumerate() {
+                if b != a {
+                    value *= xi - node;
+                }
             }
             n[a] = value;
         }
