@@ -1,14 +1,14 @@
-//! The energy budget of a beam run: kinetic + strain + potential − work + dissipated,
-//! checked at every step and written at every output time. The work of the scene's point loads is exact
-//! (within a step the active set is fixed, so each load adds P·Δd and M_z Δφ at its point), and
-//! so is the work of the beam's own weight (a constant load: its dot product with the
-//! displacement since the start); the work of a prescribed moving load is its power on the
-//! beam, and the energy damping takes is its power vᵀCv, both by the trapezoidal rule over the
-//! steps, or over a long step by the Gauss–Lobatto rule on pieces of it (`pending`); where the
-//! integrator holds the motion in closed form (`exact-modal`, the beam alone under moving
-//! forces) both are its closed-form integrals. A disk that leaves the beam takes its energy with it, which the budget keeps from
-//! then on; so does a disk that flies over it, whose flight keeps it constant, until it lands,
-//! and what a landing takes is booked as `impact`.
+//! The energy budget of a beam run: kinetic + strain + potential − work + dissipated, checked at
+//! every step and written at every output time. The work of the scene's point loads is exact
+//! (within a step the active set is fixed, so each load adds P·Δd and M_z Δφ at its point), and so
+//! is the work of the beam's own weight (a constant load: its dot product with the displacement
+//! since the start); the work of a prescribed moving load is its power on the beam, and the energy
+//! damping takes is its power vᵀCv, both by the trapezoidal rule over the steps, or over a long
+//! step by the Gauss–Lobatto rule on pieces of it (`pending`); where the integrator holds the
+//! motion in closed form (`exact-modal`, the beam alone under moving forces) both are its
+//! closed-form integrals. A disk that leaves the beam takes its energy with it, which the budget
+//! keeps from then on; so does a disk that flies over it, whose flight keeps it constant, until it
+//! lands, and what a landing takes is booked as `impact`.
 
 use super::phase::Phase;
 use crate::beam::load::PointLoad;
