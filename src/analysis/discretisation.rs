@@ -62,7 +62,7 @@ pub fn response_size(
     weight: Option<f64>,
     probes: &[f64],
 ) -> Option<f64> {
-    let beam = Beam::new(spec.clone());
+    let beam = Beam::shared(spec);
     let n = beam.dim();
     let lu = SparseLu::factor(&beam.tangent(&vec![0.0; n]), None)?;
     let mut cases: Vec<Vec<[f64; 4]>> = loads
@@ -107,7 +107,7 @@ pub fn response_size(
 /// static F/(M ω₁²) times (2/π) ω₁ T. At most 1; `None` where the beam's first mode is not
 /// found.
 pub fn passage_share(spec: &BeamSpec, crossing: f64) -> Option<f64> {
-    let beam = Beam::new(spec.clone());
+    let beam = Beam::shared(spec);
     let first = modes(&beam, 1)?.omega.first().copied()?;
     (first > 0.0).then(|| (2.0 / std::f64::consts::PI * first * crossing).min(1.0))
 }
@@ -142,7 +142,7 @@ fn estimate(
     weight_drops: bool,
     probes: &[f64],
 ) -> Option<Estimate> {
-    let beam = Beam::new(BeamSpec {
+    let beam = Beam::shared(&BeamSpec {
         elements,
         ..spec.clone()
     });

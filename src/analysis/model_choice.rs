@@ -98,7 +98,7 @@ fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Result<(f64, 
             .map(|d| beam.to_local(*d)[1])
             .collect()
     };
-    let exact = Beam::new(BeamSpec {
+    let exact = Beam::shared(&BeamSpec {
         model: BeamModel::Exact,
         ..spec.clone()
     });
@@ -195,7 +195,7 @@ fn mode_shares(
     } else {
         ((MAX_NODES - 1) / spec.order).max(1)
     };
-    let beam = Beam::new(BeamSpec {
+    let beam = Beam::shared(&BeamSpec {
         model: BeamModel::Linear,
         elements,
         ..spec.clone()

@@ -118,7 +118,7 @@ fn rolling(f: &mut fmt::Formatter<'_>, setup: &RollingScene) -> fmt::Result {
 
 /// The beam and its mesh (and what chose it), the disk on it, the loads and the probes.
 fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
-    let b = Beam::new(setup.beam.clone());
+    let b = Beam::shared(&setup.beam);
     let spec = &b.spec;
     writeln!(
         f,

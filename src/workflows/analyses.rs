@@ -78,7 +78,7 @@ pub fn static_solution(scene: &Scene, setup: &BeamScene) -> Result<StaticFile, E
             setup.beam.supports[1].name()
         )));
     }
-    let beam = Beam::new(setup.beam.clone());
+    let beam = Beam::shared(&setup.beam);
     let mut f = vec![0.0; beam.dim()];
     let active: Vec<(f64, [f64; 2], f64)> = setup
         .loads
@@ -182,7 +182,7 @@ pub fn natural_modes(
             "--count {count} is more than the modal beam keeps ({kept} modes, `track.beam.modes`); ask for fewer, or use `model: linear` for every mode of the mesh"
         )));
     }
-    let beam = Beam::new(setup.beam.clone());
+    let beam = Beam::shared(&setup.beam);
     if beam.dim() > modes::DENSE_LIMIT && count > modes::MAX_SPARSE_MODES {
         return Err(Error::Input(format!(
             "--count {count} is more than the {} modes computed on a mesh this large ({} unknowns); ask for fewer",

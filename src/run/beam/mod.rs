@@ -57,6 +57,8 @@ use ledger::Ledger;
 use phase::Phase;
 pub use sensors::MEAN_WINDOWS;
 use sensors::{History, Pictures, Sample, WindowedMeans};
+use std::rc::Rc;
+use std::sync::Arc;
 
 use fly::*;
 use recorder::*;
@@ -71,8 +73,20 @@ pub const SAMPLES: usize = 201;
 /// Frames an animation of a run holds at most.
 pub const FRAMES: usize = 240;
 
+/// Modal bases kept for the beams and mode counts last asked on this thread: a sweep's cases
+/// share their beam, and a basis fills its residual flexibility's columns as runs ask for them
+/// (per thread: that filling is not shared).
+const KEPT_BASES: usize = 8;
+/// Largest mesh (unknowns) whose basis is kept: its residual flexibility fills up to n² doubles.
+const KEPT_BASIS_LIMIT: usize = 400;
+
+thread_local! {
+    static BASES: std::cell::RefCell<Vec<(String, Rc<ModalBasis>)>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
+
 /// The modes of a modal beam, from its linear stiffness and mass.
-fn modal_basis(scene: &Scene, beam: &Beam) -> Result<Option<ModalBasis>, Error> {
+fn modal_basis(scene: &Scene, beam: &Beam) -> Result<Option<Rc<ModalBasis>>, Error> {
     let Some(count) = beam.spec.model.modes() else {
         return Ok(None);
     };
@@ -83,18 +97,37 @@ fn modal_basis(scene: &Scene, beam: &Beam) -> Result<Option<ModalBasis>, Error> 
             scene.name
         )));
     }
+    let key = format!("{:?}", beam.spec);
+    let kept = BASES.with_borrow(|b| {
+        b.iter()
+            .find(|(at, _)| *at == key)
+            .map(|(_, basis)| basis.clone())
+    });
+    if let Some(basis) = kept {
+        return Ok(Some(basis));
+    }
     let m = modes(beam, count).ok_or_else(|| {
         Error::Solver(format!(
             "scene {}: the natural modes of the modal beam could not be computed",
             scene.name
         ))
     })?;
-    Ok(Some(ModalBasis::new(
+    let basis = Rc::new(ModalBasis::new(
         m.shapes,
         m.omega,
         &beam.tangent(&vec![0.0; n]),
         beam.mass(),
-    )))
+    ));
+    if n > KEPT_BASIS_LIMIT {
+        return Ok(Some(basis));
+    }
+    BASES.with_borrow_mut(|b| {
+        if b.len() == KEPT_BASES {
+            b.remove(0);
+        }
+        b.push((key, basis.clone()));
+    });
+    Ok(Some(basis))
 }
 
 /// A state (z, ż) of the run's model with the beam's part on the mesh (q = Φ η on a modal
@@ -341,12 +374,12 @@ pub fn run(
     over: &Overrides,
     show_progress: bool,
 ) -> Result<BeamRun, Error> {
-    let beam = Beam::new(setup.beam.clone());
+    let beam = Beam::shared(&setup.beam);
     let (modal, damping, lowest) = modes_and_damping(scene, &beam)?;
     let loaded = LoadedBeam::new(
         &beam,
         &setup.loads,
-        modal.as_ref(),
+        modal.as_deref(),
         damping,
         setup.train.as_ref(),
     )
@@ -444,12 +477,12 @@ fn unknowns_of(
     }
 }
 
+/// A modal beam's basis, the damping resolved, and the lowest circular frequency.
+type ModesAndDamping = (Option<Rc<ModalBasis>>, Option<Rayleigh>, f64);
+
 /// The modes of a modal beam, the damping resolved, and the lowest circular frequency (0
 /// where none could be computed).
-fn modes_and_damping(
-    scene: &Scene,
-    beam: &Beam,
-) -> Result<(Option<ModalBasis>, Option<Rayleigh>, f64), Error> {
+fn modes_and_damping(scene: &Scene, beam: &Beam) -> Result<ModesAndDamping, Error> {
     let modal = modal_basis(scene, beam)?;
     let damping = crate::analysis::modes::rayleigh(beam)
         .map_err(|why| Error::Input(format!("scene {}: {why}", scene.name)))?;
@@ -748,7 +781,7 @@ fn collect(
     stats: Stats,
     recorded: Recorded,
     damping: Option<Rayleigh>,
-    beam: Beam,
+    beam: Arc<Beam>,
 ) -> BeamRun {
     BeamRun {
         header: RunHeader {

@@ -11,6 +11,7 @@ use crate::disk::DiskObservation;
 use crate::run::extremes::Range;
 use crate::run::{FlightRecord, RunHeader};
 use crate::scene::BeamScene;
+use std::sync::Arc;
 
 #[derive(Clone, Debug)]
 pub struct Frame {
@@ -87,7 +88,7 @@ pub struct Envelope {
 pub struct BeamRun {
     pub header: RunHeader,
     pub setup: BeamScene,
-    pub beam: Beam,
+    pub beam: Arc<Beam>,
     pub rows: Vec<BeamRow>,
     pub envelope: Envelope,
     /// Displacements at the sample points at each requested shape time.
