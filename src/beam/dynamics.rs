@@ -41,6 +41,8 @@ pub struct LoadedBeam<'a> {
     /// The longest step anything may take on this beam: a share of its lowest mode's period
     /// ([`STEPS_PER_PERIOD`]), once [`LoadedBeam::resolving`] has set it.
     longest_step: f64,
+    /// Whether the integration is exact (`stepped_exactly`).
+    exact: bool,
     /// Whether the steps may stride past `longest_step`: set where the integration is exact
     /// and no load is left to come ([`LoadedBeam::stride_freely`]).
     striding: Cell<bool>,
@@ -95,6 +97,7 @@ impl<'a> LoadedBeam<'a> {
             damped: RefCell::new(vec![0.0; modal.map_or(beam.dim(), |m| m.dim())]),
             riding_at: RefCell::new(None),
             longest_step: f64::INFINITY,
+            exact: false,
             striding: Cell::new(false),
             lowest: 0.0,
             reported: 0.0,
@@ -107,6 +110,15 @@ impl<'a> LoadedBeam<'a> {
             self.longest_step = std::f64::consts::TAU / omega1 / STEPS_PER_PERIOD;
             self.lowest = omega1;
         }
+        self
+    }
+
+    /// The beam integrated exactly (`exact-modal`): its dense output holds every vibration
+    /// however long the step, so while a train is on the beam its passage over an element
+    /// alone bounds the step. With no load on it the share of the lowest period still does,
+    /// until the free vibration has settled: the watch checks at every step whether it has.
+    pub fn stepped_exactly(mut self, exact: bool) -> Self {
+        self.exact = exact;
         self
     }
 
@@ -586,9 +598,11 @@ impl LoadedBeam<'_> {
             let x = train.position(a, t);
             x >= -reach && x <= length + reach
         });
-        if on {
-            self.longest_step
-                .min(self.beam.element_length() / train.speed)
+        let passage = self.beam.element_length() / train.speed;
+        if on && self.exact {
+            passage
+        } else if on {
+            self.longest_step.min(passage)
         } else {
             self.longest_step
         }

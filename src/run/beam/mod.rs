@@ -383,7 +383,8 @@ pub fn run(
         damping,
         setup.train.as_ref(),
     )
-    .resolving(lowest);
+    .resolving(lowest)
+    .stepped_exactly(over.options(scene).method == Method::ExactModal);
     let filter = AccelerationFilter::new(&beam, &loaded, setup.acceleration_cutoff_hz);
     let loaded = loaded.reporting_accelerations_below(
         filter
