@@ -59,6 +59,12 @@ pub struct LoadedBeam<'a> {
 /// sixteen steps a period the cubic is within 6·10⁻⁵ of a sine's amplitude ((ωh)⁴/384).
 pub const STEPS_PER_PERIOD: f64 = 16.0;
 
+/// How many of those shares an exact step may span while a train is on the beam: a train slow
+/// enough to take longer over an element is still watched at the cutoff's pace, within the
+/// watch's bound on the pairs of samples one step holds, on bridges whose lowest mode is above
+/// 0.3 Hz.
+const EXACT_STRIDE: f64 = 32.0;
+
 impl<'a> LoadedBeam<'a> {
     pub fn new(
         beam: &'a Beam,
@@ -115,8 +121,9 @@ impl<'a> LoadedBeam<'a> {
 
     /// The beam integrated exactly (`exact-modal`): its dense output holds every vibration
     /// however long the step, so while a train is on the beam its passage over an element
-    /// alone bounds the step. With no load on it the share of the lowest period still does,
-    /// until the free vibration has settled: the watch checks at every step whether it has.
+    /// bounds the step, and [`EXACT_STRIDE`] shares of the lowest period. With no load on it
+    /// one share still does, until the free vibration has settled: the watch checks at every
+    /// step whether it has.
     pub fn stepped_exactly(mut self, exact: bool) -> Self {
         self.exact = exact;
         self
@@ -600,7 +607,7 @@ impl LoadedBeam<'_> {
         });
         let passage = self.beam.element_length() / train.speed;
         if on && self.exact {
-            passage
+            passage.min(EXACT_STRIDE * self.longest_step)
         } else if on {
             self.longest_step.min(passage)
         } else {
