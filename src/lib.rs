@@ -13,6 +13,7 @@ pub mod linalg;
 pub mod ode;
 pub mod output;
 pub mod plan;
+pub mod recent;
 pub mod rolling;
 pub mod run;
 pub mod scene;

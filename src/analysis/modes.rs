@@ -6,11 +6,10 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
-use std::sync::{Mutex, OnceLock};
-
 use crate::beam::damping::{DampingSpec, Rayleigh};
 use crate::beam::{Beam, BeamModel, BeamSpec};
 use crate::linalg::{self, Combination, Sparse, SparseLu};
+use crate::recent::SharedRecent;
 
 /// Largest mesh (unknowns) solved densely: 2000² doubles are 32 MB and a second of work.
 pub const DENSE_LIMIT: usize = 2000;
@@ -142,10 +141,7 @@ const FEW_MODES: usize = 48;
 
 type Eigen = std::sync::Arc<(Vec<f64>, DMatrix<f64>)>;
 
-fn kept() -> &'static Mutex<Vec<(String, Eigen)>> {
-    static KEPT_SOLUTIONS: OnceLock<Mutex<Vec<(String, Eigen)>>> = OnceLock::new();
-    KEPT_SOLUTIONS.get_or_init(|| Mutex::new(Vec::new()))
-}
+static KEPT_SOLUTIONS: SharedRecent<Eigen> = SharedRecent::new(KEPT);
 
 /// The beam's Rayleigh damping, a ratio anchored on the natural frequencies of the bending
 /// modes its mesh has; `Err` names a mode the mesh does not have.
@@ -243,22 +239,13 @@ fn dense_all(beam: &Beam) -> Option<Eigen> {
             ..beam.spec.clone()
         }
     );
-    if let Some(hit) = kept()
-        .lock()
-        .ok()
-        .and_then(|k| k.iter().find(|(at, _)| *at == key).map(|(_, e)| e.clone()))
-    {
+    if let Some(hit) = KEPT_SOLUTIONS.get(&key) {
         return Some(hit);
     }
     let k = beam.tangent(&vec![0.0; n]);
     let solved: Eigen = std::sync::Arc::new(generalized(&k, beam.mass(), n)?);
     if n <= KEPT_LIMIT {
-        if let Ok(mut k) = kept().lock() {
-            if k.len() == KEPT {
-                k.remove(0);
-            }
-            k.push((key, solved.clone()));
-        }
+        KEPT_SOLUTIONS.keep(key, solved.clone());
     }
     Some(solved)
 }

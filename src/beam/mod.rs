@@ -27,7 +27,8 @@ use element::{ElementKernels, Section, Tabulated};
 use supports::Support;
 
 use crate::linalg::{Assembly, AssemblyPattern, Sparse};
-use std::sync::{Arc, Mutex, OnceLock};
+use crate::recent::SharedRecent;
+use std::sync::{Arc, OnceLock};
 
 /// Which rule integrates the stiffness. Reduced Gauss (p points for degree p) is free of
 /// shear locking and of spurious zero-energy modes for this element (3p constraints on
@@ -244,34 +245,19 @@ const KEPT_BEAMS: usize = 8;
 const KEPT_BEAM_LIMIT: usize = 2000;
 
 /// The beams kept, each by its spec's text.
-type KeptBeams = Mutex<Vec<(String, Arc<Beam>)>>;
-
-fn kept_beams() -> &'static KeptBeams {
-    static KEPT: OnceLock<KeptBeams> = OnceLock::new();
-    KEPT.get_or_init(|| Mutex::new(Vec::new()))
-}
+static KEPT: SharedRecent<Arc<Beam>> = SharedRecent::new(KEPT_BEAMS);
 
 impl Beam {
     /// The beam of `spec`, assembled once for every caller that asks for the same spec while
     /// it is among the last [`KEPT_BEAMS`] asked: the same matrices [`Beam::new`] assembles.
     pub fn shared(spec: &BeamSpec) -> Arc<Beam> {
         let key = format!("{spec:?}");
-        if let Some(hit) = kept_beams()
-            .lock()
-            .ok()
-            .and_then(|k| k.iter().find(|(at, _)| *at == key).map(|(_, b)| b.clone()))
-        {
+        if let Some(hit) = KEPT.get(&key) {
             return hit;
         }
         let beam = Arc::new(Beam::new(spec.clone()));
-        if beam.dim() > KEPT_BEAM_LIMIT {
-            return beam;
-        }
-        if let Ok(mut k) = kept_beams().lock() {
-            if k.len() == KEPT_BEAMS {
-                k.remove(0);
-            }
-            k.push((key, beam.clone()));
+        if beam.dim() <= KEPT_BEAM_LIMIT {
+            KEPT.keep(key, beam.clone());
         }
         beam
     }

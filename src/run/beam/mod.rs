@@ -49,6 +49,7 @@ use crate::linalg::SparseLu;
 use crate::ode::second_order::FirstOrder;
 use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::{self, Dense, Method, Observer, Stats};
+use crate::recent::Recent;
 use crate::scene::{BeamScene, Scene};
 use acceleration::AccelerationFilter;
 pub use acceleration::CutoffReport;
@@ -81,8 +82,8 @@ const KEPT_BASES: usize = 8;
 const KEPT_BASIS_LIMIT: usize = 400;
 
 thread_local! {
-    static BASES: std::cell::RefCell<Vec<(String, Rc<ModalBasis>)>> =
-        const { std::cell::RefCell::new(Vec::new()) };
+    static BASES: std::cell::RefCell<Recent<Rc<ModalBasis>>> =
+        const { std::cell::RefCell::new(Recent::new(KEPT_BASES)) };
 }
 
 /// The modes of a modal beam, from its linear stiffness and mass.
@@ -98,11 +99,7 @@ fn modal_basis(scene: &Scene, beam: &Beam) -> Result<Option<Rc<ModalBasis>>, Err
         )));
     }
     let key = format!("{:?}", beam.spec);
-    let kept = BASES.with_borrow(|b| {
-        b.iter()
-            .find(|(at, _)| *at == key)
-            .map(|(_, basis)| basis.clone())
-    });
+    let kept = BASES.with_borrow(|b| b.get(&key));
     if let Some(basis) = kept {
         return Ok(Some(basis));
     }
@@ -121,12 +118,7 @@ fn modal_basis(scene: &Scene, beam: &Beam) -> Result<Option<Rc<ModalBasis>>, Err
     if n > KEPT_BASIS_LIMIT {
         return Ok(Some(basis));
     }
-    BASES.with_borrow_mut(|b| {
-        if b.len() == KEPT_BASES {
-            b.remove(0);
-        }
-        b.push((key, basis.clone()));
-    });
+    BASES.with_borrow_mut(|b| b.keep(key, basis.clone()));
     Ok(Some(basis))
 }
 
