@@ -36,6 +36,7 @@ pub struct Planner {
     models: Mutex<BTreeMap<String, ChosenModel>>,
     dampings: Mutex<BTreeMap<String, (f64, String)>>,
     responses: Mutex<BTreeMap<String, Option<f64>>>,
+    gaps: Mutex<BTreeMap<String, Option<f64>>>,
 }
 
 impl Planner {
@@ -50,6 +51,26 @@ impl Planner {
             ),
             _ => Ok(scene),
         }
+    }
+
+    /// How far the beam's static response is from linear ([`nonlinearity`]), kept.
+    fn gap(&self, b: &BeamScene) -> Option<f64> {
+        let key = format!(
+            "{:?} {:?} {:?} {:?}",
+            b.beam,
+            b.loads,
+            riding_weight(b),
+            b.planning_points()
+        );
+        kept(&self.gaps, key, || nonlinearity(b))
+    }
+
+    /// Whether the exact beam folds under what rides on it ([`FOLDING_GAP`]), with nothing
+    /// switched on or off (whose steps are chosen for every mode it excites).
+    fn folds(&self, b: &BeamScene) -> bool {
+        b.beam.model == BeamModel::Exact
+            && !b.load_switched()
+            && self.gap(b).is_some_and(|g| g > FOLDING_GAP)
     }
 
     fn plan_checked(&self, checked: Checked) -> Result<Scene, Error> {
@@ -120,7 +141,7 @@ impl Planner {
                 "{:?} {:?} {weight:?} {xs:?} {:?} {:?}",
                 b.beam, b.loads, b.accuracy, b.start
             );
-            let (rho, why) = kept(&self.dampings, key, || rho_inf_for(b));
+            let (rho, why) = kept(&self.dampings, key, || rho_inf_for(b, || self.gap(b)));
             b.rho_inf = rho;
             b.rho_inf_chosen = Some(why);
         }
@@ -146,6 +167,9 @@ impl Planner {
             } else if !b.vehicles.is_empty() && !damped_by_the_scene(b) && !unsprung(b) {
                 scene.solver.method = crate::ode::Method::Esdirk4;
                 scene.solver.method_chosen = Some(VEHICLES.to_string());
+            } else if b.vehicles.is_empty() && !damped_by_the_scene(b) && self.folds(b) {
+                scene.solver.method = crate::ode::Method::Esdirk4;
+                scene.solver.method_chosen = Some(FOLDING.to_string());
             }
             if b.free_vibration_is_modal() {
                 scene.solver.free_vibration_chosen = Some(FREE_EXACT.to_string());
@@ -186,6 +210,19 @@ const ROLLING_CONTACT: &str = "esdirk4: a rolling disk's contact force is its ma
 /// at rtol 3.3·10⁻⁷ and 2.9·10⁻⁵ at 10⁻⁸, where generalized-α (ρ∞ = 1) keeps them and
 /// 1.6·10⁻⁵.
 const VEHICLES: &str = "esdirk4: the vehicles' bodies vibrate on their suspensions over the whole run and the deck under them in every mode it holds, and the phase error of a second-order method adds up over their periods (generalized-alpha at a three-thousandth of the accuracy read the deck's largest acceleration under Biggs' sprung mass at 100 m/s 1.4e-3 low, in the free vibration after the wheel left), where the fourth-order steps at a thousandth come within 3.6e-4 of every number the vehicle scenes report, in a third of the steps; with a wheel that has a mass of its own generalized-alpha keeps the modes its impulses set ringing, which the fourth-order method's L-stable steps would damp";
+
+/// The static gap (the exact static deflection this share of it off the linear one) past which
+/// the exact beam folds under its loads and the plan steps it with ESDIRK4: D44's section under
+/// one moving force at 4 m/s for 1 s, gaps 0.032, 0.2 and 0.6, generalized-α (ρ∞ = 1) at a
+/// three-hundredth of the accuracy missed midspan's least deflection by 7·10⁻⁵, 4.1·10⁻⁴ and
+/// 4.6·10⁻³ of it (over 3 s at 0.95, 7.9·10⁻³) against ESDIRK4 at rtol 10⁻⁸, the energy
+/// balance drifting by 7·10⁻⁴ at 0.6; ESDIRK4 at the same rtol lands within 3·10⁻⁶ there (the
+/// accelerations within 8.7·10⁻⁴), at four times the cost; the milder gaps keep the cheaper steps.
+const FOLDING_GAP: f64 = 0.1;
+
+/// Why the plan integrates an exact beam that folds under its loads with the fourth-order
+/// ESDIRK ([`FOLDING_GAP`]).
+const FOLDING: &str = "esdirk4: the exact beam folds under its loads (its static deflection more than a tenth off the linear one), where generalized-alpha's steps, each within rtol, add up to more than the accuracy over the crossing (D44's section under one moving force, the exact static deflection 0.6 off the linear one: midspan's least deflection 4.6e-3 off at a three-hundredth of the accuracy), and the fourth-order steps at the same rtol land within 3e-6 (the accelerations within 8.7e-4)";
 
 /// Why the plan integrates a modal beam's free vibration after its riders leave exactly.
 const FREE_EXACT: &str = "exact-modal once the riders have left: the modal beam alone is uncoupled damped oscillators, whose free vibration a time-stepped method of second order would carry with the phase error of the highest mode the accelerations report, growing with every period (on D44 at the defaults the deck's largest acceleration, 2 s after the disk left, came out 5 % low)";
@@ -333,7 +370,7 @@ impl Scene {
 ///   ρ∞ = 0.9.
 /// - A load switched on or off excites every mode of the mesh, and the damped share of them
 ///   rides on the peak (`rtol_for`): there ρ∞ = 1. A modal beam holds no such modes: ρ∞ = 1.
-pub fn rho_inf_for(scene: &BeamScene) -> (f64, String) {
+pub fn rho_inf_for(scene: &BeamScene, gap: impl FnOnce() -> Option<f64>) -> (f64, String) {
     let undamped = |why: &str| (1.0, format!("1, no numerical damping: {why}"));
     if matches!(scene.beam.model, BeamModel::Modal { .. }) {
         return undamped("the modal beam holds no modes far above what the loads excite");
@@ -341,7 +378,7 @@ pub fn rho_inf_for(scene: &BeamScene) -> (f64, String) {
     if scene.load_switched() {
         return undamped("a load switched during the run excites every mode of the mesh, and what damping takes of them would ride on the peak");
     }
-    match nonlinearity(scene) {
+    match gap() {
         Some(g) if model_choice::linear_enough(g, scene.accuracy) => (
             PLANNED_RHO_INF,
             format!("{PLANNED_RHO_INF}: the beam responds linearly (the exact static deflection at the probes is {g:.1e} off the linear one), so the mesh's modes above those the moving loads excite carry nothing, and undamped they keep what the rolling contact puts into them and cost steps"),
