@@ -15,7 +15,8 @@ use crate::beam::train::TrainModel;
 use crate::beam::BeamModel;
 use crate::coupling::Coupling;
 use crate::error::Error;
-use crate::scene::{BeamScene, Checked, Model, Scene, SceneSpec};
+use crate::ode::Method;
+use crate::scene::{BeamScene, Checked, Model, Scene, SceneSpec, SolverSettings};
 
 /// A beam model chosen, why, what its count of modes was chosen from, why the loads are more
 /// than the beam carries, where they are, and the static nonlinearity it was chosen from.
@@ -73,6 +74,8 @@ impl Planner {
             && self.gap(b).is_some_and(|g| g > FOLDING_GAP)
     }
 
+    /// The plan, step by step: the mesh, the beam model, ρ∞, the response's size, the method,
+    /// the tolerances; each only where the scene leaves it out.
     fn plan_checked(&self, checked: Checked) -> Result<Scene, Error> {
         let Checked {
             mut scene,
@@ -88,63 +91,105 @@ impl Planner {
         let Model::Beam(b) = &mut scene.model else {
             return Ok(scene);
         };
-        let weight = riding_weight(b);
-        let xs = b.planning_points();
         if elements.is_none() || order.is_none() {
-            let key = format!(
-                "{:?} {elements:?} {order:?} {:?} {weight:?} {xs:?} {:?} {multiple} {:?}",
-                b.beam, b.loads, b.accuracy, b.start
-            );
-            let d = kept(&self.chosen, key, || {
-                choose(
-                    &b.beam, elements, order, &b.loads, weight, &xs, b.accuracy, multiple, b.start,
-                )
-            });
-            b.beam.elements = d.elements;
-            b.beam.order = d.order;
-            b.discretisation = Some(d);
+            self.choose_mesh(b, elements, order, multiple);
         }
-        let given = model_given.then_some(b.beam.model);
         if !model_given || b.beam.model == (BeamModel::Modal { modes: 0 }) {
-            let key = format!(
-                "model {:?} {given:?} {:?} {weight:?} {xs:?} {:?} {:?} {:?}",
-                b.beam, b.loads, b.accuracy, b.start, b.acceleration_cutoff_hz
-            );
-            let (mut model, mut why, recount, uncarried, gap) = kept(&self.models, key, || {
-                let thesis = b.disks.iter().any(|d| d.coupling == Coupling::Thesis);
-                let c = model_choice::choose(
-                    &b.beam,
-                    given,
-                    &b.loads,
-                    weight,
-                    &xs,
-                    b.accuracy,
-                    b.start,
-                    thesis,
-                    b.acceleration_cutoff_hz,
-                );
-                let recount = c.recount.map(Arc::new);
-                (c.model, c.why, recount, c.uncarried, c.static_gap)
-            });
-            if let Some(why) = uncarried {
-                return Err(Error::Input(format!("scene {}: {why}", scene.name)));
-            }
-            if let (Some(r), Some(v)) = (recount, passing_speed(b)) {
-                (model, why) = r.at(Some(v));
-            }
-            b.beam.model = model;
-            b.model_choice = Some(why);
-            b.static_gap = gap;
+            self.choose_model(b, model_given)
+                .map_err(|why| Error::Input(format!("scene {}: {why}", scene.name)))?;
         }
         if !rho_inf_given {
-            let key = format!(
-                "{:?} {:?} {weight:?} {xs:?} {:?} {:?}",
-                b.beam, b.loads, b.accuracy, b.start
-            );
-            let (rho, why) = kept(&self.dampings, key, || rho_inf_for(b, || self.gap(b)));
-            b.rho_inf = rho;
-            b.rho_inf_chosen = Some(why);
+            self.choose_rho_inf(b);
         }
+        self.size_response(b);
+        if !method_given {
+            self.choose_method(b, &mut scene.solver);
+        }
+        if !rtol_given {
+            choose_tolerances(b, &mut scene.solver, atol_given);
+        }
+        Ok(scene)
+    }
+
+    /// The elements and their degree, where the scene leaves either out.
+    fn choose_mesh(
+        &self,
+        b: &mut BeamScene,
+        elements: Option<usize>,
+        order: Option<usize>,
+        multiple: usize,
+    ) {
+        let (weight, xs) = (riding_weight(b), b.planning_points());
+        let key = format!(
+            "{:?} {elements:?} {order:?} {:?} {weight:?} {xs:?} {:?} {multiple} {:?}",
+            b.beam, b.loads, b.accuracy, b.start
+        );
+        let d = kept(&self.chosen, key, || {
+            choose(
+                &b.beam, elements, order, &b.loads, weight, &xs, b.accuracy, multiple, b.start,
+            )
+        });
+        b.beam.elements = d.elements;
+        b.beam.order = d.order;
+        b.discretisation = Some(d);
+    }
+
+    /// The beam model (and a modal beam's modes), or why no model carries the scene.
+    fn choose_model(&self, b: &mut BeamScene, model_given: bool) -> Result<(), String> {
+        let given = model_given.then_some(b.beam.model);
+        let (weight, xs) = (riding_weight(b), b.planning_points());
+        let key = format!(
+            "model {:?} {given:?} {:?} {weight:?} {xs:?} {:?} {:?} {:?}",
+            b.beam, b.loads, b.accuracy, b.start, b.acceleration_cutoff_hz
+        );
+        let (mut model, mut why, recount, uncarried, gap) = kept(&self.models, key, || {
+            let thesis = b.disks.iter().any(|d| d.coupling == Coupling::Thesis);
+            let c = model_choice::choose(
+                &b.beam,
+                given,
+                &b.loads,
+                weight,
+                &xs,
+                b.accuracy,
+                b.start,
+                thesis,
+                b.acceleration_cutoff_hz,
+            );
+            let recount = c.recount.map(Arc::new);
+            (c.model, c.why, recount, c.uncarried, c.static_gap)
+        });
+        if let Some(why) = uncarried {
+            return Err(why);
+        }
+        if let (Some(r), Some(v)) = (recount, passing_speed(b)) {
+            (model, why) = r.at(Some(v));
+        }
+        b.beam.model = model;
+        b.model_choice = Some(why);
+        b.static_gap = gap;
+        Ok(())
+    }
+
+    fn choose_rho_inf(&self, b: &mut BeamScene) {
+        let key = format!(
+            "{:?} {:?} {:?} {:?} {:?} {:?}",
+            b.beam,
+            b.loads,
+            riding_weight(b),
+            b.planning_points(),
+            b.accuracy,
+            b.start
+        );
+        let (rho, why) = kept(&self.dampings, key, || rho_inf_for(b, || self.gap(b)));
+        b.rho_inf = rho;
+        b.rho_inf_chosen = Some(why);
+    }
+
+    /// The response's size the tolerances are measured against: the largest static
+    /// displacement at a probe, shrunk to the impulse's share for a crossing shorter than the
+    /// beam's first period.
+    fn size_response(&self, b: &mut BeamScene) {
+        let (weight, xs) = (riding_weight(b), b.planning_points());
         let key = format!("{:?} {:?} {weight:?} {xs:?}", b.beam, b.loads);
         b.response = kept(&self.responses, key, || {
             response_size(&b.beam, &b.loads, weight, &xs)
@@ -157,38 +202,43 @@ impl Planner {
         if let (Some(size), Some((share, _))) = (b.response, b.passage) {
             b.response = Some(size * share);
         }
-        if !method_given && b.exact_modal_refusal().is_none() {
-            scene.solver.method = crate::ode::Method::ExactModal;
-            scene.solver.method_chosen = Some(EXACT_MODAL.to_string());
-        } else if !method_given {
-            if b.rolls_with_inertia() && b.vehicles.is_empty() && !damped_by_the_scene(b) {
-                scene.solver.method = crate::ode::Method::Esdirk4;
-                scene.solver.method_chosen = Some(ROLLING_CONTACT.to_string());
-            } else if !b.vehicles.is_empty() && !damped_by_the_scene(b) && !unsprung(b) {
-                scene.solver.method = crate::ode::Method::Esdirk4;
-                scene.solver.method_chosen = Some(VEHICLES.to_string());
-            } else if b.vehicles.is_empty() && !damped_by_the_scene(b) && self.folds(b) {
-                scene.solver.method = crate::ode::Method::Esdirk4;
-                scene.solver.method_chosen = Some(FOLDING.to_string());
-            }
-            if b.free_vibration_is_modal() {
-                scene.solver.free_vibration_chosen = Some(FREE_EXACT.to_string());
-            }
+    }
+
+    /// The integrator, where the scene names none: exact where it applies, ESDIRK4 where a
+    /// second-order method's phase or nonlinear error would pass the accuracy, else the default.
+    fn choose_method(&self, b: &BeamScene, solver: &mut SolverSettings) {
+        let chosen = if b.exact_modal_refusal().is_none() {
+            Some((Method::ExactModal, EXACT_MODAL))
+        } else if b.rolls_with_inertia() && b.vehicles.is_empty() && !damped_by_the_scene(b) {
+            Some((Method::Esdirk4, ROLLING_CONTACT))
+        } else if !b.vehicles.is_empty() && !damped_by_the_scene(b) && !unsprung(b) {
+            Some((Method::Esdirk4, VEHICLES))
+        } else if b.vehicles.is_empty() && !damped_by_the_scene(b) && self.folds(b) {
+            Some((Method::Esdirk4, FOLDING))
+        } else {
+            None
+        };
+        if let Some((method, why)) = chosen {
+            solver.method = method;
+            solver.method_chosen = Some(why.to_string());
         }
-        if !rtol_given {
-            let solver = &mut scene.solver;
-            let (rtol, why) = rtol_for(b, solver.method);
-            solver.rtol = rtol;
-            solver.rtol_chosen = Some(why.to_string());
-            if !atol_given {
-                if let Some((size, why)) = atol_for(b) {
-                    solver.atol = rtol * size;
-                    solver.atol_scale = Some(size);
-                    solver.atol_chosen = Some(why);
-                }
-            }
+        if solver.method != Method::ExactModal && b.free_vibration_is_modal() {
+            solver.free_vibration_chosen = Some(FREE_EXACT.to_string());
         }
-        Ok(scene)
+    }
+}
+
+/// rtol from the accuracy and, unless the scene gives it, atol from the response's size.
+fn choose_tolerances(b: &BeamScene, solver: &mut SolverSettings, atol_given: bool) {
+    let (rtol, why) = rtol_for(b, solver.method);
+    solver.rtol = rtol;
+    solver.rtol_chosen = Some(why.to_string());
+    if !atol_given {
+        if let Some((size, why)) = atol_for(b) {
+            solver.atol = rtol * size;
+            solver.atol_scale = Some(size);
+            solver.atol_chosen = Some(why);
+        }
     }
 }
 
