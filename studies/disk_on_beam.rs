@@ -725,6 +725,24 @@ fn bridge_with_disks_text(model: &str, disks: &[String], duration: f64) -> Strin
     format!("{body}disks:\n{list}output:\n  interval: 0.005\n  probes: [{{name: mid, x: 10.0}}]\n")
 }
 
+/// The disks do not touch one another: two that start closer than their radii together are
+/// run as two loads passing through each other, and `check` and the summary say so; two that
+/// start clear of each other are not warned about.
+#[test]
+fn overlapping_disks_are_said_to_pass_through_each_other() {
+    let said = |behind: f64| {
+        let disks = [d44_disk(0.0, "consistent"), d44_disk(behind, "consistent")];
+        bridge_with_disks("modal\n    modes: 8", &disks, 0.1)
+            .beam()
+            .expect("a beam scene")
+            .warnings()
+            .iter()
+            .any(|w| w.contains("disks[1] and disks[2]") && w.contains("pass through each other"))
+    };
+    assert!(said(0.0) && said(0.5), "disks 0 and 0.5 m apart, radii 0.4");
+    assert!(!said(0.9), "disks 0.9 m apart, radii 0.4");
+}
+
 /// A disk of D44's (1500 kg, a = 0.4 m, Ω0 = −44 1/s) starting at s0 with the coupling named.
 fn d44_disk(s0: f64, coupling: &str) -> String {
     format!("{{mass: 1500, radius: 0.4, s0: {s0}, omega0: -44, coupling: {coupling}}}")

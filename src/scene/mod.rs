@@ -102,7 +102,8 @@ pub struct BeamScene {
     pub start: BeamStart,
     /// The disks riding on the beam, in the scene's order (`disk:` is a list of one).
     pub disks: Vec<DiskOnBeamSpec>,
-    /// A train of axle loads crossing the beam, if the scene has one (never with a disk).
+    /// A train of axle loads crossing the beam, if the scene has one (beside disks or vehicles
+    /// too).
     pub train: Option<Train>,
     /// Vehicles crossing the beam (never with a disk).
     pub vehicles: Vec<crate::vehicle::Vehicle>,
@@ -348,6 +349,11 @@ impl BeamScene {
                 "of several disks one flies at a time: another that loses contact while one flies ends the run (`contact-lost`)"
             }.to_string());
         }
+        if let Some((j, k, apart)) = first_overlap(&self.disks) {
+            out.push(format!(
+                "disks[{j}] and disks[{k}] start {apart:.4} m apart along the track, closer than their radii together: the disks do not touch one another, and pass through each other as two loads do"
+            ));
+        }
         if self.probes_all_held() {
             out.push(format!(
                 "every probe sits where a support holds w, which no load deflects: the plan chooses the mesh, the model and the tolerances from the response at x = {} m, the middle of the longest span, which the probes' rotations follow",
@@ -364,6 +370,17 @@ impl BeamScene {
         }
         out
     }
+}
+
+/// The first two disks (numbered from 1, as errors name them) whose starting points lie closer
+/// than their radii together, and how far apart.
+fn first_overlap(disks: &[DiskOnBeamSpec]) -> Option<(usize, usize, f64)> {
+    disks.iter().enumerate().find_map(|(j, a)| {
+        disks[j + 1..].iter().enumerate().find_map(|(i, b)| {
+            let apart = (a.s0 - b.s0).abs();
+            (apart < a.disk.radius + b.disk.radius).then_some((j + 1, j + i + 2, apart))
+        })
+    })
 }
 
 /// The fastest a vehicle with unsprung masses has been measured to hold the accuracy at the
