@@ -213,11 +213,7 @@ impl BeamScene {
             "a disk".to_string()
         } else if !self.vehicles.is_empty() {
             "vehicles".to_string()
-        } else if self
-            .train
-            .as_ref()
-            .is_some_and(|t| t.model == TrainModel::MovingMass)
-        {
+        } else if self.carries_moving_masses() {
             "moving masses".to_string()
         } else if !matches!(self.beam.model, BeamModel::Modal { .. }) {
             format!("a {} beam", self.beam.model.name())
@@ -232,11 +228,15 @@ impl BeamScene {
     /// Whether the beam alone, once every rider has left it, is uncoupled linear oscillators
     /// under a force of time: a modal beam with no moving masses.
     pub fn free_vibration_is_modal(&self) -> bool {
-        matches!(self.beam.model, BeamModel::Modal { .. })
-            && !self
-                .train
-                .as_ref()
-                .is_some_and(|t| t.model == TrainModel::MovingMass)
+        matches!(self.beam.model, BeamModel::Modal { .. }) && !self.carries_moving_masses()
+    }
+
+    /// Whether a train's axles ride with their mass (`train.model: moving-mass`): each follows
+    /// the beam's motion, and its inertia switches on and off as it enters and leaves.
+    pub fn carries_moving_masses(&self) -> bool {
+        self.train
+            .as_ref()
+            .is_some_and(|t| t.model == TrainModel::MovingMass)
     }
 
     /// Whether a disk whose contact force follows the beam's motion (any coupling but a
