@@ -231,6 +231,11 @@ impl BeamScene {
         matches!(self.beam.model, BeamModel::Modal { .. }) && !self.carries_moving_masses()
     }
 
+    /// Whether anything moves along the beam: a train or a disk.
+    pub fn carries_moving_loads(&self) -> bool {
+        self.train.is_some() || !self.disks.is_empty()
+    }
+
     /// Whether a train's axles ride with their mass (`train.model: moving-mass`): each follows
     /// the beam's motion, and its inertia switches on and off as it enters and leaves.
     pub fn carries_moving_masses(&self) -> bool {
