@@ -761,13 +761,7 @@ fn d44_started_static_on_its_mesh_within_the_accuracy_at_the_defaults() {
 /// of it, its energy balance within 7.2·10⁻⁴, so the plan steps a folding beam with ESDIRK4.
 #[test]
 fn a_beam_folded_by_its_load_within_the_accuracy_at_the_defaults() {
-    let text = common::d44_bridge_text("exact", 1.0)
-        .lines()
-        .filter(|l| {
-            !["model:", "elements:", "order:"].contains(&l.split_whitespace().next().unwrap_or(""))
-        })
-        .map(|l| format!("{l}\n"))
-        .collect::<String>();
+    let text = d44_section_left_to_the_plan(1.0);
     let scene = parse(&format!(
         "{text}disk: {{mass: 1.0e6, radius: 0.4, s0: 5.0, omega0: -10, coupling: moving-force}}\noutput:\n  probes: [{{name: mid, x: 10.0}}]\n"
     ));
@@ -790,13 +784,7 @@ fn a_beam_folded_by_its_load_within_the_accuracy_at_the_defaults() {
 /// steps them with ESDIRK4.
 #[test]
 fn moving_forces_on_a_mesh_within_the_accuracy_at_the_defaults() {
-    let text = common::d44_bridge_text("exact", 1.5)
-        .lines()
-        .filter(|l| {
-            !["model:", "elements:", "order:"].contains(&l.split_whitespace().next().unwrap_or(""))
-        })
-        .map(|l| format!("{l}\n"))
-        .collect::<String>();
+    let text = d44_section_left_to_the_plan(1.5);
     let probes = "output:\n  probes: [{name: mid, x: 10.0}, {name: quarter, x: 5.0}]\n";
     for (name, riders) in [
         (
@@ -809,19 +797,7 @@ fn moving_forces_on_a_mesh_within_the_accuracy_at_the_defaults() {
         ),
     ] {
         let scene = parse(&format!("{text}{riders}{probes}"));
-        let (planned, converged) = common::side_by_side(
-            || at_defaults(&scene),
-            || run_beam(&scene, Method::Esdirk4, 1e-8, 1e-8 * 0.2),
-        );
-        let a_scale = converged.envelope.a_max.0;
-        let mut pairs = vec![envelope_acceleration(&planned, a_scale)];
-        pairs.extend(probe_pairs(
-            &planned,
-            &converged,
-            deepest(&converged),
-            a_scale,
-        ));
-        within_the_accuracy(name, &pairs);
+        deck_within_the_accuracy(name, &scene, 1e-8, 0.2);
     }
 }
 
@@ -835,29 +811,11 @@ fn moving_forces_on_a_mesh_within_the_accuracy_at_the_defaults() {
 /// masses with ESDIRK4.
 #[test]
 fn a_train_of_moving_masses_within_the_accuracy_at_the_defaults() {
-    let text = common::d44_bridge_text("exact", 1.0)
-        .lines()
-        .filter(|l| {
-            !["model:", "elements:", "order:"].contains(&l.split_whitespace().next().unwrap_or(""))
-        })
-        .map(|l| format!("{l}\n"))
-        .collect::<String>();
+    let text = d44_section_left_to_the_plan(1.0);
     let scene = parse(&format!(
         "{text}train: {{axles: [0.0, 3.0], load: 2.0e4, speed: 20.0, model: moving-mass}}\noutput:\n  probes: [{{name: mid, x: 10.0}}, {{name: quarter, x: 5.0}}]\n"
     ));
-    let (planned, converged) = common::side_by_side(
-        || at_defaults(&scene),
-        || run_beam(&scene, Method::Esdirk4, 1e-9, 1e-9 * 0.04),
-    );
-    let a_scale = converged.envelope.a_max.0;
-    let mut pairs = vec![envelope_acceleration(&planned, a_scale)];
-    pairs.extend(probe_pairs(
-        &planned,
-        &converged,
-        deepest(&converged),
-        a_scale,
-    ));
-    within_the_accuracy("moving masses", &pairs);
+    deck_within_the_accuracy("moving masses", &scene, 1e-9, 0.04);
 }
 
 /// D44's consistent disk on the plan's modal beam (16 modes of 8 elements), started carrying
@@ -1146,6 +1104,35 @@ fn envelope_acceleration(planned: &BeamRun, a_scale: f64) -> Compared {
         a_scale,
         a_scale,
     )
+}
+
+/// D44's bridge as its study gives it for `duration` s, its model and mesh left to the plan.
+fn d44_section_left_to_the_plan(duration: f64) -> String {
+    common::d44_bridge_text("exact", duration)
+        .lines()
+        .filter(|l| {
+            !["model:", "elements:", "order:"].contains(&l.split_whitespace().next().unwrap_or(""))
+        })
+        .map(|l| format!("{l}\n"))
+        .collect()
+}
+
+/// The deck's headlines at the defaults (the envelope's largest acceleration, each probe's
+/// extremes) within the accuracy of ESDIRK4 at `rtol` (atol `rtol` times `size`, m).
+fn deck_within_the_accuracy(name: &str, scene: &Scene, rtol: f64, size: f64) {
+    let (planned, converged) = common::side_by_side(
+        || at_defaults(scene),
+        || run_beam(scene, Method::Esdirk4, rtol, rtol * size),
+    );
+    let a_scale = converged.envelope.a_max.0;
+    let mut pairs = vec![envelope_acceleration(&planned, a_scale)];
+    pairs.extend(probe_pairs(
+        &planned,
+        &converged,
+        deepest(&converged),
+        a_scale,
+    ));
+    within_the_accuracy(name, &pairs);
 }
 
 /// Every headline at the defaults within the accuracy (10⁻³) of its scale from the converged.
