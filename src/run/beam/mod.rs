@@ -629,6 +629,7 @@ impl<'a> OnTheBeam<'a, '_> {
             *l = Some(t);
         }
         self.rec.last_load_leaves(t);
+        self.rec.restart();
         Next::Ends(Ridden {
             stop: Stop::End,
             left_track_t: Some(t),
@@ -722,6 +723,7 @@ fn one_leaves(
     y: Vec<f64>,
 ) -> (f64, Vec<f64>, Vec<f64>) {
     rec.ledger.one_disk_leaves(&rec.phase, t, &y, k);
+    rec.restart();
     let (z, zd) = rec.phase.split(&y);
     let (z, mut zd) = (z.to_vec(), zd.to_vec());
     c.leave(k, &mut zd);
