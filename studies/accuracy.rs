@@ -699,6 +699,41 @@ fn a_load_dropping_off_a_free_end_reads_no_acceleration_the_solution_misses() {
     );
 }
 
+/// Three 170 kN axles leaving the free end of a 15 m cantilever of HSLM's section at 30 m/s
+/// (the plan's modal beam): each lifts the tip's acceleration at once as it goes. The tip's
+/// largest acceleration reported, integrated exactly at the defaults and by generalized-α at
+/// rtol 10⁻⁸, within the accuracy of the largest in the history written every 10 µs (after
+/// each jump the acceleration falls by 1.3·10⁻⁴ of itself in that time). The
+/// sample the step before the jump ended on holds the loads before it; taken for the next
+/// step's start, the exact run read HSLM-A1's largest there 1.2 % low, and joined across the
+/// jump generalized-α's samples read it 4.7 % high.
+#[test]
+fn a_train_leaving_a_free_end_reads_the_acceleration_after_each_axle() {
+    let scene = parse(
+        "name: tip\nduration: 0.5\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [15.0, 0.0]\n    E: 35.0e9\n    G: 14.5833e9\n    rho: 2500\n    A: 6.0\n    Av: 5.0\n    I: 0.219830886\n    supports: {from: clamped, to: free}\n    damping: {ratio: 0.0185, modes: [1, 2]}\ntrain: {axles: [0.0, 3.0, 6.0], load: 1.7e5, speed: 30.0}\noutput:\n  interval: 0.00001\n  probes: [{name: tip, x: 15.0}]\n",
+    );
+    assert_eq!(scene.solver.method, Method::ExactModal);
+    let atol = scene.solver.atol;
+    for (method, r) in [
+        ("exact-modal", at_defaults(&scene)),
+        (
+            "generalized-α",
+            run_beam(&scene, Method::GenAlpha, 1e-8, atol / 300.0),
+        ),
+    ] {
+        let reported = r.extremes.probes[0][3].largest_magnitude().0;
+        let written = r
+            .rows
+            .iter()
+            .map(|row| row.accelerations[0].abs())
+            .fold(0.0, f64::max);
+        assert!(
+            (reported / written - 1.0).abs() < 1e-3,
+            "{method}: the tip's a_max {reported} reported, {written} written"
+        );
+    }
+}
+
 /// D44's consistent disk on the study's exact beam, every solver setting left to the plan, on
 /// 10 and 20 elements. Set down at t = 0 on the beam at rest, the disk is a sudden load whose
 /// contact force rings in every mode the mesh holds: its least value, a millisecond in, moves

@@ -124,6 +124,7 @@ impl Recorder<'_> {
     /// Sample the step [t0, t1] on the even grid of `spacing` that runs on from the last
     /// sample, with a disk `riding` on or over the beam taking in the step's end as well.
     fn sample_inside(&mut self, t0: f64, t1: f64, dense: &dyn Dense, spacing: f64, riding: bool) {
+        let jumped = self.starts_after_a_jump(t0);
         // The contact force rings at the frequencies of the disk on the beam's local
         // stiffness, above any cutoff: sampled less often than every step, D44's largest
         // (the disk meeting the beam at rest) came out 11 % low. The deck's accelerations
@@ -138,7 +139,7 @@ impl Recorder<'_> {
         // read the railcar's bogies 2·10⁻⁴ low even at rtol 10⁻¹⁰.
         let first = match &self.last {
             Some((t, _)) => (t + spacing).max(t0),
-            None if t1 - t0 < spacing => t1,
+            None if t1 - t0 < spacing && !jumped => t1,
             None => t0,
         };
         let mut times: Vec<f64> = (0..)
@@ -159,6 +160,7 @@ impl Recorder<'_> {
     /// Watch the long step [t0, t1] in pairs of sub-steps no longer than [`SAMPLES_A_PAIR`]
     /// samples of `spacing`, and book its bodies' squares and the trails the next step reads.
     fn watch_in_pairs(&mut self, t0: f64, t1: f64, dense: &dyn Dense, spacing: f64) {
+        self.starts_after_a_jump(t0);
         let fresh = self.along_trail.is_empty();
         let last = self.last.take();
         let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0, 0, 0));
@@ -273,6 +275,21 @@ impl Recorder<'_> {
             _ => self.watches.along.record_point(t, &along),
         }
         self.along_trail.push((t, along));
+    }
+
+    /// Whether the step from t0 starts where the loads may jump (an axle entering or leaving
+    /// over a free end, a load switched), the last sample taken there: that sample holds the
+    /// loads before, and the step starts from those after. The watches then start afresh
+    /// from the step's own start. Taking the sample before for the start, HSLM-A1 on a 15 m
+    /// cantilever at 30 m/s read the tip's largest acceleration 1.2 % low (each axle leaving
+    /// the tip lifts it from 11.6 to 20.5 m/s² at once), and joined across the jump
+    /// generalized-α's samples read it 4.7 % high.
+    fn starts_after_a_jump(&mut self, t0: f64) -> bool {
+        let jumped = self.last.as_ref().is_some_and(|(t, _)| *t == t0) && self.turns_at(t0);
+        if jumped {
+            self.restart();
+        }
+        jumped
     }
 
     /// Whether the loads turn at t, as the driver ends a step there: on the breakpoint, or a
