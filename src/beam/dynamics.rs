@@ -12,7 +12,7 @@ use super::damping::Rayleigh;
 use super::load::PointLoad;
 use super::modal::ModalBasis;
 use super::train::{RidingAxle, Train, TrainModel};
-use super::Beam;
+use super::{Beam, PastFreeEnd};
 use crate::linalg::{Assembly, LowRank, Sparse};
 use crate::ode::second_order::{LinearModal, SecondOrderProblem, Structure};
 use crate::ode::NoEvent;
@@ -251,7 +251,7 @@ impl<'a> LoadedBeam<'a> {
                     x,
                     mass: train.masses[a],
                     load: train.loads[a],
-                    basis: self.beam.patch_basis_at(x, b),
+                    basis: self.beam.patch_basis_at(x, b, PastFreeEnd::Slab),
                 })
             })
             .collect()

@@ -14,7 +14,7 @@
 //!   ψ = atan(w' / (1 + u')),   ψ_s = ((1 + u') w'' − w' u'') / |r'|²,
 //! the disk's centre c = r + a n, n the left normal.
 
-use crate::beam::{Beam, NodeBasis};
+use crate::beam::{Beam, NodeBasis, PastFreeEnd};
 use crate::curve::jet::Jet;
 
 /// A sparse row: (unknown, coefficient).
@@ -41,7 +41,13 @@ impl AxisPoint {
     /// The axis at material point s moving at ṡ, for the beam state (q, v), averaged over a
     /// patch of half-width `half`.
     pub fn at(beam: &Beam, q: &[f64], v: &[f64], s: f64, sdot: f64, half: f64) -> AxisPoint {
-        Self::on(beam.patch_basis_at(s, half), q, v, s, sdot)
+        Self::on(
+            beam.patch_basis_at(s, half, PastFreeEnd::CarriedOn),
+            q,
+            v,
+            s,
+            sdot,
+        )
     }
 
     /// The same, from the patch-averaged shape functions at s, `nodes`.

@@ -44,7 +44,7 @@ use contact::{AxisPoint, Row};
 use law::{AddedMass, Law, Rider};
 
 use crate::beam::dynamics::LoadedBeam;
-use crate::beam::{Beam, NodeBasis};
+use crate::beam::{Beam, NodeBasis, PastFreeEnd};
 use crate::disk::Disk;
 use crate::disk::{DiskObservation, StopReason};
 use crate::linalg::{self, Assembly, AssemblyPattern, LowRank, Sparse, SparseLu, Woodbury};
@@ -473,7 +473,11 @@ impl<'a> DiskOnBeam<'a> {
         };
         let mut basis = d.basis.borrow_mut();
         if basis.as_ref().is_none_or(|(at, _)| *at != s) {
-            *basis = Some((s, self.beam().patch_basis_at(s, d.spec.patch)));
+            *basis = Some((
+                s,
+                self.beam()
+                    .patch_basis_at(s, d.spec.patch, PastFreeEnd::CarriedOn),
+            ));
         }
         let nodes = basis.as_ref().expect("filled above").1.clone();
         match self.loaded.modal {

@@ -3,6 +3,7 @@
 //! profile as candidates.
 
 use super::VehiclesOnBeam;
+use crate::beam::PastFreeEnd;
 
 /// Points a disk wheel's reach is scanned at before its contact is refined, where Newton's
 /// method has not found it in [`DISK_NEWTON`] steps.
@@ -29,7 +30,7 @@ impl VehiclesOnBeam<'_> {
         let (b, length) = (self.patch, beam.length);
         let mut out = self.profile.at(x, x);
         if x > -b && x < length + b {
-            for nb in beam.patch_basis_at(x, b) {
+            for nb in beam.patch_basis_at(x, b, PastFreeEnd::Slab) {
                 if let Some(i) = nb.w {
                     (0..3).for_each(|k| out[k] += nb.d[k] * mesh[i]);
                 }

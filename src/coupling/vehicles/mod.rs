@@ -34,6 +34,7 @@ use std::rc::Rc;
 
 use super::LastEvaluation;
 use crate::beam::dynamics::LoadedBeam;
+use crate::beam::PastFreeEnd;
 use crate::linalg::{self, Assembly, LowRank, Sparse, SparseLu, Woodbury};
 use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::EventSpec;
@@ -244,7 +245,7 @@ impl<'a> VehiclesOnBeam<'a> {
             for (a, axle) in v.axles.iter().enumerate() {
                 let x = x_first - axle.x;
                 if x > -b && x < length + b {
-                    for nb in beam.patch_basis_at(x, b) {
+                    for nb in beam.patch_basis_at(x, b, PastFreeEnd::Slab) {
                         if let Some(i) = nb.w {
                             f[i] -= nb.d[0] * v.static_loads[a];
                         }
@@ -341,7 +342,7 @@ impl<'a> VehiclesOnBeam<'a> {
                     }
                 };
                 let rows = if x > -b && x < length + b {
-                    let basis = beam.patch_basis_at(x, b);
+                    let basis = beam.patch_basis_at(x, b, PastFreeEnd::Slab);
                     std::array::from_fn(|k| self.model_row(&basis, k))
                 } else {
                     [Vec::new(), Vec::new(), Vec::new()]

@@ -358,7 +358,7 @@ impl Recorder<'_> {
     /// lifted off) or under loads that jumped (a disk left the beam, its whole contact force
     /// gone at once): the steps before it are not joined to those after. Joined, the parabola
     /// through samples either side of a disk dropping off a cantilever's free end read the
-    /// tip's largest acceleration 4.8 % above any the solution reaches.
+    /// tip's largest acceleration 12 % above any the solution reaches.
     pub(super) fn restart(&mut self) {
         self.last = None;
         self.before = None;
