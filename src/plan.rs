@@ -298,9 +298,10 @@ const FOLDING: &str = "esdirk4: the exact beam folds under its loads (its static
 /// Why the plan integrates moving forces with the fourth-order ESDIRK where `exact-modal` does
 /// not take them (a mesh, or a moving-force disk) and the plan leaves generalized-α undamped
 /// (ρ∞ = 1: a modal beam, a train, or a mesh that responds nonlinearly) or the beam is damped,
-/// with nothing switched and no vehicles. Each force crossing a node of the mesh turns the load vector's rate, which sets
-/// the highest modes ringing, and generalized-α (ρ∞ = 1) carries that ringing into the
-/// accelerations with the phase error of every step: at a three-hundredth of the accuracy,
+/// with nothing switched and no vehicles. Each force crossing a node of the mesh turns the
+/// load vector's rate, which sets the highest modes ringing, and generalized-α (ρ∞ = 1)
+/// carries that ringing into the accelerations with the phase error of every step: at a
+/// three-hundredth of the accuracy,
 /// three 100 kN axles at 10 m/s over D44's section read midspan's largest acceleration 10 %
 /// low (exact beam; 8.5 % on the linear one), one 1 MN axle at 50 m/s 6.5·10⁻³ off, a 1.5 t
 /// moving-force disk on the modal beam 2.6·10⁻², with the deflections within 1.4·10⁻⁴; at a
@@ -309,7 +310,7 @@ const FOLDING: &str = "esdirk4: the exact beam folds under its loads (its static
 /// damps its highest modes) generalized-α at ρ∞ = 0.9 and accuracy/1000 read the quarter point's
 /// largest acceleration under D44's moving-force disk 1.5·10⁻² off with 0.5 % damping and
 /// 5.5·10⁻³ with 2 % (at ρ∞ = 1: 6.5·10⁻³; at accuracy/10000: 1.1·10⁻³), where the fourth-order
-/// steps at accuracy/300 land within 2.1·10⁻⁴ and 5.4·10⁻⁴ in fewer steps (598 and 395 against
+/// steps at accuracy/300 land within 2.1·10⁻⁴ and 5.4·10⁻⁴ in fewer steps (599 and 394 against
 /// 1152 and 862). A moving-force disk on an undamped mesh that responds linearly keeps
 /// generalized-α with the planned ρ∞ = 0.9 at accuracy/1000 ([`rtol_for`]), where ESDIRK4
 /// takes 5.5 times the steps.
