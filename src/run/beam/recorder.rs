@@ -76,6 +76,8 @@ pub(super) struct Recorder<'a> {
     pub(super) trail: Vec<Trailed>,
     /// The envelope's stations at the last two times they were sampled.
     pub(super) along_trail: Vec<(f64, Vec<f64>)>,
+    /// The deck at the end of the last short step watched under a vehicle's wheels.
+    pub(super) deck_end: Option<(f64, Snapshot)>,
     /// When the last load left the beam: from then on the residual vibration is watched.
     pub(super) exit_t: Option<f64>,
     /// Whether the free vibration can no longer move any extreme watched (`settled.rs`):
@@ -115,6 +117,21 @@ impl Recorder<'_> {
 
     /// What the watches see at (t, y); the stations only when `along` asks for them.
     pub(super) fn snapshot(
+        &self,
+        t: f64,
+        y: &[f64],
+        rate: Option<&[f64]>,
+        along: bool,
+    ) -> Snapshot {
+        let mut s = self.deck_snapshot(t, y, rate, along);
+        if self.phase.vehicles.is_some() {
+            s.vehicles = self.vehicle_values(t, self.phase.vehicles(t, y, rate).as_ref());
+        }
+        s
+    }
+
+    /// What the watches see at (t, y) of the beam and the disks, without the vehicles.
+    pub(super) fn deck_snapshot(
         &self,
         t: f64,
         y: &[f64],
@@ -178,12 +195,11 @@ impl Recorder<'_> {
         } else {
             Vec::new()
         };
-        let vehicles = self.vehicle_values(t, phase.vehicles(t, y, rate).as_ref());
         Snapshot {
             probes,
             disk,
             along,
-            vehicles,
+            vehicles: Vec::new(),
         }
     }
 
@@ -645,6 +661,7 @@ pub(super) fn recorder<'a>(
         ),
         watch_along: !over.no_envelope,
         last: None,
+        deck_end: None,
         before: None,
         trail: Vec::new(),
         along_trail: Vec::new(),
