@@ -276,11 +276,10 @@ const VEHICLES: &str = "esdirk4: the vehicles' bodies vibrate on their suspensio
 /// three-hundredth of the accuracy read them up to 10⁻² of the largest acceleration off: two
 /// 2 t axles at 20 m/s over D44's section (modal beam) 5.8·10⁻³ at midspan and 10⁻² at the
 /// quarter point; two 10 t axles (exact beam) 6.2·10⁻³, the least deflection 1.9·10⁻³; at a
-/// three-thousandth still 6.4·10⁻³. The fourth-order steps at a three-thousandth of the
-/// accuracy come within 3.4·10⁻⁴ and 3.5·10⁻⁵ there, and within 5.8·10⁻⁴ under two 100 t axles
-/// that sink the same beam 4.2 m (at a thousandth 1.8·10⁻³), at 5 to 9 times generalized-α's
-/// cost.
-const MOVING_MASSES: &str = "esdirk4: each moving mass follows the beam, turning with its slope at every node of the mesh and dropping off at the far support, impulses that ring in the deck's accelerations, which generalized-alpha carries with the phase error of every step (at a three-hundredth of the accuracy it read the largest accelerations under two axles over D44's section up to 1e-2 off, at a three-thousandth 6.4e-3), where the fourth-order steps at a three-thousandth come within 5.8e-4";
+/// three-thousandth still 6.4·10⁻³. The fourth-order steps (at a ten-thousandth of the
+/// accuracy, `rtol_for`) come within 3.6·10⁻⁴ of the quarter point's, at 5 to 9 times
+/// generalized-α's cost.
+const MOVING_MASSES: &str = "esdirk4: each moving mass follows the beam, turning with its slope at every node of the mesh and dropping off at the far support, impulses that ring in the deck's accelerations, which generalized-alpha carries with the phase error of every step (at a three-hundredth of the accuracy it read the largest accelerations under two axles over D44's section up to 1e-2 off, at a three-thousandth 6.4e-3), where the fourth-order steps at a ten-thousandth come within 3.6e-4";
 
 /// The static gap (the exact static deflection this share of it off the linear one) past which
 /// the exact beam folds under its loads and the plan steps it with ESDIRK4: D44's section under
@@ -542,8 +541,8 @@ pub fn rtol_for(scene: &BeamScene, method: crate::ode::Method) -> (f64, &'static
     }
     if method == crate::ode::Method::Esdirk4 && scene.carries_moving_masses() {
         return (
-            accuracy / 3000.0,
-            "a three-thousandth of the accuracy: the fourth-order steps carry the impulses of the moving masses turning at the nodes and dropping off at the far support into the deck's accelerations and on through the free vibration after them (two axles over D44's section, 2 t to 100 t: within 5.8e-4 of the largest acceleration; at a thousandth 1.8e-3, at a three-hundredth 3.4e-3)",
+            accuracy / 10000.0,
+            "a ten-thousandth of the accuracy: the fourth-order steps carry the impulses of the moving masses turning at the nodes and dropping off at the far support into the deck's accelerations and on through the free vibration after them (two 2 t axles over D44's section: the quarter point's largest acceleration within 3.6e-4 of the largest at this rtol, 1.1e-3 at a three-thousandth, 3.4e-3 at a three-hundredth)",
         );
     }
     if method == crate::ode::Method::Esdirk4 && scene.rolls_with_inertia() {

@@ -76,8 +76,8 @@ pub(super) struct Recorder<'a> {
     pub(super) trail: Vec<Trailed>,
     /// The envelope's stations at the last two times they were sampled.
     pub(super) along_trail: Vec<(f64, Vec<f64>)>,
-    /// The deck at the end of the last short step watched under a vehicle's wheels.
-    pub(super) deck_end: Option<(f64, Snapshot)>,
+    /// The deck where the last step watched under riders ended (`watch_the_deck_over`).
+    pub(super) deck_end: Option<DeckEnd>,
     /// When the last load left the beam: from then on the residual vibration is watched.
     pub(super) exit_t: Option<f64>,
     /// Whether the free vibration can no longer move any extreme watched (`settled.rs`):
