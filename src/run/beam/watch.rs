@@ -200,23 +200,8 @@ impl Recorder<'_> {
         // integration takes between two node crossings (two thirds of the cutoff's period on
         // HSLM's bridge) read HSLM-A1's largest acceleration at 114 m/s 4.3·10⁻³ low, and the
         // envelope's stations on its ends alone overshot the deck's by 3·10⁻³.
-        let pairs = if spacing > 0.0 {
-            ((t1 - t0) / (SAMPLES_A_PAIR * spacing))
-                .ceil()
-                .clamp(1.0, MAX_STEP_PAIRS) as usize
-        } else {
-            1
-        };
-        let n = 2 * pairs;
-        let times: Vec<f64> = (0..=n)
-            .map(|k| {
-                if k == n {
-                    t1
-                } else {
-                    t0 + (t1 - t0) * k as f64 / n as f64
-                }
-            })
-            .collect();
+        let times = pair_times(t0, t1, SAMPLES_A_PAIR * spacing);
+        let n = times.len() - 1;
         let mut shots = vec![start];
         shots.extend(times[1..n].iter().map(|&tk| see(tk, true)));
         shots.push(see(t1, true));
@@ -398,21 +383,8 @@ impl Recorder<'_> {
     /// same axles, 7.5·10⁻³ high. The vehicles' own values stay on the grid, whose even spacing
     /// their root mean square needs.
     fn watch_the_deck_over(&mut self, t0: f64, t1: f64, dense: &dyn Dense, spacing: f64) {
-        let pairs = if spacing > 0.0 {
-            ((t1 - t0) / spacing).ceil().clamp(1.0, MAX_STEP_PAIRS) as usize
-        } else {
-            1
-        };
-        let n = 2 * pairs;
-        let times: Vec<f64> = (0..=n)
-            .map(|k| {
-                if k == n {
-                    t1
-                } else {
-                    t0 + (t1 - t0) * k as f64 / n as f64
-                }
-            })
-            .collect();
+        let times = pair_times(t0, t1, spacing);
+        let n = times.len() - 1;
         let mut probes = std::mem::replace(
             &mut self.watches.probes,
             Watch::new(0, Turning::OnTheSolution),
@@ -597,5 +569,26 @@ fn through(t: [f64; 3], v: [&[f64]; 3], at: f64) -> Vec<f64> {
     let (l0, l1, l2) = (l(0, 1, 2), l(1, 0, 2), l(2, 0, 1));
     (0..v[0].len())
         .map(|q| l0 * v[0][q] + l1 * v[1][q] + l2 * v[2][q])
+        .collect()
+}
+
+/// The times that cut [t0, t1] into pairs of equal sub-steps, each pair no longer than
+/// `longest` (one pair where `longest` is not positive), at most [`MAX_STEP_PAIRS`] of them:
+/// the pairs' ends at the even entries, their middles at the odd.
+fn pair_times(t0: f64, t1: f64, longest: f64) -> Vec<f64> {
+    let pairs = if longest > 0.0 {
+        ((t1 - t0) / longest).ceil().clamp(1.0, MAX_STEP_PAIRS) as usize
+    } else {
+        1
+    };
+    let n = 2 * pairs;
+    (0..=n)
+        .map(|k| {
+            if k == n {
+                t1
+            } else {
+                t0 + (t1 - t0) * k as f64 / n as f64
+            }
+        })
         .collect()
 }
