@@ -78,6 +78,7 @@ pub(super) struct Recorder<'a> {
     pub(super) along_trail: Vec<(f64, Vec<f64>)>,
     /// The deck where the last step watched under riders ended (`watch_the_deck_over`).
     pub(super) deck_end: Option<DeckEnd>,
+    pub(super) grid_check: GridCheck,
     /// When the last load left the beam: from then on the residual vibration is watched.
     pub(super) exit_t: Option<f64>,
     /// Whether the free vibration can no longer move any extreme watched (`settled.rs`):
@@ -662,6 +663,7 @@ pub(super) fn recorder<'a>(
         watch_along: !over.no_envelope,
         last: None,
         deck_end: None,
+        grid_check: GridCheck::new(setup.accuracy),
         before: None,
         trail: Vec::new(),
         along_trail: Vec::new(),
