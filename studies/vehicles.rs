@@ -777,6 +777,51 @@ fn a_vehicle_sweep_charts_the_bodies_against_the_comfort_levels() {
         .is_some_and(|h| h.contains("car.body.a_max")));
 }
 
+/// A car on stiff tyres over D44's section at 30 m/s (hubs of 400 kg on 10⁸ N/m, ringing at up
+/// to 80 Hz, faster than the steps follow: warned), until a wheel lifts off and stops the run,
+/// every setting left to the plan. Each body's largest acceleration and root mean square lie
+/// within the accuracy of those of its history written every 10 µs (the trapezoidal rule over
+/// it; measured 6·10⁻⁶ and 6.8·10⁻⁵). On the watch's grid at the cutoff's pace a hub's largest
+/// acceleration came out 2.0·10⁻³ low, and the root mean squares, whose last interval up to the
+/// stop the grid left out, 1.4·10⁻³ low; the grid now refines itself where the bodies'
+/// accelerations outpace it, and the root mean squares run to the run's end.
+#[test]
+fn a_car_on_stiff_tyres_reads_the_bodies_its_history_writes() {
+    let beam = "name: stiff-tyres\nduration: 0.5\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [20.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 181.0e-4\n    Av: 46.8e-4\n    I: 43190.0e-8\n    depth: 0.36\n    supports: {from: pinned, to: roller}\n";
+    let scene = parse(&format!(
+        "{beam}vehicles:\n  - name: car\n    speed: 30.0\n    x0: 0.0\n    bodies:\n      - {{name: body, mass: 5000.0, inertia: 8000.0, x: 1.5}}\n      - {{name: h1, mass: 400.0, x: 0.0}}\n      - {{name: h2, mass: 400.0, x: 3.0}}\n    axles: [{{name: a1, x: 0.0}}, {{name: a2, x: 3.0}}]\n    springs:\n      - {{upper: body, lower: h1, x: 0.0, k: 4.0e5, c: 8.0e3}}\n      - {{upper: body, lower: h2, x: 3.0, k: 4.0e5, c: 8.0e3}}\n      - {{upper: h1, lower: a1, x: 0.0, k: 1.0e8}}\n      - {{upper: h2, lower: a2, x: 3.0, k: 1.0e8}}\noutput:\n  interval: 0.00001\n  probes: [{{name: mid, x: 10.0}}]\n",
+    ));
+    let r = at_defaults(&scene);
+    let rows: Vec<_> = r
+        .rows
+        .iter()
+        .map(|row| {
+            let v = row.vehicles.as_ref().expect("the car");
+            (
+                row.t,
+                v.bodies[0].iter().map(|b| b[2]).collect::<Vec<f64>>(),
+            )
+        })
+        .collect();
+    for (k, (name, a, rms)) in r.vehicles[0].bodies.iter().enumerate() {
+        let written = rows.iter().map(|(_, a)| a[k].abs()).fold(0.0, f64::max);
+        let squares: f64 = rows
+            .windows(2)
+            .map(|w| 0.5 * (w[1].0 - w[0].0) * (w[0].1[k].powi(2) + w[1].1[k].powi(2)))
+            .sum();
+        let written_rms = (squares / (rows[rows.len() - 1].0 - rows[0].0)).sqrt();
+        let peak = a.largest_magnitude().0;
+        assert!(
+            (peak / written - 1.0).abs() < 1e-3,
+            "{name}: a_max {peak} reported, {written} written"
+        );
+        assert!(
+            (rms / written_rms - 1.0).abs() < 1e-3,
+            "{name}: a_rms {rms} reported, {written_rms} written"
+        );
+    }
+}
+
 /// The accuracy the scene asks for (10⁻³ at the defaults) holds for every number the run
 /// reports of its vehicles, not only the deck's: the truck over the raised deck (ramps, a
 /// pitching body on hubs on tyres) at the defaults against the same scene at rtol 10⁻¹⁰, each
