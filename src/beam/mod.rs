@@ -668,6 +668,15 @@ impl Beam {
             .contains(&1)
     }
 
+    /// Whether supports hold u at both ends, so that the axis cannot draw its ends in as it
+    /// bends.
+    pub fn holds_u_at_both_ends(&self) -> bool {
+        self.spec
+            .supports
+            .iter()
+            .all(|s| s.held_components().contains(&0))
+    }
+
     /// Displacement (global u, w) and rotation at material point x.
     pub fn displacement_at(&self, q: &[f64], x: f64) -> PointDisplacement {
         let (e, n) = self.locate(x);

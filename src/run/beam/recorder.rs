@@ -192,7 +192,7 @@ impl Recorder<'_> {
         let along = if along && self.watch_along {
             let displaced = beam.displacements(&self.stations, &q);
             let accelerations = beam.deflections(&self.stations, &a);
-            stations_watched(&self.envelope.x, &displaced, &accelerations)
+            stations_watched(beam, &self.envelope.x, &displaced, &accelerations)
         } else {
             Vec::new()
         };
@@ -371,6 +371,7 @@ impl Recorder<'_> {
 
 /// The stations' (u, w, φ, a), then the stretch of the axis through them.
 pub(super) fn stations_watched(
+    beam: &crate::beam::Beam,
     x: &[f64],
     along: &[crate::beam::PointDisplacement],
     accelerations: &[f64],
@@ -380,7 +381,7 @@ pub(super) fn stations_watched(
         .zip(accelerations)
         .flat_map(|(d, a)| [d.u, d.w, d.phi, *a])
         .collect();
-    out.push(sensors::stretch(x, along));
+    out.push(sensors::stretch(beam, x, along));
     out
 }
 
@@ -463,7 +464,7 @@ impl Observer for Recorder<'_> {
                 .collect(),
             along: self.watch_along.then(|| {
                 let along_a = phase.beam.deflections(&self.stations, &a);
-                stations_watched(&self.envelope.x, &along, &along_a)
+                stations_watched(phase.beam, &self.envelope.x, &along, &along_a)
             }),
             after_exit: self
                 .exit_t

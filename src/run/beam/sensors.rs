@@ -6,7 +6,7 @@
 use super::ledger::Energy;
 use super::{BeamRow, Envelope, Frame};
 use crate::beam::load::Probe;
-use crate::beam::{Beam, PointDisplacement};
+use crate::beam::{Beam, BeamModel, PointDisplacement};
 use crate::disk::DiskObservation;
 
 /// The state at one output time, as the sensors see it.
@@ -123,19 +123,34 @@ impl Envelope {
     }
 }
 
-/// How much longer than the span the axis through the sample points `x`, displaced by
-/// `along`, is: each chord's growth, ((h + Δu)² + Δw² − h²) / (|chord| + h), since the length
-/// minus h would cancel all but a few digits of a stretch 10⁻⁷ of the span, and the samples
-/// span the axis, so their h add up to its length.
-pub(super) fn stretch(x: &[f64], along: &[PointDisplacement]) -> f64 {
+/// How much longer than the span the axis through the sample points `x` is, displaced by
+/// `along`: each chord's growth, ((h + Δu)² + Δw² − h²) / (|chord| + h), with Δu, Δw along and
+/// across the undeformed axis (the global ones would count an inclined chord's first-order
+/// turning as growth), since the length minus h would cancel all but a few digits of a stretch
+/// 10⁻⁷ of the span; the samples span the axis, so their h add up to its length. A linear or
+/// modal beam whose end may slide grows by Δu alone, its strain u': the exact beam draws that
+/// end in by the ½ ∫ w'² dx its chords would add (over HSLM's 15 m bridge the roller moves
+/// 0.27 mm, the axis lengthens 3·10⁻³ mm). Held at both ends, the exact axis stretches by it,
+/// and the chords measure it to second order.
+pub(super) fn stretch(beam: &Beam, x: &[f64], along: &[PointDisplacement]) -> f64 {
+    let strain_alone = grows_by_strain_alone(beam);
     x.windows(2)
         .zip(along.windows(2))
         .map(|(x, d)| {
-            let (h, du, dw) = (x[1] - x[0], d[1].u - d[0].u, d[1].w - d[0].w);
+            let [du, dw] = beam.to_local([d[1].u - d[0].u, d[1].w - d[0].w]);
+            if strain_alone {
+                return du;
+            }
+            let h = x[1] - x[0];
             let chord = ((h + du) * (h + du) + dw * dw).sqrt();
             (du * (2.0 * h + du) + dw * dw) / (chord + h)
         })
         .sum()
+}
+
+/// Whether [`stretch`] reads a linear or modal beam's strain u' alone.
+pub(super) fn grows_by_strain_alone(beam: &Beam) -> bool {
+    beam.spec.model != BeamModel::Exact && !beam.holds_u_at_both_ends()
 }
 
 /// Deformed shapes at the requested times, and the animation's frames on a coarse grid with

@@ -8,6 +8,7 @@
 //! output rows, not a sixteenth of a period at a time.
 
 use super::modal_probes::{mode_rows, Rows};
+use super::sensors;
 use super::*;
 
 /// What an extreme may still move by, of its own size, once the vibration is settled: a
@@ -119,20 +120,31 @@ impl Recorder<'_> {
     }
 
     /// The least and largest stretch of the axis through the stations the free vibration can
-    /// make: each piece of length h adds (δu(2h + δu) + δw²)/(c + h), c ≥ h − |δu| its chord,
-    /// δu and δw the differences of u and w across it. `None` where an axial difference could
-    /// reach the piece's length.
+    /// make, as [`sensors::stretch`] measures it. Where it reads the strain alone, the
+    /// difference of u along the axis between the end stations; else each piece of length h
+    /// adds (δu(2h + δu) + δw²)/(c + h), c ≥ h − |δu| its chord, δu and δw the differences
+    /// along and across the axis. `None` where an axial difference could reach the piece's
+    /// length.
     fn stretch_bounds(&self, rows: &[Rows], bounds: &ModeBounds) -> Option<(f64, f64)> {
+        let beam = self.phase.beam;
         let x = &self.envelope.x;
-        let difference = |c: usize, i: usize| -> f64 {
-            let (a, b) = (&rows[i][c], &rows[i + 1][c]);
-            (a.iter().zip(b).zip(&bounds.displacement))
-                .map(|((a, b), d)| (b - a).abs() * d)
+        // Per mode, the rows' difference from station i to j along (0) or across (1) the axis.
+        let difference = |c: usize, i: usize, j: usize| -> f64 {
+            (bounds.displacement.iter().enumerate())
+                .map(|(k, d)| {
+                    let local = |r: &Rows| beam.to_local([r[0][k], r[1][k]]);
+                    (local(&rows[j])[c] - local(&rows[i])[c]).abs() * d
+                })
                 .sum()
         };
+        let last = rows.len().saturating_sub(1);
+        if sensors::grows_by_strain_alone(beam) {
+            let reach = difference(0, 0, last);
+            return Some((-reach, reach));
+        }
         let (mut lo, mut hi) = (0.0, 0.0);
-        for i in 0..rows.len().saturating_sub(1) {
-            let (h, du, dw) = (x[i + 1] - x[i], difference(0, i), difference(1, i));
+        for i in 0..last {
+            let (h, du, dw) = (x[i + 1] - x[i], difference(0, i, i + 1), difference(1, i, i + 1));
             if du >= h {
                 return None;
             }
