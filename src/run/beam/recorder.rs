@@ -369,7 +369,8 @@ impl Recorder<'_> {
     }
 }
 
-/// The stations' (u, w, φ, a), then the stretch of the axis through them.
+/// The stations' (u, w, φ, a), then the stretch of the axis through them and how far a
+/// linear beam's sliding end would draw in.
 pub(super) fn stations_watched(
     beam: &crate::beam::Beam,
     x: &[f64],
@@ -382,6 +383,7 @@ pub(super) fn stations_watched(
         .flat_map(|(d, a)| [d.u, d.w, d.phi, *a])
         .collect();
     out.push(sensors::stretch(beam, x, along));
+    out.push(sensors::draw_in(beam, x, along));
     out
 }
 

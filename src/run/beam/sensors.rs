@@ -92,6 +92,7 @@ impl Envelope {
                 n
             ],
             stretch_max: f64::NEG_INFINITY,
+            draw_in_max: 0.0,
             a_max: (0.0, 0.0, 0.0),
         }
     }
@@ -119,6 +120,9 @@ impl Envelope {
         if let Some(stretch) = ranges.get(4 * self.x.len()) {
             e.stretch_max = stretch.max;
         }
+        if let Some(draw_in) = ranges.get(4 * self.x.len() + 1).filter(|r| r.seen()) {
+            e.draw_in_max = draw_in.max;
+        }
         e
     }
 }
@@ -144,6 +148,24 @@ pub(super) fn stretch(beam: &Beam, x: &[f64], along: &[PointDisplacement]) -> f6
             let h = x[1] - x[0];
             let chord = ((h + du) * (h + du) + dw * dw).sqrt();
             (du * (2.0 * h + du) + dw * dw) / (chord + h)
+        })
+        .sum()
+}
+
+/// How far a linear or modal beam's end that may slide would draw in as the axis through the
+/// sample points bends, which its u, first-order, leaves out: what the chords add to the strain
+/// [`stretch`] reads (½ ∫ w'² dx to second order). 0 where [`stretch`] reads the chords.
+pub(super) fn draw_in(beam: &Beam, x: &[f64], along: &[PointDisplacement]) -> f64 {
+    if !grows_by_strain_alone(beam) {
+        return 0.0;
+    }
+    x.windows(2)
+        .zip(along.windows(2))
+        .map(|(x, d)| {
+            let [du, dw] = beam.to_local([d[1].u - d[0].u, d[1].w - d[0].w]);
+            let h = x[1] - x[0];
+            let chord = ((h + du) * (h + du) + dw * dw).sqrt();
+            (du * (2.0 * h + du) + dw * dw) / (chord + h) - du
         })
         .sum()
 }

@@ -144,7 +144,11 @@ impl Recorder<'_> {
         }
         let (mut lo, mut hi) = (0.0, 0.0);
         for i in 0..last {
-            let (h, du, dw) = (x[i + 1] - x[i], difference(0, i, i + 1), difference(1, i, i + 1));
+            let (h, du, dw) = (
+                x[i + 1] - x[i],
+                difference(0, i, i + 1),
+                difference(1, i, i + 1),
+            );
             if du >= h {
                 return None;
             }

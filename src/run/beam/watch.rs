@@ -153,9 +153,9 @@ impl Watches {
             after_exit: Watch::new(probes, Turning::OnTheSolution),
             disk: Watch::new(4 * disks, Turning::OnTheSolution),
             gap: Watch::new(1, Turning::OnTheSolution),
-            // No stations, no stretch through them.
+            // No stations, no stretch or drawing in through them.
             along: Watch::new(
-                if stations == 0 { 0 } else { 4 * stations + 1 },
+                if stations == 0 { 0 } else { 4 * stations + 2 },
                 Turning::OnTheParabola,
             ),
         }
