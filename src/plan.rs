@@ -9,7 +9,9 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 
-use crate::analysis::discretisation::{choose, passage_share, response_size, Discretisation};
+use crate::analysis::discretisation::{
+    choose, passage_share, response_size, Discretisation, DEFAULT_ACCURACY,
+};
 use crate::analysis::model_choice;
 use crate::beam::train::TrainModel;
 use crate::beam::BeamModel;
@@ -218,6 +220,12 @@ impl Planner {
         } else if b.vehicles.is_empty() && !damped_by_the_scene(b) && self.folds(b) {
             Some((Method::Esdirk4, FOLDING))
         } else if b.vehicles.is_empty()
+            && !damped_by_the_scene(b)
+            && b.load_switched()
+            && b.accuracy < DEFAULT_ACCURACY
+        {
+            Some((Method::Esdirk4, SWITCHED_FINE))
+        } else if b.vehicles.is_empty()
             && (b.rho_inf >= 1.0 || b.beam.damping.is_some())
             && !b.load_switched()
             && b.carries_moving_loads()
@@ -280,6 +288,16 @@ const VEHICLES: &str = "esdirk4: the vehicles' bodies vibrate on their suspensio
 /// accuracy, `rtol_for`) come within 3.6·10⁻⁴ of the quarter point's, at 5 to 9 times
 /// generalized-α's cost.
 const MOVING_MASSES: &str = "esdirk4: each moving mass follows the beam, turning with its slope at every node of the mesh and dropping off at the far support, impulses that ring in the deck's accelerations, which generalized-alpha carries with the phase error of every step (at a three-hundredth of the accuracy it read the largest accelerations under two axles over D44's section up to 1e-2 off, at a three-thousandth 6.4e-3), where the fourth-order steps at a ten-thousandth come within 3.6e-4";
+
+/// Why the plan steps a load switched on or off with the fourth-order ESDIRK where the scene asks
+/// more than the default accuracy. Undamped, generalized-α keeps every mode the load sets
+/// ringing with the phase error of every step, its global error falling as rtol^(2/3): C3 at
+/// accuracy 10⁻⁴ and 10⁻⁵ (rtol a ten-thousandth of it) read the tip's largest rotation 2.4·10⁻⁴
+/// and 1.2·10⁻⁴ of the largest off, the axis's stretch 7·10⁻⁴ and 4·10⁻³, against ESDIRK4 at
+/// rtol 10⁻⁹ and 3·10⁻¹⁰ (which agree within 3·10⁻⁷), and at 10⁻¹⁰ it runs past the step
+/// budget; ESDIRK4 at a thousandth of the accuracy comes within 3.3·10⁻⁵ and 4.4·10⁻⁶. At the
+/// default accuracy generalized-α at a ten-thousandth holds it, in fewer steps.
+const SWITCHED_FINE: &str = "esdirk4: a load switched during the run excites every mode of the mesh, and below the default accuracy generalized-alpha's undamped steps no longer hold them: its global error falls as rtol^(2/3) (the cantilever C3 at accuracy 1e-4 and 1e-5: the tip's largest rotation 2.4e-4 and 1.2e-4 off, the axis's stretch 7e-4 and 4e-3), where the fourth-order steps at a thousandth of the accuracy come within 3.3e-5 and 4.4e-6";
 
 /// The static gap (the exact static deflection this share of it off the linear one) past which
 /// the exact beam folds under its loads and the plan steps it with ESDIRK4: D44's section under
@@ -521,7 +539,8 @@ pub const PLANNED_RHO_INF: f64 = 0.9;
 ///   undamped they all stay in what the run reports: B1's peak read on the output grid missed
 ///   by 2.2 ε at ε/30 and by 0.96 ε at ε/300; located on the solution, C1–C3's largest tip
 ///   acceleration and rotation in the free vibration after the load is taken off missed by
-///   2.0–3.5 ε at ε/1000 and land within 0.6 ε at ε/10000 (B1–B3 within 0.7 ε at either). Damped, such a peak is not monotone in rtol (B1 at
+///   2.0–3.5 ε at ε/1000 and land within 0.6 ε at ε/10000 (B1–B3 within 0.7 ε at either);
+///   below the default accuracy the plan steps it with ESDIRK4 at ε/1000 ([`SWITCHED_FINE`]). Damped, such a peak is not monotone in rtol (B1 at
 ///   ρ∞ = 0.8: 0.54 ε, 2.3 ε, 1.3 ε at ε/100, ε/300, ε/1000), since what moves it is how much
 ///   of the mesh's highest modes the damping removes; the scene is told so.
 pub fn rtol_for(scene: &BeamScene, method: crate::ode::Method) -> (f64, &'static str) {
@@ -549,6 +568,12 @@ pub fn rtol_for(scene: &BeamScene, method: crate::ode::Method) -> (f64, &'static
         return (
             accuracy / 30.0,
             "a thirtieth of the accuracy: the fourth-order steps carry the disk's contact force and the deck's acceleration over the crossing with a global error of a few times rtol (D44's modal beam: 6.9e-4 of the weight and 6e-6 of the acceleration at a thirtieth, 1.7e-3 of the weight at a tenth; its 10- and 20-element exact meshes started carrying the disk: the acceleration within 1.1e-4, the contact force within 1.1e-3 of the weight, which rings in the mesh's highest modes with a phase that tightening rtol does not settle: 1.4e-3 at a hundredth; D50's mesh at 20 m/s: the acceleration 4.4e-3 off)",
+        );
+    }
+    if method == crate::ode::Method::Esdirk4 && switched && accuracy < DEFAULT_ACCURACY {
+        return (
+            accuracy / 1000.0,
+            "a thousandth of the accuracy: the fourth-order steps carry every mode a switched load excites through the run (the cantilever C3 at accuracy 1e-4 and 1e-5: every extreme within 3.3e-5 and 4.4e-6 of the converged, against generalized-alpha's 7e-4 and 4e-3)",
         );
     }
     if damped_by_the_scene(scene) {
