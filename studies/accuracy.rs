@@ -18,6 +18,16 @@ use rollbeam::scene::Scene;
 
 /// What a study scene leaves to the plan once its model, mesh and solver settings are taken
 /// out (and its deformed-shape snapshots, which a test does not draw).
+/// The solver's settings left to the plan, and the shapes, which cost a switched load's runs
+/// their time.
+const SOLVER_LEFT_TO_THE_PLAN: [Set<'static>; 5] = [
+    Set::LeftOut("solver.method"),
+    Set::LeftOut("solver.rho_inf"),
+    Set::LeftOut("solver.rtol"),
+    Set::LeftOut("solver.atol"),
+    Set::LeftOut("output.shapes"),
+];
+
 const LEFT_TO_THE_PLAN: [Set<'static>; 7] = [
     Set::LeftOut("track.beam.model"),
     Set::LeftOut("track.beam.elements"),
@@ -402,16 +412,7 @@ fn the_rubber_beam_s_headlines_within_the_accuracy_at_the_defaults() {
 /// accuracy of C1's stored reference too ([`crate::tradeoff`]).
 #[test]
 fn a_switched_load_s_extremes_within_the_accuracy_at_the_defaults() {
-    let scene = changed(
-        "cantilever-c1.yaml",
-        &[
-            Set::LeftOut("solver.method"),
-            Set::LeftOut("solver.rho_inf"),
-            Set::LeftOut("solver.rtol"),
-            Set::LeftOut("solver.atol"),
-            Set::LeftOut("output.shapes"),
-        ],
-    );
+    let scene = changed("cantilever-c1.yaml", &SOLVER_LEFT_TO_THE_PLAN);
     let (planned, converged) = common::side_by_side(
         || run::run(&scene, &Overrides::default(), false).expect("the run completes"),
         || run_beam(&scene, Method::GenAlpha, 1e-8, 1e-8 * 9.73e-3),
@@ -467,25 +468,19 @@ fn a_switched_load_s_extremes_within_the_accuracy_at_the_defaults() {
 /// its 3 kN tip load taken off at 1 s, accuracy 10⁻⁴ and the rest left to the plan, against
 /// ESDIRK4 at rtol 3·10⁻⁹ (within 4·10⁻⁶ of 10⁻⁹'s). Every extreme of u, w and φ the summary
 /// reports, at the probes and over the beam, the largest accelerations and the axis's stretch
-/// land within the accuracy of their family's largest: the plan steps it with ESDIRK4 at a thousandth of the
-/// accuracy (2.6·10⁻⁵). Generalized-α's undamped steps at a ten-thousandth, which hold the
-/// default accuracy, read the tip's rotation 3·10⁻⁴ off here: their global error falls only as
-/// rtol^(2/3).
+/// land within the accuracy of their family's largest: the plan steps it with ESDIRK4 at a
+/// thousandth of the accuracy (2.6·10⁻⁵). Generalized-α's undamped steps at a ten-thousandth,
+/// which hold the default accuracy, read the tip's rotation 3·10⁻⁴ off here: their global error
+/// falls only as rtol^(2/3).
 #[test]
 fn a_switched_load_s_extremes_within_a_tighter_accuracy() {
-    let scene = changed(
-        "cantilever-c3.yaml",
-        &[
-            Set::LeftOut("solver.method"),
-            Set::LeftOut("solver.rho_inf"),
-            Set::LeftOut("solver.rtol"),
-            Set::LeftOut("solver.atol"),
-            Set::LeftOut("output.shapes"),
-            Set::Number("solver.accuracy", 1.0e-4),
-            Set::Number("track.beam.elements", 4.0),
-            Set::Number("duration", 1.5),
-        ],
-    );
+    let mut changes = SOLVER_LEFT_TO_THE_PLAN.to_vec();
+    changes.extend([
+        Set::Number("solver.accuracy", 1.0e-4),
+        Set::Number("track.beam.elements", 4.0),
+        Set::Number("duration", 1.5),
+    ]);
+    let scene = changed("cantilever-c3.yaml", &changes);
     let (planned, converged) = common::side_by_side(
         || common::at_defaults(&scene),
         || run_beam(&scene, Method::Esdirk4, 3e-9, 3e-9 * 1.01e-2),
