@@ -138,17 +138,8 @@ impl Envelope {
 /// and the chords measure it to second order.
 pub(super) fn stretch(beam: &Beam, x: &[f64], along: &[PointDisplacement]) -> f64 {
     let strain_alone = grows_by_strain_alone(beam);
-    x.windows(2)
-        .zip(along.windows(2))
-        .map(|(x, d)| {
-            let [du, dw] = beam.to_local([d[1].u - d[0].u, d[1].w - d[0].w]);
-            if strain_alone {
-                return du;
-            }
-            let h = x[1] - x[0];
-            let chord = ((h + du) * (h + du) + dw * dw).sqrt();
-            (du * (2.0 * h + du) + dw * dw) / (chord + h)
-        })
+    chords(beam, x, along)
+        .map(|(du, growth)| if strain_alone { du } else { growth })
         .sum()
 }
 
@@ -159,15 +150,22 @@ pub(super) fn draw_in(beam: &Beam, x: &[f64], along: &[PointDisplacement]) -> f6
     if !grows_by_strain_alone(beam) {
         return 0.0;
     }
-    x.windows(2)
-        .zip(along.windows(2))
-        .map(|(x, d)| {
-            let [du, dw] = beam.to_local([d[1].u - d[0].u, d[1].w - d[0].w]);
-            let h = x[1] - x[0];
-            let chord = ((h + du) * (h + du) + dw * dw).sqrt();
-            (du * (2.0 * h + du) + dw * dw) / (chord + h) - du
-        })
-        .sum()
+    chords(beam, x, along).map(|(du, growth)| growth - du).sum()
+}
+
+/// Per chord between consecutive sample points, Δu along the undeformed axis and the chord's
+/// growth ((h + Δu)² + Δw² − h²) / (|chord| + h).
+fn chords<'a>(
+    beam: &'a Beam,
+    x: &'a [f64],
+    along: &'a [PointDisplacement],
+) -> impl Iterator<Item = (f64, f64)> + 'a {
+    x.windows(2).zip(along.windows(2)).map(|(x, d)| {
+        let [du, dw] = beam.to_local([d[1].u - d[0].u, d[1].w - d[0].w]);
+        let h = x[1] - x[0];
+        let chord = ((h + du) * (h + du) + dw * dw).sqrt();
+        (du, (du * (2.0 * h + du) + dw * dw) / (chord + h))
+    })
 }
 
 /// Whether [`stretch`] reads a linear or modal beam's strain u' alone.

@@ -114,6 +114,8 @@ impl Recorder<'_> {
             let b = bounds.at(r, kept);
             (0..4).all(|c| within(&ranges[4 * s + c], -b[c], b[c]))
         });
+        // The drawing in of a linear beam's sliding end, watched beside the stretch, only
+        // sizes a warning: it does not hold the stride back.
         each && self
             .stretch_bounds(rows, bounds)
             .is_some_and(|(lo, hi)| within(&ranges[4 * rows.len()], lo, hi))
