@@ -15,6 +15,31 @@ pub(super) const SAMPLES_PER_CUTOFF_PERIOD: f64 = 32.0;
 /// contact patch's half-width.
 pub(super) const SAMPLES_PER_PATCH: f64 = 20.0;
 
+/// The most samples the watch's grid may need over a run: as many as the default step budget
+/// allows steps, each sample costing about what a step does.
+const MAX_GRID_SAMPLES: f64 = 1.0e7;
+
+/// Refuses, before anything is allocated, a run stepped exactly whose deck acceleration the
+/// watch's grid would sample more than [`MAX_GRID_SAMPLES`] times. A step that is exact however
+/// long (a modal beam under moving forces, or free) is watched all the same, so the step budget
+/// does not see it, where a time-stepped run's steps shrink with the time scale and meet their
+/// budget; a beam nearly massless puts EN 1991-2's cutoff at megahertz, which over a train's
+/// passage is billions of samples.
+pub(super) fn grid_within_budget(
+    scene: &Scene,
+    filter: Option<&AccelerationFilter>,
+) -> Result<(), Error> {
+    let Some(f) = filter else { return Ok(()) };
+    let samples = scene.duration * SAMPLES_PER_CUTOFF_PERIOD * f.cutoff_hz;
+    if samples <= MAX_GRID_SAMPLES {
+        return Ok(());
+    }
+    Err(Error::Solver(format!(
+        "scene {}: the deck's acceleration, cut off at {:.3e} Hz ({}), would be watched at about {samples:.1e} samples over a run {:.3e} s long, past the budget of {MAX_GRID_SAMPLES:.0e}: shorten the run, set `output.acceleration_cutoff_hz` lower, or look for a time scale the scene makes tiny (a near-zero mass or density, a huge stiffness)",
+        scene.name, f.cutoff_hz, f.rule, scene.duration
+    )))
+}
+
 /// Samples a pair of a long step's sub-steps spans: an eighth of the cutoff's period, over
 /// which the parabola through its three points turns at most once where the filtered signal
 /// does. Over the HSLM sweep the largest accelerations come within 8·10⁻⁶ of those watched at
