@@ -437,6 +437,27 @@ fn item_5_no_infinities_written() {
         ),
     );
     runs_finite(&["run", &wall, "--out", &out("wall")], &out("wall"));
+    // A vehicle at 1e308 m/s summed its energy to NaN (the command line refused to write it,
+    // the Python package handed it over); no speed past light's is a scene.
+    let speeds = [
+        (
+            "vehicles.speed",
+            beam("", "vehicles: [{name: car, speed: 1.0e308, bodies: [{name: body, mass: 5750.0}], axles: [{name: wheel, x: 0.0}], springs: [{upper: body, lower: wheel, x: 0.0, k: 1.6e6}]}]\n"),
+        ),
+        (
+            "train.speed",
+            beam("", "train: {axles: [0.0], load: 1.0e4, speed: 3.0e8}\n"),
+        ),
+        ("disk.omega0", beam("", &DISK.replace("-44", "-1e300"))),
+        (
+            "disk.omega0",
+            curve("parabola: {k: 1}", "disk: {mass: 1, radius: 0.1, s0: -1, omega0: 1e10}\n"),
+        ),
+    ];
+    for (key, text) in speeds {
+        let s = scene("light", &text);
+        fails(&["check", &s], 1, &[key, "faster than light"]);
+    }
     let weightless = scene(
         "weightless",
         &curve(

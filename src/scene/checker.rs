@@ -16,6 +16,11 @@ pub(super) const MAX_NODES: f64 = 100_001.0;
 /// Intermediate bearings must sit at nodes of a uniform mesh of at most this many elements.
 pub(super) const MAX_SPANS: usize = 1000;
 
+/// The speed of light (m/s): what a vehicle, a train or a disk moves faster than is not a
+/// scene the model describes, and past it the squares of speeds in its energies and forces
+/// head for overflow (a vehicle at 1e308 m/s summed its energy to NaN).
+const SPEED_OF_LIGHT: f64 = 299_792_458.0;
+
 /// Reports problems as "FILE line N: KEY ...".
 pub(super) struct Checker<'a> {
     pub(super) file: &'a str,
@@ -57,6 +62,21 @@ impl Checker<'_> {
             );
         }
         Ok(x)
+    }
+
+    /// A speed `v` (m/s) that `key` on `line` sets: slower than light.
+    pub(super) fn speed(&self, line: u64, key: &str, v: f64) -> Result<f64, Error> {
+        if v.abs() <= SPEED_OF_LIGHT {
+            return Ok(v);
+        }
+        self.err(
+            line,
+            key,
+            format!(
+                "sets a speed of {:e} m/s, faster than light ({SPEED_OF_LIGHT:e} m/s)",
+                v.abs()
+            ),
+        )
     }
 
     /// A length of the section or the contact (m): positive, at least a millionth of the beam's

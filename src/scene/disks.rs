@@ -169,7 +169,7 @@ fn start_on_beam(
     }
     // Rolling off the end it starts on leaves nothing to simulate; a disk resting exactly on
     // an end support with no speed has nowhere to go but off or nowhere.
-    let v0 = -radius * omega0;
+    let v0 = c.speed(omega_line, &format!("{at}.omega0"), -radius * omega0)?;
     if (s0 == 0.0 && v0 < 0.0) || (s0 == length && v0 > 0.0) {
         return c.err(
             omega_line,

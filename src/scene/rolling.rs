@@ -72,6 +72,9 @@ pub(super) fn rolling_scene(
         Some(w) => c.finite(w, "disk.omega0")?,
         None => 0.0,
     };
+    if let Some(w) = &d.omega0 {
+        c.speed(w.referenced.line(), "disk.omega0", disk.radius * omega0)?;
+    }
     let mu = match &d.mu {
         Some(m) => Some(c.positive(m, "disk.mu")?),
         None => None,

@@ -30,6 +30,7 @@ pub(super) fn train(
 ) -> Result<Train, Error> {
     let t = &file.value;
     let speed = c.positive(&t.speed, "train.speed")?;
+    let speed = c.speed(t.speed.referenced.line(), "train.speed", speed)?;
     let model = train_model(c, t, gravity)?;
     let (name, axles, loads) =
         match (&t.hslm, &t.axles, &t.load) {

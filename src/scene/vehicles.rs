@@ -214,6 +214,7 @@ fn non_negative(c: &Checker, v: &Spanned<f64>, key: &str) -> Result<f64, Error> 
 fn one(c: &Checker, v: &VehicleFile, gravity: f64) -> Result<Vehicle, Error> {
     let vname = name(c, &v.name, "vehicles.name")?;
     let speed = c.positive(&v.speed, "vehicles.speed")?;
+    let speed = c.speed(v.speed.referenced.line(), "vehicles.speed", speed)?;
     let x0 =
         v.x0.as_ref()
             .map_or(Ok(0.0), |x| c.finite(x, "vehicles.x0"))?;
