@@ -207,7 +207,10 @@ fn run(
     let s = scene.scene().map_err(py_err)?;
     let over = solver_overrides(&s, method.as_deref(), rtol, atol).map_err(py_err)?;
     let run = py
-        .detach(|| core_run::run(&s, &over, false))
+        .detach(|| {
+            let run = core_run::run(&s, &over, false)?;
+            output::refuse_overflowed(&run).map(|()| run)
+        })
         .map_err(py_err)?;
     Ok(NativeRun { run })
 }

@@ -129,17 +129,32 @@ pub(crate) fn write(path: &Path, text: &str) -> Result<(), Error> {
         path.extension().and_then(|e| e.to_str()),
         Some("csv" | "yaml")
     );
-    if let Some((line, token)) = table.then(|| non_finite(text)).flatten() {
-        return Err(Error::Solver(format!(
-            "{} would hold the non-finite number {token} (line {line}): the run's numbers overflowed, so it was not written",
-            path.display()
-        )));
+    if table {
+        finite(&path.display().to_string(), text, ", so it was not written")?;
     }
     // A file from an earlier run is removed first: ext4 flushes a file that replaces another
     // by rename (or truncation) before the rename returns, which a rerun into the same folder
     // would wait for.
     let _ = std::fs::remove_file(path);
     crate::files::write_whole(path, text)
+}
+
+/// The text of a table or summary named `name`, refused where it holds a non-finite number;
+/// `then` ends the sentence with what became of it.
+fn finite(name: &str, text: &str, then: &str) -> Result<(), Error> {
+    match non_finite(text) {
+        Some((line, token)) => Err(Error::Solver(format!(
+            "{name} would hold the non-finite number {token} (line {line}): the run's numbers overflowed{then}"
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// A run handed over in memory (the Python package's) is held to what its files would be: a
+/// summary or history that `write` would refuse is the same solver failure.
+pub fn refuse_overflowed(run: &Run) -> Result<(), Error> {
+    finite("summary.yaml", &summary_yaml(run)?, "")?;
+    finite("history.csv", &history_csv(run), "")
 }
 
 /// The first line and token of a CSV or YAML text that is an infinity or NaN as Rust or YAML
