@@ -387,8 +387,8 @@ pub fn run(
         rho_inf: setup.rho_inf,
         ..over.options(scene)
     };
-    if opts.method == Method::ExactModal || free_vibration_exact(scene, &opts) {
-        watch::grid_within_budget(scene, filter.as_ref())?;
+    if opts.method == Method::ExactModal {
+        watch::grid_within_budget(scene, &loaded, filter.as_ref())?;
     }
     let coupled = (!setup.disks.is_empty()).then(|| DiskOnBeam::new(&loaded, setup.disks.clone()));
     let vehicles = vehicles_on(scene, setup, &loaded)?;
@@ -751,11 +751,9 @@ fn vibrate_alone(
         method: Method::ExactModal,
         ..opts.clone()
     };
-    let opts = if free_vibration_exact(scene, opts) {
-        &exact
-    } else {
-        opts
-    };
+    let planned_exact =
+        scene.solver.free_vibration_chosen.is_some() && opts.method == scene.solver.method;
+    let opts = if planned_exact { &exact } else { opts };
     // The output times from here on that no phase has recorded yet: a run without a disk
     // records its start here, after the disk left its leaving time is recorded.
     let rest: Vec<f64> = outputs
@@ -767,12 +765,6 @@ fn vibrate_alone(
         .map_err(|e| solver_error(scene, e))?;
     stats.add(&out.stats);
     Ok((out.t, out.y))
-}
-
-/// Whether the free vibration after the riders have left is stepped exactly, as the plan chose
-/// where the method is its own.
-fn free_vibration_exact(scene: &Scene, opts: &ode::Options) -> bool {
-    scene.solver.free_vibration_chosen.is_some() && opts.method == scene.solver.method
 }
 
 /// The run's result.

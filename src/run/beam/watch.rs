@@ -15,28 +15,32 @@ pub(super) const SAMPLES_PER_CUTOFF_PERIOD: f64 = 32.0;
 /// contact patch's half-width.
 pub(super) const SAMPLES_PER_PATCH: f64 = 20.0;
 
-/// The most samples the watch's grid may need over a run: as many as the default step budget
-/// allows steps, each sample costing about what a step does.
+/// The most samples the watch's grid may take while the loads still change: as many as the
+/// default step budget allows steps, each sample costing about what a step does.
 const MAX_GRID_SAMPLES: f64 = 1.0e7;
 
-/// Refuses, before anything is allocated, a run stepped exactly whose deck acceleration the
-/// watch's grid would sample more than [`MAX_GRID_SAMPLES`] times. A step that is exact however
-/// long (a modal beam under moving forces, or free) is watched all the same, so the step budget
-/// does not see it, where a time-stepped run's steps shrink with the time scale and meet their
-/// budget; a beam nearly massless puts EN 1991-2's cutoff at megahertz, which over a train's
-/// passage is billions of samples.
+/// Refuses, before the run, an exact-modal run whose deck acceleration the watch's grid would
+/// sample more than [`MAX_GRID_SAMPLES`] times before its loads stop changing (a train's last
+/// axle leaves, a load switches for the last time). An exact step is as long as the loads
+/// allow, so the step budget does not see a tiny time scale, and the grid is watched all the
+/// same: a beam nearly massless puts EN 1991-2's cutoff at megahertz, billions of samples over
+/// a train's passage. What follows can be strided over once it settles (`settled.rs`).
 pub(super) fn grid_within_budget(
     scene: &Scene,
+    loaded: &LoadedBeam,
     filter: Option<&AccelerationFilter>,
 ) -> Result<(), Error> {
     let Some(f) = filter else { return Ok(()) };
-    let samples = scene.duration * SAMPLES_PER_CUTOFF_PERIOD * f.cutoff_hz;
+    let changing = (loaded.breakpoints().into_iter())
+        .fold(0.0, f64::max)
+        .min(scene.duration);
+    let samples = changing * SAMPLES_PER_CUTOFF_PERIOD * f.cutoff_hz;
     if samples <= MAX_GRID_SAMPLES {
         return Ok(());
     }
     Err(Error::Solver(format!(
-        "scene {}: the deck's acceleration, cut off at {:.3e} Hz ({}), would be watched at about {samples:.1e} samples over a run {:.3e} s long, past the budget of {MAX_GRID_SAMPLES:.0e}: shorten the run, set `output.acceleration_cutoff_hz` lower, or look for a time scale the scene makes tiny (a near-zero mass or density, a huge stiffness)",
-        scene.name, f.cutoff_hz, f.rule, scene.duration
+        "scene {}: the deck's acceleration, cut off at {:.3e} Hz ({}), would be watched at about {samples:.1e} samples over the {changing:.3e} s the loads move or switch, past the budget of {MAX_GRID_SAMPLES:.0e}: shorten the crossing, set `output.acceleration_cutoff_hz` lower, or look for a time scale the scene makes tiny (a near-zero mass or density, a huge stiffness)",
+        scene.name, f.cutoff_hz, f.rule
     )))
 }
 
