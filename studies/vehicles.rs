@@ -1018,3 +1018,75 @@ fn a_railway_car_holds_the_accuracy_at_speed() {
     };
     assert!(!warned(3000.0) && warned(6000.0));
 }
+
+/// A disk wheel rests on the crest under it that lifts its centre highest, H(X) = max over x
+/// of r(x) + √(a² − (x − X)²). On a profile that bends faster than the disk (an ISO 8608
+/// class H road of wavelengths down to 0.1 m under a 0.4 m wheel: its curvature reaches some
+/// 30 1/m against the disk's 2.5) H has several local maxima within the wheel's reach. Over
+/// the deck at rest, at 400 places, the contact the run uses against a scan of the reach at
+/// 4000 points (a 500th of the shortest wave) refined by golden section: the same height, to
+/// 10⁻⁹ m (the search stops at a billionth of the radius).
+#[test]
+fn a_disk_wheel_rests_on_the_highest_crest_of_a_rough_road() {
+    use rollbeam::beam::dynamics::LoadedBeam;
+    use rollbeam::beam::Beam;
+    use rollbeam::coupling::vehicles::VehiclesOnBeam;
+    let bridge = BRIDGE.replace(
+        "    supports: {from: pinned, to: roller}\n",
+        "    supports: {from: pinned, to: roller}\n  profile:\n    iso8608: {class: H, seed: 3, wavelengths: [0.1, 50.0]}\n",
+    );
+    let a = 0.4;
+    let s = parse(&format!(
+        "name: rough\nduration: 0.1\n{bridge}{}output:\n  probes: [{{name: mid, x: 12.5}}]\n",
+        sprung(5750.0, 1595.0e3, 0.0, 27.78).replace(
+            "    speed:",
+            &format!("    wheel: disk\n    radius: {a}\n    speed:")
+        )
+    ));
+    let setup = s.beam().expect("a beam scene");
+    let beam = Beam::shared(&setup.beam);
+    let loaded = LoadedBeam::new(&beam, &[], None, None, None);
+    let patch = rollbeam::coupling::patch::dispersed_half_width(setup.beam.depth);
+    let on = VehiclesOnBeam::new(&loaded, &setup.vehicles, &setup.profile, patch)
+        .expect("the vehicle on the beam");
+    let q = vec![0.0; beam.dim()];
+    let speed = 27.78;
+    let highest = |centre: f64| -> f64 {
+        let lift = |x: f64| {
+            let u = (x - centre) / a;
+            setup.profile.at(x, x)[0] + a * (1.0 - u * u).max(0.0).sqrt()
+        };
+        let n = 4000;
+        let at = |k: usize| centre + a * (2.0 * k as f64 / n as f64 - 1.0);
+        let best = (0..=n)
+            .max_by(|&i, &j| lift(at(i)).total_cmp(&lift(at(j))))
+            .unwrap();
+        let (mut lo, mut hi) = (at(best.saturating_sub(1)), at((best + 1).min(n)));
+        let golden = 0.5 * (5.0_f64.sqrt() - 1.0);
+        for _ in 0..100 {
+            let (m1, m2) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
+            if lift(m1) < lift(m2) {
+                lo = m1;
+            } else {
+                hi = m2;
+            }
+        }
+        lift(0.5 * (lo + hi)) - a
+    };
+    let mut worst: (f64, f64) = (0.0, 0.0);
+    for k in 0..400 {
+        let centre = 1.0 + 23.0 * k as f64 / 400.0;
+        let contacts = on.contacts(centre / speed, &q);
+        let rest = contacts[0].disk.expect("a disk wheel").rest;
+        let off = (rest - highest(centre)).abs();
+        if off > worst.0 {
+            worst = (off, centre);
+        }
+    }
+    assert!(
+        worst.0 < 1e-9,
+        "{:.3e} m below the highest crest at X = {}",
+        worst.0,
+        worst.1
+    );
+}

@@ -100,6 +100,7 @@ pub(super) fn beam_scene(
     let vehicles = vehicles(c, raw, &beam, gravity)?;
     let profile = profile(c, raw, &raw.track.value)?;
     wheel_breakpoints(c, raw, &vehicles, &profile)?;
+    disk_wheels_on_the_road(c, raw, &vehicles, &profile)?;
     let duration = run_length(c, raw, duration, (&beam, length), train.as_ref(), &vehicles)?;
     let (probes, shapes, magnify) = outputs(c, raw, length, duration)?;
     let rho_inf = rho_inf(c, raw)?;

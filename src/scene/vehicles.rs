@@ -1,7 +1,7 @@
 //! Vehicles on a beam track and the profile of its running surface.
 
 use super::*;
-use crate::vehicle::profile::{Profile, ISO_CLASSES};
+use crate::vehicle::profile::{Profile, ISO_CLASSES, MAX_CREST_SCAN};
 use crate::vehicle::{Axle, Body, Part, Spring, Vehicle, Wheel};
 
 /// Most vehicles a scene may carry, and parts (bodies, axles, springs) of each: every part is
@@ -37,6 +37,38 @@ pub(super) fn wheel_breakpoints(
             line,
             "track.profile",
             format!("has {kinks} kinks under {wheels} wheels: {count} crossings, each ending a step, and at most {MAX_WHEEL_BREAKPOINTS} are held; use fewer points or fewer wheels"),
+        );
+    }
+    Ok(())
+}
+
+/// A disk wheel on a road that bends faster than the disk looks for the crest it rests on
+/// over its whole reach, at `SCAN_PER_WAVE` points a shortest wave: refused past
+/// [`MAX_CREST_SCAN`] points (a radius of 256 shortest waves), which every contact would scan.
+pub(super) fn disk_wheels_on_the_road(
+    c: &Checker,
+    raw: &SceneFile,
+    vehicles: &[Vehicle],
+    profile: &Profile,
+) -> Result<(), Error> {
+    for v in vehicles {
+        let Wheel::Disk { radius } = v.wheel else {
+            continue;
+        };
+        let Some(scan) = profile.crest_scan(radius).filter(|s| *s > MAX_CREST_SCAN) else {
+            continue;
+        };
+        let line = raw
+            .track
+            .value
+            .profile
+            .as_ref()
+            .map_or(0, |p| p.referenced.line());
+        let wave = profile.shortest_wave().unwrap_or(0.0);
+        return c.err(
+            line,
+            "track.profile.iso8608.wavelengths",
+            format!("reach down to {wave:.3e} m, which vehicle {}'s disk wheels of radius {radius} m bridge: the road bends faster than the disk, so each contact scans the disk's reach for the crest it rests on, at {scan:.0e} points, past {MAX_CREST_SCAN}; raise the shortest wavelength to at least {:.3e} m (a 256th of the radius) or use point wheels", v.name, radius / 256.0),
         );
     }
     Ok(())

@@ -8,6 +8,14 @@
 //! profile is Σ_k √(2 G(n_k) Δn) cos(2π n_k x + φ_k) over equal steps Δn between the
 //! wavelengths asked for, the phases φ_k uniform and drawn from the seed.
 
+/// Scan points a shortest wave of a rough road spans where a disk wheel looks for the crest it
+/// rests on: at that spacing the samples find every crest, each refined between its neighbours.
+pub const SCAN_PER_WAVE: f64 = 8.0;
+
+/// The most scan points a disk wheel's reach (2 × radius) may need on a rough road: with
+/// [`SCAN_PER_WAVE`], a radius of at most 256 shortest waves.
+pub const MAX_CREST_SCAN: f64 = 4096.0;
+
 /// ISO 8608's classes, A (smoothest) to H.
 pub const ISO_CLASSES: &str = "ABCDEFGH";
 
@@ -112,6 +120,39 @@ impl Profile {
         (0..p.len())
             .map(|i| (p[i][0], slope(i), slope(i + 1)))
             .collect()
+    }
+
+    /// A bound on |r''| (1/m): Σ a_k κ_k² of a random profile, 0 where the faces are straight.
+    /// Where it stays below a disk wheel's 1/radius the disk touches every hollow it passes
+    /// and one crest at a time; past it the disk may bridge a hollow between two crests.
+    pub fn curvature_bound(&self) -> f64 {
+        match self {
+            Profile::Cosines(c) => (c.terms.iter().enumerate())
+                .map(|(k, t)| t[0] * (c.first + k as f64 * c.step).powi(2))
+                .sum(),
+            _ => 0.0,
+        }
+    }
+
+    /// The shortest wavelength of a random profile (m); `None` for straight faces.
+    pub fn shortest_wave(&self) -> Option<f64> {
+        match self {
+            Profile::Cosines(c) if !c.terms.is_empty() => {
+                Some(std::f64::consts::TAU / (c.first + (c.terms.len() - 1) as f64 * c.step))
+            }
+            _ => None,
+        }
+    }
+
+    /// Where a disk wheel of `radius` may bridge a hollow (the road bends faster than the
+    /// disk somewhere), how many spaces its reach is scanned at for the crest it rests on;
+    /// `None` where it touches one crest at a time.
+    pub fn crest_scan(&self, radius: f64) -> Option<f64> {
+        if self.curvature_bound() * radius < 1.0 {
+            return None;
+        }
+        let wave = self.shortest_wave().unwrap_or(2.0 * radius);
+        Some((2.0 * radius * SCAN_PER_WAVE / wave).ceil())
     }
 
     /// Where the slope jumps: a wheel crossing one of these is a breakpoint.

@@ -99,28 +99,22 @@ impl VehiclesOnBeam<'_> {
             .copied()
             .max_by(|&p, &q| height(p).total_cmp(&height(q)))
             .unwrap_or(centre);
-        if candidates.is_empty() || height(x) < height(centre) {
+        // On a road that bends faster than the disk, Newton's crest may be one the disk
+        // bridges: every crest within reach is a candidate.
+        if let Some(count) = self.profile.crest_scan(a) {
+            let count = count as usize;
+            let crest = self.highest_crest(centre, a, count, &height);
+            if height(crest) > height(x) {
+                x = crest;
+            }
+        } else if candidates.is_empty() || height(x) < height(centre) {
             let reach = DISK_SCAN as f64;
             let at = |k: usize| centre + a * (2.0 * k as f64 / reach - 1.0) * (1.0 - 1e-12);
             let best = (0..=DISK_SCAN)
                 .max_by(|&i, &j| height(at(i)).total_cmp(&height(at(j))))
                 .unwrap_or(DISK_SCAN / 2);
-            let (mut lo, mut hi) = (at(best.saturating_sub(1)), at((best + 1).min(DISK_SCAN)));
-            let golden = 0.5 * (5.0_f64.sqrt() - 1.0);
-            while hi - lo > 1e-9 * a {
-                let (m1, m2) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
-                // Far along a long deck 1e-9 of a small radius is below the positions'
-                // spacing: the bracket stops shrinking there.
-                if !(lo < m1 && m1 < m2 && m2 < hi) {
-                    break;
-                }
-                if height(m1) < height(m2) {
-                    lo = m1;
-                } else {
-                    hi = m2;
-                }
-            }
-            x = 0.5 * (lo + hi);
+            let (lo, hi) = (at(best.saturating_sub(1)), at((best + 1).min(DISK_SCAN)));
+            x = golden_max(&height, lo, hi, 1e-9 * a);
         }
         let u = (x - at) / a;
         let root = (1.0 - u * u).max(1e-12).sqrt();
@@ -134,4 +128,48 @@ impl VehiclesOnBeam<'_> {
             },
         )
     }
+
+    /// The highest of the local maxima of `height` over a disk's reach about `centre`: the
+    /// reach scanned at `count` spaces, and each sample that is a local maximum and within
+    /// what the scan's spacing may hide of the best refined by golden section between its
+    /// neighbours.
+    fn highest_crest(&self, centre: f64, a: f64, count: usize, height: &dyn Fn(f64) -> f64) -> f64 {
+        let count = count.max(DISK_SCAN);
+        let spacing = 2.0 * a / count as f64;
+        let at = |k: usize| centre - a + spacing * k as f64;
+        let samples: Vec<f64> = (0..=count).map(|k| height(at(k))).collect();
+        let best = samples.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let hidden = self.profile.curvature_bound() * spacing * spacing;
+        (0..=count)
+            .filter(|&k| {
+                let up = k == 0 || samples[k] >= samples[k - 1];
+                let down = k == count || samples[k] >= samples[k + 1];
+                up && down && samples[k] >= best - hidden
+            })
+            .map(|k| {
+                let (lo, hi) = (at(k.saturating_sub(1)), at((k + 1).min(count)));
+                golden_max(height, lo, hi, 1e-9 * a)
+            })
+            .max_by(|&p, &q| height(p).total_cmp(&height(q)))
+            .unwrap_or(centre)
+    }
+}
+
+/// The maximum of `height` bracketed by [lo, hi], by golden section to a bracket of `tol`.
+fn golden_max(height: &dyn Fn(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) -> f64 {
+    let golden = 0.5 * (5.0_f64.sqrt() - 1.0);
+    while hi - lo > tol {
+        let (m1, m2) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
+        // Far along a long deck 1e-9 of a small radius is below the positions' spacing: the
+        // bracket stops shrinking there.
+        if !(lo < m1 && m1 < m2 && m2 < hi) {
+            break;
+        }
+        if height(m1) < height(m2) {
+            lo = m1;
+        } else {
+            hi = m2;
+        }
+    }
+    0.5 * (lo + hi)
 }
