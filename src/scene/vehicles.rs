@@ -27,12 +27,7 @@ pub(super) fn wheel_breakpoints(
     let kinks = profile.kinks().len();
     let count = wheels.saturating_mul(kinks + 2);
     if count > MAX_WHEEL_BREAKPOINTS {
-        let line = raw
-            .track
-            .value
-            .profile
-            .as_ref()
-            .map_or(0, |p| p.referenced.line());
+        let line = profile_line(raw);
         return c.err(
             line,
             "track.profile",
@@ -40,6 +35,15 @@ pub(super) fn wheel_breakpoints(
         );
     }
     Ok(())
+}
+
+/// The line of `track.profile`, which the checks of the wheels on it report.
+fn profile_line(raw: &SceneFile) -> u64 {
+    raw.track
+        .value
+        .profile
+        .as_ref()
+        .map_or(0, |p| p.referenced.line())
 }
 
 /// A disk wheel on a road that bends faster than the disk looks for the crest it rests on
@@ -58,12 +62,7 @@ pub(super) fn disk_wheels_on_the_road(
         let Some(scan) = profile.crest_scan(radius).filter(|s| *s > MAX_CREST_SCAN) else {
             continue;
         };
-        let line = raw
-            .track
-            .value
-            .profile
-            .as_ref()
-            .map_or(0, |p| p.referenced.line());
+        let line = profile_line(raw);
         let wave = profile.shortest_wave().unwrap_or(0.0);
         return c.err(
             line,
