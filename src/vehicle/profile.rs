@@ -42,6 +42,8 @@ pub struct Cosines {
     pub step: f64,
     /// Per term: a_k, cos φ_k, sin φ_k.
     pub terms: Vec<[f64; 3]>,
+    /// Σ a_k κ_k², a bound on |r''|, which every disk wheel's contact asks for.
+    pub curvature: f64,
 }
 
 impl Profile {
@@ -55,17 +57,23 @@ impl Profile {
         let dn = (hi - lo) / ISO_TERMS as f64;
         let mut random = SplitMix(seed);
         let tau = std::f64::consts::TAU;
+        let (first, step) = (tau * (lo + 0.5 * dn), tau * dn);
+        let terms: Vec<[f64; 3]> = (0..ISO_TERMS)
+            .map(|i| {
+                let n = lo + (i as f64 + 0.5) * dn;
+                let g = g0 * (n / n0).powi(-2);
+                let (sin, cos) = (tau * random.unit()).sin_cos();
+                [(2.0 * g * dn).sqrt(), cos, sin]
+            })
+            .collect();
+        let curvature = (terms.iter().enumerate())
+            .map(|(k, t)| t[0] * (first + k as f64 * step).powi(2))
+            .sum();
         Some(Profile::Cosines(Cosines {
-            first: tau * (lo + 0.5 * dn),
-            step: tau * dn,
-            terms: (0..ISO_TERMS)
-                .map(|i| {
-                    let n = lo + (i as f64 + 0.5) * dn;
-                    let g = g0 * (n / n0).powi(-2);
-                    let (sin, cos) = (tau * random.unit()).sin_cos();
-                    [(2.0 * g * dn).sqrt(), cos, sin]
-                })
-                .collect(),
+            first,
+            step,
+            terms,
+            curvature,
         }))
     }
 
@@ -127,9 +135,7 @@ impl Profile {
     /// and one crest at a time; past it the disk may bridge a hollow between two crests.
     pub fn curvature_bound(&self) -> f64 {
         match self {
-            Profile::Cosines(c) => (c.terms.iter().enumerate())
-                .map(|(k, t)| t[0] * (c.first + k as f64 * c.step).powi(2))
-                .sum(),
+            Profile::Cosines(c) => c.curvature,
             _ => 0.0,
         }
     }
