@@ -12,7 +12,8 @@ fn read(file: &str) -> String {
 }
 
 /// The first ```yaml block of README.md is a scene that runs to its end, with its train's
-/// residual vibration reported (the first screen says it is).
+/// residual vibration reported (the first screen says it is), and the probe's range the
+/// printout beside it shows is the run's, to the digits printed.
 #[test]
 fn the_readme_scene_runs() {
     let readme = read("README.md");
@@ -25,6 +26,12 @@ fn the_readme_scene_runs() {
         .expect("a beam scene");
     assert_eq!(r.header.stop.name(), "end");
     assert!(r.amplitude_after_exit(0).is_some_and(|a| a > 0.0));
+    let w = &r.extremes.probes[0][1];
+    let printed = format!("w from {:.6e} to {:.6e} m", w.min, w.max);
+    assert!(
+        readme.contains(&printed),
+        "README.md's printout does not show the run's `{printed}`"
+    );
 }
 
 /// The README's vehicle, put in the first scene in place of its train as the README says,
