@@ -55,9 +55,20 @@ pub enum Value {
 impl std::fmt::Display for Value {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Value::Number(v) => write!(f, "{v}"),
+            Value::Number(v) => write!(f, "{}", number_text(*v)),
             Value::Name(n) => write!(f, "{n}"),
         }
+    }
+}
+
+/// A swept number as the table and the case files write it: the shortest text that reads
+/// back to it, with an exponent where plain digits would run past a few dozen (1e-300 is
+/// three hundred digits written out).
+pub fn number_text(v: f64) -> String {
+    if v != 0.0 && !(1e-5..1e16).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
     }
 }
 
@@ -169,9 +180,11 @@ impl Setting {
     /// "FROM to TO" or "A, B".
     pub fn describe(&self) -> String {
         match &self.sweep {
-            Sweep::Range { from, to, .. } => format!("from {from} to {to}"),
+            Sweep::Range { from, to, .. } => {
+                format!("from {} to {}", number_text(*from), number_text(*to))
+            }
             Sweep::Numbers(values) => {
-                let values: Vec<String> = values.iter().map(f64::to_string).collect();
+                let values: Vec<String> = values.iter().map(|v| number_text(*v)).collect();
                 values.join(", ")
             }
             Sweep::Names(names) => names.join(", "),
@@ -840,5 +853,30 @@ mod tests {
         );
         assert!(Setting::parse("train.speed=90,fast").is_err());
         assert!(Setting::parse("train.speed=90,inf").is_err());
+    }
+
+    /// A swept number is written so that it reads back to itself, in few characters at
+    /// either end of the doubles' range, and as plain digits in between.
+    #[test]
+    fn a_swept_number_reads_back_in_few_characters() {
+        for v in [
+            1e-300,
+            -2.5e-308,
+            f64::MIN_POSITIVE / 3.0,
+            1e-5,
+            0.1,
+            0.0,
+            -90.0,
+            123456.789,
+            9.999e15,
+            1e16,
+            1.7976931348623157e308,
+        ] {
+            let text = number_text(v);
+            assert_eq!(text.parse::<f64>().unwrap(), v, "{text}");
+            assert!(text.len() <= 24, "{text}");
+        }
+        assert_eq!(number_text(90.0), "90");
+        assert_eq!(number_text(1e-300), "1e-300");
     }
 }
