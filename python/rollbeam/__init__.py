@@ -198,6 +198,15 @@ def _plain(v: Any) -> Any:
     return v
 
 
+def _bounded(key: str, values: Iterable[Any]) -> List[Any]:
+    """The values of one swept key, taken no further than a sweep can run: a range of a
+    billion or an endless generator is refused before it is made into a list."""
+    taken = list(itertools.islice(iter(values), MAX_CASES + 1))
+    if len(taken) > MAX_CASES:
+        raise SceneError(f"`{key}` has more than {MAX_CASES} values; sweep fewer values")
+    return [_plain(v) for v in np.asarray(taken).tolist()]
+
+
 def _value(key: str, v: Any) -> Any:
     """A value set at `key`: a finite number or a name, else a SceneError naming the key."""
     v = _plain(v)
@@ -409,7 +418,7 @@ def sweep(
     if not values:
         raise SceneError("sweep needs at least one key with values")
     keys = [str(k) for k in values]
-    lists = [[_plain(v) for v in np.asarray(list(vs)).tolist()] for vs in values.values()]
+    lists = [_bounded(key, vs) for key, vs in zip(keys, values.values())]
     count = 1
     for key, vs in zip(keys, lists):
         if not vs:

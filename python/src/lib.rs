@@ -125,18 +125,20 @@ fn check(scene: SceneText) -> PyResult<String> {
 #[pyclass(unsendable)]
 struct NativeRun {
     run: Run,
+    /// `summary.yaml`'s and `history.csv`'s texts, formed once where the run was checked.
+    summary: String,
+    history: String,
 }
 
 #[pymethods]
 impl NativeRun {
-    fn summary_yaml(&self) -> PyResult<String> {
-        output::summary_yaml(&self.run).map_err(py_err)
+    fn summary_yaml(&self) -> String {
+        self.summary.clone()
     }
 
     /// The columns of history.csv: (name, float64 bytes), an empty cell as NaN.
     fn history<'py>(&self, py: Python<'py>) -> Vec<(String, Bound<'py, PyBytes>)> {
-        let text = output::history_csv(&self.run);
-        let mut lines = text.lines();
+        let mut lines = self.history.lines();
         let names: Vec<String> = lines
             .next()
             .unwrap_or("")
@@ -206,13 +208,17 @@ fn run(
 ) -> PyResult<NativeRun> {
     let s = scene.scene().map_err(py_err)?;
     let over = solver_overrides(&s, method.as_deref(), rtol, atol).map_err(py_err)?;
-    let run = py
+    let (run, (summary, history)) = py
         .detach(|| {
             let run = core_run::run(&s, &over, false)?;
-            output::refuse_overflowed(&run).map(|()| run)
+            output::finite_tables(&run).map(|texts| (run, texts))
         })
         .map_err(py_err)?;
-    Ok(NativeRun { run })
+    Ok(NativeRun {
+        run,
+        summary,
+        history,
+    })
 }
 
 /// `static.yaml`'s text.

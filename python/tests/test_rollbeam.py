@@ -9,6 +9,7 @@ cluster) and a planned sweep in two shards must give the same table for the same
 """
 
 import concurrent.futures
+import itertools
 import multiprocessing
 import os
 import pickle
@@ -379,6 +380,12 @@ def test_sweep_errors(d44):
         rollbeam.sweep(d44, {"disk.omega0": []})
     with pytest.raises(rollbeam.SceneError):
         rollbeam.sweep(d44, {"disk.omega0": np.zeros(400), "disk.s0": np.zeros(400)})
+    # Values a sweep could not run are refused before they are made into a list: a billion
+    # of them took all the memory there was.
+    for endless in (range(10**9), itertools.count()):
+        with pytest.raises(rollbeam.SceneError, match="more than 100000 values") as e:
+            rollbeam.sweep(d44, {"disk.omega0": endless})
+        assert e.value.key == "disk.omega0"
     # A value the scene can hold but not run with is that case's row, with its reason.
     table = rollbeam.sweep(d44, {"disk.radius": [0.4, -1.0]}, rtol=1e-3)
     assert table["status"][0] == "ok" and table["status"][1].startswith("failed: ")

@@ -150,11 +150,15 @@ fn finite(name: &str, text: &str, then: &str) -> Result<(), Error> {
     }
 }
 
-/// A run handed over in memory (the Python package's) is held to what its files would be: a
-/// summary or history that `write` would refuse is the same solver failure.
-pub fn refuse_overflowed(run: &Run) -> Result<(), Error> {
-    finite("summary.yaml", &summary_yaml(run)?, "")?;
-    finite("history.csv", &history_csv(run), "")
+/// The texts of `summary.yaml` and `history.csv` for a run handed over in memory (the Python
+/// package's), held to what its files would be: a summary or history that `write` would
+/// refuse is the same solver failure.
+pub fn finite_tables(run: &Run) -> Result<(String, String), Error> {
+    let summary = summary_yaml(run)?;
+    finite("summary.yaml", &summary, "")?;
+    let history = history_csv(run);
+    finite("history.csv", &history, "")?;
+    Ok((summary, history))
 }
 
 /// The first line and token of a CSV or YAML text that is an infinity or NaN as Rust or YAML
