@@ -134,9 +134,15 @@ class Scene:
     def from_yaml(cls, path_or_text: Union[str, os.PathLike]) -> "Scene":
         """A scene from a scene file's path, or from its text."""
         scene = cls.__new__(cls)
-        if isinstance(path_or_text, os.PathLike) or _native.is_file(str(path_or_text)):
+        text = str(path_or_text)
+        # One line that names something on disk, or a scene file's name, is a path: a folder,
+        # a device or a misspelt file name is refused as such, not parsed as a scene's text.
+        named = "\n" not in text and (os.path.lexists(text) or text.endswith((".yaml", ".yml")))
+        if isinstance(path_or_text, os.PathLike) or _native.is_file(text) or named:
             path = Path(path_or_text)
             try:
+                if not path.exists():
+                    raise OSError("no such file")
                 if not path.is_file():
                     raise OSError("not a regular file")
                 if path.stat().st_size > MAX_SCENE_BYTES:

@@ -420,6 +420,12 @@ def test_what_is_not_a_scene_fails_in_pythons_words(tmp_path):
     os.mkfifo(fifo)
     with pytest.raises(rollbeam.SceneError, match="not a regular file"):
         rollbeam.Scene.from_yaml(fifo)
+    # A path given as text is a path still: a folder, a device or a misspelt name is said to
+    # be one, not read as a scene's text that lacks a mapping.
+    for path, why in ((str(tmp_path), "not a regular file"), ("/dev/zero", "not a regular file"),
+                      (str(tmp_path / "missing.yaml"), "no such file")):
+        with pytest.raises(rollbeam.SceneError, match=f"cannot read scene file {path}: {why}"):
+            rollbeam.Scene.from_yaml(path)
 
 
 def test_merged_records_must_agree(d44):
