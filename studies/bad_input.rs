@@ -978,7 +978,10 @@ fn tradeoff_settings() {
             vec!["--methods", "genalpha"],
             vec!["genalpha", "rigid curve"],
         ),
-        (vec!["--methods", "euler"], vec!["'euler' is unknown"]),
+        (
+            vec!["--methods", "euler"],
+            vec!["--methods 'euler' is unknown"],
+        ),
         (vec!["--rtols", "1e-3,-1"], vec!["--rtols", "positive"]),
         (vec!["--elements", "4"], vec!["--elements", "rigid curve"]),
         (vec!["--orders", "4"], vec!["--orders", "rigid curve"]),
@@ -1001,7 +1004,7 @@ fn tradeoff_settings() {
         ),
         (
             vec!["beam", "--point", "rk45:1e-4:20:6"],
-            vec!["'rk45' is unknown"],
+            vec!["--point's method 'rk45' is unknown"],
         ),
         (
             vec!["beam", "--point", "esdirk4:tight:20:6"],

@@ -15,7 +15,9 @@ pub fn solver_overrides(
     atol: Option<f64>,
 ) -> Result<Overrides, Error> {
     Ok(Overrides {
-        method: method.map(|m| parse_method(m, scene)).transpose()?,
+        method: method
+            .map(|m| parse_method(m, scene, "--method"))
+            .transpose()?,
         rtol: rtol_flag(rtol, "--rtol")?,
         atol: positive(atol, "--atol")?,
         ..Default::default()
@@ -58,18 +60,18 @@ pub(crate) fn rtol_flag(value: Option<f64>, flag: &str) -> Result<Option<f64>, E
     }
 }
 
-/// A method named on the command line that can integrate this scene.
-pub(crate) fn parse_method(name: &str, scene: &Scene) -> Result<Method, Error> {
+/// A method named on the command line (by `flag`) that can integrate this scene.
+pub(crate) fn parse_method(name: &str, scene: &Scene, flag: &str) -> Result<Method, Error> {
     let m = Method::from_name(name).ok_or_else(|| {
         Error::Input(format!(
-            "--method {} is unknown; use one of {}",
+            "{flag} {} is unknown; use one of {}",
             quote(name),
             method_names()
         ))
     })?;
     if matches!(m, Method::GenAlpha | Method::ExactModal) && scene.beam().is_none() {
         return Err(Error::Input(format!(
-            "--method {} integrates beam scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve",
+            "{flag} {} integrates beam scenes; use dopri5, trbdf2 or esdirk4 for a rigid curve",
             m.name()
         )));
     }

@@ -80,7 +80,7 @@ impl TradeoffOptions {
             plan.methods = self
                 .methods
                 .iter()
-                .map(|m| parse_method(m, scene))
+                .map(|m| parse_method(m, scene, "--methods"))
                 .collect::<Result<_, _>>()?;
         }
         if !self.rtols.is_empty() {
@@ -197,7 +197,7 @@ fn parse_point(text: &str, scene: &Scene) -> Result<GridPoint, Error> {
             "write it METHOD:RTOL:ELEMENTS:DEGREE, e.g. esdirk4:1e-4:20:6".into(),
         ));
     };
-    let method = parse_method(method, scene)?;
+    let method = parse_method(method, scene, "--point's method")?;
     let rtol: f64 = rtol
         .parse()
         .map_err(|_| bad(format!("the rtol {} is not a number", quote(rtol))))?;
