@@ -70,14 +70,24 @@ class SolverError(RuntimeError):
     reason in ``result.summary["stopped"]["reason"]``."""
 
 
+#: The source a scene made from a dict is read under.
+_DICT = "scene dict"
+
+
+def _unlined(message: str) -> str:
+    """A message about a scene made from a dict, without the line of the JSON text it was
+    read from, which its author never saw: the key says where."""
+    return re.sub(rf"\b{_DICT} line \d+: ", f"{_DICT}: ", message)
+
+
 def _call(function, *args, **kwargs):
     """A native call, its errors as this module's exceptions."""
     try:
         return function(*args, **kwargs)
     except _native.SceneError as e:
-        raise SceneError(str(e)) from None
+        raise SceneError(_unlined(str(e))) from None
     except _native.SolverError as e:
-        raise SolverError(str(e)) from None
+        raise SolverError(_unlined(str(e))) from None
 
 
 class _Loader(yaml.SafeLoader):
@@ -128,7 +138,7 @@ class Scene:
             raise SceneError(
                 "the scene dict is nested deeper than any scene is (Python's recursion limit)"
             ) from None
-        self._set(text, "scene", "scene", [])
+        self._set(text, _DICT, "scene", [])
 
     @classmethod
     def from_yaml(cls, path_or_text: Union[str, os.PathLike]) -> "Scene":
@@ -180,7 +190,7 @@ class Scene:
 
     @property
     def source(self) -> str:
-        """The file the scene was read from, or "scene"."""
+        """The file the scene was read from, "scene" for text, or "scene dict"."""
         return self._source
 
     def __repr__(self) -> str:
@@ -340,7 +350,7 @@ class Table(dict):
 
 
 def _table(text: str) -> Table:
-    reader = csv.reader(io.StringIO(text))
+    reader = csv.reader(io.StringIO(_unlined(text)))
     head = next(reader)
     body = list(reader)
     table = Table()

@@ -102,6 +102,10 @@ def test_dict_scenes_are_checked_as_files_are():
     with pytest.raises(rollbeam.SceneError) as e:
         rollbeam.Scene({**RIGID, "disk": {**RIGID["disk"], "mass": 0.0}})
     assert e.value.key == "disk.mass"
+    # The key says where; the line of the JSON text the dict was read as, never seen, does not.
+    assert e.value.message.startswith("scene dict: ") and e.value.line is None, e.value
+    table = rollbeam.sweep(rollbeam.Scene(RIGID), {"disk.mass": [1.0, -1.0]})
+    assert table["status"][1].startswith("failed: scene dict: `disk.mass`"), table["status"][1]
     with pytest.raises(rollbeam.SceneError) as e:
         rollbeam.Scene({**RIGID, "gravity": float("nan")})
     with pytest.raises(rollbeam.SceneError):
