@@ -155,6 +155,17 @@ fn bad_point_lists() {
         &pts("[[0, 0], [1, 0], [0.5, 0], [2, 0]]"),
         &["X increasing", "point 3"],
     );
+    // Past the YAML reader's budget of values: its sentence, not its Debug text.
+    let long: Vec<String> = (0..90_000).map(|i| format!("[{i}, 0]")).collect();
+    rejected(
+        "past-the-readers-budget",
+        &pts(&format!("[{}]", long.join(", "))),
+        &[
+            "line 4",
+            "`track.curve.points` holds more values",
+            "than the scene reader takes",
+        ],
+    );
 }
 
 #[test]

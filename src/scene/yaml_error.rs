@@ -72,6 +72,8 @@ fn reworded(what: &str, unplaced: bool) -> String {
             "{named}is not a key of the scene format here (expected {})",
             clip(expected)
         )
+    } else if let Some(breach) = what.strip_prefix("budget breached: ") {
+        beyond_the_readers_budget(breach)
     } else if let Some(rest) = what.strip_prefix("invalid length ") {
         let got = rest.split(',').next().unwrap_or("");
         format!("must hold exactly two numbers, [x, y], not {got}")
@@ -89,6 +91,23 @@ fn dotted(path: &str) -> String {
         return format!("`{path}`");
     }
     quote(path)
+}
+
+/// The reader's budget breached (`Nodes { nodes: 250001 }`), in words: which count, and how
+/// far it had come.
+fn beyond_the_readers_budget(breach: &str) -> String {
+    let (kind, count) = breach.split_once(' ').unwrap_or((breach, ""));
+    let count: String = count.chars().filter(char::is_ascii_digit).collect();
+    let what = match kind {
+        "Nodes" => "values (each number, list and map one)",
+        "Events" => "YAML events",
+        "Depth" => "levels of nesting",
+        "Aliases" => "aliases (`*name`)",
+        "Anchors" => "anchors (`&name`)",
+        "Documents" => "documents",
+        _ => "of what the reader counts",
+    };
+    format!("holds more {what} than the scene reader takes ({count} by here)")
 }
 
 fn clip(message: &str) -> String {
