@@ -433,13 +433,13 @@ fn item_5_no_infinities_written() {
         ),
     );
     runs_finite(&["run", &wall, "--out", &out("wall")], &out("wall"));
-    // A disk wheel over an ISO 8608 road of nanometre waves rests on one of millions of
-    // crests within its reach, each contact a scan of them all: refused, with the shortest
-    // wavelength it could take.
+    // A disk wheel over an ISO 8608 road of micrometre waves rests on one of hundreds of
+    // thousands of crests within its reach, each contact a scan of them all: refused, with
+    // the shortest wavelength it could take.
     let nano = scene(
-        "nano-road",
+        "micro-road",
         &beam(
-            "  profile:\n    iso8608: {class: C, seed: 3, wavelengths: [1.0e-9, 50.0]}\n",
+            "  profile:\n    iso8608: {class: C, seed: 3, wavelengths: [1.0e-5, 0.05]}\n",
             "vehicles: [{name: car, speed: 25.0, wheel: disk, radius: 0.4, bodies: [{name: body, mass: 5750.0}], axles: [{name: wheel, x: 0.0}], springs: [{upper: body, lower: wheel, x: 0.0, k: 1.6e6}]}]\n",
         ),
     );
@@ -447,6 +447,24 @@ fn item_5_no_infinities_written() {
         &["check", &nano],
         1,
         &["`track.profile.iso8608.wavelengths`", "at least 1.563e-3 m"],
+    );
+    // A road from nanometre to kilometre waves would be 10¹² cosines evenly spaced in
+    // wavenumber; 200 of them drew millimetre waves alone, its long waves silently left out.
+    let wide = scene(
+        "wide-road",
+        &beam(
+            "  profile:\n    iso8608: {class: C, seed: 3, wavelengths: [1.0e-9, 1.0e3]}\n",
+            "vehicles: [{name: car, speed: 25.0, bodies: [{name: body, mass: 5750.0}], axles: [{name: wheel, x: 0.0}], springs: [{upper: body, lower: wheel, x: 0.0, k: 1.6e6}]}]\n",
+        ),
+    );
+    fails(
+        &["check", &wide],
+        1,
+        &[
+            "`track.profile.iso8608.wavelengths`",
+            "20000 cosines",
+            "at most 10000 times the shortest",
+        ],
     );
     // A vehicle at 1e308 m/s summed its energy to NaN (the command line refused to write it,
     // the Python package handed it over); no speed past light's is a scene.

@@ -1021,8 +1021,8 @@ fn a_railway_car_holds_the_accuracy_at_speed() {
 
 /// A disk wheel rests on the crest under it that lifts its centre highest, H(X) = max over x
 /// of r(x) + √(a² − (x − X)²). On a profile that bends faster than the disk (an ISO 8608
-/// class H road of wavelengths down to 0.1 m under a 0.4 m wheel: its curvature reaches some
-/// 30 1/m against the disk's 2.5) H has several local maxima within the wheel's reach. Over
+/// class H road of wavelengths down to 0.1 m under a 0.4 m wheel: its curvature reaches tens
+/// of 1/m against the disk's 2.5) H has several local maxima within the wheel's reach. Over
 /// the deck at rest, at 400 places, the contact the run uses against a scan of the reach at
 /// 4000 points (a 500th of the shortest wave) refined by golden section: the same height, to
 /// 10⁻⁹ m (the search stops at a billionth of the radius).

@@ -1,7 +1,7 @@
 //! Vehicles on a beam track and the profile of its running surface.
 
 use super::*;
-use crate::vehicle::profile::{Profile, ISO_CLASSES, MAX_CREST_SCAN};
+use crate::vehicle::profile::{iso_terms, Profile, ISO_CLASSES, MAX_CREST_SCAN, MAX_ISO_TERMS};
 use crate::vehicle::{Axle, Body, Part, Spring, Vehicle, Wheel};
 
 /// Most vehicles a scene may carry, and parts (bodies, axles, springs) of each: every part is
@@ -560,6 +560,18 @@ pub(super) fn profile(c: &Checker, raw: &SceneFile, track: &TrackFile) -> Result
                             w.referenced.line(),
                             "track.profile.iso8608.wavelengths",
                             "must be [shortest, longest] (m), positive and increasing",
+                        );
+                    }
+                    if iso_terms(w2[0], w2[1]).is_none() {
+                        return c.err(
+                            w.referenced.line(),
+                            "track.profile.iso8608.wavelengths",
+                            format!(
+                                "= [{:e}, {:e}] m spans more than the road's {MAX_ISO_TERMS} cosines hold (spaced evenly in wavenumber at most half the longest wave's wavenumber apart, so that the long waves carry their variance): keep the longest at most {} times the shortest",
+                                w2[0],
+                                w2[1],
+                                MAX_ISO_TERMS / 2
+                            ),
                         );
                     }
                     w2
