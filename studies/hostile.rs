@@ -365,6 +365,25 @@ fn item_4_no_hangs() {
             "`output.acceleration_cutoff_hz`",
         ],
     );
+    // A vehicle started 10 000 km before the deck rolled on the level approach for minutes
+    // before the step budget stopped it (found probing the vehicles' keys): the steps a
+    // sixteenth of the lowest period long that its ride needs at the least are counted first.
+    let s = scene(
+        "far-approach",
+        &beam(
+            "",
+            "vehicles: [{name: car, x0: -1.0e7, speed: 25.0, bodies: [{name: body, mass: 5750.0}], axles: [{name: wheel, x: 0.0}], springs: [{upper: body, lower: wheel, x: 0.0, k: 1.6e6}]}]\n",
+        ),
+    );
+    fails(
+        &["run", &s, "--out", &out("far-approach")],
+        2,
+        &[
+            "the vehicles' ride",
+            "past the budget of 1e7 steps",
+            "start the vehicles nearer the deck",
+        ],
+    );
     // A load past what the beam carries is refused by the plan; named, the exact beam's
     // stiffness overflows the integrator's Newton.
     let s = scene("load", &beam("", "loads: [{x: 10, fy: -1e300}]\n"));

@@ -119,6 +119,12 @@ impl<'a> LoadedBeam<'a> {
         self
     }
 
+    /// The longest step a time-stepped integration of this beam takes ([`Self::resolving`]);
+    /// infinite where no lowest mode was set.
+    pub fn longest_step(&self) -> f64 {
+        self.longest_step
+    }
+
     /// The beam integrated exactly (`exact-modal`): its dense output holds every vibration
     /// however long the step, so while a train is on the beam its passage over an element
     /// bounds the step, and [`EXACT_STRIDE`] shares of the lowest period. With no load on it

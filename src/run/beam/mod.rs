@@ -392,6 +392,7 @@ pub fn run(
     }
     let coupled = (!setup.disks.is_empty()).then(|| DiskOnBeam::new(&loaded, setup.disks.clone()));
     let vehicles = vehicles_on(scene, setup, &loaded)?;
+    steps_within_budget(scene, &loaded, vehicles.as_ref(), &opts)?;
     let outputs = output_times(scene, setup, over.no_history);
     let mass_lu = SparseLu::factor(loaded.model_mass(), None).ok_or_else(|| {
         Error::Solver(format!("scene {}: the mass matrix is singular", scene.name))
@@ -457,6 +458,48 @@ pub fn run(
     Ok(collect(
         scene, setup, &opts, unknowns, ridden, t_end, stats, recorded, damping, beam,
     ))
+}
+
+/// Refuses, before the run, a time-stepped run that its step budget cannot cover even at the
+/// longest step the beam allows, a sixteenth of its lowest period, over the time it is surely
+/// stepped: the whole run on a mesh, and on a modal beam (whose free vibration after the riders
+/// is integrated exactly) until the last vehicle has left. Vehicles started a thousand
+/// kilometres before the deck ran for minutes on the level approach before the budget stopped
+/// them.
+fn steps_within_budget(
+    scene: &Scene,
+    loaded: &LoadedBeam,
+    vehicles: Option<&VehiclesOnBeam>,
+    opts: &ode::Options,
+) -> Result<(), Error> {
+    if opts.method == Method::ExactModal || opts.whole_budget {
+        return Ok(());
+    }
+    let ride = "the vehicles' ride (their approach to the deck included)";
+    let (stepped, why) = match (loaded.modal, vehicles) {
+        (None, _) => (scene.duration, "the run"),
+        (Some(_), Some(v)) => (
+            v.gone().map_or(scene.duration, |t| t.min(scene.duration)),
+            ride,
+        ),
+        (Some(_), None) => return Ok(()),
+    };
+    let longest = loaded.longest_step();
+    let steps = stepped / longest;
+    if !(steps > opts.max_steps as f64) {
+        return Ok(());
+    }
+    let nearer = if vehicles.is_some() {
+        " or start the vehicles nearer the deck"
+    } else {
+        ""
+    };
+    Err(Error::Solver(format!(
+        "scene {}: {why} takes {stepped:.3e} s, at least {steps:.1e} steps of a sixteenth of the lowest mode's period ({:.4} Hz), past the budget of {:.0e} steps: shorten the run{nearer}",
+        scene.name,
+        1.0 / (crate::beam::dynamics::STEPS_PER_PERIOD * longest),
+        opts.max_steps as f64
+    )))
 }
 
 /// The unknowns z of the model that rides first: the disks' (the beam's and their contact
