@@ -29,8 +29,8 @@ pub const MAX_ISO_TERMS: usize = 20_000;
 /// [shortest, longest]: at least [`ISO_TERMS`], and spaced at most half the lowest
 /// wavenumber apart. The spectrum falls as n⁻², so its lowest band carries most of the
 /// variance, which the cosine at its middle stands for: at half the lowest wavenumber apart the
-/// cosines' variance falls 2 % short of the spectrum's, at a tenth of the terms a band of three
-/// decades needs 43 %. `None` past [`MAX_ISO_TERMS`].
+/// cosines' variance falls 2 % short of the spectrum's, where 200 cosines over three decades
+/// fall 43 % short. `None` past [`MAX_ISO_TERMS`].
 pub fn iso_terms(shortest: f64, longest: f64) -> Option<usize> {
     let needed = (2.0 * (longest / shortest - 1.0)).ceil();
     (needed <= MAX_ISO_TERMS as f64).then(|| (needed as usize).max(ISO_TERMS))

@@ -463,9 +463,8 @@ pub fn run(
 /// Refuses, before the run, a time-stepped run that its step budget cannot cover even at the
 /// longest step the beam allows, a sixteenth of its lowest period, over the time it is surely
 /// stepped: the whole run on a mesh, and on a modal beam (whose free vibration after the riders
-/// is integrated exactly) until the last vehicle has left. Vehicles started a thousand
-/// kilometres before the deck ran for minutes on the level approach before the budget stopped
-/// them.
+/// is integrated exactly) until the last vehicle has left. Without it a vehicle started
+/// 10 000 km before the deck rolls on the level approach for minutes until the budget stops it.
 fn steps_within_budget(
     scene: &Scene,
     loaded: &LoadedBeam,
