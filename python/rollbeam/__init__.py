@@ -70,24 +70,14 @@ class SolverError(RuntimeError):
     reason in ``result.summary["stopped"]["reason"]``."""
 
 
-#: The source a scene made from a dict is read under.
-_DICT = "scene dict"
-
-
-def _unlined(message: str) -> str:
-    """A message about a scene made from a dict, without the line of the JSON text it was
-    read from, which its author never saw: the key says where."""
-    return re.sub(rf"\b{_DICT} line \d+: ", f"{_DICT}: ", message)
-
-
 def _call(function, *args, **kwargs):
     """A native call, its errors as this module's exceptions."""
     try:
         return function(*args, **kwargs)
     except _native.SceneError as e:
-        raise SceneError(_unlined(str(e))) from None
+        raise SceneError(str(e)) from None
     except _native.SolverError as e:
-        raise SolverError(_unlined(str(e))) from None
+        raise SolverError(str(e)) from None
 
 
 class _Loader(yaml.SafeLoader):
@@ -138,7 +128,8 @@ class Scene:
             raise SceneError(
                 "the scene dict is nested deeper than any scene is (Python's recursion limit)"
             ) from None
-        self._set(text, _DICT, "scene", [])
+        # Messages name the dict's keys, not lines of the JSON text its author never saw.
+        self._set(text, "scene dict", "scene", [], lined=False)
 
     @classmethod
     def from_yaml(cls, path_or_text: Union[str, os.PathLike]) -> "Scene":
@@ -165,10 +156,18 @@ class Scene:
             scene._set(str(path_or_text), "scene", "scene", [])
         return scene
 
-    def _set(self, text: str, source: str, stem: str, values: List[Tuple[str, Any]]) -> None:
+    def _set(
+        self,
+        text: str,
+        source: str,
+        stem: str,
+        values: List[Tuple[str, Any]],
+        lined: bool = True,
+    ) -> None:
         self._text = text
         self._source = source
         self._stem = stem
+        self._lined = lined
         self._values = values
         self.name: str = _call(_native.plan, self)
 
@@ -181,6 +180,7 @@ class Scene:
             self._source,
             self._stem,
             self._values + [(str(k), _value(str(k), v)) for k, v in values.items()],
+            self._lined,
         )
         return changed
 
@@ -350,7 +350,7 @@ class Table(dict):
 
 
 def _table(text: str) -> Table:
-    reader = csv.reader(io.StringIO(_unlined(text)))
+    reader = csv.reader(io.StringIO(text))
     head = next(reader)
     body = list(reader)
     table = Table()

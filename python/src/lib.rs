@@ -44,6 +44,9 @@ struct SceneText {
     source: String,
     #[pyo3(attribute("_stem"))]
     stem: String,
+    /// False for a scene dict: its text is JSON the package wrote, whose lines no one saw.
+    #[pyo3(attribute("_lined"))]
+    lined: bool,
     #[pyo3(attribute("_values"))]
     values: Vec<(String, ValueArg)>,
 }
@@ -75,7 +78,12 @@ impl<'a, 'py> FromPyObject<'a, 'py> for ValueArg {
 
 impl SceneText {
     fn spec(&self) -> Result<SceneSpec, Error> {
-        let mut spec = SceneSpec::parse(&self.text, &self.source, &self.stem)?;
+        let read = if self.lined {
+            SceneSpec::parse
+        } else {
+            SceneSpec::parse_unlined
+        };
+        let mut spec = read(&self.text, &self.source, &self.stem)?;
         for (key, v) in &self.values {
             sweep::apply(&mut spec, key, &v.0)
                 .map_err(|e| Error::Input(format!("{}: {e}", self.source)))?;

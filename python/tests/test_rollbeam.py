@@ -108,8 +108,9 @@ def test_dict_scenes_are_checked_as_files_are():
     assert table["status"][1].startswith("failed: scene dict: `disk.mass`"), table["status"][1]
     with pytest.raises(rollbeam.SceneError) as e:
         rollbeam.Scene({**RIGID, "gravity": float("nan")})
-    with pytest.raises(rollbeam.SceneError):
+    with pytest.raises(rollbeam.SceneError) as e:
         rollbeam.Scene({**RIGID, "unknown": 1})
+    assert e.value.message.startswith("scene dict: ") and e.value.line is None, e.value
     with pytest.raises(rollbeam.SceneError):
         rollbeam.Scene("not a dict")
 

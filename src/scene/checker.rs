@@ -24,21 +24,29 @@ const SPEED_OF_LIGHT: f64 = 299_792_458.0;
 /// Reports problems as "FILE line N: KEY ...".
 pub(super) struct Checker<'a> {
     pub(super) file: &'a str,
+    /// Whether the text's lines are ones its author can look up: not where a program wrote the
+    /// text from data (a Python dict), whose keys alone say where.
+    pub(super) lined: bool,
 }
 
 impl Checker<'_> {
-    /// Line 0 is a value that was set rather than read from the file.
+    /// "FILE line N", or "FILE" for line 0 (a value set rather than read) or a text without
+    /// lines to name.
+    pub(super) fn place(&self, line: u64) -> String {
+        if line == 0 || !self.lined {
+            self.file.to_string()
+        } else {
+            format!("{} line {line}", self.file)
+        }
+    }
+
     pub(super) fn err<T>(
         &self,
         line: u64,
         key: &str,
         msg: impl std::fmt::Display,
     ) -> Result<T, Error> {
-        Err(Error::Input(if line == 0 {
-            format!("{}: `{key}` {msg}", self.file)
-        } else {
-            format!("{} line {line}: `{key}` {msg}", self.file)
-        }))
+        Err(Error::Input(format!("{}: `{key}` {msg}", self.place(line))))
     }
 
     pub(super) fn finite(&self, v: &Spanned<f64>, key: &str) -> Result<f64, Error> {
@@ -205,5 +213,37 @@ pub(super) fn scene_name(
     match why {
         Some(why) => c.err(line, key, format!("= {} {why}", quote(name))),
         None => Ok(name.to_string()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::SceneSpec;
+
+    const SCENE: &str = "duration: 1.0\ntrack:\n  curve:\n    parabola: {k: 1.0}\ndisk:\n  mass: 1.0\n  radius: 0.1\n  s0: -1.0\n";
+
+    /// A text a program wrote (a Python dict as JSON) is placed by its keys alone, both where
+    /// the reader refuses it and where the checker does; a file's messages name the line.
+    #[test]
+    fn a_text_without_lines_is_placed_by_its_keys() {
+        let message = |text: &str, lined: bool| {
+            let read = if lined {
+                SceneSpec::parse
+            } else {
+                SceneSpec::parse_unlined
+            };
+            read(text, "src", "s").err().expect("refused").to_string()
+        };
+        let unknown = format!("{SCENE}colour: red\n");
+        let negative = SCENE.replace("mass: 1.0", "mass: -1.0");
+        for (text, key, line) in [(&unknown, "`colour`", 9), (&negative, "`disk.mass`", 6)] {
+            let lined = message(text, true);
+            assert!(
+                lined.starts_with(&format!("src line {line}: {key}")),
+                "{lined}"
+            );
+            let unlined = message(text, false);
+            assert!(unlined.starts_with(&format!("src: {key}")), "{unlined}");
+        }
     }
 }

@@ -568,6 +568,7 @@ vehicles:
             file: serde_saphyr::from_str(EVERYTHING).expect("the test file reads"),
             source: "test".into(),
             stem: "test".into(),
+            lined: true,
         }
     }
 

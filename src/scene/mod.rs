@@ -438,6 +438,8 @@ pub struct SceneSpec {
     source: String,
     /// The default scene name.
     stem: String,
+    /// Whether messages name the text's lines ([`SceneSpec::parse_unlined`]).
+    lined: bool,
 }
 
 /// A checked scene, not yet planned: what only the planning step (`plan.rs`) turns into a
@@ -476,15 +478,31 @@ impl SceneSpec {
 
     /// Read and check; `source` names the source in messages, `stem` is the default scene name.
     pub fn parse(text: &str, source: &str, stem: &str) -> Result<SceneSpec, Error> {
+        SceneSpec::read(text, source, stem, true)
+    }
+
+    /// As [`SceneSpec::parse`], for a text a program wrote from data (the Python package's
+    /// scene dicts): its messages name the keys, never a line of a text the author never saw.
+    pub fn parse_unlined(text: &str, source: &str, stem: &str) -> Result<SceneSpec, Error> {
+        SceneSpec::read(text, source, stem, false)
+    }
+
+    fn read(text: &str, source: &str, stem: &str, lined: bool) -> Result<SceneSpec, Error> {
         let file: SceneFile = serde_saphyr::from_str(text).map_err(|e| {
             let at = e.location().map(|l| (l.line(), l.column()));
-            let sentence = yaml_error::describe(text, &e.to_string(), at);
-            Error::Input(format!("{source} {sentence}"))
+            let (line, sentence) = yaml_error::describe(text, &e.to_string(), at);
+            let place = Checker {
+                file: source,
+                lined,
+            }
+            .place(line.unwrap_or(0));
+            Error::Input(format!("{place}: {sentence}"))
         })?;
         let spec = SceneSpec {
             file,
             source: source.into(),
             stem: stem.into(),
+            lined,
         };
         spec.check()?;
         Ok(spec)
@@ -500,7 +518,11 @@ impl SceneSpec {
 
     /// The model the scene names, checked; mesh and tolerances as given.
     pub fn check(&self) -> Result<Checked, Error> {
-        check(&self.file, &self.source, &self.stem)
+        let c = Checker {
+            file: &self.source,
+            lined: self.lined,
+        };
+        check(&self.file, &c, &self.stem)
     }
 }
 
@@ -620,18 +642,17 @@ fn output_interval(c: &Checker, raw: &SceneFile, duration: f64) -> Result<f64, E
     Ok(interval)
 }
 
-fn check(raw: &SceneFile, file: &str, stem: &str) -> Result<Checked, Error> {
-    let c = Checker { file };
-    let name = scene_name(&c, raw.name.as_ref(), stem)?;
+fn check(raw: &SceneFile, c: &Checker, stem: &str) -> Result<Checked, Error> {
+    let name = scene_name(c, raw.name.as_ref(), stem)?;
     let gravity = match &raw.gravity {
         Some(g) => c.finite(g, "gravity")?,
         None => DEFAULT_GRAVITY,
     };
     let duration = c.positive(&raw.duration, "duration")?;
-    let (model, mesh) = track_model(&c, raw, gravity, duration)?;
+    let (model, mesh) = track_model(c, raw, gravity, duration)?;
     let duration = mesh.duration;
-    let (solver, rtol_given, atol_given) = solver_settings(&c, raw, &model, &mesh)?;
-    let interval = output_interval(&c, raw, duration)?;
+    let (solver, rtol_given, atol_given) = solver_settings(c, raw, &model, &mesh)?;
+    let interval = output_interval(c, raw, duration)?;
     Ok(Checked {
         scene: Scene {
             name,

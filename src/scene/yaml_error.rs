@@ -4,8 +4,9 @@
 
 use crate::error::quote;
 
-/// The sentence for a reader error at (`line`, `column`), 1-based, in `text`.
-pub fn describe(text: &str, message: &str, line: Option<(u64, u64)>) -> String {
+/// The sentence for a reader error at (`line`, `column`), 1-based, in `text`, and the line it
+/// names (none where the mapping that lacks a key is the whole file).
+pub fn describe(text: &str, message: &str, line: Option<(u64, u64)>) -> (Option<u64>, String) {
     let first = message
         .lines()
         .next()
@@ -18,10 +19,7 @@ pub fn describe(text: &str, message: &str, line: Option<(u64, u64)>) -> String {
         .map_or(first, |(_, rest)| rest);
     let path = line.and_then(|(l, c)| path_at(text, l as usize, c as usize));
     let key = |path: &[String]| dotted(&path.join("."));
-    let at = |sentence: String| match line {
-        Some((l, _)) => format!("line {l}: {sentence}"),
-        None => sentence,
-    };
+    let at = |sentence: String| (line.map(|(l, _)| l), sentence);
     if what.starts_with("multiple YAML documents") {
         return at(
             "a second YAML document starts here (after a `---` line); a scene is one document"
@@ -38,7 +36,7 @@ pub fn describe(text: &str, message: &str, line: Option<(u64, u64)>) -> String {
                 at(format!("{} is missing", key(&p)))
             }
             // The mapping that lacks it is the whole file: no line says more.
-            Some(_) => format!("`{field}` is missing"),
+            Some(_) => (None, format!("`{field}` is missing")),
             None => at(format!("`{field}` is missing")),
         };
     }
