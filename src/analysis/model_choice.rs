@@ -157,7 +157,8 @@ fn uncarried(spec: &BeamSpec, case: &Pattern, linear: &[f64], span: f64) -> Unme
 #[derive(Clone, Debug)]
 pub struct ModeShares {
     /// Per mode, in ascending frequency, the (u, w) it adds at each probe, and its rotation
-    /// there times L/π (a first sine mode's rotation so turns into its deflection).
+    /// there times l/π, l the longest span (a first sine mode's rotation so turns into its
+    /// deflection).
     parts: Vec<Vec<[f64; 3]>>,
     /// Per mode, κ/ω: the steepest slope of its deflection over its largest deflection, over
     /// its circular frequency. A force entering the span at speed v, where the shape is 0 and
@@ -226,7 +227,7 @@ fn mode_shares(
         let part = if w2 > 0.0 {
             let participation: f64 = shape.iter().zip(&f).map(|(a, b)| a * b).sum();
             let statics: Vec<f64> = shape.iter().map(|s| s * participation / w2).collect();
-            let turned = beam.length / std::f64::consts::PI;
+            let turned = longest_span(&beam) / std::f64::consts::PI;
             (xs.iter())
                 .map(|&x| {
                     let d = beam.displacement_at(&statics, x);
@@ -265,6 +266,16 @@ fn mode_shares(
         limit,
         switched,
     })
+}
+
+/// The longest stretch between the ends and the intermediate bearings: a mode turns by about
+/// π times its deflection over the half wave it makes, which on a continuous beam is a span, not
+/// the whole length.
+fn longest_span(beam: &Beam) -> f64 {
+    let mut ends = vec![0.0];
+    ends.extend(beam.spec.bearings.iter().copied());
+    ends.push(beam.length);
+    ends.windows(2).fold(0.0, |m, w| m.max(w[1] - w[0]))
 }
 
 /// Stations an element the steepest slope of a mode's deflection is sought at.
@@ -324,7 +335,8 @@ impl ModeShares {
             after.push(partial.clone());
         }
         // The largest change at a probe from the first a modes to the first b, of its
-        // deflection (`turned` false) or its rotation times L/π, over the peak deflection.
+        // deflection (`turned` false) or its rotation times the longest span over π, over the
+        // peak deflection.
         let moved = |a: usize, b: usize, turned: bool| -> f64 {
             let none = vec![[0.0; 3]; partial.len()];
             let pa = if a == 0 { &none } else { &after[a - 1] };
@@ -367,7 +379,7 @@ impl ModeShares {
             format!("the mesh has {} modes", after.len())
         };
         let what = if turned {
-            "of the peak static deflection at the probes (in their rotations times L/π)"
+            "of the peak static deflection at the probes (in their rotations times the longest span over π)"
         } else {
             "of the peak static deflection at the probes"
         };
