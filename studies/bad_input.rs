@@ -392,6 +392,23 @@ fn bad_bearings_and_starts() {
         ),
         &["track.beam.supports.intermediate", "not strictly inside"],
     );
+    // A bearing a picometre from an end is that end's: refused as at it, not run as a span of
+    // 1e-12 m whose mesh node coincides with the end's.
+    rejected(
+        "bearing-a-picometre-in",
+        &beam_scene(
+            &[(
+                "supports",
+                "{from: pinned, to: roller, intermediate: [1.0e-12]}",
+            )],
+            "",
+        ),
+        &[
+            "track.beam.supports.intermediate",
+            "x = 0.000000000001",
+            "not strictly inside",
+        ],
+    );
     rejected(
         "bearing-twice",
         &beam_scene(

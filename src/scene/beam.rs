@@ -539,17 +539,17 @@ pub(super) fn supports(
     {
         let key = "track.beam.supports.intermediate";
         let v = c.finite(x, key)?;
-        if !(v > 0.0 && v < length) {
+        // Within the tolerance two bearings are one, a bearing and an end are one too: the
+        // mesh's node there is the end's.
+        let near = 1e-9 * length;
+        if !(v > near && v < length - near) {
             return c.err(
                 x.referenced.line(),
                 key,
-                format!("has x = {v}, which is not strictly inside the beam (0, {length})"),
+                format!("has x = {v}, which is not strictly inside the beam (0, {length}) by more than {near:e} m"),
             );
         }
-        if bearings
-            .iter()
-            .any(|&b: &f64| (b - v).abs() <= 1e-9 * length)
-        {
+        if bearings.iter().any(|&b: &f64| (b - v).abs() <= near) {
             return c.err(x.referenced.line(), key, format!("names x = {v} twice"));
         }
         bearings.push(v);
