@@ -417,6 +417,13 @@ impl SceneSpec {
         wrong: impl FnOnce() -> Error,
     ) -> Result<Vec<Slot<'_>>, Error> {
         let Some(found) = find(dotted).filter(|f| takes(f.key.holds)) else {
+            // `disks[1].s0`, as Python and most formats index a list: say the key's spelling.
+            let spelled = dotted.replace('[', ".").replace(']', "");
+            if spelled != dotted && find(&spelled).is_some() {
+                return Err(Error::Input(format!(
+                    "`{dotted}` is spelled `{spelled}` (a list's item is a key by its index)"
+                )));
+            }
             return Err(wrong());
         };
         slots(&mut self.file, &found, matches!(edit, Edit::Set))
@@ -632,5 +639,13 @@ vehicles:
             .unwrap_err()
             .to_string()
             .contains("the 2 disks"));
+        // An index in brackets, as Python writes it, is told the key's spelling.
+        let bracketed = spec.set("disks[1].mass", 1.0).unwrap_err().to_string();
+        assert!(bracketed.contains("`disks.1.mass`"), "{bracketed}");
+        assert!(spec
+            .set("track[1].E", 1.0)
+            .unwrap_err()
+            .to_string()
+            .contains("dotted paths"));
     }
 }
