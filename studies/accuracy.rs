@@ -705,6 +705,20 @@ fn the_modes_left_to_the_static_correction_move_no_headline() {
     }
 }
 
+/// The scene as planned, the same scene on `modes` modes of the plan's mesh (the static
+/// correction of the rest beside them), and how many modes the plan kept: what a count of
+/// modes is checked against. `scene` takes the lines to add under `beam:`.
+fn planned_and_on_modes(scene: impl Fn(&str) -> Scene, modes: usize) -> (BeamRun, BeamRun, usize) {
+    let planned = at_defaults(&scene(""));
+    let beam = &planned.setup.beam;
+    let kept = beam.model.modes().expect("a modal beam");
+    let many = at_defaults(&scene(&format!(
+        "    model: modal\n    modes: {modes}\n    elements: {}\n    order: {}\n",
+        beam.elements, beam.order
+    )));
+    (planned, many, kept)
+}
+
 /// A mode turns by about π times its deflection over the half wave it makes, which on a
 /// continuous beam is one span: the plan weighs the probes' rotations by the longest span over
 /// π, as a single span's by its length. HSLM-A1 at 90 m/s over three continuous 20 m concrete
@@ -718,13 +732,7 @@ fn a_continuous_beam_s_rotations_are_weighed_by_its_span() {
             "name: spans\nduration: 0.5\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [60.0, 0.0]\n    E: 35.0e9\n    G: 14.6e9\n    rho: 2500\n    A: 7.0\n    Av: 5.8\n    I: 1.2\n    supports: {{from: pinned, to: roller, intermediate: [20.0, 40.0]}}\n    damping: {{ratio: 0.015, modes: [1, 3]}}\n{beam}train: {{hslm: A1, speed: 90.0}}\noutput:\n  probes: [{{name: s1, x: 10.0}}, {{name: s2, x: 30.0}}]\n"
         ))
     };
-    let planned = at_defaults(&scene(""));
-    let beam = &planned.setup.beam;
-    let many = at_defaults(&scene(&format!(
-        "    model: modal\n    modes: 100\n    elements: {}\n    order: {}\n",
-        beam.elements, beam.order
-    )));
-    let modes = beam.model.modes().expect("a modal beam");
+    let (planned, many, modes) = planned_and_on_modes(scene, 100);
     // Per probe, then over the beam: (w_min, w_max) and (φ_min, φ_max).
     let extremes = |r: &BeamRun| -> Vec<[f64; 4]> {
         let mut out: Vec<[f64; 4]> = (r.extremes.probes.iter())
@@ -1619,13 +1627,7 @@ fn a_force_leaving_a_free_end_counts_every_mode_it_drops() {
             "name: cantilever\nduration: 1.0\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [10.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 181.0e-4\n    Av: 46.8e-4\n    I: 43190.0e-8\n    supports: {{from: clamped, to: free}}\n{beam}train: {{axles: [0.0, 3.0], load: 2.0e4, speed: 15.0}}\noutput:\n  probes: [{{name: tip, x: 10.0}}, {{name: mid, x: 5.0}}]\n"
         ))
     };
-    let planned = at_defaults(&scene(""));
-    let beam = &planned.setup.beam;
-    let modes = beam.model.modes().expect("a modal beam");
-    let many = at_defaults(&scene(&format!(
-        "    model: modal\n    modes: 60\n    elements: {}\n    order: {}\n",
-        beam.elements, beam.order
-    )));
+    let (planned, many, modes) = planned_and_on_modes(scene, 60);
     for k in 0..2 {
         let headlines = |r: &BeamRun| {
             let [_, w, phi, a] = r.extremes.probes[k];
