@@ -261,12 +261,35 @@ fn files_that_are_missing_or_not_yaml() {
     rejected(
         "not-yaml",
         "duration: [1, 2\n  : : :\n",
-        &["`duration` cannot be read", "line 1"],
+        &["`duration` must be one value", "line 1"],
     );
     rejected(
         "wrong-type",
         &format!("duration: soon\n{PARABOLA}{GOOD_DISK}"),
-        &["`duration` cannot be read", "line 1"],
+        &["`duration` must be a number", "line 1"],
+    );
+    rejected(
+        "list-for-a-number",
+        &format!("duration: [1]\n{PARABOLA}{GOOD_DISK}"),
+        &[
+            "`duration` must be one value, not a list or a map",
+            "line 1",
+        ],
+    );
+    rejected(
+        "a-list-not-a-scene",
+        "- duration: 1\n",
+        &["line 1", "a scene file is a map of keys"],
+    );
+    rejected(
+        "a-number-for-a-list",
+        &beam_scene(&[], "train: {axles: 3, load: 1.0e4, speed: 10.0}\n"),
+        &["`train.axles` must be a list"],
+    );
+    rejected(
+        "axle-load-as-text",
+        &beam_scene(&[], "train: {axles: [0.0], load: heavy, speed: 10.0}\n"),
+        &["`train.load` must be a number (N on every axle) or a list of numbers"],
     );
 }
 

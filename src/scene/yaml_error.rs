@@ -17,7 +17,11 @@ pub fn describe(text: &str, message: &str, line: Option<(u64, u64)>) -> (Option<
         .split_once(": ")
         .filter(|(head, _)| head.starts_with("line "))
         .map_or(first, |(_, rest)| rest);
-    let path = line.and_then(|(l, c)| path_at(text, l as usize, c as usize));
+    // The file's first value, where the whole file is what the reader refused, has no key.
+    let root = line.is_some_and(|(l, c)| c == 1 && first_content_line(text) == Some(l as usize));
+    let path = line
+        .filter(|_| !root)
+        .and_then(|(l, c)| path_at(text, l as usize, c as usize));
     let key = |path: &[String]| dotted(&path.join("."));
     let at = |sentence: String| (line.map(|(l, _)| l), sentence);
     if what.starts_with("multiple YAML documents") {
@@ -37,6 +41,7 @@ pub fn describe(text: &str, message: &str, line: Option<(u64, u64)>) -> (Option<
             }
             // The mapping that lacks it is the whole file: no line says more.
             Some(_) => (None, format!("`{field}` is missing")),
+            None if root => (None, format!("`{field}` is missing")),
             None => at(format!("`{field}` is missing")),
         };
     }
@@ -70,6 +75,20 @@ fn reworded(what: &str, unplaced: bool) -> String {
             "{named}is not a key of the scene format here (expected {})",
             clip(expected)
         )
+    } else if what.starts_with("invalid floating point") {
+        // The reader's words for text, a flag, a null or an overflow where a number belongs.
+        "must be a number".into()
+    } else if what.starts_with("expected string scalar") {
+        // Its words for a list or a map where one value belongs, whatever the value's kind.
+        "must be one value, not a list or a map".into()
+    } else if what.starts_with("expected sequence start") {
+        "must be a list (`[a, b]`, or lines that start with `- `)".into()
+    } else if what.starts_with("expected mapping start") && unplaced {
+        "a scene file is a map of keys (`key: value` lines), and this is not one".into()
+    } else if what.starts_with("expected mapping start") {
+        "must be a map of keys (`{key: value}`, or `key: value` lines indented under it)".into()
+    } else if what.starts_with("data did not match any variant of untagged enum AxleLoads") {
+        "must be a number (N on every axle) or a list of numbers, one per axle".into()
     } else if let Some(breach) = what.strip_prefix("budget breached: ") {
         beyond_the_readers_budget(breach)
     } else if let Some(rest) = what.strip_prefix("invalid length ") {
@@ -113,6 +132,16 @@ fn clip(message: &str) -> String {
         return message.to_string();
     }
     quote(message)
+}
+
+/// The first line (1-based) that holds more than blanks and a comment.
+fn first_content_line(text: &str) -> Option<usize> {
+    text.lines()
+        .position(|l| {
+            let l = l.trim();
+            !l.is_empty() && !l.starts_with('#') && l != "---"
+        })
+        .map(|i| i + 1)
 }
 
 /// The dotted key whose value holds position (`line`, `column`): the block keys above it by
