@@ -221,13 +221,13 @@ fn mode_shares(
     let mut passing = Vec::with_capacity(m.omega.len());
     let mut stepping = Vec::with_capacity(m.omega.len());
     let mut total = vec![[0.0; 2]; xs.len()];
+    let turned = longest_span(&beam) / std::f64::consts::PI;
     for k in 0..m.omega.len() {
         let shape: Vec<f64> = m.shapes.column(k).iter().copied().collect();
         let w2 = m.omega[k] * m.omega[k];
         let part = if w2 > 0.0 {
             let participation: f64 = shape.iter().zip(&f).map(|(a, b)| a * b).sum();
             let statics: Vec<f64> = shape.iter().map(|s| s * participation / w2).collect();
-            let turned = longest_span(&beam) / std::f64::consts::PI;
             (xs.iter())
                 .map(|&x| {
                     let d = beam.displacement_at(&statics, x);
