@@ -55,13 +55,13 @@ pub fn describe(text: &str, message: &str, line: Option<(u64, u64)>) -> (Option<
 /// What is wrong with a value, in the scene format's words; `unplaced` when no key could be
 /// read back, so an unknown key's own text must be quoted.
 fn reworded(what: &str, unplaced: bool) -> String {
-    if what.starts_with("invalid i64") || what.starts_with("invalid u64") {
-        "must be a whole number".into()
-    } else if what.starts_with("duplicate mapping key") {
-        "is given twice".into()
-    } else if what.starts_with("cannot deserialize null into string") {
-        "is empty; it needs a name".into()
-    } else if let Some(rest) = what.strip_prefix("unknown field `") {
+    if what.starts_with("expected mapping start") && unplaced {
+        return "a scene file is a map of keys (`key: value` lines), and this is not one".into();
+    }
+    if let Some((_, sentence)) = WORDS.iter().find(|(said, _)| what.starts_with(said)) {
+        return (*sentence).into();
+    }
+    if let Some(rest) = what.strip_prefix("unknown field `") {
         // The field's own text may hold anything, the reader's list of keys comes last.
         let (field, expected) = rest
             .rsplit_once("`, expected ")
@@ -75,20 +75,6 @@ fn reworded(what: &str, unplaced: bool) -> String {
             "{named}is not a key of the scene format here (expected {})",
             clip(expected)
         )
-    } else if what.starts_with("invalid floating point") {
-        // The reader's words for text, a flag, a null or an overflow where a number belongs.
-        "must be a number".into()
-    } else if what.starts_with("expected string scalar") {
-        // Its words for a list or a map where one value belongs, whatever the value's kind.
-        "must be one value, not a list or a map".into()
-    } else if what.starts_with("expected sequence start") {
-        "must be a list (`[a, b]`, or lines that start with `- `)".into()
-    } else if what.starts_with("expected mapping start") && unplaced {
-        "a scene file is a map of keys (`key: value` lines), and this is not one".into()
-    } else if what.starts_with("expected mapping start") {
-        "must be a map of keys (`{key: value}`, or `key: value` lines indented under it)".into()
-    } else if what.starts_with("data did not match any variant of untagged enum AxleLoads") {
-        "must be a number (N on every axle) or a list of numbers, one per axle".into()
     } else if let Some(breach) = what.strip_prefix("budget breached: ") {
         beyond_the_readers_budget(breach)
     } else if let Some(rest) = what.strip_prefix("invalid length ") {
@@ -98,6 +84,37 @@ fn reworded(what: &str, unplaced: bool) -> String {
         format!("cannot be read: {}", clip(what))
     }
 }
+
+/// The reader's words (how its message starts) and the scene format's for the same fault.
+/// "invalid floating point" is its answer to text, a flag, a null or an overflow where a number
+/// belongs; "expected string scalar" to a list or a map where one value belongs, whatever the
+/// value's kind.
+const WORDS: [(&str, &str); 9] = [
+    ("invalid i64", "must be a whole number"),
+    ("invalid u64", "must be a whole number"),
+    ("duplicate mapping key", "is given twice"),
+    (
+        "cannot deserialize null into string",
+        "is empty; it needs a name",
+    ),
+    ("invalid floating point", "must be a number"),
+    (
+        "expected string scalar",
+        "must be one value, not a list or a map",
+    ),
+    (
+        "expected sequence start",
+        "must be a list (`[a, b]`, or lines that start with `- `)",
+    ),
+    (
+        "expected mapping start",
+        "must be a map of keys (`{key: value}`, or `key: value` lines indented under it)",
+    ),
+    (
+        "data did not match any variant of untagged enum AxleLoads",
+        "must be a number (N on every axle) or a list of numbers, one per axle",
+    ),
+];
 
 /// A reader message cut to one short line: its echoes of the scene's text are quoted and
 /// shortened like every other excerpt.
