@@ -1,7 +1,7 @@
 //! Verification of the Reissner beam element: analytic tangent against finite differences of
 //! the internal forces; statics against Timoshenko closed forms; geometric exactness under an
 //! end moment; shear locking; natural frequencies against Euler–Bernoulli with their measured
-//! rates of convergence.
+//! rates of convergence, and a continuous beam's against its single spans'.
 
 use rollbeam::analysis::{modes, statics};
 use rollbeam::beam::element::Section;
@@ -351,26 +351,52 @@ fn shear_locking_full_linear_locks_reduced_does_not() {
     );
 }
 
-/// Lowest three frequencies against Euler–Bernoulli, ω = (βL)² √(EI/(ρA L⁴)). Shear and rotary
-/// inertia lower them by about ½ (βL)² (r/L)² (1 + E A/(G Av)), r² = I/A (first-order
+/// Lowest bending frequencies against Euler–Bernoulli, ω = (βL)² √(EI/(ρA L⁴)). Shear and
+/// rotary inertia lower them by about ½ (βL)² (r/L)² (1 + E A/(G Av)), r² = I/A (first-order
 /// Timoshenko correction); the test allows that full amount, and checks that the difference
-/// has the right sign.
+/// has the right sign. Two equal spans L over an intermediate bearing (pinned, bearing, roller)
+/// vibrate in each span's own modes: antisymmetric, the bearing a node of a simply supported
+/// span (βL = nπ), or symmetric, the section over it held from turning, a clamped–pinned span
+/// (βL = 3.9266, 7.0686, 10.2102), interleaved.
 #[test]
 fn frequencies_against_euler_bernoulli() {
     let s = shs200();
     let l = 8.0;
-    let cases = [
+    let pi = std::f64::consts::PI;
+    let two_spans = |mut b: BeamSpec| {
+        b.to = [2.0 * l, 0.0];
+        b.bearings = vec![l];
+        b.elements *= 2;
+        b
+    };
+    let cases: [(_, Box<dyn Fn(BeamSpec) -> BeamSpec>, Vec<f64>); 3] = [
         (
             [Support::Clamped, Support::Pinned],
-            [3.9266, 7.0686, 10.2102],
+            Box::new(|b| b),
+            vec![3.9266, 7.0686, 10.2102],
         ),
-        ([Support::Clamped, Support::Free], [1.8751, 4.6941, 7.8548]),
+        (
+            [Support::Clamped, Support::Free],
+            Box::new(|b| b),
+            vec![1.8751, 4.6941, 7.8548],
+        ),
+        (
+            [Support::Pinned, Support::Roller],
+            Box::new(two_spans),
+            vec![pi, 3.9266, 2.0 * pi, 7.0686, 3.0 * pi, 10.2102],
+        ),
     ];
     let r2 = s.ei / s.ea;
-    for (supports, beta) in cases {
-        let b = beam(l, supports, 16, 4, Quadrature::Reduced, s);
-        let m = modes::modes(&b, 6).expect("modes");
-        let bending: Vec<f64> = m.omega.iter().copied().filter(|w| *w > 1e-3).collect();
+    for (supports, layout, beta) in cases {
+        let b = Beam::new(layout(
+            beam(l, supports, 16, 4, Quadrature::Reduced, s)
+                .spec
+                .clone(),
+        ));
+        let m = modes::modes(&b, 12).expect("modes");
+        let bending: Vec<f64> = (m.bending_omega(&b).into_iter())
+            .filter(|w| *w > 1e-3)
+            .collect();
         for (k, bl) in beta.iter().enumerate() {
             let eb = bl * bl * (s.ei / (s.rho_a * l.powi(4))).sqrt();
             let bound = bl * bl * r2 / (l * l) * (1.0 + s.ea / s.gav);
@@ -381,6 +407,44 @@ fn frequencies_against_euler_bernoulli() {
                 supports
             );
         }
+    }
+}
+
+/// The same two equal spans on the same mesh per span, exactly: each antisymmetric mode is the
+/// simply supported span's on that mesh, each symmetric one the clamped–pinned span's (the
+/// bearing's section held from turning by symmetry), so the lowest six bending frequencies
+/// of the two spans are those of the two single spans, merged, to the eigensolver's
+/// round-off (1e-9 allows it).
+#[test]
+fn two_equal_spans_vibrate_in_their_single_spans_modes() {
+    let s = shs200();
+    let l = 8.0;
+    let bending = |spec: BeamSpec, count: usize| {
+        let b = Beam::new(spec);
+        modes::modes(&b, 2 * count)
+            .expect("modes")
+            .bending_omega(&b)
+            .into_iter()
+            .take(count)
+            .collect::<Vec<f64>>()
+    };
+    let span = |supports| {
+        beam(l, supports, 16, 4, Quadrature::Reduced, s)
+            .spec
+            .clone()
+    };
+    let mut singles = bending(span([Support::Pinned, Support::Pinned]), 3);
+    singles.extend(bending(span([Support::Clamped, Support::Pinned]), 3));
+    singles.sort_by(f64::total_cmp);
+    let mut two = span([Support::Pinned, Support::Roller]);
+    two.to = [2.0 * l, 0.0];
+    two.bearings = vec![l];
+    two.elements *= 2;
+    for (k, (a, b)) in bending(two, 6).iter().zip(&singles).enumerate() {
+        assert!(
+            (a / b - 1.0).abs() < 1e-9,
+            "mode {k}: two spans {a}, the single spans {b}"
+        );
     }
 }
 
