@@ -6,6 +6,7 @@
 //!   that the balance closes.
 //! - The damping ratio recovered from the logarithmic decrement of free vibration of each
 //!   anchor mode.
+//! - A force crossing two continuous spans against the series of their own modes.
 //! - The static sag under self-weight against 5qL⁴/(384EI) + qL²/(8GAv).
 //! - The recorded acceleration against the second derivative of the recorded deflection.
 
@@ -73,6 +74,126 @@ fn damped_moving_force_matches_the_damped_series_on_every_model() {
             last.dissipated
         );
     }
+}
+
+/// Two equal spans' Euler–Bernoulli modes, span L (pinned, bearing at L, roller at 2L): the
+/// antisymmetric sin(nπx/L) and the symmetric ones, each span clamped at the bearing and
+/// pinned at its end, φ(ξ) = cosh βξ − cos βξ − σ (sinh βξ − sin βξ) with ξ the distance from
+/// the bearing, tan βL = tanh βL and σ = (cosh βL − cos βL)/(sinh βL − sin βL). Each `count`
+/// of a family, as (β, the shape at x); the hyperbolic terms written as exponentials of
+/// β(ξ − L) and −βξ, which stay bounded where cosh and sinh would cancel.
+fn two_span_modes(span: f64, count: usize) -> Vec<(f64, Box<dyn Fn(f64) -> f64>)> {
+    let pi = std::f64::consts::PI;
+    let mut modes: Vec<(f64, Box<dyn Fn(f64) -> f64>)> = Vec::new();
+    for n in 1..=count {
+        let beta = n as f64 * pi / span;
+        modes.push((beta, Box::new(move |x: f64| (beta * x).sin())));
+    }
+    for k in 1..=count {
+        let mut bl = (4 * k + 1) as f64 * pi / 4.0;
+        for _ in 0..50 {
+            bl -= (bl.tan() - bl.tanh()) / (1.0 / bl.cos().powi(2) - 1.0 / bl.cosh().powi(2));
+        }
+        let (beta, e) = (bl / span, (-bl).exp());
+        // 2 (sinh βL − sin βL) e^{−βL}, and σ and (1 − σ) e^{βL} / 2 over it.
+        let scaled = 1.0 - e * e - 2.0 * bl.sin() * e;
+        let sigma = (1.0 + e * e - 2.0 * bl.cos() * e) / scaled;
+        let rising = (bl.cos() - bl.sin() - e) / scaled;
+        modes.push((
+            beta,
+            Box::new(move |x: f64| {
+                let xi = beta * (x - span).abs();
+                rising * (xi - bl).exp() + 0.5 * (1.0 + sigma) * (-xi).exp() - xi.cos()
+                    + sigma * xi.sin()
+            }),
+        ));
+    }
+    modes
+}
+
+/// A force crossing two continuous spans of D44's section (20 m each over a bearing; shear and
+/// rotary inertia made negligible, so that the beam is Euler–Bernoulli's), at the defaults,
+/// against the series of the two spans' own modes (20 antisymmetric and 20 symmetric, each
+/// mode's equation integrated by the classical Runge–Kutta method at 50 µs): both midspans'
+/// deflections at every output time, over the crossing and a second of free vibration,
+/// within the accuracy asked of the peak (the series' truncation is below 4·10⁻⁵ of it).
+/// Measured: 1.7·10⁻⁴; with the symmetric modes' σ sin βξ term of the wrong sign, 0.43.
+#[test]
+fn a_force_over_two_spans_matches_the_series_of_their_modes() {
+    let (span, p, v) = (20.0, 1500.0 * 9.81, 17.6);
+    let (ei, mu) = (210.0e9 * 43190.0e-8, 7850.0 * 181.0e-4);
+    let scene = common::parse(&format!(
+        "name: two-spans\nduration: 1.0\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [40.0, 0.0]\n    E: 210.0e9\n    G: 81.0e13\n    rho: 7.85\n    A: 18.1\n    Av: 9.05\n    I: 43190.0e-8\n    supports: {{from: pinned, to: roller, intermediate: [20.0]}}\ntrain: {{axles: [0.0], load: {p}, speed: {v}}}\noutput:\n  probes: [{{name: first, x: 10.0}}, {{name: second, x: 30.0}}]\n"
+    ));
+    let r = common::at_defaults(&scene);
+    let modes = two_span_modes(span, 20);
+    // ∫ φ² over both spans by Simpson's rule on 8000 intervals a span.
+    let norms: Vec<f64> = modes
+        .iter()
+        .map(|(_, phi)| {
+            let n = 16000;
+            let h = 2.0 * span / n as f64;
+            (0..=n)
+                .map(|i| {
+                    let w = if i == 0 || i == n {
+                        1.0
+                    } else if i % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
+                    w * phi(i as f64 * h).powi(2)
+                })
+                .sum::<f64>()
+                * h
+                / 3.0
+        })
+        .collect();
+    let omega2: Vec<f64> = modes.iter().map(|(b, _)| b.powi(4) * ei / mu).collect();
+    let m = modes.len();
+    let rhs = |t: f64, s: &[f64]| -> Vec<f64> {
+        let x = v * t;
+        let mut d = vec![0.0; 2 * m];
+        d[..m].copy_from_slice(&s[m..]);
+        for k in 0..m {
+            let force = if (0.0..=2.0 * span).contains(&x) {
+                -p * (modes[k].1)(x) / (mu * norms[k])
+            } else {
+                0.0
+            };
+            d[m + k] = force - omega2[k] * s[k];
+        }
+        d
+    };
+    let mut series = Vec::new();
+    common::runge_kutta(rhs, 2 * m, 5e-5, r.header.t_end, |t, s, _| {
+        let at = |x: f64| (0..m).map(|k| (modes[k].1)(x) * s[k]).sum::<f64>();
+        series.push((t, at(10.0), at(30.0)));
+    });
+    let interpolate = |t: f64, k: usize| {
+        let i = series
+            .partition_point(|p| p.0 < t)
+            .clamp(1, series.len() - 1);
+        let (a, b) = (series[i - 1], series[i]);
+        let (va, vb) = if k == 0 { (a.1, b.1) } else { (a.2, b.2) };
+        va + (vb - va) * (t - a.0) / (b.0 - a.0)
+    };
+    let peak = series
+        .iter()
+        .fold(0.0_f64, |m, q| m.max(q.1.abs()).max(q.2.abs()));
+    let worst = r.rows.iter().fold(0.0_f64, |m, row| {
+        (0..2).fold(m, |m, k| {
+            m.max((row.probes[k].w - interpolate(row.t, k)).abs())
+        })
+    });
+    eprintln!(
+        "two spans against their modes' series: {:.2e} of the peak {peak:.4e} m",
+        worst / peak
+    );
+    assert!(
+        worst < 1e-3 * peak,
+        "{worst:.3e} against the peak {peak:.3e}"
+    );
 }
 
 /// Peaks of a sampled signal, each refined by the parabola through it and its neighbours.

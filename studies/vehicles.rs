@@ -14,7 +14,7 @@
 
 use crate::common;
 
-use common::{at_defaults, load, mid_headlines, parse, run_beam};
+use common::{at_defaults, load, mid_headlines, parse, run_beam, runge_kutta};
 use rollbeam::ode::Method;
 use rollbeam::run::beam::BeamRun;
 use rollbeam::scene::Scene;
@@ -130,33 +130,6 @@ fn direct(
         out.push([t, mid, s[modes], d[n + modes]]);
     });
     out
-}
-
-/// The classical Runge–Kutta method from rest (a state of `dim` zeros) with step `h` up to
-/// `until`, handing `record` each step's (t, state, rate).
-fn runge_kutta(
-    rhs: impl Fn(f64, &[f64]) -> Vec<f64>,
-    dim: usize,
-    h: f64,
-    until: f64,
-    mut record: impl FnMut(f64, &[f64], &[f64]),
-) {
-    let mut s = vec![0.0; dim];
-    let steps = (until / h).round() as usize;
-    for i in 0..=steps {
-        let t = i as f64 * h;
-        let k1 = rhs(t, &s);
-        record(t, &s, &k1);
-        let step = |k: &[f64], c: f64| -> Vec<f64> {
-            s.iter().zip(k).map(|(a, b)| a + c * h * b).collect()
-        };
-        let k2 = rhs(t + 0.5 * h, &step(&k1, 0.5));
-        let k3 = rhs(t + 0.5 * h, &step(&k2, 0.5));
-        let k4 = rhs(t + h, &step(&k3, 1.0));
-        for j in 0..dim {
-            s[j] += h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
-        }
-    }
 }
 
 /// Linear interpolation of (t, v) at t.

@@ -272,3 +272,30 @@ pub fn d44_bridge_text(model: &str, duration: f64) -> String {
         .replace("duration: 3.0", &format!("duration: {duration}"))
         .replace("    model: exact", &format!("    model: {model}"))
 }
+
+/// The classical Runge–Kutta method from rest (a state of `dim` zeros) with step `h` up to
+/// `until`, handing `record` each step's (t, state, rate).
+pub fn runge_kutta(
+    rhs: impl Fn(f64, &[f64]) -> Vec<f64>,
+    dim: usize,
+    h: f64,
+    until: f64,
+    mut record: impl FnMut(f64, &[f64], &[f64]),
+) {
+    let mut s = vec![0.0; dim];
+    let steps = (until / h).round() as usize;
+    for i in 0..=steps {
+        let t = i as f64 * h;
+        let k1 = rhs(t, &s);
+        record(t, &s, &k1);
+        let step = |k: &[f64], c: f64| -> Vec<f64> {
+            s.iter().zip(k).map(|(a, b)| a + c * h * b).collect()
+        };
+        let k2 = rhs(t + 0.5 * h, &step(&k1, 0.5));
+        let k3 = rhs(t + 0.5 * h, &step(&k2, 0.5));
+        let k4 = rhs(t + h, &step(&k3, 1.0));
+        for j in 0..dim {
+            s[j] += h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+        }
+    }
+}
