@@ -178,6 +178,9 @@ pub struct ModeShares {
     limit: usize,
     /// The loads switch on or off during the run (the beam's weight dropping included).
     switched: bool,
+    /// Something rides on the beam (a disk, a vehicle's wheels, moving masses): it follows
+    /// the kept modes alone, without the static correction of those left out.
+    riding: bool,
 }
 
 /// The modes the loading excites on the scene's mesh, or why they cannot be counted.
@@ -187,6 +190,7 @@ fn mode_shares(
     weight_drops: bool,
     xs: &[f64],
     switched: bool,
+    riding: bool,
     cutoff: Option<f64>,
 ) -> Result<ModeShares, (usize, String)> {
     // The estimate is dense: as for the mesh's own choice, no mesh past MAX_NODES nodes is
@@ -265,6 +269,7 @@ fn mode_shares(
         below_cutoff,
         limit,
         switched,
+        riding,
     })
 }
 
@@ -387,6 +392,9 @@ impl ModeShares {
             Some(v) => format!(
                 "each adds more than {tol:.1e} {what} in its vibration about its static part, which forces passing at {v} m/s make up to 2 v κ/ω of it (κ its shape's steepest slope over its largest deflection), the static correction holding the rest"
             ),
+            None if self.riding => format!(
+                "each adds more than {tol:.1e} {what}, whole: what rides on the beam follows the kept modes alone, without the static correction of those left out"
+            ),
             None => format!("each adds more than {tol:.1e} {what}"),
         };
         let cutoff = if self.below_cutoff > count.min(self.limit) {
@@ -466,7 +474,9 @@ pub fn choose(
     if let Some(weight) = weight {
         excite.extend(xs.iter().map(|&x| (x, [0.0, -weight], 0.0)));
     }
-    let modal = |why: String| match mode_shares(spec, &excite, drops, xs, switched, cutoff) {
+    let riding = weight.is_some();
+    let modal = |why: String| match mode_shares(spec, &excite, drops, xs, switched, riding, cutoff)
+    {
         Ok(shares) => {
             let recount = Recount {
                 shares,
