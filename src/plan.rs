@@ -140,17 +140,23 @@ impl Planner {
     fn choose_model(&self, b: &mut BeamScene, model_given: bool) -> Result<(), String> {
         let given = model_given.then_some(b.beam.model);
         let (weight, xs) = (riding_weight(b), b.planning_points());
+        let thesis = b.disks.iter().any(|d| d.coupling == Coupling::Thesis);
+        let riders = followers(b);
+        // Every input of the choice is in the key: a sweep's cases share one planner, and a
+        // case that differs in the coupling alone would otherwise take another's model.
         let key = format!(
-            "model {:?} {given:?} {:?} {weight:?} {xs:?} {:?} {:?} {:?}",
+            "model {:?} {given:?} {:?} {weight:?} {xs:?} {:?} {:?} {:?} {thesis} {riders}",
             b.beam, b.loads, b.accuracy, b.start, b.acceleration_cutoff_hz
         );
         let (mut model, mut why, recount, uncarried, gap) = kept(&self.models, key, || {
-            let thesis = b.disks.iter().any(|d| d.coupling == Coupling::Thesis);
             let c = model_choice::choose(
                 &b.beam,
                 given,
                 &b.loads,
-                weight,
+                model_choice::Riding {
+                    weight,
+                    followers: riders,
+                },
                 &xs,
                 b.accuracy,
                 b.start,
@@ -387,6 +393,16 @@ fn riding_weight(b: &BeamScene) -> Option<f64> {
         (Some(d), Some(a)) => Some(d.max(a)),
         (d, a) => d.or(a),
     }
+}
+
+/// Whether something on the beam follows its kept modes: a disk that is not a moving force,
+/// a vehicle's wheels, a train of moving masses.
+fn followers(b: &BeamScene) -> bool {
+    !b.vehicles.is_empty()
+        || b.disks.iter().any(|d| d.coupling != Coupling::MovingForce)
+        || b.train
+            .as_ref()
+            .is_some_and(|t| t.model == TrainModel::MovingMass)
 }
 
 /// How long the beam carries what moves over it, from the first entry to the last exit,

@@ -509,6 +509,69 @@ fn sweep_matches_single_runs() {
     assert_eq!((disk.rn_mean_min, disk.rn_mean_max), (rn.min, rn.max));
 }
 
+/// A sweep's cases share one planner, and a case plans as its own run would: over the
+/// coupling alone (D44's bridge, its model left to the plan), the thesis coupling is planned
+/// on the exact beam its equations are written for and the consistent disk on a modal beam,
+/// in either order. The choice had been kept by the beam and its loads alone, so the second
+/// case took the first's model: after the thesis coupling the consistent disk ran on the
+/// exact beam, and before it the thesis case failed for want of it.
+#[test]
+fn a_sweep_over_the_coupling_plans_each_case_as_its_own_run() {
+    use rollbeam::workflows::sweep::{run_grid, Setting};
+    let mut spec = SceneSpec::load(&studies_dir().join("bridge-d44.yaml")).expect("a valid study");
+    for key in [
+        "track.beam.model",
+        "track.beam.elements",
+        "track.beam.order",
+        "solver.method",
+        "solver.rho_inf",
+        "solver.rtol",
+        "output.shapes",
+    ] {
+        spec.unset(key).expect("a key");
+    }
+    spec.set("duration", 0.05).expect("a key");
+    let alone = |coupling: &str| {
+        let mut one = spec.clone();
+        one.set_name("disk.coupling", coupling).expect("a key");
+        let scene = Planner::default().plan(&one).expect("a valid scene");
+        scene.beam().expect("a beam scene").beam.model
+    };
+    assert_eq!(alone("thesis"), rollbeam::beam::BeamModel::Exact);
+    assert!(matches!(
+        alone("consistent"),
+        rollbeam::beam::BeamModel::Modal { .. }
+    ));
+    for order in ["thesis,consistent", "consistent,thesis"] {
+        let planner = Planner::default();
+        for coupling in order.split(',') {
+            let mut one = spec.clone();
+            one.set_name("disk.coupling", coupling).expect("a key");
+            let scene = planner.plan(&one).expect("a valid scene");
+            assert_eq!(
+                scene.beam().expect("a beam scene").beam.model,
+                alone(coupling),
+                "{coupling} after {order}"
+            );
+        }
+        let setting = Setting::parse(&format!("disk.coupling={order}")).expect("setting");
+        let rows = run_grid(
+            &spec,
+            &[setting],
+            &rollbeam::run::Overrides::default(),
+            false,
+        )
+        .expect("the sweep runs");
+        for row in &rows {
+            assert!(
+                row.outcome.is_ok(),
+                "{order}: {:?}",
+                row.outcome.as_ref().err()
+            );
+        }
+    }
+}
+
 /// `rollbeam static` with a disk on the beam loads it with the disk's weight at s0: at
 /// midspan of the bridge the deflection is the Timoshenko closed form
 /// P L³/(48 EI) + P L/(4 G Av), to 10⁻⁴ (the geometrically exact answer differs by

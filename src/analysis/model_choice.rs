@@ -449,6 +449,15 @@ pub fn linear_enough(nonlinearity: f64, accuracy: f64) -> bool {
     nonlinearity <= SHARE * accuracy
 }
 
+/// What rides on the beam, as the choice weighs it.
+pub struct Riding {
+    /// The largest weight one rider or axle puts on the beam, stood at each probe in turn.
+    pub weight: Option<f64>,
+    /// Whether a rider follows the kept modes (a disk that is not a moving force, a vehicle's
+    /// wheels, moving masses), without the static correction of those left out.
+    pub followers: bool,
+}
+
 /// Choose what the scene left out of its beam model. `given` is the model the scene names,
 /// if it names one (a modal beam with `modes: 0` has its count chosen).
 #[allow(clippy::too_many_arguments)]
@@ -456,7 +465,7 @@ pub fn choose(
     spec: &BeamSpec,
     given: Option<BeamModel>,
     loads: &[PointLoad],
-    weight: Option<f64>,
+    Riding { weight, followers }: Riding,
     xs: &[f64],
     accuracy: f64,
     start: BeamStart,
@@ -474,32 +483,31 @@ pub fn choose(
     if let Some(weight) = weight {
         excite.extend(xs.iter().map(|&x| (x, [0.0, -weight], 0.0)));
     }
-    let riding = weight.is_some();
-    let modal = |why: String| match mode_shares(spec, &excite, drops, xs, switched, riding, cutoff)
-    {
-        Ok(shares) => {
-            let recount = Recount {
-                shares,
-                why_modal: why,
-                accuracy,
-            };
-            let (model, why) = recount.at(None);
-            Choice {
-                model,
-                why,
-                recount: Some(recount),
+    let modal =
+        |why: String| match mode_shares(spec, &excite, drops, xs, switched, followers, cutoff) {
+            Ok(shares) => {
+                let recount = Recount {
+                    shares,
+                    why_modal: why,
+                    accuracy,
+                };
+                let (model, why) = recount.at(None);
+                Choice {
+                    model,
+                    why,
+                    recount: Some(recount),
+                    uncarried: None,
+                    static_gap: None,
+                }
+            }
+            Err((modes, count_why)) => Choice {
+                model: BeamModel::Modal { modes },
+                why: format!("{why}{count_why}"),
+                recount: None,
                 uncarried: None,
                 static_gap: None,
-            }
-        }
-        Err((modes, count_why)) => Choice {
-            model: BeamModel::Modal { modes },
-            why: format!("{why}{count_why}"),
-            recount: None,
-            uncarried: None,
-            static_gap: None,
-        },
-    };
+            },
+        };
     if given == Some(BeamModel::Modal { modes: 0 }) {
         return modal(String::new());
     }
