@@ -351,6 +351,9 @@ fn shear_locking_full_linear_locks_reduced_does_not() {
     );
 }
 
+/// How a single span's spec is laid out into the beam tested.
+type Layout = Box<dyn Fn(BeamSpec) -> BeamSpec>;
+
 /// Lowest bending frequencies against Euler–Bernoulli, ω = (βL)² √(EI/(ρA L⁴)). Shear and
 /// rotary inertia lower them by about ½ (βL)² (r/L)² (1 + E A/(G Av)), r² = I/A (first-order
 /// Timoshenko correction); the test allows that full amount, and checks that the difference
@@ -363,13 +366,13 @@ fn frequencies_against_euler_bernoulli() {
     let s = shs200();
     let l = 8.0;
     let pi = std::f64::consts::PI;
-    let two_spans = |mut b: BeamSpec| {
+    let two_spans = move |mut b: BeamSpec| {
         b.to = [2.0 * l, 0.0];
         b.bearings = vec![l];
         b.elements *= 2;
         b
     };
-    let cases: [(_, Box<dyn Fn(BeamSpec) -> BeamSpec>, Vec<f64>); 3] = [
+    let cases: [(_, Layout, Vec<f64>); 3] = [
         (
             [Support::Clamped, Support::Pinned],
             Box::new(|b| b),
