@@ -138,31 +138,24 @@ impl Planner {
 
     /// The beam model (and a modal beam's modes), or why no model carries the scene.
     fn choose_model(&self, b: &mut BeamScene, model_given: bool) -> Result<(), String> {
-        let given = model_given.then_some(b.beam.model);
-        let (weight, xs) = (riding_weight(b), b.planning_points());
-        let thesis = b.disks.iter().any(|d| d.coupling == Coupling::Thesis);
-        let riders = followers(b);
-        // Every input of the choice is in the key: a sweep's cases share one planner, and a
-        // case that differs in the coupling alone would otherwise take another's model.
-        let key = format!(
-            "model {:?} {given:?} {:?} {weight:?} {xs:?} {:?} {:?} {:?} {thesis} {riders}",
-            b.beam, b.loads, b.accuracy, b.start, b.acceleration_cutoff_hz
-        );
+        let xs = b.planning_points();
+        let inputs = model_choice::ModelInputs {
+            spec: &b.beam,
+            given: model_given.then_some(b.beam.model),
+            loads: &b.loads,
+            weight: riding_weight(b),
+            followers: followers(b),
+            xs: &xs,
+            accuracy: b.accuracy,
+            start: b.start,
+            thesis_coupling: b.disks.iter().any(|d| d.coupling == Coupling::Thesis),
+            cutoff: b.acceleration_cutoff_hz,
+        };
+        // The key is every input of the choice: a sweep's cases share one planner, and a case
+        // that differs in any of them (the coupling alone) chooses again.
+        let key = format!("model {inputs:?}");
         let (mut model, mut why, recount, uncarried, gap) = kept(&self.models, key, || {
-            let c = model_choice::choose(
-                &b.beam,
-                given,
-                &b.loads,
-                model_choice::Riding {
-                    weight,
-                    followers: riders,
-                },
-                &xs,
-                b.accuracy,
-                b.start,
-                thesis,
-                b.acceleration_cutoff_hz,
-            );
+            let c = model_choice::choose(&inputs);
             let recount = c.recount.map(Arc::new);
             (c.model, c.why, recount, c.uncarried, c.static_gap)
         });

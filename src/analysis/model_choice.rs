@@ -449,29 +449,44 @@ pub fn linear_enough(nonlinearity: f64, accuracy: f64) -> bool {
     nonlinearity <= SHARE * accuracy
 }
 
-/// What rides on the beam, as the choice weighs it.
-pub struct Riding {
+/// Everything the choice of a beam model weighs: a planner keeps each choice under these
+/// inputs' text, so that a sweep's cases that differ in any of them choose again.
+#[derive(Debug)]
+pub struct ModelInputs<'a> {
+    pub spec: &'a BeamSpec,
+    /// The model the scene names, if it names one (a modal beam with `modes: 0` has its count
+    /// chosen).
+    pub given: Option<BeamModel>,
+    pub loads: &'a [PointLoad],
     /// The largest weight one rider or axle puts on the beam, stood at each probe in turn.
     pub weight: Option<f64>,
     /// Whether a rider follows the kept modes (a disk that is not a moving force, a vehicle's
     /// wheels, moving masses), without the static correction of those left out.
     pub followers: bool,
+    /// The probes' places, where the deflections are weighed.
+    pub xs: &'a [f64],
+    pub accuracy: f64,
+    pub start: BeamStart,
+    /// A disk has the thesis coupling, whose equations are written for the exact beam.
+    pub thesis_coupling: bool,
+    /// The deck acceleration's cutoff the scene gives (Hz).
+    pub cutoff: Option<f64>,
 }
 
-/// Choose what the scene left out of its beam model. `given` is the model the scene names,
-/// if it names one (a modal beam with `modes: 0` has its count chosen).
-#[allow(clippy::too_many_arguments)]
-pub fn choose(
-    spec: &BeamSpec,
-    given: Option<BeamModel>,
-    loads: &[PointLoad],
-    Riding { weight, followers }: Riding,
-    xs: &[f64],
-    accuracy: f64,
-    start: BeamStart,
-    thesis_coupling: bool,
-    cutoff: Option<f64>,
-) -> Choice {
+/// Choose what the scene left out of its beam model.
+pub fn choose(inputs: &ModelInputs) -> Choice {
+    let &ModelInputs {
+        spec,
+        given,
+        loads,
+        weight,
+        followers,
+        xs,
+        accuracy,
+        start,
+        thesis_coupling,
+        cutoff,
+    } = inputs;
     let cases = largest_loads(loads, weight, xs);
     let switching: Vec<&PointLoad> = loads
         .iter()
