@@ -152,6 +152,108 @@ fn thin_and_thick_beams_at_every_degree() {
     }
 }
 
+/// A shear-rigid section: a user who makes G huge to mean Euler–Bernoulli gets Euler–Bernoulli.
+/// D44's HEB 360 with G from its own to 10¹² times it, simply supported under a midspan load and
+/// cantilevered under a load at its last node, on 2 to 40 elements of degree 2, 4 and 10: the
+/// static deflection of the linear and the exact beam against Timoshenko's closed form
+/// (P L³/(48 E I) + P L/(4 G Av) and P a³/(3 E I) + P a/(G Av)). A stiffness matrix holding
+/// G Av/h beside E I/h³ keeps the bending only to round-off times their ratio: the linear beam
+/// on 40 elements was 7 % off at G × 10⁷ and pointed the wrong way at 10⁹, and its first
+/// frequency on 10 elements read 0 Hz at G = 10²⁴ Pa. Assembled with its shear held at
+/// `shear_rigid_limit`, the error is bounded by twice the limit's balance √(12 C ε (30 + n²)),
+/// C = p²/10 (the shear the limit adds, plus as much round-off). The first frequencies of the
+/// linear beam at G = 10¹⁶, 10²⁰ and 10²⁴ Pa (10 elements, degree 4) agree to the same bound.
+#[test]
+fn a_shear_rigid_section_deflects_as_euler_bernoulli_at_any_stiffness() {
+    use rollbeam::analysis::{modes, statics};
+    use rollbeam::beam::element::Section;
+    use rollbeam::beam::supports::Support;
+    use rollbeam::beam::{Beam, BeamModel, BeamSpec, Quadrature};
+    let (l, e, i, av, p) = (20.0_f64, 210e9, 43190e-8, 46.8e-4, -15.0);
+    let spec = |g: f64, supports, elements, order, model| BeamSpec {
+        from: [0.0, 0.0],
+        to: [l, 0.0],
+        section: Section {
+            ea: e * 181e-4,
+            gav: g * av,
+            ei: e * i,
+            rho_a: 7850.0 * 181e-4,
+            rho_i: 7850.0 * i,
+        },
+        depth: 0.36,
+        supports,
+        bearings: Vec::new(),
+        elements,
+        order,
+        quadrature: Quadrature::Reduced,
+        model,
+        damping: None,
+        self_weight: None,
+    };
+    let balance = |elements: usize, order: usize| {
+        let (n, p) = (elements as f64, order as f64);
+        (12.0 * 0.1 * p * p * f64::EPSILON * (30.0 + n * n)).sqrt()
+    };
+    for factor in [1.0, 1e4, 1e8, 1e12] {
+        let g = 81e9 * factor;
+        for (supports, elements) in [
+            ([Support::Pinned, Support::Roller], 2),
+            ([Support::Pinned, Support::Roller], 10),
+            ([Support::Pinned, Support::Roller], 40),
+            ([Support::Clamped, Support::Free], 10),
+            ([Support::Clamped, Support::Free], 40),
+        ] {
+            let cantilever = supports[1] == Support::Free;
+            let a = if cantilever {
+                l * (elements - 1) as f64 / elements as f64
+            } else {
+                l / 2.0
+            };
+            let expect = if cantilever {
+                p * a.powi(3) / (3.0 * e * i) + p * a / (g * av)
+            } else {
+                p * l.powi(3) / (48.0 * e * i) + p * l / (4.0 * g * av)
+            };
+            for order in [2, 4, 10] {
+                for model in [BeamModel::Linear, BeamModel::Exact] {
+                    let b = Beam::new(spec(g, supports, elements, order, model));
+                    let mut f = vec![0.0; b.dim()];
+                    b.add_point_load(a, [0.0, p], 0.0, &mut f);
+                    let q = statics::solve(&b, &f).expect("converges").q;
+                    let w = b.displacement_at(&q, a).w;
+                    // A thousandth of D44's weight deflects the span by 10⁻⁶ of itself: the
+                    // exact beam's own nonlinearity stays near 10⁻¹¹ of the deflection.
+                    let tol = 2.0 * balance(elements, order);
+                    assert!(
+                        ((w - expect) / expect).abs() <= tol,
+                        "G × {factor:e}, {supports:?} on {elements} of degree {order}, {}: {w:e} against {expect:e} ({:.1e} > {tol:.1e})",
+                        model.name(),
+                        ((w - expect) / expect).abs()
+                    );
+                }
+            }
+        }
+    }
+    let f1 = |g: f64| {
+        let b = Beam::new(spec(
+            g,
+            [Support::Pinned, Support::Roller],
+            10,
+            4,
+            BeamModel::Linear,
+        ));
+        modes::lowest_bending(&b, 1).expect("a bending mode")[0]
+    };
+    let (reference, tol) = (f1(1e16), 2.0 * balance(10, 4));
+    for g in [1e20, 1e24] {
+        let f = f1(g);
+        assert!(
+            ((f - reference) / reference).abs() <= tol,
+            "G = {g:e}: f1 {f} against {reference}"
+        );
+    }
+}
+
 /// A long run: the disk of P1 rocking in the parabola for 3770 s, about 1000 oscillations.
 /// Dormand–Prince is not symmetric: its energy error grows secularly, in proportion to time
 /// (the drift over the whole run is about twice that over its first half), and stays below

@@ -102,8 +102,14 @@ fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Result<(f64, 
         model: BeamModel::Exact,
         ..spec.clone()
     });
+    // The linear beam's own stiffness, which may hold a stiff shear back from the exact one's
+    // (`beam::shear_rigid_limit`): its deflection is the one a linear or modal run would have.
+    let small = Beam::shared(&BeamSpec {
+        model: BeamModel::Linear,
+        ..spec.clone()
+    });
     let n = exact.dim();
-    let lu = SparseLu::factor(&exact.tangent(&vec![0.0; n]), None).ok_or(Unmeasured::Nothing)?;
+    let lu = SparseLu::factor(&small.tangent(&vec![0.0; n]), None).ok_or(Unmeasured::Nothing)?;
     let (mut size, mut gap) = (0.0_f64, 0.0_f64);
     for case in cases {
         let mut f = vec![0.0; n];
@@ -146,8 +152,11 @@ fn uncarried(spec: &BeamSpec, case: &Pattern, linear: &[f64], span: f64) -> Unme
     }
     let total: f64 = case.iter().map(|(_, f, _)| f[0].hypot(f[1])).sum();
     Unmeasured::Uncarried(format!(
-        "the beam does not carry the scene's loads statically: under {total:.3e} N in all the linear beam would deflect {deepest:.3e} m at the probes, {:.0} times its span, and the exact beam finds no equilibrium: the plan has no response to choose from, and a run follows the beam folding by metres in microsecond steps (a sprung mass 10⁶ times Biggs': 2 million steps, 4 minutes). Lighten the loads or stiffen the beam, or name `track.beam.model` to run it anyway",
-        deepest / span
+        "the beam does not carry the scene's loads statically: under {total:.3e} N in all the linear beam would deflect {deepest:.3e} m at the probes, {} times its span, and the exact beam finds no equilibrium: the plan has no response to choose from, and a run follows the beam folding by metres in microsecond steps (a sprung mass 10⁶ times Biggs': 2 million steps, 4 minutes). Lighten the loads or stiffen the beam, or name `track.beam.model` to run it anyway",
+        match deepest / span {
+            times if times < 1e6 => format!("{times:.0}"),
+            times => format!("{times:.1e}"),
+        }
     ))
 }
 

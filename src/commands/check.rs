@@ -7,7 +7,7 @@ use crate::beam::damping::DampingSpec;
 use crate::beam::load::BeamStart;
 use crate::beam::supports::statically_supported;
 use crate::beam::train::{Train, TrainModel};
-use crate::beam::{Beam, BeamModel};
+use crate::beam::{shear_rigid_ratio, Beam, BeamModel};
 use crate::coupling::patch;
 use crate::coupling::DiskOnBeamSpec;
 use crate::error::Error;
@@ -174,6 +174,21 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
                 setup.accuracy
             ))
     )?;
+    let (given, taken) = (setup.beam.section.gav, spec.section.gav);
+    if taken < given {
+        let bending = spec.section.ei / (b.length * b.length);
+        writeln!(
+            f,
+            "  shear: G Av = {given:.4e} N against E I/L² = {bending:.4e} N, so stiff that the stiffness matrix would keep the bending beside it only to round-off; the beam is assembled with G Av = {taken:.4e} N ({:.1e} E I/L², the shear then adding about {:.1e} of the deflection), {}",
+            shear_rigid_ratio(spec),
+            12.0 / shear_rigid_ratio(spec),
+            if spec.model == BeamModel::Exact {
+                "where the exact beam's tangent still keeps its Newton iteration converging"
+            } else {
+                "where the shear adds as much of the deflection as the round-off it saves"
+            }
+        )?;
+    }
     damping(f, &b)?;
     if let Some(g) = spec.self_weight {
         writeln!(

@@ -236,6 +236,11 @@ struct Model {
     order: usize,
     quadrature: &'static str,
     length: f64,
+    /// The shear stiffness G·Av (N) a small-displacement beam is assembled with where the
+    /// scene's is stiffer than round-off lets the bending beside it be kept
+    /// ([`crate::beam::shear_rigid_limit`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    shear_stiffness: Option<f64>,
     /// What was chosen from `solver.accuracy` because the scene left it out, and why.
     #[serde(skip_serializing_if = "Option::is_none")]
     chosen: Option<Chosen>,
@@ -418,6 +423,8 @@ pub fn summary_yaml(r: &BeamRun) -> Result<String, Error> {
             order: r.beam.spec.order,
             quadrature: r.beam.spec.quadrature.name(),
             length: r.beam.length,
+            shear_stiffness: (r.beam.spec.section.gav < r.setup.beam.section.gav)
+                .then_some(r.beam.spec.section.gav),
             chosen: chosen(r),
         },
         solver: super::summary::Solver::of(&r.header),
