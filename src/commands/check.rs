@@ -174,21 +174,7 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
                 setup.accuracy
             ))
     )?;
-    let (given, taken) = (setup.beam.section.gav, spec.section.gav);
-    if taken < given {
-        let bending = spec.section.ei / (b.length * b.length);
-        writeln!(
-            f,
-            "  shear: G Av = {given:.4e} N against E I/L² = {bending:.4e} N, so stiff that the stiffness matrix would keep the bending beside it only to round-off; the beam is assembled with G Av = {taken:.4e} N ({:.1e} E I/L², the shear then adding about {:.1e} of the deflection), {}",
-            shear_rigid_ratio(spec),
-            12.0 / shear_rigid_ratio(spec),
-            if spec.model == BeamModel::Exact {
-                "where the exact beam's tangent still keeps its Newton iteration converging"
-            } else {
-                "where the shear adds as much of the deflection as the round-off it saves"
-            }
-        )?;
-    }
+    shear(f, setup, &b)?;
     damping(f, &b)?;
     if let Some(g) = spec.self_weight {
         writeln!(
@@ -225,6 +211,27 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
             .collect::<Vec<_>>()
             .join(", ")
     )?;
+    Ok(())
+}
+
+/// Where the scene's shear stiffness is held back (`beam::shear_rigid_limit`), by how much.
+fn shear(f: &mut fmt::Formatter<'_>, setup: &BeamScene, b: &Beam) -> fmt::Result {
+    let spec = &b.spec;
+    let (given, taken) = (setup.beam.section.gav, spec.section.gav);
+    if taken < given {
+        let bending = spec.section.ei / (b.length * b.length);
+        writeln!(
+            f,
+            "  shear: G Av = {given:.4e} N against E I/L² = {bending:.4e} N, so stiff that the stiffness matrix would keep the bending beside it only to round-off; the beam is assembled with G Av = {taken:.4e} N ({:.1e} E I/L², the shear then adding about {:.1e} of the deflection), {}",
+            shear_rigid_ratio(spec),
+            12.0 / shear_rigid_ratio(spec),
+            if spec.model == BeamModel::Exact {
+                "where the exact beam's tangent still keeps its Newton iteration converging"
+            } else {
+                "where the shear adds as much of the deflection as the round-off it saves"
+            }
+        )?;
+    }
     Ok(())
 }
 
