@@ -276,6 +276,9 @@ pub struct Beam {
     /// The beam's own weight as a load on the free unknowns and on all of them: M g, the
     /// consistent mass times gravity's acceleration on every node's displacements.
     weight: Option<(Vec<f64>, Vec<f64>)>,
+    /// The scene's shear stiffness G·Av, where the beam is assembled with less
+    /// ([`shear_rigid_limit`]; `spec.section.gav` holds what it is assembled with).
+    pub shear_given: Option<f64>,
 }
 
 /// Beams kept assembled for the specs last asked: planning a scene and running it assemble the
@@ -302,6 +305,11 @@ impl Beam {
         beam
     }
 
+    /// The shear stiffness G·Av the beam is assembled with, where it holds the scene's back.
+    pub fn held_shear(&self) -> Option<f64> {
+        self.shear_given.map(|_| self.spec.section.gav)
+    }
+
     pub fn new(mut spec: BeamSpec) -> Beam {
         assert!(
             (1..=MAX_ORDER).contains(&spec.order),
@@ -310,9 +318,11 @@ impl Beam {
         let length = (spec.to[0] - spec.from[0]).hypot(spec.to[1] - spec.from[1]);
         // A bending stiffness near the smallest double leaves no limit to hold the shear at.
         let limit = shear_rigid_limit(&spec, length);
-        if limit.is_normal() {
-            spec.section.gav = spec.section.gav.min(limit);
-        }
+        let shear_given = (limit.is_normal() && spec.section.gav > limit).then(|| {
+            let given = spec.section.gav;
+            spec.section.gav = limit;
+            given
+        });
         let angle = (spec.to[1] - spec.from[1]).atan2(spec.to[0] - spec.from[0]);
         let basis = Lagrange::new(spec.order);
         let h = length / spec.elements as f64;
@@ -356,6 +366,7 @@ impl Beam {
             tangent_pattern: OnceLock::new(),
             linear: None,
             weight: None,
+            shear_given,
         };
         (beam.mass, beam.full_mass) = beam.assemble_mass();
         if let Some(g) = beam.spec.self_weight {

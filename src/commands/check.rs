@@ -174,7 +174,7 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
                 setup.accuracy
             ))
     )?;
-    shear(f, setup, &b)?;
+    shear(f, &b)?;
     damping(f, &b)?;
     if let Some(g) = spec.self_weight {
         writeln!(
@@ -215,10 +215,10 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
 }
 
 /// Where the scene's shear stiffness is held back (`beam::shear_rigid_limit`), by how much.
-fn shear(f: &mut fmt::Formatter<'_>, setup: &BeamScene, b: &Beam) -> fmt::Result {
+fn shear(f: &mut fmt::Formatter<'_>, b: &Beam) -> fmt::Result {
     let spec = &b.spec;
-    let (given, taken) = (setup.beam.section.gav, spec.section.gav);
-    if taken < given {
+    if let Some(given) = b.shear_given {
+        let taken = spec.section.gav;
         let bending = spec.section.ei / (b.length * b.length);
         writeln!(
             f,

@@ -37,6 +37,20 @@ pub struct StaticFile {
     pub reactions: BTreeMap<String, Reaction>,
     pub iterations: usize,
     pub load_steps: usize,
+    /// The shear stiffness G·Av (N) the beam is assembled with, where the scene's is held
+    /// back as too stiff for round-off ([`crate::beam::shear_rigid_limit`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shear_stiffness: Option<f64>,
+}
+
+/// The line saying a beam's shear is held back, where it is.
+fn shear_line(beam: &Beam) -> Option<String> {
+    beam.shear_given.map(|given| {
+        format!(
+            "  shear: G Av held at {:.4e} N, the scene's {given:.4e} N being too stiff beside E I for round-off (`check` says why)\n",
+            beam.spec.section.gav
+        )
+    })
 }
 
 /// Static equilibrium under the loads active at t = 0, the beam's own weight where the scene
@@ -48,6 +62,7 @@ pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, E
         "{}: static equilibrium in {} load steps, {} Newton iterations\n",
         scene.name, sol.load_steps, sol.iterations
     );
+    text += &shear_line(&Beam::shared(&setup.beam)).unwrap_or_default();
     for (name, p) in &sol.probes {
         let _ = writeln!(
             text,
@@ -143,6 +158,7 @@ pub fn static_solution(scene: &Scene, setup: &BeamScene) -> Result<StaticFile, E
         reactions,
         iterations: sol.iterations,
         load_steps: sol.load_steps,
+        shear_stiffness: beam.held_shear(),
     })
 }
 
@@ -152,6 +168,9 @@ struct ModesFile {
     frequencies_hz: Vec<f64>,
     /// Each mode's kind: bending or axial.
     kinds: Vec<modes::ModeKind>,
+    /// As in [`StaticFile`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    shear_stiffness: Option<f64>,
 }
 
 /// Natural frequencies (Hz) and mode shapes, mass-normalised, sampled at `xs`.
@@ -224,6 +243,7 @@ pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Resu
         xs,
         shapes,
     } = natural_modes(scene, setup, count, 200)?;
+    let beam = Beam::shared(&setup.beam);
     std::fs::create_dir_all(dir).map_err(|e| io_error(dir, e))?;
     write(
         &dir.join("modes.yaml"),
@@ -231,6 +251,7 @@ pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Resu
             scene: scene.name.clone(),
             frequencies_hz: hz.clone(),
             kinds: kinds.clone(),
+            shear_stiffness: beam.held_shear(),
         })?,
     )?;
     let labels: Vec<String> = hz
@@ -259,6 +280,7 @@ pub fn modes(scene: &Scene, setup: &BeamScene, count: usize, dir: &Path) -> Resu
         &series,
     )?;
     let mut text = format!("{}: natural frequencies (Hz)\n", scene.name);
+    text += &shear_line(&beam).unwrap_or_default();
     for (k, f) in hz.iter().enumerate() {
         let _ = writeln!(text, "  {:>2}: {f:.6} ({})", k + 1, kinds[k].name());
     }

@@ -423,8 +423,7 @@ pub fn summary_yaml(r: &BeamRun) -> Result<String, Error> {
             order: r.beam.spec.order,
             quadrature: r.beam.spec.quadrature.name(),
             length: r.beam.length,
-            shear_stiffness: (r.beam.spec.section.gav < r.setup.beam.section.gav)
-                .then_some(r.beam.spec.section.gav),
+            shear_stiffness: r.beam.held_shear(),
             chosen: chosen(r),
         },
         solver: super::summary::Solver::of(&r.header),
