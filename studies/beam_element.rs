@@ -116,14 +116,14 @@ fn cantilever_tip_deflection_with_shear() {
     assert!((w / exact - 1.0).abs() < 1e-6, "tip {w} vs {exact}");
 }
 
-/// A linear beam stiff in shear solves statically to Euler–Bernoulli. With G Av 10⁵ times
-/// the section's, its assembled K q loses the shear strain w′ − φ to cancellation, and Newton's
-/// corrections stop shrinking above the 10⁻⁹ of the solution a converging Newton reaches: the
-/// first solve is the answer to the solve's round-off, and the solver takes it rather than
+/// A linear beam stiff in shear solves statically to Euler–Bernoulli. G Av 10⁵ times the
+/// section's is held at `shear_rigid_limit` (G Av L²/(E I) = 1.9·10⁷ here), where the assembled
+/// K q still loses part of the shear strain w′ − φ to cancellation and Newton's corrections stop
+/// shrinking above the 10⁻⁹ of the solution a converging Newton reaches (at 10⁻⁶ to 10⁻⁹ of it):
+/// the first solve is the answer to the solve's round-off, and the solver takes it rather than
 /// halving its load steps to a failure ("the structure may buckle or snap"). Simply
 /// supported, P at midspan on a node: w = P L³/(48 EI) + P L/(4 G Av), which the element
-/// reproduces to round-off; 10⁻⁶ allows the conditioning's loss (2.2·10⁻⁶ at 10⁶ times the
-/// shear stiffness, 2.6·10⁻⁵ at 10⁷).
+/// reproduces to round-off; 10⁻⁶ allows the limit's shear and as much round-off (6·10⁻⁷ each).
 #[test]
 fn a_shear_rigid_linear_beam_solves_statically() {
     let mut s = shs200();

@@ -75,9 +75,9 @@ pub fn solve(beam: &Beam, f_ext: &[f64]) -> Result<StaticSolution, StaticError> 
             // error near round-off after it is applied.
             // A linear beam's first solve is its answer, and what follows refines it while
             // the residual K q − f has digits left: where the shear stiffness dwarfs the
-            // bending one (G × 10⁴ on D44's HEB 360), the assembled K q loses the shear
-            // strain w′ − φ to cancellation and the corrections stop shrinking near 2·10⁻⁸
-            // of the deflection, the solve's own round-off.
+            // bending one (up to `beam::shear_rigid_limit`), the assembled K q loses the
+            // shear strain w′ − φ to cancellation and the corrections stop shrinking at 10⁻⁶
+            // to 10⁻⁹ of the deflection, the solve's own round-off.
             let stalled = linear && dq >= 0.5 * last_dq;
             if dq <= 1e-9 * size || size == 0.0 || stalled {
                 converged = true;
