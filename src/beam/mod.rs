@@ -318,11 +318,8 @@ impl Beam {
         let length = (spec.to[0] - spec.from[0]).hypot(spec.to[1] - spec.from[1]);
         // A bending stiffness near the smallest double leaves no limit to hold the shear at.
         let limit = shear_rigid_limit(&spec, length);
-        let shear_given = (limit.is_normal() && spec.section.gav > limit).then(|| {
-            let given = spec.section.gav;
-            spec.section.gav = limit;
-            given
-        });
+        let shear_given = (limit.is_normal() && spec.section.gav > limit)
+            .then(|| std::mem::replace(&mut spec.section.gav, limit));
         let angle = (spec.to[1] - spec.from[1]).atan2(spec.to[0] - spec.from[0]);
         let basis = Lagrange::new(spec.order);
         let h = length / spec.elements as f64;
