@@ -157,10 +157,10 @@ fn thin_and_thick_beams_at_every_degree() {
 /// cantilevered under a load at its last node, on 2 to 40 elements of degree 2, 4 and 10: the
 /// static deflection of the linear and the exact beam against Timoshenko's closed form
 /// (P L³/(48 E I) + P L/(4 G Av) and P a³/(3 E I) + P a/(G Av)). A stiffness matrix holding
-/// G Av/h beside E I/h³ keeps the bending only to round-off times their ratio: the linear
-/// cantilever on 32 elements was 2.8 % off at G × 10⁸ (a 10 m one with A and Av × 1000 on 8
-/// elements pointed the wrong way at G × 10⁹), and the simply supported beam's first
-/// frequency on 10 elements read 0 Hz at G = 10²⁴ Pa. Assembled with its shear held at
+/// G Av/h beside E I/h³ keeps the bending only to round-off times their ratio: without a
+/// limit the linear cantilever on 32 elements is 2.8 % off at G × 10⁸ (a 10 m one with A and
+/// Av × 1000 on 8 elements points the wrong way at G × 10⁹), and the simply supported beam's
+/// first frequency on 10 elements comes out 0 Hz at G = 10²⁴ Pa. Assembled with its shear held at
 /// `shear_rigid_limit`, the error is bounded by twice the limit's balance √(12 C ε (30 + n²)),
 /// C = p²/10 (the shear the limit adds, plus as much round-off). The first frequencies of the
 /// linear beam at G = 10¹⁶, 10²⁰ and 10²⁴ Pa (10 elements, degree 4) agree to the same bound.
