@@ -325,7 +325,12 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
                 p.event(i, tt, y_tmp)
             },
         );
-        let t_stop = first.map_or(t_new, |(_, te)| te);
+        // The observer follows the solution to the last time known before a terminal event:
+        // where the event's function jumps rather than passes through zero, the state past
+        // the crossing breaks the law the problem holds until the event is handled, and what
+        // is observed there is no state the system reaches.
+        let t_stop = first.map_or(t_new, |(_, _, te)| te);
+        let t_seen = first.map_or(t_new, |(_, before, _)| before);
         let dense = StepperDense {
             stepper: stepper.as_ref(),
             ends: (self.t, t_new),
@@ -333,14 +338,14 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
                 .rate_from_the_problem()
                 .then(|| (self.p as &dyn Dynamics, RefCell::new(&mut self.ctx))),
         };
-        observer.span(self.t, t_stop, &dense);
+        observer.span(self.t, t_seen, &dense);
         while self.next_out < self.outputs.len() && self.outputs[self.next_out] <= t_stop {
             let to = self.outputs[self.next_out];
             stepper.interpolate(to, y_tmp);
             observer.output(to, y_tmp);
             self.next_out += 1;
         }
-        if let Some((i, te)) = first {
+        if let Some((i, _, te)) = first {
             stepper.interpolate(te, y_tmp);
             observer.step(te, y_tmp);
             self.t = te;
@@ -426,7 +431,7 @@ pub fn same_breakpoint(a: f64, b: f64) -> bool {
 
 /// The events of one step [t0, t1] whose g passes from ≥ 0 (g0) to < 0 (g1), each located on
 /// `g_at(index, t)`: non-terminal ones are recorded in `events`, and the earliest terminal one
-/// is returned.
+/// is returned with the last time known before its crossing and the first known past it.
 fn crossings<E: Copy>(
     specs: &[EventSpec<E>],
     g0: &[f64],
@@ -435,16 +440,16 @@ fn crossings<E: Copy>(
     t1: f64,
     events: &mut Vec<EventHit<E>>,
     mut g_at: impl FnMut(usize, f64) -> f64,
-) -> Option<(usize, f64)> {
-    let mut first: Option<(usize, f64)> = None;
+) -> Option<(usize, f64, f64)> {
+    let mut first: Option<(usize, f64, f64)> = None;
     for i in 0..specs.len() {
         if !(g0[i] >= 0.0 && g1[i] < 0.0) {
             continue;
         }
-        let te = locate(|tt| g_at(i, tt), t0, g0[i], t1, g1[i]);
+        let (before, te) = locate(|tt| g_at(i, tt), t0, g0[i], t1, g1[i]);
         if specs[i].terminal {
-            if first.is_none_or(|(_, tf)| te < tf) {
-                first = Some((i, te));
+            if first.is_none_or(|(_, _, tf)| te < tf) {
+                first = Some((i, before, te));
             }
         } else {
             events.push(EventHit {
@@ -457,9 +462,15 @@ fn crossings<E: Copy>(
 }
 
 /// Illinois (modified regula falsi) on g over [a, b] with g(a) ≥ 0 > g(b).
-fn locate(mut g: impl FnMut(f64) -> f64, mut a: f64, mut ga: f64, mut b: f64, mut gb: f64) -> f64 {
+fn locate(
+    mut g: impl FnMut(f64) -> f64,
+    mut a: f64,
+    mut ga: f64,
+    mut b: f64,
+    mut gb: f64,
+) -> (f64, f64) {
     if ga == 0.0 {
-        return a;
+        return (a, a);
     }
     let mut side = 0;
     for _ in 0..200 {
@@ -487,8 +498,9 @@ fn locate(mut g: impl FnMut(f64) -> f64, mut a: f64, mut ga: f64, mut b: f64, mu
             side = -1;
         }
     }
-    // The first time known to be past the crossing: the event has happened by then.
-    b
+    // The last time known before the crossing, and the first known past it: the event has
+    // happened by then.
+    (a, b)
 }
 
 /// Hairer–Wanner's starting step from the size of y, y' and an estimate of y''.

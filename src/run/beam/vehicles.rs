@@ -98,11 +98,14 @@ pub(super) fn drive<'a>(
         if !v.can_fly(k) {
             break (Stop::Event(StopReason::ContactLost), Some(v.wheel(k)));
         }
-        if rec.history.rows.last().is_none_or(|r| r.t < t) {
-            rec.output(t, &y);
-        }
-        rec.restart();
+        let record = |rec: &mut Recorder<'a>, y: &[f64]| {
+            if rec.history.rows.last().is_none_or(|r| r.t < t) {
+                rec.output(t, y);
+            }
+        };
         if v.flies(k) {
+            record(rec, &y);
+            rec.restart();
             let (lost, work) = v.land(k, t, &mut y);
             rec.ledger.wheel_lands(lost, work);
             if let Some(f) = flights.iter_mut().rev().find(|f| f.wheel == k) {
@@ -124,7 +127,12 @@ pub(super) fn drive<'a>(
                     scene.name
                 )));
             }
+            // The row at the lift-off is the wheel's first in the air: its contact force may
+            // drop to zero at once (a disk wheel at a crest), and on the track past that
+            // instant the wheel would pull on the deck.
             v.lift(k, t, &mut y);
+            record(rec, &y);
+            rec.restart();
             flights.push(WheelFlight {
                 wheel: k,
                 lift_off_t: t,
