@@ -152,16 +152,11 @@ impl<'a> Phase<'a> {
         }
     }
 
-    /// The vehicles at (t, y), their accelerations from `rate` (the dense output's ẏ) where
-    /// given, solved for otherwise.
-    pub fn vehicles(&self, t: f64, y: &[f64], rate: Option<&[f64]>) -> Option<VehicleObservation> {
+    /// The vehicles at (t, y), with the model's accelerations there.
+    pub fn vehicles(&self, t: f64, y: &[f64]) -> Option<VehicleObservation> {
         let v = self.vehicles?;
         let (z, zd) = self.split(y);
-        let zdd = match rate {
-            Some(yp) => self.split(yp).1.to_vec(),
-            None => v.acceleration(t, z, zd),
-        };
-        Some(v.observe(t, z, zd, &zdd))
+        Some(v.observe(t, z, zd, &v.acceleration(t, z, zd)))
     }
 
     /// The model's accelerations at (t, y): with the disk on the beam, the coupled system's

@@ -78,6 +78,9 @@ pub(super) struct Recorder<'a> {
     pub(super) along_trail: Vec<(f64, Vec<f64>)>,
     /// The deck where the last step watched under riders ended (`watch_the_deck_over`).
     pub(super) deck_end: Option<DeckEnd>,
+    /// The vehicles where the last step watched ended (`watch_the_vehicles`): their squares
+    /// are booked up to it.
+    pub(super) vehicles_end: Option<DeckEnd<Vec<f64>>>,
     pub(super) grid_check: GridCheck,
     /// When the last load left the beam: from then on the residual vibration is watched.
     pub(super) exit_t: Option<f64>,
@@ -126,7 +129,8 @@ impl Recorder<'_> {
     ) -> Snapshot {
         let mut s = self.deck_snapshot(t, y, rate, along);
         if self.phase.vehicles.is_some() {
-            s.vehicles = self.vehicle_values(t, self.phase.vehicles(t, y, rate).as_ref());
+            // Of the model's accelerations, as `Recorder::vehicles_seen` says why.
+            s.vehicles = self.vehicle_values(t, self.phase.vehicles(t, y).as_ref());
         }
         s
     }
@@ -438,7 +442,7 @@ impl Observer for Recorder<'_> {
             Some(f) => f.filtered(phase.loaded, &a),
             None => phase.loaded.to_mesh(&a).into_owned(),
         };
-        let vehicles = phase.vehicles(t, y, None);
+        let vehicles = phase.vehicles(t, y);
         let watched = self.vehicle_values(t, vehicles.as_ref());
         let sample = Sample {
             vehicles,
@@ -666,6 +670,7 @@ pub(super) fn recorder<'a>(
         watch_along: !over.no_envelope,
         last: None,
         deck_end: None,
+        vehicles_end: None,
         grid_check: GridCheck::new(setup.accuracy),
         before: None,
         trail: Vec::new(),
@@ -724,12 +729,10 @@ impl Recorded {
         let y_end = on_mesh(&rec.phase, y_end);
         if let Some(last) = rec.last_row.take() {
             rec.watches.see_row(&last);
-            // The grid's last sample may lie up to a spacing short of the run's end, and the
-            // root mean squares cover the run to its end: a car stopped by its wheel lifting
-            // off read its hubs' 1.8·10⁻³ and 2.3·10⁻³ off at rtol 10⁻¹⁰, converging only as
-            // the spacing.
-            if let Some((t, sample)) = rec.last.take().filter(|(t, _)| *t < last.t) {
-                rec.add_squares((t, last.t), [&sample.vehicles, &last.vehicles], None);
+            // The last step watched ends where the run stops short of a terminal event's
+            // crossing, and the root mean squares cover the run to its end.
+            if let Some(end) = rec.vehicles_end.take().filter(|e| e.t < last.t) {
+                rec.add_squares((end.t, last.t), [&end.end, &last.vehicles], None);
             }
         }
         let (extremes, envelope) = rec.extremes();
