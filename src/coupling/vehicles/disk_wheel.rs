@@ -89,16 +89,31 @@ impl VehiclesOnBeam<'_> {
             .collect();
         let mut candidates: Vec<f64> = newton(centre).into_iter().collect();
         for &k in &corners {
-            candidates.push(k);
             for side in [-1.0, 1.0] {
                 candidates.extend(newton(k + side * 1e-6 * a));
             }
         }
-        let mut x = candidates
-            .iter()
-            .copied()
-            .max_by(|&p, &q| height(p).total_cmp(&height(q)))
-            .unwrap_or(centre);
+        let highest = |of: &[f64]| {
+            of.iter()
+                .copied()
+                .max_by(|&p, &q| height(p).total_cmp(&height(q)))
+        };
+        // A centre within √(2ε) a of a corner, still over the face it rolls on, rests on that
+        // face and on the corner at heights round-off cannot tell apart: the face is taken
+        // unless the corner is higher by more than round-off, so that the contact does not
+        // flicker onto the corner and its curvature to the corner's 1/a before the centre
+        // passes it (a van's disk wheel pulled on the deck with 366 kN at one such instant).
+        let face = highest(&candidates);
+        let mut x = match (face, highest(&corners)) {
+            (Some(f), Some(k))
+                if height(k) > height(f) + 8.0 * f64::EPSILON * (a + height(f).abs()) =>
+            {
+                k
+            }
+            (Some(f), _) => f,
+            (None, k) => k.unwrap_or(centre),
+        };
+        candidates.extend(&corners);
         // On a road that bends faster than the disk, Newton's crest may be one the disk
         // bridges: every crest within reach is a candidate.
         if let Some(count) = self.profile.crest_scan(a) {
