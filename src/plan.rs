@@ -280,9 +280,9 @@ const ROLLING_CONTACT: &str = "esdirk4: a rolling disk's contact force is its ma
 /// 10⁻¹¹), and the body's of a cart braking to a stop on a cantilever 2.9·10⁻³ off. The
 /// fourth-order steps at a thousandth hold every number of those scenes, of the railway
 /// study, of the railway cars on 0.46 m disk wheels hopping at the abutment at 121 m/s and of
-/// a van hopping over a pothole within 7.9·10⁻⁴ of ESDIRK4 and generalized-α at rtol 10⁻¹⁰
+/// a van hopping over a pothole within 6.4·10⁻⁵ of ESDIRK4 and generalized-α at rtol 10⁻¹⁰
 /// (each number against the largest of its kind).
-const VEHICLES: &str = "esdirk4: the vehicles' bodies vibrate on their suspensions over the whole run and the deck under them in every mode it holds, and a wheel with a mass of its own sets every mode ringing where its track turns; generalized-alpha carries both with the phase error of every step, adding up over their periods (at a three-thousandth of the accuracy it read the deck's largest acceleration under Biggs' sprung mass at 100 m/s 1.4e-3 low, in the free vibration after the wheel left, and at 5 m/s on a 500 kg wheel 8.7e-3 off), where the fourth-order steps at a thousandth come within 7.9e-4 of every number the vehicle scenes report; wheels with a mass of their own faster than 200 m/s keep generalized-alpha, whose short steps read the bogies' root mean squares on the grid";
+const VEHICLES: &str = "esdirk4: the vehicles' bodies vibrate on their suspensions over the whole run and the deck under them in every mode it holds, and a wheel with a mass of its own sets every mode ringing where its track turns; generalized-alpha carries both with the phase error of every step, adding up over their periods (at a three-thousandth of the accuracy it read the deck's largest acceleration under Biggs' sprung mass at 100 m/s 1.4e-3 low, in the free vibration after the wheel left, and at 5 m/s on a 500 kg wheel 8.7e-3 off), where the fourth-order steps at a thousandth come within 6.4e-5 of every number the vehicle scenes report; wheels with a mass of their own faster than 200 m/s keep generalized-alpha, whose short steps read the bogies' root mean squares on the grid";
 
 /// Why the plan integrates a train of moving masses with the fourth-order ESDIRK unless the
 /// scene asks for numerical damping itself. Each axle's mass follows the beam, turning with
