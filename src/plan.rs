@@ -212,10 +212,7 @@ impl Planner {
             Some((Method::ExactModal, EXACT_MODAL))
         } else if b.rolls_with_inertia() && b.vehicles.is_empty() && !damped_by_the_scene(b) {
             Some((Method::Esdirk4, ROLLING_CONTACT))
-        } else if !b.vehicles.is_empty()
-            && !damped_by_the_scene(b)
-            && unsprung_speed(b) <= ESDIRK_UNSPRUNG_SPEED
-        {
+        } else if !b.vehicles.is_empty() && !damped_by_the_scene(b) {
             Some((Method::Esdirk4, VEHICLES))
         } else if b.carries_moving_masses() && b.vehicles.is_empty() && !damped_by_the_scene(b) {
             Some((Method::Esdirk4, MOVING_MASSES))
@@ -271,8 +268,7 @@ const EXACT_MODAL: &str = "exact-modal: the modal beam under moving forces and l
 const ROLLING_CONTACT: &str = "esdirk4: a rolling disk's contact force is its mass times the beam's acceleration under it, which rings in every mode the beam holds from the moment the disk is set down; generalized-α carries that ringing with the phase error of every step (at a three-hundredth of the accuracy it read the deck's largest acceleration 1.2 % low on D44's modal beam, 4 % on the rubber beam and twice the converged on the zip-line; with rho_inf = 0.9, 9 % low on D44's exact mesh started carrying the disk), where the fourth-order method at a thirtieth of the accuracy comes within 6.9e-4 of the weight in the contact force and 6e-4 in the acceleration";
 
 /// Why the plan integrates vehicles with the fourth-order ESDIRK unless the scene asks for
-/// numerical damping itself or wheels with a mass of their own run faster than
-/// [`ESDIRK_UNSPRUNG_SPEED`]. Such a wheel takes an impulse at each kink of its track, which
+/// numerical damping itself. A wheel with a mass of its own takes an impulse at each kink of its track, which
 /// sets every mode of the deck ringing, and generalized-α (ρ∞ = 1) carries that ringing with
 /// the phase error of every step: at a three-thousandth of the accuracy it read midspan's
 /// largest acceleration under Biggs' sprung mass on a 500 kg wheel at 5 m/s 8.7·10⁻³ off
@@ -281,8 +277,10 @@ const ROLLING_CONTACT: &str = "esdirk4: a rolling disk's contact force is its ma
 /// fourth-order steps at a thousandth hold every number of those scenes, of the railway
 /// study, of the railway cars on 0.46 m disk wheels hopping at the abutment at 121 m/s and of
 /// a van hopping over a pothole within 6.4·10⁻⁵ of ESDIRK4 and generalized-α at rtol 10⁻¹⁰
-/// (each number against the largest of its kind).
-const VEHICLES: &str = "esdirk4: the vehicles' bodies vibrate on their suspensions over the whole run and the deck under them in every mode it holds, and a wheel with a mass of its own sets every mode ringing where its track turns; generalized-alpha carries both with the phase error of every step, adding up over their periods (at a three-thousandth of the accuracy it read the deck's largest acceleration under Biggs' sprung mass at 100 m/s 1.4e-3 low, in the free vibration after the wheel left, and at 5 m/s on a 500 kg wheel 8.7e-3 off), where the fourth-order steps at a thousandth come within 6.4e-5 of every number the vehicle scenes report; wheels with a mass of their own faster than 200 m/s keep generalized-alpha, whose short steps read the bogies' root mean squares on the grid";
+/// (each number against the largest of its kind), and one railway car at 300, 600, 1000 and
+/// 3000 m/s within 1.3·10⁻⁴, in 74 to 181 steps (generalized-α at a three-thousandth of the
+/// accuracy and (300 m/s / v)² of that took 954 at 1000 m/s).
+const VEHICLES: &str = "esdirk4: the vehicles' bodies vibrate on their suspensions over the whole run and the deck under them in every mode it holds, and a wheel with a mass of its own sets every mode ringing where its track turns; generalized-alpha carries both with the phase error of every step, adding up over their periods (at a three-thousandth of the accuracy it read the deck's largest acceleration under Biggs' sprung mass at 100 m/s 1.4e-3 low, in the free vibration after the wheel left, and at 5 m/s on a 500 kg wheel 8.7e-3 off), where the fourth-order steps at a thousandth come within 6.4e-5 of every number the vehicle scenes report, and within 1.3e-4 for a railway car at 300 to 3000 m/s";
 
 /// Why the plan integrates a train of moving masses with the fourth-order ESDIRK unless the
 /// scene asks for numerical damping itself. Each axle's mass follows the beam, turning with
@@ -348,15 +346,6 @@ const FREE_EXACT: &str = "exact-modal once the riders have left: the modal beam 
 /// accuracy (m/s): one railway car holds every number within 1.7·10⁻⁴ there.
 const UNSPRUNG_SPEED: f64 = 300.0;
 
-/// The fastest a vehicle on wheels with a mass of their own is stepped with ESDIRK4 (m/s).
-/// Its long steps are watched in pairs of sub-steps half a wheel's passage of the shortest
-/// wave long, and the bogies' root mean squares read on them by Simpson's rule drift from
-/// those read on generalized-α's short steps as the speed grows: one railway car at a
-/// thousandth of the accuracy, against ESDIRK4 at rtol 10⁻¹⁰, within 6.3·10⁻⁵ of the largest
-/// up to 200 m/s, 5.4·10⁻⁴ at 250, 8.9·10⁻⁴ at 300 and 1.6·10⁻³ at 1000 m/s. Faster, the plan
-/// keeps generalized-α at [`unsprung_speed_factor`]'s rtol.
-const ESDIRK_UNSPRUNG_SPEED: f64 = 200.0;
-
 /// The fastest a vehicle on wheels with a mass of their own runs on the deck (m/s); 0 without
 /// one: a vehicle without unsprung masses, however fast, deals the deck no impulses.
 fn unsprung_speed(b: &BeamScene) -> f64 {
@@ -367,8 +356,8 @@ fn unsprung_speed(b: &BeamScene) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// How much tighter than a three-thousandth of the accuracy a vehicle on wheels with a mass of
-/// their own needs rtol: 1 up to [`UNSPRUNG_SPEED`], (that / speed)² beyond. Measured on one
+/// How much tighter than a three-thousandth of the accuracy generalized-α (where the scene
+/// gives ρ∞) needs rtol for a vehicle on wheels with a mass of their own: 1 up to [`UNSPRUNG_SPEED`], (that / speed)² beyond. Measured on one
 /// railway car against ESDIRK4 at rtol 10⁻¹⁰: at a three-thousandth, 600 m/s read the deck's
 /// least rotation 1.5·10⁻³ off and 3000 m/s a bogie's largest acceleration 13 times the
 /// converged; with the factor, 600, 1000 and 3000 m/s land within 5.1·10⁻⁴ of each number's

@@ -1348,19 +1348,18 @@ fn one_railcar_text(speed: f64, acceleration: f64) -> String {
 }
 
 /// Wheels with a mass of their own (a railway car's wheelsets) take an impulse wherever the
-/// deck turns under them, at its ends above all, and it grows with the speed: at the plan's
-/// three-thousandth of the accuracy one car at 600 m/s read the deck's least rotation
-/// 1.5·10⁻³ off, at 3000 m/s its rear bogie's largest acceleration 13 times the converged. The
-/// plan tightens rtol by (300 m/s / speed)² beyond 300 m/s; at 300, 1000 and 3000 m/s the
-/// defaults then hold every number the car reports against the same scene by ESDIRK4 at rtol
-/// 10⁻¹⁰, each within the accuracy of its family's scale: the bodies' largest accelerations
+/// deck turns under them, at its ends above all, and it grows with the speed: generalized-α
+/// at a three-thousandth of the accuracy read one car's least rotation of the deck at 600 m/s
+/// 1.5·10⁻³ off, at 3000 m/s its rear bogie's largest acceleration 13 times the converged. At
+/// 300, 1000 and 3000 m/s the defaults (ESDIRK4 at a thousandth) hold every number the car
+/// reports against the same scene by ESDIRK4 at rtol 10⁻¹⁰, each within the accuracy of its
+/// family's scale (measured at most 1.3·10⁻⁴): the bodies' largest accelerations
 /// and root mean squares against the largest of the car's converged (a bogie over the far
 /// abutment barely moves, and its own value is not settled even between the two converged
 /// methods: 5.7·10⁻³ apart at 3000 m/s), each wheel's contact force against its static load,
 /// midspan's extremes of w and of φ, each pair against its larger. A car that speeds up on
-/// the deck is planned for the fastest it runs there: entering at 300 m/s and leaving at 3000
-/// (at 1.255·10⁵ m/s²), it holds the accuracy too. Past 3000 m/s, the fastest measured, the
-/// scene says so.
+/// the deck, entering at 300 m/s and leaving at 3000 (at 1.255·10⁵ m/s²), holds the accuracy
+/// too. Past 3000 m/s, the fastest measured, the scene says so.
 #[test]
 fn a_railway_car_holds_the_accuracy_at_speed() {
     let accuracy = 1e-3;

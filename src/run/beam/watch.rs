@@ -501,8 +501,7 @@ impl Recorder<'_> {
     /// it, coupling the modes kept to those left out, whose pace the steps follow. A railcar's
     /// wheel nearing a 15 m cantilever's tip rings midspan at about 125 Hz, four times the
     /// cutoff: on the grid its largest acceleration read 3.9·10⁻³ low; moving masses of the
-    /// same axles, 7.5·10⁻³ high. The vehicles' own values stay on the grid, whose even spacing
-    /// their root mean square needs.
+    /// same axles, 7.5·10⁻³ high.
     fn watch_the_deck_over(&mut self, t0: f64, t1: f64, dense: &dyn Dense, spacing: f64) {
         let times = pair_times(t0, t1, spacing);
         let n = times.len() - 1;
@@ -642,8 +641,8 @@ impl Recorder<'_> {
 
     /// Take the probes' and the vehicles' bodies' accelerations sampled at t into the grid's
     /// check of its premise: that they hold nothing faster than the grid's pace, so that the
-    /// parabola through three samples finds their turning points and the trapezoidal rule over
-    /// the samples their root mean square. Nonlinearity breaks it: an exact beam swinging ±1 m
+    /// parabola through three samples finds their turning points, and Simpson's rule over the
+    /// vehicles' pairs of sub-steps, no longer than a sample, their root mean square. Nonlinearity breaks it: an exact beam swinging ±1 m
     /// under two 10 t moving masses rings at about 300 Hz after they leave (a 31 Hz cutoff), and
     /// the grid read midspan's largest acceleration 1.4 % low. So do hubs on stiff tyres (400 kg
     /// on 10⁸ N/m over D44's section): one's largest acceleration read 2.0·10⁻³ low. Of the
