@@ -1431,55 +1431,37 @@ fn a_railway_car_holds_the_accuracy_at_speed() {
 /// rise within 10⁻⁸ of the closed form.
 #[test]
 fn a_disk_wheel_reaches_a_corner_on_its_face_and_pivots_past_it() {
-    use rollbeam::beam::dynamics::LoadedBeam;
-    use rollbeam::beam::Beam;
-    use rollbeam::coupling::vehicles::VehiclesOnBeam;
     let (a, corner, slope) = (0.35, 8.0, 1e-3_f64);
-    let bridge = BRIDGE.replace(
-        "    supports: {from: pinned, to: roller}\n",
-        &format!("    supports: {{from: pinned, to: roller}}\n  profile:\n    points: [[-5.0, {:?}], [{corner:?}, 0.0], [8.05, -0.03], [8.5, -0.03], [8.55, 0.0], [30.0, 0.0]]\n", -slope * (corner + 5.0)),
-    );
-    let s = parse(&format!(
-        "name: corner\nduration: 0.1\n{bridge}{}output:\n  probes: [{{name: mid, x: 12.5}}]\n",
-        sprung(3000.0, 1.5e5, 0.0, 1.0).replace(
-            "    speed:",
-            &format!("    wheel: disk\n    radius: {a}\n    speed:")
-        )
-    ));
-    let setup = s.beam().expect("a beam scene");
-    let beam = Beam::shared(&setup.beam);
-    let loaded = LoadedBeam::new(&beam, &[], None, None, None);
-    let patch = rollbeam::coupling::patch::dispersed_half_width(setup.beam.depth);
-    let on = VehiclesOnBeam::new(&loaded, &setup.vehicles, &setup.profile, patch)
-        .expect("the vehicle on the beam");
-    let q = vec![0.0; beam.dim()];
-    let reaches = corner - a * slope.atan().sin();
-    let mut switches = Vec::new();
-    let mut was_on_the_corner = false;
-    for k in 0..=2000 {
-        // At 1 m/s from x0 = 0 the wheel's centre is at t.
-        let centre = reaches + 1e-8 * (k as f64 / 1000.0 - 1.0);
-        let contact = on.contacts(centre, &q)[0].disk.expect("a disk wheel");
-        let rise = if centre < reaches {
-            slope
-        } else {
-            -(centre - corner) / (a * a - (centre - corner).powi(2)).sqrt()
-        };
-        assert!(
-            (contact.rise - rise).abs() < 1e-8,
-            "{:e} m past X_c: rising {:e}, not {rise:e}",
-            centre - reaches,
-            contact.rise
-        );
-        if contact.pivot != was_on_the_corner {
-            switches.push((centre - reaches, contact.pivot));
-            was_on_the_corner = contact.pivot;
+    let profile = format!("points: [[-5.0, {:?}], [{corner:?}, 0.0], [8.05, -0.03], [8.5, -0.03], [8.55, 0.0], [30.0, 0.0]]", -slope * (corner + 5.0));
+    on_a_disk_wheel(&profile, a, (3000.0, 1.5e5, 1.0), |on, q, _| {
+        let reaches = corner - a * slope.atan().sin();
+        let mut switches = Vec::new();
+        let mut was_on_the_corner = false;
+        for k in 0..=2000 {
+            // At 1 m/s from x0 = 0 the wheel's centre is at t.
+            let centre = reaches + 1e-8 * (k as f64 / 1000.0 - 1.0);
+            let contact = on.contacts(centre, q)[0].disk.expect("a disk wheel");
+            let rise = if centre < reaches {
+                slope
+            } else {
+                -(centre - corner) / (a * a - (centre - corner).powi(2)).sqrt()
+            };
+            assert!(
+                (contact.rise - rise).abs() < 1e-8,
+                "{:e} m past X_c: rising {:e}, not {rise:e}",
+                centre - reaches,
+                contact.rise
+            );
+            if contact.pivot != was_on_the_corner {
+                switches.push((centre - reaches, contact.pivot));
+                was_on_the_corner = contact.pivot;
+            }
         }
-    }
-    assert!(
-        switches.len() == 1 && switches[0].1 && switches[0].0.abs() <= 1.01e-9 * a,
-        "onto the corner (true) and off it (false), by the centre's distance past X_c: {switches:?}"
-    );
+        assert!(
+            switches.len() == 1 && switches[0].1 && switches[0].0.abs() <= 1.01e-9 * a,
+            "onto the corner (true) and off it (false), by the centre's distance past X_c: {switches:?}"
+        );
+    });
 }
 
 /// A disk wheel rests on the crest under it that lifts its centre highest, H(X) = max over x
@@ -1491,17 +1473,74 @@ fn a_disk_wheel_reaches_a_corner_on_its_face_and_pivots_past_it() {
 /// 10⁻⁹ m (the search stops at a billionth of the radius).
 #[test]
 fn a_disk_wheel_rests_on_the_highest_crest_of_a_rough_road() {
+    let a = 0.4;
+    let profile = "iso8608: {class: H, seed: 3, wavelengths: [0.1, 50.0]}";
+    on_a_disk_wheel(profile, a, (5750.0, 1595.0e3, 27.78), |on, q, setup| {
+        let speed = 27.78;
+        let highest = |centre: f64| -> f64 {
+            let lift = |x: f64| {
+                let u = (x - centre) / a;
+                setup.profile.at(x, x)[0] + a * (1.0 - u * u).max(0.0).sqrt()
+            };
+            let n = 4000;
+            let at = |k: usize| centre + a * (2.0 * k as f64 / n as f64 - 1.0);
+            let best = (0..=n)
+                .max_by(|&i, &j| lift(at(i)).total_cmp(&lift(at(j))))
+                .unwrap();
+            let (mut lo, mut hi) = (at(best.saturating_sub(1)), at((best + 1).min(n)));
+            let golden = 0.5 * (5.0_f64.sqrt() - 1.0);
+            for _ in 0..100 {
+                let (m1, m2) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
+                if lift(m1) < lift(m2) {
+                    lo = m1;
+                } else {
+                    hi = m2;
+                }
+            }
+            lift(0.5 * (lo + hi)) - a
+        };
+        let mut worst: (f64, f64) = (0.0, 0.0);
+        for k in 0..400 {
+            let centre = 1.0 + 23.0 * k as f64 / 400.0;
+            let contacts = on.contacts(centre / speed, q);
+            let rest = contacts[0].disk.expect("a disk wheel").rest;
+            let off = (rest - highest(centre)).abs();
+            if off > worst.0 {
+                worst = (off, centre);
+            }
+        }
+        assert!(
+            worst.0 < 1e-9,
+            "{:.3e} m below the highest crest at X = {}",
+            worst.0,
+            worst.1
+        );
+    });
+}
+
+/// A sprung mass (`mass` kg on `k` N/m at `speed` m/s) on a disk wheel of radius `a`, over the
+/// deck at rest whose track has the scene's `profile:` entry `profile`: its model on the beam,
+/// the deck's unknowns and the scene, handed to `check`.
+fn on_a_disk_wheel(
+    profile: &str,
+    a: f64,
+    (mass, k, speed): (f64, f64, f64),
+    check: impl FnOnce(
+        &rollbeam::coupling::vehicles::VehiclesOnBeam,
+        &[f64],
+        &rollbeam::scene::BeamScene,
+    ),
+) {
     use rollbeam::beam::dynamics::LoadedBeam;
     use rollbeam::beam::Beam;
     use rollbeam::coupling::vehicles::VehiclesOnBeam;
     let bridge = BRIDGE.replace(
         "    supports: {from: pinned, to: roller}\n",
-        "    supports: {from: pinned, to: roller}\n  profile:\n    iso8608: {class: H, seed: 3, wavelengths: [0.1, 50.0]}\n",
+        &format!("    supports: {{from: pinned, to: roller}}\n  profile:\n    {profile}\n"),
     );
-    let a = 0.4;
     let s = parse(&format!(
-        "name: rough\nduration: 0.1\n{bridge}{}output:\n  probes: [{{name: mid, x: 12.5}}]\n",
-        sprung(5750.0, 1595.0e3, 0.0, 27.78).replace(
+        "name: disk-wheel\nduration: 0.1\n{bridge}{}output:\n  probes: [{{name: mid, x: 12.5}}]\n",
+        sprung(mass, k, 0.0, speed).replace(
             "    speed:",
             &format!("    wheel: disk\n    radius: {a}\n    speed:")
         )
@@ -1512,44 +1551,5 @@ fn a_disk_wheel_rests_on_the_highest_crest_of_a_rough_road() {
     let patch = rollbeam::coupling::patch::dispersed_half_width(setup.beam.depth);
     let on = VehiclesOnBeam::new(&loaded, &setup.vehicles, &setup.profile, patch)
         .expect("the vehicle on the beam");
-    let q = vec![0.0; beam.dim()];
-    let speed = 27.78;
-    let highest = |centre: f64| -> f64 {
-        let lift = |x: f64| {
-            let u = (x - centre) / a;
-            setup.profile.at(x, x)[0] + a * (1.0 - u * u).max(0.0).sqrt()
-        };
-        let n = 4000;
-        let at = |k: usize| centre + a * (2.0 * k as f64 / n as f64 - 1.0);
-        let best = (0..=n)
-            .max_by(|&i, &j| lift(at(i)).total_cmp(&lift(at(j))))
-            .unwrap();
-        let (mut lo, mut hi) = (at(best.saturating_sub(1)), at((best + 1).min(n)));
-        let golden = 0.5 * (5.0_f64.sqrt() - 1.0);
-        for _ in 0..100 {
-            let (m1, m2) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
-            if lift(m1) < lift(m2) {
-                lo = m1;
-            } else {
-                hi = m2;
-            }
-        }
-        lift(0.5 * (lo + hi)) - a
-    };
-    let mut worst: (f64, f64) = (0.0, 0.0);
-    for k in 0..400 {
-        let centre = 1.0 + 23.0 * k as f64 / 400.0;
-        let contacts = on.contacts(centre / speed, &q);
-        let rest = contacts[0].disk.expect("a disk wheel").rest;
-        let off = (rest - highest(centre)).abs();
-        if off > worst.0 {
-            worst = (off, centre);
-        }
-    }
-    assert!(
-        worst.0 < 1e-9,
-        "{:.3e} m below the highest crest at X = {}",
-        worst.0,
-        worst.1
-    );
+    check(&on, &vec![0.0; beam.dim()], setup);
 }
