@@ -647,7 +647,11 @@ fn bad_damping() {
     rejected(
         "ratio-negative",
         &damped("{ratio: -0.01}"),
-        &["track.beam.damping.ratio", "[0, 1)"],
+        &[
+            "track.beam.damping.ratio",
+            "[0, 1)",
+            "feed the vibration energy",
+        ],
     );
     for modes in ["[1]", "[2, 2]", "[0, 1]", "[1, 2, 3]"] {
         rejected(
@@ -1145,7 +1149,7 @@ fn car(edit: impl Fn(String) -> String) -> String {
 /// Vehicles and their profile: one sentence naming the line and key for each flaw.
 #[test]
 fn vehicles_refused_with_one_sentence() {
-    let cases: [(&str, String, &[&str]); 14] = [
+    let cases: [(&str, String, &[&str]); 16] = [
         ("unknown-part", car(|t| t.replace("lower: a2", "lower: a9")), &["vehicles.springs.lower", "a9", "names no body or axle"]),
         ("duplicate-name", car(|t| t.replace("name: a2", "name: body")), &["vehicles.axles.name", "names two parts"]),
         ("negative-mass", car(|t| t.replace("mass: 1000.0", "mass: -1000.0")), &["vehicles.bodies.mass", "positive"]),
@@ -1155,6 +1159,8 @@ fn vehicles_refused_with_one_sentence() {
         ("loose-body", car(|t| t.replace("bodies: [", "bodies: [{name: cargo, mass: 10.0}, ")), &["cargo", "joined to no axle"]),
         ("spring-off-axle", car(|t| t.replace("lower: a2, x: 3.0", "lower: a2, x: 2.0")), &["vehicles.springs.x", "not where axle"]),
         ("no-axle", car(|t| t.replace("axles: [{name: a1, x: 0.0}, {name: a2, x: 3.0}]", "axles: []")), &["vehicles.axles", "no axle"]),
+        ("rigid-spring", car(|t| t.replace("k: 1.0e6}\n      - {upper: body, lower: a2", "k: 1.0e22}\n      - {upper: body, lower: a2")), &["vehicles", "car", "ring on their springs", "1e6 Hz", "soften the stiffest spring"]),
+        ("no-inertia", car(|t| t.replace("inertia: 500.0", "inertia: 1.0e-16")), &["vehicles", "car", "ring on their springs", "1e6 Hz"]),
         ("disk-wheel", car(|t| t.replace("speed: 20.0", "speed: 20.0\n    wheel: disk")), &["vehicles.wheel", "radius"]),
         ("profile-decreasing", car(|t| t) .replace("    supports: {from: pinned, to: roller}\n", "    supports: {from: pinned, to: roller}\n  profile:\n    points: [[0.0, 0.0], [-1.0, 0.01]]\n"), &["track.profile.points", "increasing"]),
         ("profile-nan", car(|t| t).replace("    supports: {from: pinned, to: roller}\n", "    supports: {from: pinned, to: roller}\n  profile:\n    points: [[0.0, .nan]]\n"), &["track.profile.points", "finite"]),

@@ -90,6 +90,14 @@ pub struct Vehicle {
 /// Why a vehicle cannot be built: a sentence for the scene's checker.
 pub type Refusal = String;
 
+/// The fastest a vehicle's bodies may ring on their springs with the axles held (Hz). Far
+/// above any suspension (a hub on its tyre rings at tens of hertz, a rigid attachment given as
+/// a stiff spring at kilohertz: Biggs' sprung mass on 10¹² N/m, 2 kHz, is the moving mass to
+/// 10⁻⁶), and far below where round-off in a spring's stretch outweighs the weights: that
+/// sprung mass on 10²² N/m (2·10⁸ Hz) reported its wheel losing contact a microsecond into
+/// the run, and on 10²¹ N/m (7·10⁷ Hz) its numbers still held.
+pub const MAX_SUSPENSION_HZ: f64 = 1e6;
+
 impl Vehicle {
     /// Whether an axle has a mass of its own, which takes an impulse wherever the track turns.
     pub fn has_unsprung_mass(&self) -> bool {
@@ -129,6 +137,7 @@ impl Vehicle {
         };
         v.held()?;
         v.static_loads = v.rest(gravity)?;
+        v.followable()?;
         Ok(v)
     }
 
@@ -244,6 +253,18 @@ impl Vehicle {
                     self.name, b.name
                 ));
             }
+        }
+        Ok(())
+    }
+
+    /// The bodies ring on their springs no faster than [`MAX_SUSPENSION_HZ`].
+    fn followable(&self) -> Result<(), Refusal> {
+        let f = self.fastest_suspension_hz();
+        if f > MAX_SUSPENSION_HZ {
+            return Err(format!(
+                "vehicle {}: its bodies ring on their springs at up to {f:.3e} Hz (the axles held), past the {MAX_SUSPENSION_HZ:.0e} Hz a run can follow before round-off in the springs' stretch outweighs the weights; a rigid attachment is a spring whose frequency lies far above the deck's, a few kilohertz: soften the stiffest spring or give the lightest body more mass or inertia",
+                self.name
+            ));
         }
         Ok(())
     }
