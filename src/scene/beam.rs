@@ -389,7 +389,14 @@ pub(super) fn damping(c: &Checker, b: &BeamFile) -> Result<Option<DampingSpec>, 
                 return c.err(
                     r.referenced.line(),
                     "track.beam.damping.ratio",
-                    format!("= {zeta} must lie in [0, 1): a ratio of 1 or more is no longer a vibration"),
+                    format!(
+                        "= {zeta} must lie in [0, 1): {}",
+                        if zeta < 0.0 {
+                            "a negative ratio would feed the vibration energy instead of taking it"
+                        } else {
+                            "a ratio of 1 or more is no longer a vibration"
+                        }
+                    ),
                 );
             }
             let modes = match &d.modes {
