@@ -187,6 +187,7 @@ impl BeamRun {
             ));
         }
         out.extend(self.suspensions_outrun());
+        out.extend(self.wheels_pulling());
         out.extend(self.nonlinearity_outgrown());
         out.extend(self.ends_drawn_in());
         out.extend(self.strained_past_small_strains());
@@ -258,6 +259,24 @@ impl BeamRun {
             "the beam's axis grew to {:.3} times its length: the Reissner beam's law is linear in its strains (E and G constant), a law for small strains, and past a tenth a neo-Hookean solid's stress in tension lies 9 % below it, so the numbers this run reports are the model's, not a material's",
             1.0 + strain
         ))
+    }
+
+    /// A warning for each wheel whose contact force the watch saw below zero: it fell to zero
+    /// and rose again between two steps' ends, where the run looks for a lift-off, and the
+    /// lift-off was stepped over. A disk wheel pivoting over a crest its radius cannot follow
+    /// bears m V²/a less for a time a Δs'/V (Δs' the crest's turn of slope): over ISO class C
+    /// waves of 0.2 m a truck's 1 kg axles at 300 m/s dipped to −1.4 kN (2 % of the static
+    /// load) in steps of 80 µs, the crests' pivots lasting microseconds.
+    fn wheels_pulling(&self) -> Vec<String> {
+        self.vehicles
+            .iter()
+            .flat_map(|v| v.axles.iter().map(move |(axle, r)| (v, axle, r)))
+            .filter(|(_, _, r)| r.min < 0.0)
+            .map(|(v, axle, r)| format!(
+                "vehicle {}'s wheel {axle} pulled on the track with {:.4e} N at t = {:.6} s: its contact force fell below zero and rose again within a step, so the lift-off there was stepped over, and the motion after it is the wheel's held to the track; a wheel pivoting over a crest sharper than its radius follows does so for a time radius × the crest's turn of slope / speed, shorter than the steps",
+                v.name, r.min, r.min_t
+            ))
+            .collect()
     }
 
     /// A warning for each vehicle whose bodies ring on their springs faster than the run's
