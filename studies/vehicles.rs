@@ -1556,12 +1556,13 @@ fn on_a_disk_wheel(
 
 /// A truck on disk wheels (0.4 m) over axles of 1 kg at 300 m/s on an ISO class D road of
 /// waves from 0.2 to 5 m, every setting left to the plan. Each crest sharper than the disk
-/// follows lifts the wheel for the microseconds it pivots over it, shorter than the steps,
-/// which are set by the hubs' motion; where a lift-off falls between two steps' ends the watch
-/// sees the contact force below zero (here down to −0.7 kN of a static 60 kN). No wheel may
-/// pull on the track unsaid: each that does is named in a warning.
+/// follows lifts the wheel for the 7.5 to 24 mm of travel it pivots over it (λ/27 to λ/8),
+/// shorter than the steps (about 16 mm), which follow the hubs' and the deck's motion. Looked
+/// for at the steps' ends only, the lift-offs there were stepped over and the wheels held to
+/// the road pulling on it, down to −1.3 kN against a static 60 kN. Now no wheel's contact force
+/// reads below zero, the run lands every flight it lifts off for, and none is warned of.
 #[test]
-fn a_wheel_pulling_on_the_track_between_steps_is_warned() {
+fn a_wheel_over_sharp_crests_at_speed_never_pulls_on_the_road() {
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/studies/vehicle-truck.yaml"
@@ -1579,19 +1580,21 @@ fn a_wheel_pulling_on_the_track_between_steps_is_warned() {
         "iso8608: {class: D, seed: 2, wavelengths: [0.2, 5.0]}",
     );
     let run = at_defaults(&parse(&text));
-    let warnings = run.warnings();
-    let mut pulled = 0;
+    let flights: usize = run.vehicles[0].flights.iter().map(Vec::len).sum();
+    assert!(
+        flights > 100,
+        "the wheels hop over the crests ({flights} flights)"
+    );
     for (axle, range) in &run.vehicles[0].axles {
-        if range.min < 0.0 {
-            pulled += 1;
-            assert!(
-                warnings
-                    .iter()
-                    .any(|w| w.contains(&format!("wheel {axle} pulled on the track"))),
-                "wheel {axle} reads {} N unwarned",
-                range.min
-            );
-        }
+        assert!(
+            range.min >= 0.0,
+            "wheel {axle} pulls on the road with {} N",
+            range.min
+        );
     }
-    eprintln!("wheels pulling on the track: {pulled}");
+    let pulling = run
+        .warnings()
+        .into_iter()
+        .filter(|w| w.contains("pulled on the track"));
+    assert_eq!(pulling.count(), 0);
 }

@@ -100,6 +100,11 @@ const PACE_WINDOW: usize = 2000;
 /// budgets on runs that do exceed them (ESDIRK4 at 10⁻⁴: 130 000 projected, 47 360 taken).
 const PACE_MARGIN: usize = 4;
 
+/// The most stretches a step's events are looked at in ([`Problem::event_pace`]): the pace
+/// serves steps a few times longer than it, and a step far longer is no reason to sample its
+/// events without end.
+const MAX_EVENT_PIECES: f64 = 1024.0;
+
 /// The step after one on which Newton failed, as a fraction of it.
 const NEWTON_CUT: f64 = 0.5;
 /// The controller's steps stay below this fraction of the last step on which Newton failed:
@@ -313,18 +318,49 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             .map(|i| p.event(i, t_new, stepper.y_new()))
             .collect();
         let y_tmp = &mut self.y_tmp;
-        let first = crossings(
-            specs,
-            &self.g,
-            &g_new,
-            self.t,
-            t_new,
-            &mut self.events,
-            |i, tt| {
-                stepper.interpolate(tt, y_tmp);
-                p.event(i, tt, y_tmp)
-            },
-        );
+        // Where the events' functions may fall below zero and rise again within the step (a
+        // wheel's contact force over a crest the steps, following the motion, do not see), they
+        // are looked at every `event_pace` inside it, and the first stretch with a crossing is
+        // searched.
+        let pieces = if specs.is_empty() {
+            1
+        } else {
+            let pace = p.event_pace(self.t, &self.y);
+            ((t_new - self.t) / pace)
+                .ceil()
+                .clamp(1.0, MAX_EVENT_PIECES) as usize
+        };
+        let mut g_start = std::mem::take(&mut self.g);
+        let mut first = None;
+        for k in 1..=pieces {
+            let ta = self.t + (t_new - self.t) * (k - 1) as f64 / pieces as f64;
+            let (tb, g_end) = if k == pieces {
+                (t_new, g_new.clone())
+            } else {
+                let tb = self.t + (t_new - self.t) * k as f64 / pieces as f64;
+                stepper.interpolate(tb, y_tmp);
+                (
+                    tb,
+                    (0..specs.len()).map(|i| p.event(i, tb, y_tmp)).collect(),
+                )
+            };
+            first = crossings(
+                specs,
+                &g_start,
+                &g_end,
+                ta,
+                tb,
+                &mut self.events,
+                |i, tt| {
+                    stepper.interpolate(tt, y_tmp);
+                    p.event(i, tt, y_tmp)
+                },
+            );
+            if first.is_some() {
+                break;
+            }
+            g_start = g_end;
+        }
         // The observer follows the solution to the last time known before a terminal event:
         // where the event's function jumps rather than passes through zero, the state past
         // the crossing breaks the law the problem holds until the event is handled, and what

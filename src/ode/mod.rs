@@ -108,6 +108,13 @@ pub trait Problem: Dynamics {
     fn max_step(&self, _t: f64, _y: &[f64]) -> f64 {
         f64::INFINITY
     }
+    /// The longest stretch of a step over which the events' functions, looked at at its ends,
+    /// cannot fall below zero and rise again unseen: one that may (a wheel's contact force
+    /// dipping over a crest quicker than the motion the steps follow) is looked at this often
+    /// inside each step.
+    fn event_pace(&self, _t: f64, _y: &[f64]) -> f64 {
+        f64::INFINITY
+    }
 }
 
 /// The reason of a problem that has no events.

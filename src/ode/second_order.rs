@@ -90,6 +90,10 @@ pub trait SecondOrderProblem: Structure {
     fn event(&self, _index: usize, _t: f64, _q: &[f64], _v: &[f64]) -> f64 {
         1.0
     }
+    /// See [`Problem::event_pace`].
+    fn event_pace(&self, _t: f64, _q: &[f64], _v: &[f64]) -> f64 {
+        f64::INFINITY
+    }
 }
 
 /// y = (q, v): q' = v, M(q) v' = f(t, q, v). Mass diag(I, M), Jacobian [[0, I], [−K, 0]].
@@ -170,5 +174,9 @@ impl<E: Copy + std::fmt::Debug> Problem for FirstOrder<'_, E> {
     fn max_step(&self, t: f64, y: &[f64]) -> f64 {
         let n = self.inner.dim();
         self.inner.max_step(t, &y[..n], &y[n..])
+    }
+    fn event_pace(&self, t: f64, y: &[f64]) -> f64 {
+        let n = self.inner.dim();
+        self.inner.event_pace(t, &y[..n], &y[n..])
     }
 }

@@ -262,11 +262,11 @@ impl BeamRun {
     }
 
     /// A warning for each wheel whose contact force the watch saw below zero: it fell to zero
-    /// and rose again between two steps' ends, where the run looks for a lift-off, and the
-    /// lift-off was stepped over. A disk wheel pivoting over a crest its radius cannot follow
-    /// bears m V²/a less for a time a Δs'/V (Δs' the crest's turn of slope): over ISO class C
-    /// waves of 0.2 m a truck's 1 kg axles at 300 m/s dipped to −1.4 kN (2 % of the static
-    /// load) in steps of 80 µs, the crests' pivots lasting microseconds.
+    /// and rose again between two of the times the run looks for a lift-off (the steps' ends,
+    /// and on a random road its event pace), and the lift-off was stepped over. A disk wheel
+    /// pivoting over a crest its radius cannot follow bears m V²/a less for the crest's width
+    /// over the speed: looked for at the steps' ends only, a truck's 1 kg axles at 300 m/s over
+    /// ISO class C waves of 0.2 m dipped to −1.4 kN (2 % of the static load).
     fn wheels_pulling(&self) -> Vec<String> {
         self.vehicles
             .iter()
