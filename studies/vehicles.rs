@@ -1598,3 +1598,38 @@ fn a_wheel_over_sharp_crests_at_speed_never_pulls_on_the_road() {
         .filter(|w| w.contains("pulled on the track"));
     assert_eq!(pulling.count(), 0);
 }
+
+/// `rollbeam static` with a vehicle parked on the deck loads it with the wheels' loads at
+/// rest, as `initial: static` does: Biggs' sprung mass standing at midspan deflects the
+/// Euler–Bernoulli bridge by P L³/(48 EI) to 10⁻⁵ (the shear the scene's stiff section keeps
+/// adds 10⁻⁶, the geometrically exact beam's axial terms less; 6·10⁻⁷ is measured), the
+/// bearings carry the weight to 10⁻⁷ (read from the internal forces of a section whose shear
+/// stiffness is held at 10⁸ times E I/L², which cost digits: 1.1·10⁻⁸ is measured), and
+/// standing before the deck it loads nothing.
+#[test]
+fn a_vehicle_parked_on_the_deck_weighs_on_it_statically() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/studies/vehicle-sprung.yaml"
+    ))
+    .expect("the sprung mass's scene");
+    let static_w = |x0: f64| -> (f64, f64) {
+        let scene = parse(&text.replace("speed: 27.78", &format!("speed: 27.78\n    x0: {x0}")));
+        let file =
+            rollbeam::workflows::analyses::static_solution(&scene, scene.beam().expect("a beam"))
+                .expect("static solution");
+        (
+            file.probes["mid"].w,
+            file.reactions["from"].fy + file.reactions["to"].fy,
+        )
+    };
+    let p = 5750.0 * 9.81;
+    let (w, carried) = static_w(12.5);
+    let closed = -p * 25.0_f64.powi(3) / (48.0 * 2.87e9 * 2.9);
+    assert!((w / closed - 1.0).abs() < 1e-5, "w = {w} against {closed}");
+    assert!(
+        (carried / p - 1.0).abs() < 1e-7,
+        "the bearings carry {carried} N of {p}"
+    );
+    assert_eq!(static_w(-10.0), (0.0, 0.0));
+}

@@ -83,6 +83,23 @@ pub fn statics(scene: &Scene, setup: &BeamScene, dir: &Path) -> Result<String, E
     Ok(text)
 }
 
+/// Each vehicle wheel on the deck at t = 0 with the load it bears at rest, as `initial:
+/// static` has them: a vehicle parked on the deck weighs on it.
+fn wheels_standing_on(setup: &BeamScene, length: f64) -> Vec<(f64, [f64; 2], f64)> {
+    setup
+        .vehicles
+        .iter()
+        .flat_map(|v| {
+            let first = v.travel(0.0).0;
+            v.axles
+                .iter()
+                .zip(&v.static_loads)
+                .map(move |(a, &p)| (first - a.x, [0.0, -p], 0.0))
+        })
+        .filter(|&(x, _, _)| (0.0..=length).contains(&x))
+        .collect()
+}
+
 /// The static equilibrium of [`statics`], as `static.yaml` holds it.
 pub fn static_solution(scene: &Scene, setup: &BeamScene) -> Result<StaticFile, Error> {
     if !statically_supported(setup.beam.supports, setup.beam.bearings.len()) {
@@ -106,6 +123,7 @@ pub fn static_solution(scene: &Scene, setup: &BeamScene) -> Result<StaticFile, E
                 .iter()
                 .map(|d| (d.s0, [0.0, -d.disk.mass * d.gravity], 0.0)),
         )
+        .chain(wheels_standing_on(setup, beam.length))
         .collect();
     for &(x, force, mz) in &active {
         beam.add_point_load(x, force, mz, &mut f);
