@@ -322,14 +322,18 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
         // wheel's contact force over a crest the steps, following the motion, do not see), they
         // are looked at every `event_pace` inside it, and the first stretch with a crossing is
         // searched.
-        let pieces = if specs.is_empty() {
-            1
+        let pace = if specs.is_empty() {
+            f64::INFINITY
         } else {
-            let pace = p.event_pace(self.t, &self.y);
-            ((t_new - self.t) / pace)
-                .ceil()
-                .clamp(1.0, MAX_EVENT_PIECES) as usize
+            p.event_pace(self.t, &self.y)
         };
+        // A pace that is not a positive number leaves the step's ends alone to look at.
+        let pieces = if pace > 0.0 {
+            ((t_new - self.t) / pace).ceil().min(MAX_EVENT_PIECES) as usize
+        } else {
+            1
+        }
+        .max(1);
         let mut g_start = std::mem::take(&mut self.g);
         let mut first = None;
         for k in 1..=pieces {
