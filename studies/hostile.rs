@@ -861,11 +861,12 @@ fn mkfifo(path: &Path) {
 ///     800 MB read or records written elsewhere; each is now one sentence naming the file.
 ///     A record holding what no run writes (a number not finite, a negative time, a least
 ///     value above the largest) merged into sweep.csv, or stopped it with "the run's numbers
-///     overflowed"; it is now refused as such.
+///     overflowed"; it is now refused as such. A key no plan or record holds (a hand edit
+///     meant to change the sweep) is refused rather than ignored.
 #[test]
 fn item_11_planned_sweeps_trust_no_file() {
     type Edit = fn(&Path);
-    let cases: [(&str, Edit, &str, &str); 12] = [
+    let cases: [(&str, Edit, &str, &str); 14] = [
         (
             "nan-record",
             |p| edit(&files(p, "done")[0], |t| set_first(t, "w_min", ".nan")),
@@ -924,6 +925,18 @@ fn item_11_planned_sweeps_trust_no_file() {
             },
             "merge",
             "sets no key",
+        ),
+        (
+            "plan-key",
+            |p| edit(&p.join("plan.yaml"), |t| format!("{t}speed: 300\n")),
+            "merge",
+            "unknown field `speed`",
+        ),
+        (
+            "record-key",
+            |p| edit(&files(p, "done")[0], |t| format!("{t}w_min: -1.0\n")),
+            "merge",
+            "unknown field `w_min`",
         ),
         (
             "device",

@@ -35,6 +35,7 @@ const MAX_RECORD_BYTES: u64 = 1 << 20;
 
 /// `plan.yaml`.
 #[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct Plan {
     scene: String,
     sets: Vec<String>,
@@ -45,6 +46,7 @@ struct Plan {
 /// between processes. Quantities a run does not have (no exit, no disk) are left out rather
 /// than written as NaN.
 #[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Record {
     values: Vec<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -54,6 +56,7 @@ pub struct Record {
 }
 
 #[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct RecordSummary {
     stop: String,
     t_end: f64,
@@ -68,6 +71,7 @@ struct RecordSummary {
 }
 
 #[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct RecordBody {
     name: String,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -75,6 +79,7 @@ struct RecordBody {
 }
 
 #[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct RecordProbe {
     name: String,
     w_min: f64,
@@ -85,6 +90,7 @@ struct RecordProbe {
 }
 
 #[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct RecordDisk {
     name: String,
     rn_min: f64,
@@ -216,8 +222,9 @@ impl Record {
     /// records: a number that is not finite (a run's overflow is recorded as its failure), a
     /// negative time, drift or acceleration, or a least value above the largest.
     pub fn from_yaml(text: &str, source: &str) -> Result<Record, Error> {
-        let record: Record = serde_saphyr::from_str(text)
-            .map_err(|e| Error::Input(format!("{source} is not a case record: {e}")))?;
+        let record: Record = serde_saphyr::from_str(text).map_err(|e| {
+            Error::Input(format!("{source} is not a case record: {}", first_line(&e)))
+        })?;
         match record.ok.as_ref().and_then(RecordSummary::implausible) {
             None => Ok(record),
             Some(why) => Err(Error::Input(format!(
@@ -330,6 +337,16 @@ pub fn write_plan(
     Ok((cases.len(), done))
 }
 
+/// The reader's sentence without the excerpt of the file it quotes beneath it.
+fn first_line(e: &impl std::fmt::Display) -> String {
+    let text = e.to_string();
+    text.lines()
+        .next()
+        .unwrap_or_default()
+        .trim_start_matches("error: ")
+        .to_string()
+}
+
 /// A plan folder read back.
 fn read_plan(dir: &Path) -> Result<(Plan, Vec<Setting>), Error> {
     let path = dir.join("plan.yaml");
@@ -341,8 +358,13 @@ fn read_plan(dir: &Path) -> Result<(Plan, Vec<Setting>), Error> {
         )));
     }
     let text = read_text(&path, MAX_PLAN_BYTES, "plan")?;
-    let plan: Plan = serde_saphyr::from_str(&text)
-        .map_err(|e| Error::Input(format!("{} is not a sweep plan: {e}", path.display())))?;
+    let plan: Plan = serde_saphyr::from_str(&text).map_err(|e| {
+        Error::Input(format!(
+            "{} is not a sweep plan: {}",
+            path.display(),
+            first_line(&e)
+        ))
+    })?;
     if plan.sets.is_empty() {
         return Err(Error::Input(format!(
             "{} sets no key (`sets: []`); a plan sweeps at least one --set; write the plan again",
