@@ -118,7 +118,7 @@ impl VehiclesOnBeam<'_> {
         // bridges: every crest within reach is a candidate.
         if let Some(count) = self.profile.crest_scan(a) {
             let count = count as usize;
-            let crest = self.highest_crest(centre, a, count, &height);
+            let crest = self.highest_crest(centre, a, mesh, count, &height);
             if height(crest) > height(x) {
                 x = crest;
             }
@@ -148,7 +148,14 @@ impl VehiclesOnBeam<'_> {
     /// reach scanned at `count` spaces, and each sample that is a local maximum and within
     /// what the scan's spacing may hide of the best refined by golden section between its
     /// neighbours.
-    fn highest_crest(&self, centre: f64, a: f64, count: usize, height: &dyn Fn(f64) -> f64) -> f64 {
+    fn highest_crest(
+        &self,
+        centre: f64,
+        a: f64,
+        mesh: &[f64],
+        count: usize,
+        height: &dyn Fn(f64) -> f64,
+    ) -> f64 {
         let count = count.max(DISK_SCAN);
         let spacing = 2.0 * a / count as f64;
         let at = |k: usize| centre - a + spacing * k as f64;
@@ -166,12 +173,57 @@ impl VehiclesOnBeam<'_> {
             })
             .map(|k| {
                 let (lo, hi) = (at(k.saturating_sub(1)), at((k + 1).min(count)));
-                golden_max(height, lo, hi, 1e-9 * a)
+                self.crest_between(centre, a, mesh, lo, hi)
+                    .unwrap_or_else(|| golden_max(height, lo, hi, 1e-9 * a))
             })
             .max_by(|&p, &q| height(p).total_cmp(&height(q)))
             .unwrap_or(centre)
     }
+
+    /// The crest of the centre's height H between `lo` and `hi` where H rises at `lo` and falls
+    /// at `hi`: the root of H' by Newton's method on H'' (the track's slope and curvature come
+    /// with its height at no extra cost), kept inside the shrinking bracket by bisection, to a
+    /// ten-billionth of the radius. A handful of the track's evaluations where golden section
+    /// takes some eighty; `None` where H' does not change sign across the bracket.
+    fn crest_between(&self, centre: f64, a: f64, mesh: &[f64], lo: f64, hi: f64) -> Option<f64> {
+        let slopes = |x: f64| -> [f64; 2] {
+            let [_, f1, f2] = self.surface(x, mesh);
+            let u = (x - centre) / a;
+            let root = (1.0 - u * u).max(1e-12).sqrt();
+            [f1 - u / root, f2 - 1.0 / (a * root * root * root)]
+        };
+        let (mut lo, mut hi) = (lo, hi);
+        if !(slopes(lo)[0] > 0.0 && slopes(hi)[0] < 0.0) {
+            return None;
+        }
+        let mut x = 0.5 * (lo + hi);
+        for _ in 0..CREST_ITERATIONS {
+            let [h1, h2] = slopes(x);
+            if h1 > 0.0 {
+                lo = x;
+            } else {
+                hi = x;
+            }
+            let newton = x - h1 / h2;
+            let next = if h2 < 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            let moved = (next - x).abs();
+            x = next;
+            if moved < 1e-10 * a || hi - lo < 1e-10 * a {
+                return Some(x);
+            }
+        }
+        Some(x)
+    }
 }
+
+/// Newton steps with bisection a crest is refined in at the most: bisection alone halves a
+/// bracket of a scan spacing (at least a 4096th of the reach) to a ten-billionth of the radius
+/// in under 30.
+const CREST_ITERATIONS: usize = 60;
 
 /// The maximum of `height` bracketed by [lo, hi], by golden section to a bracket of `tol`.
 fn golden_max(height: &dyn Fn(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) -> f64 {
