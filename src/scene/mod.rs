@@ -365,6 +365,19 @@ impl BeamScene {
                 self.planning_points()[0]
             ));
         }
+        for v in &self.vehicles {
+            let crate::vehicle::Wheel::Disk { radius } = v.wheel else {
+                continue;
+            };
+            if self.profile.crest_scan(radius).is_some() {
+                out.push(format!(
+                    "vehicle `{}`'s disk wheels (radius {radius} m) bridge hollows of the road, which may bend by up to {:.2} 1/m against the disk's {:.2}: where a contact jumps from one crest to the next, the wheel is carried on at once, without an impact of its axle on the crest ahead, and the energy balance steps across the jump, so the energy drift measures those jumps, not the integration (a truck's disk wheels at 30 m/s over ISO class D waves of 0.2-5 m: 1.2e-3 on massless axles, 1.4e-3 on 1 kg axles; 100 kg axles over class H waves of 0.1-50 m: 0.63); point wheels, or a road whose shortest waves the disk follows, keep it",
+                    v.name,
+                    self.profile.curvature_bound(),
+                    1.0 / radius
+                ));
+            }
+        }
         // The plan tightens rtol with the speed of wheels with a mass of their own, measured
         // up to this speed only (`plan::rtol_for`).
         for v in &self.vehicles {
