@@ -1092,8 +1092,8 @@ fn the_energy_balance_closes_through_wheel_hops_on_the_deck() {
     let drift = |rtol: f64| {
         let r = run_beam(&s, Method::GenAlpha, rtol, rtol * 2.5e-3);
         assert!(
-            !r.warnings().iter().any(|w| w.contains("bridge hollows")),
-            "a disk that follows the road's waves bridges none"
+            !r.warnings().iter().any(|w| w.contains("may bend by up to")),
+            "a disk that follows the road's waves is not warned of"
         );
         let flights = &r.vehicles[0].flights[0];
         assert!(
@@ -1564,8 +1564,8 @@ fn on_a_disk_wheel(
 /// shorter than the steps (about 16 mm), which follow the hubs' and the deck's motion. Looked
 /// for at the steps' ends only, the lift-offs there were stepped over and the wheels held to
 /// the road pulling on it, down to −1.3 kN against a static 60 kN. Now no wheel's contact force
-/// reads below zero, the run lands every flight it lifts off for, and none is warned of; the
-/// disk bridging the road's hollows is.
+/// reads below zero, the run lands every flight it lifts off for, and none is warned of; a
+/// road bending faster than the disk is.
 #[test]
 fn a_wheel_over_sharp_crests_at_speed_never_pulls_on_the_road() {
     let text = std::fs::read_to_string(concat!(
@@ -1603,9 +1603,43 @@ fn a_wheel_over_sharp_crests_at_speed_never_pulls_on_the_road() {
         .filter(|w| w.contains("pulled on the track"));
     assert_eq!(pulling.count(), 0);
     assert!(
-        warnings.iter().any(|w| w.contains("bridge hollows")),
-        "the disk bridges the road's hollows and its energy drift is said to measure that: {warnings:?}"
+        warnings.iter().any(|w| w.contains("may bend by up to")),
+        "the road bends faster than the disk, whose energy drift is said not to measure the integration alone: {warnings:?}"
     );
+}
+
+/// A disk wheel on a road that bends faster than it (ISO class H waves of 0.1-5 m under 0.4 m
+/// disks on the truck's 100 kg axles, at 30 m/s over the last 10 m of the deck) rests on one
+/// crest until the crest ahead comes level, then meets it: the axle lands on it plastically,
+/// its impulse shared with the deck, and the impact's loss booked. Carried from crest to crest
+/// at once instead, without the impact, the balance drifted by 0.16 of the energies' scale;
+/// now it closes to a tenth of the accuracy (1.3·10⁻⁵ measured), the fourth-order steps at
+/// rtol 10⁻⁶ and the impacts located to round-off.
+#[test]
+fn a_disk_wheel_meets_each_crest_ahead_as_an_impact_and_the_balance_closes() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/studies/vehicle-truck.yaml"
+    ))
+    .expect("the truck's scene")
+    .replace("duration: 1.0", "duration: 0.02")
+    .replace("x0: -10.0", "x0: 20.0")
+    .replace(
+        "speed: 19.4444",
+        "speed: 30.0\n    wheel: disk\n    radius: 0.4",
+    )
+    .replace(
+        "{name: front, x: 0.0}",
+        "{name: front, x: 0.0, mass: 100.0}",
+    )
+    .replace("{name: rear, x: 5.0}", "{name: rear, x: 5.0, mass: 100.0}")
+    .replace(
+        "points: [[-1.0, 0.0], [0.0, 0.01], [25.0, 0.01], [26.0, 0.0]]",
+        "iso8608: {class: H, seed: 2, wavelengths: [0.1, 5.0]}",
+    );
+    let run = at_defaults(&parse(&text));
+    let drift = run.header.energy.max_rel_drift();
+    assert!(drift < 1e-4, "the balance drifts by {drift:.2e}");
 }
 
 /// `rollbeam static` with a vehicle parked on the deck loads it with the wheels' loads at

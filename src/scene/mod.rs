@@ -371,7 +371,7 @@ impl BeamScene {
             };
             if self.profile.crest_scan(radius).is_some() {
                 out.push(format!(
-                    "vehicle `{}`'s disk wheels (radius {radius} m) bridge hollows of the road, which may bend by up to {:.2} 1/m against the disk's {:.2}: where a contact jumps from one crest to the next, the wheel is carried on at once, without an impact of its axle on the crest ahead, and the energy balance steps across the jump, so the energy drift measures those jumps, not the integration (a truck's disk wheels at 30 m/s over ISO class D waves of 0.2-5 m: 1.2e-3 on massless axles, 1.4e-3 on 1 kg axles; 100 kg axles over class H waves of 0.1-50 m: 0.63); point wheels, or a road whose shortest waves the disk follows, keep it",
+                    "vehicle `{}`'s disk wheels (radius {radius} m) ride a road that may bend by up to {:.2} 1/m against the disk's {:.2}: each crest ahead that comes level with the one a wheel rests on is met as a plastic impact, booked, but over such roads the energy balance has been seen to close only to 1.4e-3 (a truck's 1 kg axles at 30 m/s over ISO class D waves of 0.2-5 m, whose summary numbers lie within 2.6e-4 of the converged), so there the energy drift does not measure the integration alone",
                     v.name,
                     self.profile.curvature_bound(),
                     1.0 / radius

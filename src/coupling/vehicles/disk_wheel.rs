@@ -47,12 +47,15 @@ impl VehiclesOnBeam<'_> {
     /// its best, to a billionth of the radius.
     /// `toward` (±1) is the side of the stretch the run is in: where the disk rests on two faces
     /// at once (in a hollow, at a breakpoint) the face it is going onto or coming off.
+    /// `resting`, on a road the disk bridges, is a point of the crest it rests on: the disk
+    /// stays on that crest, however high another within reach, until the run moves it on.
     pub(super) fn disk_contact(
         &self,
         at: f64,
         toward: f64,
         a: f64,
         mesh: &[f64],
+        resting: Option<f64>,
     ) -> (f64, DiskContact) {
         let centre = at + toward * 1e-9 * a;
         let height = |x: f64| -> f64 {
@@ -115,12 +118,17 @@ impl VehiclesOnBeam<'_> {
         };
         candidates.extend(&corners);
         // On a road that bends faster than the disk, Newton's crest may be one the disk
-        // bridges: every crest within reach is a candidate.
+        // bridges: every crest within reach is a candidate, unless the disk rests on one.
         if let Some(count) = self.profile.crest_scan(a) {
             let count = count as usize;
-            let crest = self.highest_crest(centre, a, mesh, count, &height);
-            if height(crest) > height(x) {
-                x = crest;
+            match resting.filter(|r| (r - centre).abs() < a) {
+                Some(r) => x = self.crest_from(centre, a, mesh, count, r, &height),
+                None => {
+                    let crest = self.highest_crest(centre, a, mesh, count, &height);
+                    if height(crest) > height(x) {
+                        x = crest;
+                    }
+                }
             }
         } else if candidates.is_empty() || height(x) < height(centre) {
             let reach = DISK_SCAN as f64;
@@ -186,12 +194,7 @@ impl VehiclesOnBeam<'_> {
     /// ten-billionth of the radius. A handful of the track's evaluations where golden section
     /// takes some eighty; `None` where H' does not change sign across the bracket.
     fn crest_between(&self, centre: f64, a: f64, mesh: &[f64], lo: f64, hi: f64) -> Option<f64> {
-        let slopes = |x: f64| -> [f64; 2] {
-            let [_, f1, f2] = self.surface(x, mesh);
-            let u = (x - centre) / a;
-            let root = (1.0 - u * u).max(1e-12).sqrt();
-            [f1 - u / root, f2 - 1.0 / (a * root * root * root)]
-        };
+        let slopes = |x: f64| self.centre_slopes(x, centre, a, mesh);
         let (mut lo, mut hi) = (lo, hi);
         if !(slopes(lo)[0] > 0.0 && slopes(hi)[0] < 0.0) {
             return None;
@@ -217,6 +220,92 @@ impl VehiclesOnBeam<'_> {
             }
         }
         Some(x)
+    }
+
+    /// H' and H'' of a disk of radius `a` centred over `centre` touching the track at x.
+    fn centre_slopes(&self, x: f64, centre: f64, a: f64, mesh: &[f64]) -> [f64; 2] {
+        let [_, f1, f2] = self.surface(x, mesh);
+        let u = (x - centre) / a;
+        let root = (1.0 - u * u).max(1e-12).sqrt();
+        [f1 - u / root, f2 - 1.0 / (a * root * root * root)]
+    }
+
+    /// The crest of H that `from` climbs to: walked uphill in half the scan's spacing (a
+    /// sixteenth of the shortest wave, so that no hollow is stepped over) until H' turns, then
+    /// refined in that bracket.
+    fn crest_from(
+        &self,
+        centre: f64,
+        a: f64,
+        mesh: &[f64],
+        count: usize,
+        from: f64,
+        height: &dyn Fn(f64) -> f64,
+    ) -> f64 {
+        let stride = a / count.max(DISK_SCAN) as f64;
+        let (first, last) = (centre - a * (1.0 - 1e-9), centre + a * (1.0 - 1e-9));
+        let rising = |x: f64| self.centre_slopes(x, centre, a, mesh)[0] > 0.0;
+        let mut p = from.clamp(first, last);
+        let up = if rising(p) { 1.0 } else { -1.0 };
+        for _ in 0..=4 * count.max(DISK_SCAN) {
+            let next = (p + up * stride).clamp(first, last);
+            if next == p || rising(next) != (up > 0.0) {
+                let (lo, hi) = (p.min(next), p.max(next));
+                return self
+                    .crest_between(centre, a, mesh, lo, hi)
+                    .unwrap_or_else(|| golden_max(height, lo, hi, 1e-9 * a));
+            }
+            p = next;
+        }
+        p
+    }
+
+    /// How far the crest at `crest` (where the disk rests) lies above the highest other crest
+    /// within the disk's reach, in radii: positive while the disk rests on the highest, zero
+    /// where another comes level, which the disk then meets. Every other crest within what the
+    /// scan may hide of that level is refined; the rest stand at their samples, which lie
+    /// lower by more than the scan may hide, so the margin is continuous where it crosses
+    /// zero; with it, the highest other crest. 1 where no other crest is within reach.
+    pub(super) fn crest_margin(
+        &self,
+        centre: f64,
+        a: f64,
+        mesh: &[f64],
+        crest: f64,
+    ) -> (f64, Option<f64>) {
+        let Some(count) = self.profile.crest_scan(a) else {
+            return (1.0, None);
+        };
+        let count = (count as usize).max(DISK_SCAN);
+        let height = |x: f64| -> f64 {
+            let u = (x - centre) / a;
+            self.surface(x, mesh)[0] + a * (1.0 - u * u).max(0.0).sqrt()
+        };
+        let resting = height(crest);
+        let spacing = 2.0 * a / count as f64;
+        let at = |k: usize| centre - a + spacing * k as f64;
+        let samples: Vec<f64> = (0..=count).map(|k| height(at(k))).collect();
+        let hidden = self.profile.curvature_bound() * spacing * spacing / 4.0;
+        let other = (0..=count)
+            .filter(|&k| {
+                (k == 0 || samples[k] >= samples[k - 1])
+                    && (k == count || samples[k] >= samples[k + 1])
+            })
+            .filter_map(|k| {
+                if samples[k] < resting - 2.0 * hidden {
+                    return Some((samples[k], at(k)));
+                }
+                let (lo, hi) = (at(k.saturating_sub(1)), at((k + 1).min(count)));
+                let x = self
+                    .crest_between(centre, a, mesh, lo, hi)
+                    .unwrap_or_else(|| golden_max(&height, lo, hi, 1e-9 * a));
+                ((x - crest).abs() > 1e-6 * a).then(|| (height(x), x))
+            })
+            .max_by(|p, q| p.0.total_cmp(&q.0));
+        match other {
+            Some((h, x)) => ((resting - h) / a, Some(x)),
+            None => (1.0, None),
+        }
     }
 }
 

@@ -5,6 +5,10 @@ use super::VehiclesOnBeam;
 use crate::ode::second_order::Structure;
 use crate::vehicle::Wheel;
 
+/// How far, in radii, the crest ahead rises above the one a disk wheel rests on before the
+/// wheel meets it: far below any accuracy, far above the round-off of the two heights.
+const CREST_TIE: f64 = 1e-12;
+
 impl VehiclesOnBeam<'_> {
     /// How many wheels the vehicles have.
     pub fn wheels(&self) -> usize {
@@ -48,7 +52,60 @@ impl VehiclesOnBeam<'_> {
         let track = self.track(c, &z[..self.n], &zd[..self.n]);
         (z[h], zd[h]) = (track.d, track.rate);
         self.airborne.borrow_mut()[k] = true;
+        self.resting.borrow_mut()[k] = None;
         self.forces_at.forget();
+        self.contacts_at.forget();
+    }
+
+    /// The wheel of a crest event ([`super::bridging`]'s), if `index` is one.
+    pub fn crest_event(&self, index: usize) -> Option<usize> {
+        index.checked_sub(self.wheels())
+    }
+
+    /// Wheel k's disk at t above the crest ahead that comes level with the one it rests on,
+    /// in radii, and that crest (`crest_margin`); 1 in the air.
+    fn crest_ahead_of(&self, k: usize, t: f64, q: &[f64]) -> (f64, Option<f64>) {
+        if self.flies(k) {
+            return (1.0, None);
+        }
+        let c = &self.contacts(t, q)[k];
+        let v = &self.vehicles[c.vehicle];
+        let Wheel::Disk { radius } = v.wheel else {
+            return (1.0, None);
+        };
+        let centre = v.travel(t).0 - v.axles[c.axle].x;
+        let (margin, ahead) = self.crest_margin(centre, radius, &self.loaded.to_mesh(q), c.x);
+        if margin > 0.0 {
+            self.resting.borrow_mut()[k] = Some(c.x);
+        }
+        (margin, ahead)
+    }
+
+    /// The crest event's value (`crest_ahead_of`), crossing zero where the crest ahead has
+    /// risen [`CREST_TIE`] radii above the one the disk rests on: at the crossing the two lie
+    /// level to round-off, and without that margin the crest met could read lower at once and
+    /// be left again. While the disk rests on the highest, its crest is remembered as the step
+    /// saw it, for the next step's contacts to stay on.
+    pub(super) fn crest_ahead(&self, k: usize, t: f64, z: &[f64]) -> f64 {
+        self.crest_ahead_of(k, t, &z[..self.n]).0 + CREST_TIE
+    }
+
+    /// Wheel k's disk meets the crest ahead at t: it leaves the crest it rested on for that
+    /// one, and an axle with a mass lands on it plastically ([`Self::land`], from the motion
+    /// it had on the crest left). Returns (what the impact took, the drive's work).
+    pub fn meet_crest(&self, k: usize, t: f64, y: &mut [f64]) -> (f64, f64) {
+        let (_, ahead) = self.crest_ahead_of(k, t, &y[..self.n]);
+        let lands = self.can_fly(k);
+        if lands {
+            self.lift(k, t, y);
+        }
+        self.resting.borrow_mut()[k] = ahead;
+        self.forces_at.forget();
+        self.contacts_at.forget();
+        if lands {
+            return self.land(k, t, y);
+        }
+        (0.0, 0.0)
     }
 
     /// Wheel k lands at t on y = (z, ż): a plastic impact. The generalized momentum the
@@ -82,6 +139,7 @@ impl VehiclesOnBeam<'_> {
             .for_each(|&(i, g)| p[i] += g * m * (fall - convective));
         self.airborne.borrow_mut()[k] = false;
         self.forces_at.forget();
+        self.contacts_at.forget();
         p[h] = 0.0;
         self.solve_mass(t, z, &mut p);
         zd.copy_from_slice(&p);

@@ -51,6 +51,17 @@ type Row = Vec<(usize, f64)>;
 /// seen.
 const CREST_SAMPLES: f64 = 32.0;
 
+/// The wheels (numbered among all the vehicles') whose disks bridge the road's hollows: each
+/// meets the crest ahead where it comes level with the one the disk rests on.
+fn bridging<'v>(vehicles: &'v [Vehicle], profile: &'v Profile) -> impl Iterator<Item = usize> + 'v {
+    vehicles
+        .iter()
+        .flat_map(|v| v.axles.iter().map(move |_| v.wheel))
+        .enumerate()
+        .filter(move |(_, w)| matches!(w, Wheel::Disk { radius } if profile.crest_scan(*radius).is_some()))
+        .map(|(k, _)| k)
+}
+
 /// One wheel at one instant.
 pub struct Contact {
     pub vehicle: usize,
@@ -124,6 +135,9 @@ pub struct VehiclesOnBeam<'a> {
     hops: Vec<Option<usize>>,
     /// Per wheel, whether it flies now.
     airborne: RefCell<Vec<bool>>,
+    /// Per wheel, on a road its disk bridges, a point of the crest it rests on, as the last
+    /// step taken saw it; `None` until then, and in the air.
+    resting: RefCell<Vec<Option<f64>>>,
 }
 
 impl<'a> VehiclesOnBeam<'a> {
@@ -202,9 +216,14 @@ impl<'a> VehiclesOnBeam<'a> {
                     reason: k,
                     terminal: true,
                 })
+                .chain(bridging(vehicles, profile).map(|k| EventSpec {
+                    reason: axles + k,
+                    terminal: true,
+                }))
                 .collect(),
             hops,
             airborne: RefCell::new(vec![false; axles]),
+            resting: RefCell::new(vec![None; axles]),
         })
     }
 
@@ -343,7 +362,8 @@ impl<'a> VehiclesOnBeam<'a> {
                     Wheel::Point => (centre, None),
                     Wheel::Disk { radius } => {
                         let toward = if side >= centre { 1.0 } else { -1.0 };
-                        let (x, d) = self.disk_contact(centre, toward, radius, &mesh);
+                        let resting = self.resting.borrow()[out.len()];
+                        let (x, d) = self.disk_contact(centre, toward, radius, &mesh, resting);
                         (x, Some(d))
                     }
                 };
@@ -924,6 +944,9 @@ impl SecondOrderProblem for VehiclesOnBeam<'_> {
         wave / (CREST_SAMPLES * speed)
     }
     fn event(&self, index: usize, t: f64, z: &[f64], zd: &[f64]) -> f64 {
+        if let Some(k) = self.crest_event(self.events[index].reason) {
+            return self.crest_ahead(k, t, z);
+        }
         if let Some(h) = self.flying(index) {
             return self.gap(index, t, z, h);
         }

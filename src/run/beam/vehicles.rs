@@ -45,6 +45,10 @@ pub(super) struct WheelFlight {
     energy_lost: Option<f64>,
 }
 
+/// Crests a disk wheel may meet at one instant (three crests level at once, and round-off)
+/// before the run stops rather than turn between them.
+const MAX_MEETINGS_AT_ONCE: usize = 8;
+
 /// The vehicles on the beam, where the scene has them.
 pub(super) fn vehicles_on<'a>(
     scene: &Scene,
@@ -81,6 +85,7 @@ pub(super) fn drive<'a>(
     let n = v.dim();
     let (mut t, mut y) = (0.0, y0.to_vec());
     let mut flights: Vec<WheelFlight> = Vec::new();
+    let (mut meeting, mut stalled) = (None, 0);
     let (stop, lost_contact) = loop {
         let ahead: Vec<f64> = outputs
             .iter()
@@ -95,6 +100,31 @@ pub(super) fn drive<'a>(
             break (Stop::End, None);
         };
         let k = hit.reason;
+        if let Some(k) = v.crest_event(k) {
+            stalled = if meeting == Some(t) { stalled + 1 } else { 0 };
+            meeting = Some(t);
+            if stalled > MAX_MEETINGS_AT_ONCE {
+                let (i, axle) = v.wheel(k);
+                return Err(Error::Solver(format!(
+                    "scene {}: vehicle {}'s disk wheel {axle} met crest after crest at t = {t:.9} s without moving on: the road's crests there lie level within round-off",
+                    scene.name, v.vehicles[i].name
+                )));
+            }
+            rec.restart();
+            let (lost, work) = v.meet_crest(k, t, &mut y);
+            rec.ledger.wheel_lands(lost, work);
+            if v.can_fly(k) && pulls(v, k, t, &y) {
+                v.lift(k, t, &mut y);
+                flights.push(WheelFlight {
+                    wheel: k,
+                    lift_off_t: t,
+                    land_t: None,
+                    energy_lost: None,
+                });
+            }
+            rec.ledger.restart(&rec.phase, t, &y);
+            continue;
+        }
         if !v.can_fly(k) {
             break (Stop::Event(StopReason::ContactLost), Some(v.wheel(k)));
         }
@@ -113,8 +143,7 @@ pub(super) fn drive<'a>(
                 f.energy_lost = Some(f.energy_lost.unwrap_or(0.0) + lost);
             }
             // Landed with the body pulling the axle up: it flies on at the track's speed.
-            let (z, zd) = y.split_at(n);
-            if v.contact_forces(t, z, zd, &v.acceleration(t, z, zd))[k] < 0.0 {
+            if pulls(v, k, t, &y) {
                 v.lift(k, t, &mut y);
                 if let Some(f) = flights.iter_mut().rev().find(|f| f.wheel == k) {
                     f.land_t = None;
@@ -155,6 +184,12 @@ pub(super) fn drive<'a>(
         stopped_disk: None,
         wheel_flights: flights,
     })
+}
+
+/// Whether wheel k, on the track at (t, y), pulls on it.
+fn pulls(v: &VehiclesOnBeam, k: usize, t: f64, y: &[f64]) -> bool {
+    let (z, zd) = y.split_at(v.dim());
+    v.contact_forces(t, z, zd, &v.acceleration(t, z, zd))[k] < 0.0
 }
 
 /// Each vehicle's report from the ranges watched (per vehicle, its bodies' accelerations then
