@@ -49,6 +49,18 @@ pub(super) struct WheelFlight {
 /// before the run stops rather than turn between them.
 const MAX_MEETINGS_AT_ONCE: usize = 8;
 
+impl WheelFlight {
+    /// Wheel k lifting off at t.
+    fn off(wheel: usize, t: f64) -> Self {
+        WheelFlight {
+            wheel,
+            lift_off_t: t,
+            land_t: None,
+            energy_lost: None,
+        }
+    }
+}
+
 /// The vehicles on the beam, where the scene has them.
 pub(super) fn vehicles_on<'a>(
     scene: &Scene,
@@ -110,19 +122,7 @@ pub(super) fn drive<'a>(
                     scene.name, v.vehicles[i].name
                 )));
             }
-            rec.restart();
-            let (lost, work) = v.meet_crest(k, t, &mut y);
-            rec.ledger.wheel_lands(lost, work);
-            if v.can_fly(k) && pulls(v, k, t, &y) {
-                v.lift(k, t, &mut y);
-                flights.push(WheelFlight {
-                    wheel: k,
-                    lift_off_t: t,
-                    land_t: None,
-                    energy_lost: None,
-                });
-            }
-            rec.ledger.restart(&rec.phase, t, &y);
+            meet_crest(v, k, t, &mut y, rec, &mut flights);
             continue;
         }
         if !v.can_fly(k) {
@@ -162,12 +162,7 @@ pub(super) fn drive<'a>(
             v.lift(k, t, &mut y);
             record(rec, &y);
             rec.restart();
-            flights.push(WheelFlight {
-                wheel: k,
-                lift_off_t: t,
-                land_t: None,
-                energy_lost: None,
-            });
+            flights.push(WheelFlight::off(k, t));
         }
         rec.ledger.restart(&rec.phase, t, &y);
     };
@@ -184,6 +179,26 @@ pub(super) fn drive<'a>(
         stopped_disk: None,
         wheel_flights: flights,
     })
+}
+
+/// Wheel k meets the crest ahead at t ([`VehiclesOnBeam::meet_crest`]), and flies on from it
+/// where its body pulls its axle up.
+fn meet_crest<'a>(
+    v: &VehiclesOnBeam,
+    k: usize,
+    t: f64,
+    y: &mut [f64],
+    rec: &mut Recorder<'a>,
+    flights: &mut Vec<WheelFlight>,
+) {
+    rec.restart();
+    let (lost, work) = v.meet_crest(k, t, y);
+    rec.ledger.wheel_lands(lost, work);
+    if v.can_fly(k) && pulls(v, k, t, y) {
+        v.lift(k, t, y);
+        flights.push(WheelFlight::off(k, t));
+    }
+    rec.ledger.restart(&rec.phase, t, y);
 }
 
 /// Whether wheel k, on the track at (t, y), pulls on it.
