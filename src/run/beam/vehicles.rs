@@ -98,6 +98,15 @@ pub(super) fn drive<'a>(
     let (mut t, mut y) = (0.0, y0.to_vec());
     let mut flights: Vec<WheelFlight> = Vec::new();
     let (mut meeting, mut stalled) = (None, 0);
+    // A wheel that cannot hold the track it starts on (a crest sharper than it follows at its
+    // speed) is in the air from the first row on, as at any lift-off.
+    for k in 0..v.wheels() {
+        if v.can_fly(k) && pulls(v, k, t, &y) {
+            v.lift(k, t, &mut y);
+            flights.push(WheelFlight::off(k, t));
+            rec.ledger.restart(&rec.phase, t, &y);
+        }
+    }
     let (stop, lost_contact) = loop {
         let ahead: Vec<f64> = outputs
             .iter()
