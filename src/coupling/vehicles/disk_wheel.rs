@@ -152,10 +152,9 @@ impl VehiclesOnBeam<'_> {
         )
     }
 
-    /// The highest of the local maxima of `height` over a disk's reach about `centre`: the
-    /// reach scanned at `count` spaces, and each sample that is a local maximum and within
-    /// what the scan's spacing may hide of the best refined by golden section between its
-    /// neighbours.
+    /// The highest of the local maxima of `height` over a disk's reach about `centre`
+    /// ([`Self::scanned_crests`], refining those the scan's spacing may hide above the best
+    /// sample).
     fn highest_crest(
         &self,
         centre: f64,
@@ -164,28 +163,52 @@ impl VehiclesOnBeam<'_> {
         count: usize,
         height: &dyn Fn(f64) -> f64,
     ) -> f64 {
+        self.scanned_crests(centre, a, mesh, count, height, |best, hidden| best - hidden)
+            .into_iter()
+            .max_by(|p, q| p.0.total_cmp(&q.0))
+            .map_or(centre, |(_, x)| x)
+    }
+
+    /// The local maxima of `height` over a disk's reach about `centre`, as (height, x): the
+    /// reach scanned at `count` spaces (at least [`DISK_SCAN`]), and each sample that is a
+    /// local maximum refined between its neighbours where it lies at or above `floor(best
+    /// sample, hidden)`; the others stand at their samples. `hidden` is what a crest may rise
+    /// above the samples beside it: between two samples h apart a height whose second
+    /// derivative stays below K rises at most K h² / 8 above the higher; the disk's own arc only
+    /// bends it down, and the deck's bending, far below the road's, is covered by taking twice
+    /// that.
+    fn scanned_crests(
+        &self,
+        centre: f64,
+        a: f64,
+        mesh: &[f64],
+        count: usize,
+        height: &dyn Fn(f64) -> f64,
+        floor: impl Fn(f64, f64) -> f64,
+    ) -> Vec<(f64, f64)> {
         let count = count.max(DISK_SCAN);
         let spacing = 2.0 * a / count as f64;
         let at = |k: usize| centre - a + spacing * k as f64;
         let samples: Vec<f64> = (0..=count).map(|k| height(at(k))).collect();
         let best = samples.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        // Between two samples h apart a height whose second derivative stays below K rises at
-        // most K h² / 8 above the higher; the disk's own arc only bends it down, and the deck's
-        // bending, far below the road's, is covered by taking twice that.
         let hidden = self.profile.curvature_bound() * spacing * spacing / 4.0;
+        let floor = floor(best, hidden);
         (0..=count)
             .filter(|&k| {
-                let up = k == 0 || samples[k] >= samples[k - 1];
-                let down = k == count || samples[k] >= samples[k + 1];
-                up && down && samples[k] >= best - hidden
+                (k == 0 || samples[k] >= samples[k - 1])
+                    && (k == count || samples[k] >= samples[k + 1])
             })
             .map(|k| {
+                if samples[k] < floor {
+                    return (samples[k], at(k));
+                }
                 let (lo, hi) = (at(k.saturating_sub(1)), at((k + 1).min(count)));
-                self.crest_between(centre, a, mesh, lo, hi)
-                    .unwrap_or_else(|| golden_max(height, lo, hi, 1e-9 * a))
+                let x = self
+                    .crest_between(centre, a, mesh, lo, hi)
+                    .unwrap_or_else(|| golden_max(height, lo, hi, 1e-9 * a));
+                (height(x), x)
             })
-            .max_by(|&p, &q| height(p).total_cmp(&height(q)))
-            .unwrap_or(centre)
+            .collect()
     }
 
     /// The crest of the centre's height H between `lo` and `hi` where H rises at `lo` and falls
@@ -276,31 +299,17 @@ impl VehiclesOnBeam<'_> {
         let Some(count) = self.profile.crest_scan(a) else {
             return (1.0, None);
         };
-        let count = (count as usize).max(DISK_SCAN);
         let height = |x: f64| -> f64 {
             let u = (x - centre) / a;
             self.surface(x, mesh)[0] + a * (1.0 - u * u).max(0.0).sqrt()
         };
         let resting = height(crest);
-        let spacing = 2.0 * a / count as f64;
-        let at = |k: usize| centre - a + spacing * k as f64;
-        let samples: Vec<f64> = (0..=count).map(|k| height(at(k))).collect();
-        let hidden = self.profile.curvature_bound() * spacing * spacing / 4.0;
-        let other = (0..=count)
-            .filter(|&k| {
-                (k == 0 || samples[k] >= samples[k - 1])
-                    && (k == count || samples[k] >= samples[k + 1])
+        let other = self
+            .scanned_crests(centre, a, mesh, count as usize, &height, |_, hidden| {
+                resting - 2.0 * hidden
             })
-            .filter_map(|k| {
-                if samples[k] < resting - 2.0 * hidden {
-                    return Some((samples[k], at(k)));
-                }
-                let (lo, hi) = (at(k.saturating_sub(1)), at((k + 1).min(count)));
-                let x = self
-                    .crest_between(centre, a, mesh, lo, hi)
-                    .unwrap_or_else(|| golden_max(&height, lo, hi, 1e-9 * a));
-                ((x - crest).abs() > 1e-6 * a).then(|| (height(x), x))
-            })
+            .into_iter()
+            .filter(|(_, x)| (x - crest).abs() > 1e-6 * a)
             .max_by(|p, q| p.0.total_cmp(&q.0));
         match other {
             Some((h, x)) => ((resting - h) / a, Some(x)),
