@@ -635,7 +635,7 @@ fn truck(x0: f64, speed: f64, extra: &str) -> String {
 /// deck. Kinetic, strain, spring and weight energy less the drive's work plus what the
 /// dampers took stays at its start within the integration's error, which shrinks as rtol
 /// does: from 10⁻⁶ to 10⁻⁸ the steps shrink by 100^(1/3) and the second-order method's error
-/// by about 20 (measured 8.1·10⁻⁵ to 3.9·10⁻⁶).
+/// by about 20 (measured 8.1·10⁻⁵ to 3.8·10⁻⁶).
 #[test]
 fn the_energy_balance_closes_with_dampers_a_profile_and_braking() {
     let text = BRIDGE.replace(
@@ -663,7 +663,7 @@ fn the_energy_balance_closes_with_dampers_a_profile_and_braking() {
 /// The budget's own quadrature stays below the fourth-order method's error. The drive's work
 /// and the dampers' energy are booked by Simpson's rule over each step (its error h⁵ a step),
 /// so Biggs' sprung mass (`studies/vehicle-sprung.yaml`) by ESDIRK4 balances to 1e-8 at rtol
-/// 10⁻⁸ and its balance shrinks from rtol 10⁻⁶ by more than 25 (measured 4.8·10⁻⁸ to 1.2·10⁻⁹).
+/// 10⁻⁸ and its balance shrinks from rtol 10⁻⁶ by more than 25 (measured 1.9·10⁻⁸ to 1.2·10⁻¹⁰).
 /// Booked by the trapezoidal rule (h³ a step) it shrank as rtol^½, from 2.1·10⁻⁶ to
 /// 1.8·10⁻⁷: the quadrature's error, not the solution's, would be what the summary reports.
 #[test]
@@ -687,7 +687,7 @@ fn a_sprung_mass_balances_its_energy_to_the_fourth_order_method_s_error() {
 /// (its stiffer tyre): the run stops at the loss of contact, says so, and names the wheel. Its
 /// 50 kg wheels take a vertical impulse at each of the bump's kinks, whose energy the drive
 /// delivers: booked with the drive's work, the balance closes to a hundredth of the accuracy
-/// (measured 3.1·10⁻⁶; unbooked, the impulses left 3·10⁻²).
+/// (measured 7.8·10⁻⁸; unbooked, the impulses left 3·10⁻²).
 #[test]
 fn a_wheel_that_lifts_off_stops_the_run_and_is_named() {
     let text = BRIDGE.replace(
@@ -712,7 +712,7 @@ fn a_wheel_that_lifts_off_stops_the_run_and_is_named() {
 /// The truck over the raised deck (`studies/vehicle-truck.yaml`): its massless wheels cross
 /// the profile's four kinks, where the drive's power jumps; each step's work is booked on its
 /// own side of them, and the balance closes at the defaults within a thousandth of the
-/// accuracy (measured 6.6·10⁻⁹; read on the next stretch's side, it drifted by 2.5·10⁻³).
+/// accuracy (measured 4.8·10⁻⁹; read on the next stretch's side, it drifted by 2.5·10⁻³).
 #[test]
 fn the_energy_balance_closes_over_the_kinks_of_a_raised_deck() {
     let r = at_defaults(&load("vehicle-truck.yaml"));
@@ -884,7 +884,7 @@ fn disk_wheels_become_the_point_wheel_as_their_radius_shrinks() {
 
 /// Disk wheels of 0.5 m on the truck over the raised deck: they pivot over the crests and
 /// change faces in the hollows at breakpoints, and the balance closes as the point wheels'
-/// does (measured 6.9·10⁻⁶ at the defaults).
+/// does (measured 9.5·10⁻⁷ at the defaults).
 #[test]
 fn the_energy_balance_closes_for_disk_wheels_over_kinks() {
     let path = common::studies_dir().join("vehicle-truck.yaml");
@@ -1613,7 +1613,7 @@ fn a_wheel_over_sharp_crests_at_speed_never_pulls_on_the_road() {
 /// crest until the crest ahead comes level, then meets it: the axle lands on it plastically,
 /// its impulse shared with the deck, and the impact's loss booked. Carried from crest to crest
 /// at once instead, without the impact, the balance drifted by 0.16 of the energies' scale;
-/// now it closes to a tenth of the accuracy (1.3·10⁻⁵ measured), the fourth-order steps at
+/// now it closes to a tenth of the accuracy (4.5·10⁻⁶ measured), the fourth-order steps at
 /// rtol 10⁻⁶ and the impacts located to round-off. Both wheels start on crests they cannot
 /// hold at that speed, and fly from the first row: no contact force below zero is read (the
 /// first row read −261 kN, taken before the lift-off at t = 0).

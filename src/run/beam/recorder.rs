@@ -546,6 +546,14 @@ impl Observer for Recorder<'_> {
                 .collect();
             self.ledger.book_in_pieces(pieces);
             self.ledger.to_outputs(rows);
+        } else if self.phase.vehicles.is_some() && self.ledger.books_by_simpson(&self.phase) {
+            let state = |t: f64| dense.at(t);
+            let rows = self.outputs_inside(t0, t1);
+            let (whole, rows) = self
+                .ledger
+                .adaptive_pieces(&self.phase, (t0, t1), rows, &state);
+            self.ledger.book_in_pieces(vec![whole]);
+            self.ledger.to_outputs(rows);
         } else if self.ledger.books_by_simpson(&self.phase) {
             let tm = 0.5 * (t0 + t1);
             self.ledger
