@@ -1604,7 +1604,7 @@ fn a_wheel_over_sharp_crests_at_speed_never_pulls_on_the_road() {
     assert_eq!(pulling.count(), 0);
     assert!(
         warnings.iter().any(|w| w.contains("may bend by up to")),
-        "the road bends faster than the disk, whose energy drift is said not to measure the integration alone: {warnings:?}"
+        "the road bends faster than the disk, whose crests are met as impacts: {warnings:?}"
     );
 }
 
@@ -1650,6 +1650,39 @@ fn a_disk_wheel_meets_each_crest_ahead_as_an_impact_and_the_balance_closes() {
             range.min_t
         );
     }
+}
+
+/// The truck on 0.4 m disk wheels with 1 kg axles at 30 m/s over ISO class D waves of 0.2-5 m,
+/// from the approach across the deck. Where a hollow bends nearly as fast as the disk its
+/// contact sweeps across it within a fraction of a step (at up to 60 times the speed), and the
+/// drive's power swings with it, unseen by steps that follow the bodies: booked by Simpson's
+/// rule over each step the balance drifts by 1.4·10⁻³. At one hollow a crest rises ahead,
+/// comes level with the one the rear disk rests on and swallows it within 0.2 mm of travel,
+/// between two looks of the events: a disk carried onto it without its impact drifts by
+/// 9.2·10⁻⁴. The ledger integrates the powers within each step, and the disk follows its own
+/// crest and knows when it has gone, so that the impact is found where the crests came level:
+/// the balance closes within a tenth of the accuracy (1.4·10⁻⁵ measured).
+#[test]
+fn a_disk_wheel_sweeping_hollows_keeps_the_balance() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/studies/vehicle-truck.yaml"
+    ))
+    .expect("the truck's scene")
+    .replace("duration: 1.0", "duration: 0.02")
+    .replace(
+        "speed: 19.4444",
+        "speed: 30.0\n    wheel: disk\n    radius: 0.4",
+    )
+    .replace("{name: front, x: 0.0}", "{name: front, x: 0.0, mass: 1.0}")
+    .replace("{name: rear, x: 5.0}", "{name: rear, x: 5.0, mass: 1.0}")
+    .replace(
+        "points: [[-1.0, 0.0], [0.0, 0.01], [25.0, 0.01], [26.0, 0.0]]",
+        "iso8608: {class: D, seed: 2, wavelengths: [0.2, 5.0]}",
+    );
+    let run = at_defaults(&parse(&text));
+    let drift = run.header.energy.max_rel_drift();
+    assert!(drift < 1e-4, "the balance drifts by {drift:.2e}");
 }
 
 /// `rollbeam static` with a vehicle parked on the deck loads it with the wheels' loads at

@@ -390,6 +390,7 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             observer.step(te, y_tmp);
             self.t = te;
             self.y.copy_from_slice(y_tmp);
+            p.accepted(te, &self.y);
             return Some(EventHit {
                 reason: specs[i].reason,
                 t: te,
@@ -398,6 +399,7 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
         self.t = t_new;
         self.y.copy_from_slice(stepper.y_new());
         self.g = g_new;
+        p.accepted(t_new, &self.y);
         None
     }
 

@@ -115,6 +115,11 @@ pub trait Problem: Dynamics {
     fn event_pace(&self, _t: f64, _y: &[f64]) -> f64 {
         f64::INFINITY
     }
+    /// The run has reached (t, y) for good: the step to it is accepted (or an event stopped
+    /// it there). A problem whose law depends on the way the solution came (which of two
+    /// crests a disk rests on) takes that in here, never from a trial or a look inside a
+    /// step, so that every evaluation within one step sees the same law.
+    fn accepted(&self, _t: f64, _y: &[f64]) {}
 }
 
 /// The reason of a problem that has no events.

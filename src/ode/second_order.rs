@@ -94,6 +94,8 @@ pub trait SecondOrderProblem: Structure {
     fn event_pace(&self, _t: f64, _q: &[f64], _v: &[f64]) -> f64 {
         f64::INFINITY
     }
+    /// See [`Problem::accepted`].
+    fn accepted(&self, _t: f64, _q: &[f64], _v: &[f64]) {}
 }
 
 /// y = (q, v): q' = v, M(q) v' = f(t, q, v). Mass diag(I, M), Jacobian [[0, I], [−K, 0]].
@@ -178,5 +180,9 @@ impl<E: Copy + std::fmt::Debug> Problem for FirstOrder<'_, E> {
     fn event_pace(&self, t: f64, y: &[f64]) -> f64 {
         let n = self.inner.dim();
         self.inner.event_pace(t, &y[..n], &y[n..])
+    }
+    fn accepted(&self, t: f64, y: &[f64]) {
+        let n = self.inner.dim();
+        self.inner.accepted(t, &y[..n], &y[n..])
     }
 }

@@ -371,7 +371,7 @@ impl BeamScene {
             };
             if self.profile.crest_scan(radius).is_some() {
                 out.push(format!(
-                    "vehicle `{}`'s disk wheels (radius {radius} m) ride a road that may bend by up to {:.2} 1/m against the disk's {:.2}: each crest ahead that comes level with the one a wheel rests on is met as a plastic impact, booked, but over such roads the energy balance has been seen to close only to 1.4e-3 (a truck's 1 kg axles at 30 m/s over ISO class D waves of 0.2-5 m, whose summary numbers lie within 2.6e-4 of the converged), so there the energy drift does not measure the integration alone",
+                    "vehicle `{}`'s disk wheels (radius {radius} m) ride a road that may bend by up to {:.2} 1/m against the disk's {:.2}: where it does, the disk bridges the hollow, and each crest ahead that comes level with the one a wheel rests on is met as a plastic impact, whose loss `energy.impact` books",
                     v.name,
                     self.profile.curvature_bound(),
                     1.0 / radius

@@ -20,6 +20,18 @@ pub struct DiskContact {
     pub rest: f64,
     /// The disk rests on a corner of the profile, its contact held there as it pivots.
     pub pivot: bool,
+    /// The crest the disk rested on ([`Resting`]) has merged into a hollow since: before
+    /// that another crest rose above it, which the disk has met unseen.
+    pub crest_gone: bool,
+}
+
+/// On a road a disk bridges, the crest it rests on: where it was when the disk's centre was
+/// over `centre`. The disk stays on that crest, followed as the centre moves, however high
+/// another within reach, until the run moves it on.
+#[derive(Clone, Copy, Debug)]
+pub struct Resting {
+    pub centre: f64,
+    pub crest: f64,
 }
 
 impl VehiclesOnBeam<'_> {
@@ -47,21 +59,71 @@ impl VehiclesOnBeam<'_> {
     /// its best, to a billionth of the radius.
     /// `toward` (±1) is the side of the stretch the run is in: where the disk rests on two faces
     /// at once (in a hollow, at a breakpoint) the face it is going onto or coming off.
-    /// `resting`, on a road the disk bridges, is a point of the crest it rests on: the disk
-    /// stays on that crest, however high another within reach, until the run moves it on.
+    /// `resting`, on a road the disk bridges, is the crest it rests on ([`Resting`]).
     pub(super) fn disk_contact(
         &self,
         at: f64,
         toward: f64,
         a: f64,
         mesh: &[f64],
-        resting: Option<f64>,
+        resting: Option<Resting>,
     ) -> (f64, DiskContact) {
         let centre = at + toward * 1e-9 * a;
         let height = |x: f64| -> f64 {
             let u = (x - centre) / a;
             self.surface(x, mesh)[0] + a * (1.0 - u * u).max(0.0).sqrt()
         };
+        let corners: Vec<f64> = self
+            .profile
+            .kinks()
+            .into_iter()
+            .filter(|k| (k - centre).abs() < a)
+            .collect();
+        let crests = self.profile.crest_scan(a).map(|count| count as usize);
+        let (x, crest_gone) = match (crests, resting.filter(|r| (r.crest - centre).abs() < a)) {
+            (Some(count), Some(r)) => match self.follow_crest(r, centre, a, mesh, count) {
+                Followed::At(x) => (x, false),
+                Followed::Gone(last) => {
+                    (self.crest_from(centre, a, mesh, count, last, &height), true)
+                }
+                Followed::Short(last) => (
+                    self.crest_from(centre, a, mesh, count, last, &height),
+                    false,
+                ),
+            },
+            (crests, _) => (
+                self.highest_point(centre, a, mesh, &corners, crests, &height),
+                false,
+            ),
+        };
+        let u = (x - at) / a;
+        let root = (1.0 - u * u).max(1e-12).sqrt();
+        let profile = self.profile.at(x, x)[0];
+        (
+            x,
+            DiskContact {
+                rise: u / root,
+                rest: profile + a * (root - 1.0),
+                pivot: corners.contains(&x),
+                crest_gone,
+            },
+        )
+    }
+
+    /// Where a disk of radius `a` centred over `centre`, resting on no crest it is held to,
+    /// touches the track: the highest of Newton's maximum from the centre, each face's beside
+    /// a corner within reach and the corners themselves, and on a road that bends faster than
+    /// the disk (`crests`, the scan's count) every crest within reach; where none of these
+    /// settles, a scan of the reach and golden-section search about its best.
+    fn highest_point(
+        &self,
+        centre: f64,
+        a: f64,
+        mesh: &[f64],
+        corners: &[f64],
+        crests: Option<usize>,
+        height: &dyn Fn(f64) -> f64,
+    ) -> f64 {
         let newton = |start: f64| -> Option<f64> {
             let mut x = start;
             for _ in 0..DISK_NEWTON {
@@ -82,16 +144,8 @@ impl VehiclesOnBeam<'_> {
             }
             None
         };
-        // Each face of a piecewise-linear profile within reach holds its own maximum, and each
-        // corner may be where the disk rests: every one is a candidate, from the centre's.
-        let corners: Vec<f64> = self
-            .profile
-            .kinks()
-            .into_iter()
-            .filter(|k| (k - centre).abs() < a)
-            .collect();
         let mut candidates: Vec<f64> = newton(centre).into_iter().collect();
-        for &k in &corners {
+        for &k in corners {
             for side in [-1.0, 1.0] {
                 candidates.extend(newton(k + side * 1e-6 * a));
             }
@@ -107,7 +161,7 @@ impl VehiclesOnBeam<'_> {
         // flicker onto the corner and its curvature to the corner's 1/a before the centre
         // passes it (a van's disk wheel pulled on the deck with 366 kN at one such instant).
         let face = highest(&candidates);
-        let mut x = match (face, highest(&corners)) {
+        let mut x = match (face, highest(corners)) {
             (Some(f), Some(k))
                 if height(k) > height(f) + 8.0 * f64::EPSILON * (a + height(f).abs()) =>
             {
@@ -116,19 +170,13 @@ impl VehiclesOnBeam<'_> {
             (Some(f), _) => f,
             (None, k) => k.unwrap_or(centre),
         };
-        candidates.extend(&corners);
+        candidates.extend(corners);
         // On a road that bends faster than the disk, Newton's crest may be one the disk
-        // bridges: every crest within reach is a candidate, unless the disk rests on one.
-        if let Some(count) = self.profile.crest_scan(a) {
-            let count = count as usize;
-            match resting.filter(|r| (r - centre).abs() < a) {
-                Some(r) => x = self.crest_from(centre, a, mesh, count, r, &height),
-                None => {
-                    let crest = self.highest_crest(centre, a, mesh, count, &height);
-                    if height(crest) > height(x) {
-                        x = crest;
-                    }
-                }
+        // bridges: every crest within reach is a candidate.
+        if let Some(count) = crests {
+            let crest = self.highest_crest(centre, a, mesh, count, height);
+            if height(crest) > height(x) {
+                x = crest;
             }
         } else if candidates.is_empty() || height(x) < height(centre) {
             let reach = DISK_SCAN as f64;
@@ -137,19 +185,9 @@ impl VehiclesOnBeam<'_> {
                 .max_by(|&i, &j| height(at(i)).total_cmp(&height(at(j))))
                 .unwrap_or(DISK_SCAN / 2);
             let (lo, hi) = (at(best.saturating_sub(1)), at((best + 1).min(DISK_SCAN)));
-            x = golden_max(&height, lo, hi, 1e-9 * a);
+            x = golden_max(height, lo, hi, 1e-9 * a);
         }
-        let u = (x - at) / a;
-        let root = (1.0 - u * u).max(1e-12).sqrt();
-        let profile = self.profile.at(x, x)[0];
-        (
-            x,
-            DiskContact {
-                rise: u / root,
-                rest: profile + a * (root - 1.0),
-                pivot: corners.contains(&x),
-            },
-        )
+        x
     }
 
     /// The highest of the local maxima of `height` over a disk's reach about `centre`
@@ -245,12 +283,93 @@ impl VehiclesOnBeam<'_> {
         Some(x)
     }
 
+    /// The crest of H by Newton's method on H' from `start`, where it settles within [lo, hi]
+    /// on a maximum in a few steps (`None` otherwise): a crest followed from where a stride
+    /// predicts it, at a third of the evaluations of [`Self::crest_between`]'s bracket.
+    fn newton_crest(
+        &self,
+        centre: f64,
+        a: f64,
+        mesh: &[f64],
+        start: f64,
+        lo: f64,
+        hi: f64,
+    ) -> Option<f64> {
+        let mut x = start;
+        for _ in 0..DISK_NEWTON {
+            let [h1, h2] = self.centre_slopes(x, centre, a, mesh);
+            if !(h2 < 0.0) {
+                return None;
+            }
+            let next = x - h1 / h2;
+            if !(next >= lo && next <= hi) {
+                return None;
+            }
+            let moved = (next - x).abs();
+            x = next;
+            if moved < 1e-10 * a {
+                return Some(x);
+            }
+        }
+        None
+    }
+
     /// H' and H'' of a disk of radius `a` centred over `centre` touching the track at x.
     fn centre_slopes(&self, x: f64, centre: f64, a: f64, mesh: &[f64]) -> [f64; 2] {
         let [_, f1, f2] = self.surface(x, mesh);
         let u = (x - centre) / a;
         let root = (1.0 - u * u).max(1e-12).sqrt();
         [f1 - u / root, f2 - 1.0 / (a * root * root * root)]
+    }
+
+    /// The crest `resting` names, followed from its centre to `centre`: in strides of the
+    /// centre over which the crest, moving at dx/dX = κ / (κ − f'') (H' = 0 held), moves half
+    /// the scan's spacing at the most, each refined within that of where the stride predicts
+    /// it (by Newton's method from there, or in the bracket); a stride that finds no crest
+    /// there is halved. Following rather than climbing keeps the disk on its own crest however
+    /// fast it sweeps, and tells where it has gone ([`Followed`]).
+    fn follow_crest(
+        &self,
+        resting: Resting,
+        centre: f64,
+        a: f64,
+        mesh: &[f64],
+        count: usize,
+    ) -> Followed {
+        let stride = a / count.max(DISK_SCAN) as f64;
+        let (mut c, mut x) = (resting.centre, resting.crest);
+        let mut step = centre - c;
+        for _ in 0..FOLLOW_STRIDES {
+            let [_, h2] = self.centre_slopes(x, c, a, mesh);
+            let u = (x - c) / a;
+            let kappa = 1.0 / (a * (1.0 - u * u).max(1e-12).powf(1.5));
+            let speed = if h2 < 0.0 { -kappa / h2 } else { f64::INFINITY };
+            let room = centre - c;
+            step = step.abs().min(room.abs()).min(stride / speed) * room.signum();
+            let next = c + step;
+            let guess = x + speed.min(1e12) * step;
+            let reach = a * (1.0 - 1e-9);
+            let (lo, hi) = (
+                (guess - stride).max(next - reach),
+                (guess + stride).min(next + reach),
+            );
+            let found = (lo < hi).then(|| {
+                self.newton_crest(next, a, mesh, guess.clamp(lo, hi), lo, hi)
+                    .or_else(|| self.crest_between(next, a, mesh, lo, hi))
+            });
+            match found.flatten() {
+                Some(found) => {
+                    (c, x) = (next, found);
+                    if c == centre {
+                        return Followed::At(x);
+                    }
+                    step = 2.0 * step.abs();
+                }
+                None if step.abs() < 1e-9 * a => return Followed::Gone(x),
+                None => step *= 0.5,
+            }
+        }
+        Followed::Short(x)
     }
 
     /// The crest of H that `from` climbs to: walked uphill in half the scan's spacing (a
@@ -317,6 +436,24 @@ impl VehiclesOnBeam<'_> {
         }
     }
 }
+
+/// Where [`VehiclesOnBeam::follow_crest`] took a crest.
+enum Followed {
+    /// To the centre asked about: the crest is there.
+    At(f64),
+    /// Into a hollow it merged with (it cannot be found within a billionth of the radius of
+    /// where it was), last seen at the point given: climbing H from there carries the disk
+    /// onto another crest, which rose above it before, unseen.
+    Gone(f64),
+    /// As far as [`FOLLOW_STRIDES`] took it: climbing H from there finds it.
+    Short(f64),
+}
+
+/// Strides [`VehiclesOnBeam::follow_crest`] takes at the most: a crest followed over a step
+/// of the run takes a few, one sweeping a hollow at sixty times the centre's speed some
+/// hundred, and one near where it merges into a hollow halves its stride some thirty times
+/// before it is given up.
+const FOLLOW_STRIDES: usize = 400;
 
 /// Newton steps with bisection a crest is refined in at the most: bisection alone halves a
 /// bracket of a scan spacing (at least a 4096th of the reach) to a ten-billionth of the radius

@@ -1,6 +1,7 @@
 //! A disk wheel with an unsprung mass off the track: its axle's height an unknown of its own
 //! while it flies, its gap watched, and its plastic landing.
 
+use super::disk_wheel::Resting;
 use super::VehiclesOnBeam;
 use crate::ode::second_order::Structure;
 use crate::vehicle::Wheel;
@@ -63,29 +64,71 @@ impl VehiclesOnBeam<'_> {
     }
 
     /// Wheel k's disk at t above the crest ahead that comes level with the one it rests on,
-    /// in radii, and that crest (`crest_margin`); 1 in the air.
+    /// in radii, and that crest (`crest_margin`); 1 in the air. −1, with the crest the disk
+    /// has come onto, where the crest it rested on has merged into a hollow
+    /// (`DiskContact::crest_gone`): another rose above it before, so between then and now
+    /// the value has crossed zero, which the driver then finds.
     fn crest_ahead_of(&self, k: usize, t: f64, q: &[f64]) -> (f64, Option<f64>) {
         if self.flies(k) {
             return (1.0, None);
         }
         let c = &self.contacts(t, q)[k];
         let v = &self.vehicles[c.vehicle];
-        let Wheel::Disk { radius } = v.wheel else {
+        let (Wheel::Disk { radius }, Some(disk)) = (v.wheel, c.disk) else {
             return (1.0, None);
         };
-        let centre = v.travel(t).0 - v.axles[c.axle].x;
-        let (margin, ahead) = self.crest_margin(centre, radius, &self.loaded.to_mesh(q), c.x);
-        if margin > 0.0 {
-            self.resting.borrow_mut()[k] = Some(c.x);
+        if disk.crest_gone {
+            return (-1.0, Some(c.x));
         }
-        (margin, ahead)
+        let centre = v.travel(t).0 - v.axles[c.axle].x;
+        self.crest_margin(centre, radius, &self.loaded.to_mesh(q), c.x)
+    }
+
+    /// Wheel k's disk at t rests on the crest its contact is on.
+    fn resting_at(&self, k: usize, t: f64, q: &[f64], crest: f64) -> Resting {
+        let c = &self.contacts(t, q)[k];
+        let v = &self.vehicles[c.vehicle];
+        Resting {
+            centre: v.travel(t).0 - v.axles[c.axle].x,
+            crest,
+        }
+    }
+
+    /// The run has reached t: each wheel that bridges the road's hollows, on the track,
+    /// remembers the crest it rests on, which the next step's contacts follow from
+    /// (`disk_contact`). Only here: a crest remembered from a trial, or from a look ahead
+    /// inside a step, would leave the contacts the step's stages saw (a wheel then read the
+    /// crest its disk had not yet reached, 1.9·10⁻⁵ m below the one it rested on).
+    pub(super) fn remember_crests(&self, t: f64, q: &[f64]) {
+        let wheels: Vec<usize> = self
+            .events
+            .iter()
+            .filter_map(|e| self.crest_event(e.reason))
+            .filter(|&k| !self.flies(k))
+            .collect();
+        if wheels.is_empty() {
+            return;
+        }
+        let crests: Vec<Resting> = {
+            let contacts = self.contacts(t, &q[..self.n]);
+            wheels
+                .iter()
+                .map(|&k| self.resting_at(k, t, &q[..self.n], contacts[k].x))
+                .collect()
+        };
+        let mut resting = self.resting.borrow_mut();
+        for (&k, crest) in wheels.iter().zip(crests) {
+            resting[k] = Some(crest);
+        }
+        drop(resting);
+        self.forces_at.forget();
+        self.contacts_at.forget();
     }
 
     /// The crest event's value (`crest_ahead_of`), crossing zero where the crest ahead has
     /// risen [`CREST_TIE`] radii above the one the disk rests on: at the crossing the two lie
     /// level to round-off, and without that margin the crest met could read lower at once and
-    /// be left again. While the disk rests on the highest, its crest is remembered as the step
-    /// saw it, for the next step's contacts to stay on.
+    /// be left again.
     pub(super) fn crest_ahead(&self, k: usize, t: f64, z: &[f64]) -> f64 {
         self.crest_ahead_of(k, t, &z[..self.n]).0 + CREST_TIE
     }
@@ -99,6 +142,7 @@ impl VehiclesOnBeam<'_> {
         if lands {
             self.lift(k, t, y);
         }
+        let ahead = ahead.map(|x| self.resting_at(k, t, &y[..self.n], x));
         self.resting.borrow_mut()[k] = ahead;
         self.forces_at.forget();
         self.contacts_at.forget();

@@ -41,6 +41,7 @@ use crate::ode::EventSpec;
 use crate::vehicle::profile::Profile;
 use crate::vehicle::{Part, Vehicle, Wheel};
 pub use disk_wheel::DiskContact;
+use disk_wheel::Resting;
 
 /// A sparse row over the beam's unknowns of the model.
 type Row = Vec<(usize, f64)>;
@@ -135,9 +136,9 @@ pub struct VehiclesOnBeam<'a> {
     hops: Vec<Option<usize>>,
     /// Per wheel, whether it flies now.
     airborne: RefCell<Vec<bool>>,
-    /// Per wheel, on a road its disk bridges, a point of the crest it rests on, as the last
-    /// step taken saw it; `None` until then, and in the air.
-    resting: RefCell<Vec<Option<f64>>>,
+    /// Per wheel, on a road its disk bridges, the crest it rests on, as the last step taken
+    /// left it; `None` until then, and in the air.
+    resting: RefCell<Vec<Option<Resting>>>,
 }
 
 impl<'a> VehiclesOnBeam<'a> {
@@ -942,6 +943,9 @@ impl SecondOrderProblem for VehiclesOnBeam<'_> {
             return f64::INFINITY;
         };
         wave / (CREST_SAMPLES * speed)
+    }
+    fn accepted(&self, t: f64, q: &[f64], _v: &[f64]) {
+        self.remember_crests(t, q);
     }
     fn event(&self, index: usize, t: f64, z: &[f64], zd: &[f64]) -> f64 {
         if let Some(k) = self.crest_event(self.events[index].reason) {
