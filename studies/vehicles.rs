@@ -1558,6 +1558,30 @@ fn on_a_disk_wheel(
     check(&on, &vec![0.0; beam.dim()], setup);
 }
 
+/// The truck's study (`studies/vehicle-truck.yaml`) at `speed` on 0.4 m disk wheels whose
+/// axles weigh `axle_mass`, over the ISO 8608 road `iso8608` instead of the raised deck.
+fn truck_on_disks(speed: f64, axle_mass: f64, iso8608: &str) -> String {
+    let path = common::studies_dir().join("vehicle-truck.yaml");
+    std::fs::read_to_string(path)
+        .expect("the truck's scene")
+        .replace(
+            "speed: 19.4444",
+            &format!("speed: {speed}\n    wheel: disk\n    radius: 0.4"),
+        )
+        .replace(
+            "{name: front, x: 0.0}",
+            &format!("{{name: front, x: 0.0, mass: {axle_mass}}}"),
+        )
+        .replace(
+            "{name: rear, x: 5.0}",
+            &format!("{{name: rear, x: 5.0, mass: {axle_mass}}}"),
+        )
+        .replace(
+            "points: [[-1.0, 0.0], [0.0, 0.01], [25.0, 0.01], [26.0, 0.0]]",
+            &format!("iso8608: {iso8608}"),
+        )
+}
+
 /// A truck on disk wheels (0.4 m) over axles of 1 kg at 300 m/s on an ISO class D road of
 /// waves from 0.2 to 5 m, every setting left to the plan. Each crest sharper than the disk
 /// follows lifts the wheel for the 7.5 to 24 mm of travel it pivots over it (λ/27 to λ/8),
@@ -1568,22 +1592,8 @@ fn on_a_disk_wheel(
 /// road bending faster than the disk is.
 #[test]
 fn a_wheel_over_sharp_crests_at_speed_never_pulls_on_the_road() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/studies/vehicle-truck.yaml"
-    ))
-    .expect("the truck's scene")
-    .replace("duration: 1.0", "duration: 0.01")
-    .replace(
-        "speed: 19.4444",
-        "speed: 300.0\n    wheel: disk\n    radius: 0.4",
-    )
-    .replace("{name: front, x: 0.0}", "{name: front, x: 0.0, mass: 1.0}")
-    .replace("{name: rear, x: 5.0}", "{name: rear, x: 5.0, mass: 1.0}")
-    .replace(
-        "points: [[-1.0, 0.0], [0.0, 0.01], [25.0, 0.01], [26.0, 0.0]]",
-        "iso8608: {class: D, seed: 2, wavelengths: [0.2, 5.0]}",
-    );
+    let text = truck_on_disks(300.0, 1.0, "{class: D, seed: 2, wavelengths: [0.2, 5.0]}")
+        .replace("duration: 1.0", "duration: 0.01");
     let run = at_defaults(&parse(&text));
     let flights: usize = run.vehicles[0].flights.iter().map(Vec::len).sum();
     assert!(
@@ -1619,26 +1629,9 @@ fn a_wheel_over_sharp_crests_at_speed_never_pulls_on_the_road() {
 /// first row read −261 kN, taken before the lift-off at t = 0).
 #[test]
 fn a_disk_wheel_meets_each_crest_ahead_as_an_impact_and_the_balance_closes() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/studies/vehicle-truck.yaml"
-    ))
-    .expect("the truck's scene")
-    .replace("duration: 1.0", "duration: 0.02")
-    .replace("x0: -10.0", "x0: 20.0")
-    .replace(
-        "speed: 19.4444",
-        "speed: 30.0\n    wheel: disk\n    radius: 0.4",
-    )
-    .replace(
-        "{name: front, x: 0.0}",
-        "{name: front, x: 0.0, mass: 100.0}",
-    )
-    .replace("{name: rear, x: 5.0}", "{name: rear, x: 5.0, mass: 100.0}")
-    .replace(
-        "points: [[-1.0, 0.0], [0.0, 0.01], [25.0, 0.01], [26.0, 0.0]]",
-        "iso8608: {class: H, seed: 2, wavelengths: [0.1, 5.0]}",
-    );
+    let text = truck_on_disks(30.0, 100.0, "{class: H, seed: 2, wavelengths: [0.1, 5.0]}")
+        .replace("duration: 1.0", "duration: 0.02")
+        .replace("x0: -10.0", "x0: 20.0");
     let run = at_defaults(&parse(&text));
     let drift = run.header.energy.max_rel_drift();
     assert!(drift < 1e-4, "the balance drifts by {drift:.2e}");
@@ -1664,22 +1657,8 @@ fn a_disk_wheel_meets_each_crest_ahead_as_an_impact_and_the_balance_closes() {
 /// the balance closes within a tenth of the accuracy (1.4·10⁻⁵ measured).
 #[test]
 fn a_disk_wheel_sweeping_hollows_keeps_the_balance() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/studies/vehicle-truck.yaml"
-    ))
-    .expect("the truck's scene")
-    .replace("duration: 1.0", "duration: 0.02")
-    .replace(
-        "speed: 19.4444",
-        "speed: 30.0\n    wheel: disk\n    radius: 0.4",
-    )
-    .replace("{name: front, x: 0.0}", "{name: front, x: 0.0, mass: 1.0}")
-    .replace("{name: rear, x: 5.0}", "{name: rear, x: 5.0, mass: 1.0}")
-    .replace(
-        "points: [[-1.0, 0.0], [0.0, 0.01], [25.0, 0.01], [26.0, 0.0]]",
-        "iso8608: {class: D, seed: 2, wavelengths: [0.2, 5.0]}",
-    );
+    let text = truck_on_disks(30.0, 1.0, "{class: D, seed: 2, wavelengths: [0.2, 5.0]}")
+        .replace("duration: 1.0", "duration: 0.02");
     let run = at_defaults(&parse(&text));
     let drift = run.header.energy.max_rel_drift();
     assert!(drift < 1e-4, "the balance drifts by {drift:.2e}");
