@@ -519,13 +519,18 @@ impl<'a> Ledger<'a> {
     ) -> (Piece, Vec<Piece>) {
         let powers = |ti: f64| Self::powers(phase, ti, &state(ti));
         let y = state(t);
-        // The step's start is where the last was booked: its powers are the ledger's.
+        // The step's start is where the last was booked, and its end was read on its own
+        // stretch (`step_ends`): their powers are the ledger's.
         let first = if self.moving.0 == start && self.damped.0 == start {
             [self.moving.1, self.damped.1]
         } else {
             powers(start)
         };
-        let ends = [first, powers(0.5 * (start + t)), Self::powers(phase, t, &y)];
+        let last = match &self.end_power {
+            Some(e) if e.t == t => [e.power, e.damping],
+            _ => Self::powers(phase, t, &y),
+        };
+        let ends = [first, powers(0.5 * (start + t)), last];
         let size: f64 = (0..2)
             .map(|k| (ends[0][k].abs() + 4.0 * ends[1][k].abs() + ends[2][k].abs()) / 6.0)
             .sum();
