@@ -103,7 +103,7 @@ pub(super) fn drive<'a>(
     for k in 0..v.wheels() {
         if v.can_fly(k) && pulls(v, k, t, &y) {
             v.lift(k, t, &mut y);
-            flights.push(WheelFlight::off(k, t));
+            take_off(scene, &mut flights, k, t)?;
             rec.ledger.restart(&rec.phase, t, &y);
         }
     }
@@ -131,7 +131,7 @@ pub(super) fn drive<'a>(
                     scene.name, v.vehicles[i].name
                 )));
             }
-            meet_crest(v, k, t, &mut y, rec, &mut flights);
+            meet_crest(scene, v, k, t, &mut y, rec, &mut flights)?;
             continue;
         }
         if !v.can_fly(k) {
@@ -159,19 +159,13 @@ pub(super) fn drive<'a>(
                 }
             }
         } else {
-            if flights.len() >= MAX_FLIGHTS {
-                return Err(Error::Solver(format!(
-                    "scene {}: the vehicles' wheels lifted off {MAX_FLIGHTS} times by t = {t:.6} s; the run stops rather than count more flights",
-                    scene.name
-                )));
-            }
             // The row at the lift-off is the wheel's first in the air: its contact force may
             // drop to zero at once (a disk wheel at a crest), and on the track past that
             // instant the wheel would pull on the deck.
             v.lift(k, t, &mut y);
             record(rec, &y);
             rec.restart();
-            flights.push(WheelFlight::off(k, t));
+            take_off(scene, &mut flights, k, t)?;
         }
         rec.ledger.restart(&rec.phase, t, &y);
     };
@@ -193,21 +187,36 @@ pub(super) fn drive<'a>(
 /// Wheel k meets the crest ahead at t ([`VehiclesOnBeam::meet_crest`]), and flies on from it
 /// where its body pulls its axle up.
 fn meet_crest<'a>(
+    scene: &Scene,
     v: &VehiclesOnBeam,
     k: usize,
     t: f64,
     y: &mut [f64],
     rec: &mut Recorder<'a>,
     flights: &mut Vec<WheelFlight>,
-) {
+) -> Result<(), Error> {
     rec.restart();
     let (lost, work) = v.meet_crest(k, t, y);
     rec.ledger.wheel_lands(lost, work);
     if v.can_fly(k) && pulls(v, k, t, y) {
         v.lift(k, t, y);
-        flights.push(WheelFlight::off(k, t));
+        take_off(scene, flights, k, t)?;
     }
     rec.ledger.restart(&rec.phase, t, y);
+    Ok(())
+}
+
+/// Book wheel k's lift-off at t, within the run's budget of flights: however a wheel leaves
+/// the track (its force falling to zero, or a crest it meets throwing it), each flight counts.
+fn take_off(scene: &Scene, flights: &mut Vec<WheelFlight>, k: usize, t: f64) -> Result<(), Error> {
+    if flights.len() >= MAX_FLIGHTS {
+        return Err(Error::Solver(format!(
+            "scene {}: the vehicles' wheels lifted off {MAX_FLIGHTS} times by t = {t:.6} s; the run stops rather than count more flights",
+            scene.name
+        )));
+    }
+    flights.push(WheelFlight::off(k, t));
+    Ok(())
 }
 
 /// Whether wheel k, on the track at (t, y), pulls on it.
