@@ -100,11 +100,8 @@ impl VehiclesOnBeam<'_> {
     /// inside a step, would leave the contacts the step's stages saw (a wheel then read the
     /// crest its disk had not yet reached, 1.9·10⁻⁵ m below the one it rested on).
     pub(super) fn remember_crests(&self, t: f64, q: &[f64]) {
-        let wheels: Vec<usize> = self
-            .events
-            .iter()
-            .filter_map(|e| self.crest_event(e.reason))
-            .filter(|&k| !self.flies(k))
+        let wheels: Vec<usize> = (0..self.wheels())
+            .filter(|&k| self.bridges(k) && !self.flies(k))
             .collect();
         if wheels.is_empty() {
             return;
@@ -123,6 +120,13 @@ impl VehiclesOnBeam<'_> {
         drop(resting);
         self.forces_at.forget();
         self.contacts_at.forget();
+    }
+
+    /// Whether wheel k's disk bridges the road's hollows (it has a crest event).
+    fn bridges(&self, k: usize) -> bool {
+        self.events
+            .iter()
+            .any(|e| self.crest_event(e.reason) == Some(k))
     }
 
     /// The crest event's value (`crest_ahead_of`), crossing zero where the crest ahead has
@@ -173,6 +177,7 @@ impl VehiclesOnBeam<'_> {
         let mut p = vec![0.0; self.dim];
         self.mass_mul(t, z, zd, &mut p);
         let c = &self.contacts(t, &z[..self.n])[k];
+        let touched = c.x;
         let m = self.vehicles[c.vehicle].axles[c.axle].mass;
         let still = vec![0.0; self.n];
         let convective = self.track(c, &z[..self.n], &still).rate;
@@ -182,6 +187,13 @@ impl VehiclesOnBeam<'_> {
             .iter()
             .for_each(|&(i, g)| p[i] += g * m * (fall - convective));
         self.airborne.borrow_mut()[k] = false;
+        // A disk that bridges the hollows holds to the crest it landed on from here, as from
+        // every accepted step: searched afresh at each stage of the next step, its contact
+        // could pass to a crest rising ahead without the impact the crest event finds, and
+        // the energy of that jump would be booked nowhere.
+        if self.bridges(k) && self.resting.borrow()[k].is_none() {
+            self.resting.borrow_mut()[k] = Some(self.resting_at(k, t, &z[..self.n], touched));
+        }
         self.forces_at.forget();
         self.contacts_at.forget();
         p[h] = 0.0;
