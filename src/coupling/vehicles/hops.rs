@@ -94,12 +94,13 @@ impl VehiclesOnBeam<'_> {
         }
     }
 
-    /// The run has reached t: each wheel that bridges the road's hollows, on the track,
-    /// remembers the crest it rests on, which the next step's contacts follow from
-    /// (`disk_contact`). Only here: a crest remembered from a trial, or from a look ahead
-    /// inside a step, would leave the contacts the step's stages saw (a wheel then read the
-    /// crest its disk had not yet reached, 1.9·10⁻⁵ m below the one it rested on).
-    pub(super) fn remember_crests(&self, t: f64, q: &[f64]) {
+    /// The run has reached t (its start, or an accepted step's end): each wheel that bridges
+    /// the road's hollows, on the track, remembers the crest it rests on, which the next
+    /// step's contacts follow from (`disk_contact`). Only there: a crest remembered from a
+    /// trial, or from a look ahead inside a step, would leave the contacts the step's stages
+    /// saw (a wheel then read the crest its disk had not yet reached, 1.9·10⁻⁵ m below the one
+    /// it rested on).
+    pub fn remember_crests(&self, t: f64, q: &[f64]) {
         let wheels: Vec<usize> = (0..self.wheels())
             .filter(|&k| self.bridges(k) && !self.flies(k))
             .collect();

@@ -98,6 +98,9 @@ pub(super) fn drive<'a>(
     let (mut t, mut y) = (0.0, y0.to_vec());
     let mut flights: Vec<WheelFlight> = Vec::new();
     let (mut meeting, mut stalled) = (None, 0);
+    // Held from the first step on, as from every accepted one: searched afresh at each stage,
+    // a contact could pass to a crest rising ahead without the impact the crest event finds.
+    v.remember_crests(t, &y[..n]);
     // A wheel that cannot hold the track it starts on (a crest sharper than it follows at its
     // speed) is in the air from the first row on, as at any lift-off.
     for k in 0..v.wheels() {
