@@ -709,6 +709,30 @@ fn a_wheel_that_lifts_off_stops_the_run_and_is_named() {
     assert!(drift < 1e-5, "the balance drifts by {drift:.2e}");
 }
 
+/// The truck on point wheels over 500 kg axles at 30 m/s, starting on the deck over an ISO
+/// class E road (seed 43, waves 0.2-20 m): the rear wheel's track turns so sharply under it
+/// that its contact force is −501 kN at once, and a point wheel cannot fly. The run stops at
+/// t = 0 with contact-lost and names the wheel, and that is all it says of it: the warning
+/// for a wheel seen pulling between two looks for a lift-off (which then was stepped over)
+/// does not stand beside the stop it caused.
+#[test]
+fn a_wheel_that_cannot_hold_the_road_at_the_start_stops_the_run_at_once() {
+    let text = truck_on_disks(
+        30.0,
+        500.0,
+        "{class: E, seed: 43, wavelengths: [0.2, 20.0]}",
+    )
+    .replace("    wheel: disk\n    radius: 0.4\n", "")
+    .replace("x0: -10.0", "x0: 5.0");
+    let r = at_defaults(&parse(&text));
+    assert_eq!(r.header.stop.name(), "contact-lost");
+    assert_eq!(r.header.t_end, 0.0);
+    let lost = r.vehicles[0].lost_contact.as_deref();
+    assert!(matches!(lost, Some("rear")), "{lost:?}");
+    let summary = rollbeam::output::beam::summary_yaml(&r).expect("a summary");
+    assert!(!summary.contains("pulled on the track"), "{summary}");
+}
+
 /// The truck over the raised deck (`studies/vehicle-truck.yaml`): its massless wheels cross
 /// the profile's four kinks, where the drive's power jumps; each step's work is booked on its
 /// own side of them, and the balance closes at the defaults within a thousandth of the
