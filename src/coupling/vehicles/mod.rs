@@ -702,6 +702,16 @@ impl<'a> VehiclesOnBeam<'a> {
             .map_or(beam, |v| beam.min(self.loaded.beam.element_length() / v))
     }
 
+    /// On a random road, the time the fastest wheel takes over a [`CREST_SAMPLES`]th of its
+    /// shortest wave: a contact force dips over each crest sharper than the wheel follows for
+    /// about that crest's width over the speed, which the steps, following the vehicle's and
+    /// the deck's motion, can span. The events are looked at, and the contact forces watched
+    /// for their extremes, at this pace.
+    pub fn crest_pace(&self, t: f64) -> Option<f64> {
+        let (wave, speed) = (self.profile.shortest_wave()?, self.fastest(t)?);
+        Some(wave / (CREST_SAMPLES * speed))
+    }
+
     /// The speed of the fastest vehicle at t, on the deck or off it; `None` with none moving.
     fn fastest(&self, t: f64) -> Option<f64> {
         let fastest = self
@@ -934,15 +944,8 @@ impl SecondOrderProblem for VehiclesOnBeam<'_> {
     fn events(&self) -> &[EventSpec<usize>] {
         &self.events
     }
-    /// On a random road, the time the fastest wheel takes over a [`CREST_SAMPLES`]th of its
-    /// shortest wave: a contact force dips over each crest sharper than the wheel follows for
-    /// about that crest's width over the speed, which the steps, following the vehicle's and
-    /// the deck's motion, can span.
     fn event_pace(&self, t: f64, _q: &[f64], _v: &[f64]) -> f64 {
-        let (Some(wave), Some(speed)) = (self.profile.shortest_wave(), self.fastest(t)) else {
-            return f64::INFINITY;
-        };
-        wave / (CREST_SAMPLES * speed)
+        self.crest_pace(t).unwrap_or(f64::INFINITY)
     }
     fn accepted(&self, t: f64, q: &[f64], _v: &[f64]) {
         self.remember_crests(t, q);

@@ -559,7 +559,8 @@ impl Observer for Recorder<'_> {
             self.ledger
                 .step_midpoint(&self.phase, t1, tm, &dense.at(tm));
         }
-        self.watch(t0, t1, dense, sample);
+        let crests = self.phase.vehicles.and_then(|v| v.crest_pace(t0));
+        self.watch(t0, t1, dense, sample, crests);
         if let Some(means) = &mut self.contact_means {
             let phase = &self.phase;
             means.record_span(t0, t1, |t| phase.seen_disks(t, &dense.at(t)));

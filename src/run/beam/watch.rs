@@ -215,8 +215,16 @@ impl Recorder<'_> {
     }
 
     /// Take in the step [t0, t1] of the dense output `dense`: its start, middle and end, and
-    /// the turning points between them that set an extreme.
-    pub(super) fn watch(&mut self, t0: f64, t1: f64, dense: &dyn Dense, sample: f64) {
+    /// the turning points between them that set an extreme; the vehicles' values also at
+    /// `crests` (`VehiclesOnBeam::crest_pace`) on a random road.
+    pub(super) fn watch(
+        &mut self,
+        t0: f64,
+        t1: f64,
+        dense: &dyn Dense,
+        sample: f64,
+        crests: Option<f64>,
+    ) {
         if !(t1 > t0) {
             return;
         }
@@ -247,9 +255,9 @@ impl Recorder<'_> {
         let passing = riding.is_none() && spacing < self.spacing;
         if t1 - t0 < spacing || passing {
             let in_steps = self.deck_watched_in_steps(t0, dense);
-            self.sample_inside(t0, t1, dense, spacing, riding.is_some(), in_steps);
+            self.sample_inside(t0, t1, dense, spacing, riding.is_some(), in_steps, crests);
         } else {
-            self.watch_in_pairs(t0, t1, dense, spacing);
+            self.watch_in_pairs(t0, t1, dense, spacing, crests);
         }
     }
 
@@ -265,6 +273,7 @@ impl Recorder<'_> {
         spacing: f64,
         riding: bool,
         in_steps: bool,
+        crests: Option<f64>,
     ) {
         let jumped = self.starts_after_a_jump(t0);
         // The contact force rings at the frequencies of the disk on the beam's local
@@ -279,7 +288,7 @@ impl Recorder<'_> {
             self.watch_the_deck_over(t0, t1, dense, spacing);
         }
         if self.phase.vehicles.is_some() {
-            let times = pair_times(t0, t1, spacing);
+            let times = pair_times(t0, t1, vehicles_pair(spacing, crests));
             let start = match &self.vehicles_end {
                 Some(e) if e.t == t0 => e.end.clone(),
                 _ => self.vehicles_seen(t0, dense),
@@ -313,7 +322,14 @@ impl Recorder<'_> {
 
     /// Watch the long step [t0, t1] in pairs of sub-steps no longer than [`SAMPLES_A_PAIR`]
     /// samples of `spacing`, and book its bodies' squares and the trails the next step reads.
-    fn watch_in_pairs(&mut self, t0: f64, t1: f64, dense: &dyn Dense, spacing: f64) {
+    fn watch_in_pairs(
+        &mut self,
+        t0: f64,
+        t1: f64,
+        dense: &dyn Dense,
+        spacing: f64,
+        crests: Option<f64>,
+    ) {
         self.starts_after_a_jump(t0);
         let fresh = self.along_trail.is_empty();
         let last = self.last.take();
@@ -356,8 +372,23 @@ impl Recorder<'_> {
             }
         }
         if self.phase.vehicles.is_some() {
-            let values = shots.iter().map(|s| s.vehicles.clone()).collect();
-            self.watch_the_vehicles(&times, values, dense);
+            let finer = pair_times(t0, t1, vehicles_pair(SAMPLES_A_PAIR * spacing, crests));
+            if finer.len() == times.len() {
+                let values = shots.iter().map(|s| s.vehicles.clone()).collect();
+                self.watch_the_vehicles(&times, values, dense);
+            } else {
+                let last = finer.len() - 1;
+                let values = finer
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &t)| match k {
+                        0 => shots[0].vehicles.clone(),
+                        k if k == last => shots[n].vehicles.clone(),
+                        _ => self.vehicles_seen(t, dense),
+                    })
+                    .collect();
+                self.watch_the_vehicles(&finer, values, dense);
+            }
         }
         let end = shots.pop().expect("the step's end");
         let before = shots.pop().expect("a sample before the end");
@@ -798,6 +829,19 @@ fn before_the_junction(t: [f64; 3], v: [&[f64]; 3], at: f64) -> Vec<f64> {
     (0..v[0].len())
         .map(|q| l0 * v[0][q] + l1 * v[1][q] + l2 * v[2][q])
         .collect()
+}
+
+/// The longest pair of sub-steps the vehicles' values are watched in: the deck's `longest`,
+/// and on a random road two of the `crests` pace. A wheel's contact force turns as fast as the
+/// crests pass under it, and a landing restarts the watch at a force still rising: in the
+/// deck's pairs alone a 500 kg axle's disk at 50 m/s over ISO class B waves of 0.2 m read its
+/// largest force 7.5·10⁻³ low, the peak 58 µs past a landing.
+fn vehicles_pair(longest: f64, crests: Option<f64>) -> f64 {
+    match crests {
+        Some(pace) if longest > 0.0 => longest.min(2.0 * pace),
+        Some(pace) => 2.0 * pace,
+        None => longest,
+    }
 }
 
 /// The times that cut [t0, t1] into pairs of equal sub-steps, each pair no longer than
