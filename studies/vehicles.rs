@@ -1582,6 +1582,15 @@ fn on_a_disk_wheel(
     check(&on, &vec![0.0; beam.dim()], setup);
 }
 
+/// The truck on disk wheels (`truck_on_disks`) from x0 for `duration` s, over the ISO 8608
+/// road `class` (its class, seed and wavelengths).
+fn truck_on_a_rough_road(speed: f64, axle_mass: f64, class: &str, x0: f64, duration: f64) -> Scene {
+    let text = truck_on_disks(speed, axle_mass, &format!("{{class: {class}}}"))
+        .replace("duration: 1.0", &format!("duration: {duration}"))
+        .replace("x0: -10.0", &format!("x0: {x0}"));
+    parse(&text)
+}
+
 /// Each wheel's least and largest contact force of the run `fast` against those of ESDIRK4 at
 /// rtol 10⁻⁸ (whose balance closes to a few 10⁻⁷ on these scenes): within the accuracy (10⁻³) of
 /// the wheel's static load, the scale the contact forces are held to.
@@ -1697,10 +1706,13 @@ fn a_disk_wheel_meets_each_crest_ahead_as_an_impact_and_the_balance_closes() {
 /// accuracy of its static load of the run at rtol 10⁻⁸ (measured 3 N of 60 kN).
 #[test]
 fn a_disk_wheel_landing_on_a_rough_road_holds_to_its_crest() {
-    let text = truck_on_disks(30.0, 100.0, "{class: H, seed: 3, wavelengths: [0.1, 5.0]}")
-        .replace("duration: 1.0", "duration: 0.3")
-        .replace("x0: -10.0", "x0: 30.0");
-    let scene = parse(&text);
+    let scene = truck_on_a_rough_road(
+        30.0,
+        100.0,
+        "H, seed: 3, wavelengths: [0.1, 5.0]",
+        30.0,
+        0.3,
+    );
     let fast = at_defaults(&scene);
     let drift = fast.header.energy.max_rel_drift();
     assert!(drift < 1e-4, "the balance drifts by {drift:.2e}");
@@ -1718,10 +1730,13 @@ fn a_disk_wheel_landing_on_a_rough_road_holds_to_its_crest() {
 /// static load of that run's (measured 0.6 N of 60 kN).
 #[test]
 fn a_contact_force_between_two_steps_is_read_where_its_samples_hold_it() {
-    let text = truck_on_disks(30.0, 100.0, "{class: H, seed: 10, wavelengths: [0.1, 5.0]}")
-        .replace("duration: 1.0", "duration: 0.05")
-        .replace("x0: -10.0", "x0: 30.0");
-    let scene = parse(&text);
+    let scene = truck_on_a_rough_road(
+        30.0,
+        100.0,
+        "H, seed: 10, wavelengths: [0.1, 5.0]",
+        30.0,
+        0.05,
+    );
     let fast = at_defaults(&scene);
     contact_forces_converge(&scene, &fast);
 }
@@ -1737,10 +1752,13 @@ fn a_contact_force_between_two_steps_is_read_where_its_samples_hold_it() {
 /// load of the converged run's (measured 1 N).
 #[test]
 fn a_contact_force_rising_past_a_landing_is_read_at_its_peak() {
-    let text = truck_on_disks(50.0, 500.0, "{class: B, seed: 23, wavelengths: [0.2, 5.0]}")
-        .replace("duration: 1.0", "duration: 0.05")
-        .replace("x0: -10.0", "x0: 26.0");
-    let scene = parse(&text);
+    let scene = truck_on_a_rough_road(
+        50.0,
+        500.0,
+        "B, seed: 23, wavelengths: [0.2, 5.0]",
+        26.0,
+        0.05,
+    );
     let fast = at_defaults(&scene);
     contact_forces_converge(&scene, &fast);
 }
