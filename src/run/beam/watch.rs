@@ -553,9 +553,10 @@ impl Recorder<'_> {
         shots.extend((1..=n).map(|k| see(times[k], k % 2 == 0)));
         // A turning point between the last middle before t0 and the first after it: on this
         // side refined on the solution, on the other, whose solution is no longer at hand,
-        // read off the parabola through the three near t0 (`before_the_junction`). Left out, a peak near a step's end that
-        // neither step's parabola turns at reads as the larger end: the railcar over a
-        // 15 m cantilever, midspan's largest acceleration 2.1·10⁻⁴ low (9.4·10⁻⁵ so).
+        // read off the parabola through the three near t0 (`before_the_junction`). Left out,
+        // a peak near a step's end that neither step's parabola turns at reads as the larger
+        // end: the railcar over a 15 m cantilever, midspan's largest acceleration 2.1·10⁻⁴ low
+        // (9.4·10⁻⁵ so).
         if let Some((tb, b)) = &before {
             let t = [*tb, t0, times[1]];
             let s: [&[f64]; 3] = [b, &shots[0].probes, &shots[1].probes];
