@@ -334,12 +334,17 @@ impl Recorder<'_> {
         let fresh = self.along_trail.is_empty();
         let last = self.last.take();
         let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0, 0, 0));
-        let see = |t: f64, along: bool| {
-            self.snapshot(t, &dense.at(t), self.rate(dense, t).as_deref(), along)
+        let see = |t: f64, along: bool, vehicles: bool| {
+            let (y, rate) = (dense.at(t), self.rate(dense, t));
+            if vehicles {
+                self.snapshot(t, &y, rate.as_deref(), along)
+            } else {
+                self.deck_snapshot(t, &y, rate.as_deref(), along)
+            }
         };
         let start = match last {
             Some((t, s)) if t == t0 => s,
-            _ => see(t0, fresh),
+            _ => see(t0, fresh, true),
         };
         // A long step is watched in pairs of sub-steps no longer than a sample, each pair's
         // turning points refined on the solution: on three points alone a step the exact
@@ -348,9 +353,15 @@ impl Recorder<'_> {
         // envelope's stations on its ends alone overshot the deck's by 3·10⁻³.
         let times = pair_times(t0, t1, SAMPLES_A_PAIR * spacing);
         let n = times.len() - 1;
+        // The vehicles' values inside the step are read at the deck's times unless they ask
+        // for finer ones; the step's ends carry them on to the next step either way.
+        let finer = (self.phase.vehicles.is_some())
+            .then(|| pair_times(t0, t1, vehicles_pair(SAMPLES_A_PAIR * spacing, crests)))
+            .filter(|finer| finer.len() != times.len());
+        let inside = self.phase.vehicles.is_some() && finer.is_none();
         let mut shots = vec![start];
-        shots.extend(times[1..n].iter().map(|&tk| see(tk, true)));
-        shots.push(see(t1, true));
+        shots.extend(times[1..n].iter().map(|&tk| see(tk, true, inside)));
+        shots.push(see(t1, true, true));
         let after_exit = self.exit_t.is_some_and(|te| t0 >= te);
         for i in (0..n).step_by(2) {
             let steps = StepWatch {
@@ -359,7 +370,7 @@ impl Recorder<'_> {
                 flying: self.phase.flying.is_some(),
             };
             steps.record(&mut w, [&shots[i], &shots[i + 1], &shots[i + 2]], |tt| {
-                see(tt, false)
+                see(tt, false, false)
             });
         }
         self.watches = w;
@@ -371,24 +382,21 @@ impl Recorder<'_> {
                 self.trail_along(times[k], shots[k].along.clone());
             }
         }
-        if self.phase.vehicles.is_some() {
-            let finer = pair_times(t0, t1, vehicles_pair(SAMPLES_A_PAIR * spacing, crests));
-            if finer.len() == times.len() {
-                let values = shots.iter().map(|s| s.vehicles.clone()).collect();
-                self.watch_the_vehicles(&times, values, dense);
-            } else {
-                let last = finer.len() - 1;
-                let values = finer
-                    .iter()
-                    .enumerate()
-                    .map(|(k, &t)| match k {
-                        0 => shots[0].vehicles.clone(),
-                        k if k == last => shots[n].vehicles.clone(),
-                        _ => self.vehicles_seen(t, dense),
-                    })
-                    .collect();
-                self.watch_the_vehicles(&finer, values, dense);
-            }
+        if let Some(finer) = finer {
+            let last = finer.len() - 1;
+            let values = finer
+                .iter()
+                .enumerate()
+                .map(|(k, &t)| match k {
+                    0 => shots[0].vehicles.clone(),
+                    k if k == last => shots[n].vehicles.clone(),
+                    _ => self.vehicles_seen(t, dense),
+                })
+                .collect();
+            self.watch_the_vehicles(&finer, values, dense);
+        } else if inside {
+            let values = shots.iter().map(|s| s.vehicles.clone()).collect();
+            self.watch_the_vehicles(&times, values, dense);
         }
         let end = shots.pop().expect("the step's end");
         let before = shots.pop().expect("a sample before the end");
