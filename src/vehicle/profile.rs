@@ -110,6 +110,52 @@ impl Cosines {
         }
         sums.map(|lanes| lanes.iter().sum())
     }
+
+    /// r at x0 + k h, k = 0..=count: each term turned by its own κ_k h from one point to the
+    /// next, the terms independent of each other (a crest scan's samples, where summing each
+    /// point afresh turns every term from the first).
+    fn along(&self, x0: f64, h: f64, count: usize) -> Vec<f64> {
+        let mut terms = self.turns(x0);
+        for (z, [ac, asin, _]) in terms.iter_mut().zip(&self.chunks) {
+            for l in 0..LANES {
+                let (c, s) = (z[0][l], z[1][l]);
+                z[0][l] = ac[l] * c - asin[l] * s;
+                z[1][l] = asin[l] * c + ac[l] * s;
+            }
+        }
+        let turn = self.turns(h);
+        (0..=count)
+            .map(|_| {
+                let mut sums = [0.0; LANES];
+                for (z, w) in terms.iter_mut().zip(&turn) {
+                    for l in 0..LANES {
+                        sums[l] += z[0][l];
+                        let (c, s) = (z[0][l], z[1][l]);
+                        z[0][l] = c * w[0][l] - s * w[1][l];
+                        z[1][l] = s * w[0][l] + c * w[1][l];
+                    }
+                }
+                sums.iter().sum()
+            })
+            .collect()
+    }
+
+    /// e^{i κ_k x} of every term, as (cos, sin) four terms at a time.
+    fn turns(&self, x: f64) -> Vec<[[f64; LANES]; 2]> {
+        let (s0, c0) = (self.first * x).sin_cos();
+        let (ds, dc) = (self.step * x).sin_cos();
+        let (mut c, mut s) = (c0, s0);
+        (0..self.chunks.len())
+            .map(|_| {
+                let mut chunk = [[0.0; LANES]; 2];
+                for l in 0..LANES {
+                    (chunk[0][l], chunk[1][l]) = (c, s);
+                    (c, s) = (c * dc - s * ds, s * dc + c * ds);
+                }
+                chunk
+            })
+            .collect()
+    }
 }
 
 impl Profile {
@@ -162,6 +208,16 @@ impl Profile {
                 [linear(p, x), slope, 0.0]
             }
             Profile::Cosines(c) => c.at(x),
+        }
+    }
+
+    /// r at x0 + k h, k = 0..=count: a crest scan's samples.
+    pub fn along(&self, x0: f64, h: f64, count: usize) -> Vec<f64> {
+        match self {
+            Profile::Cosines(c) => c.along(x0, h, count),
+            _ => (0..=count)
+                .map(|k| self.at(x0 + k as f64 * h, x0 + k as f64 * h)[0])
+                .collect(),
         }
     }
 
@@ -295,6 +351,28 @@ mod tests {
                     turned[j],
                     direct[j]
                 );
+            }
+        }
+    }
+
+    /// A scan's samples, each term turned along the grid, against the profile summed at each
+    /// point: within 10⁻¹¹ of the amplitudes' sum over 4096 points, as far out as 400 m (the
+    /// turns' round-off grows with the points). The samples only choose which crests are
+    /// refined, by margins of the profile's curvature times the spacing squared, far larger.
+    #[test]
+    fn samples_along_a_grid_are_the_profile_at_its_points() {
+        let p = Profile::iso8608('H', 5, 0.1, 20.0).expect("class H is known");
+        let Profile::Cosines(c) = &p else {
+            panic!("a random profile");
+        };
+        let size: f64 = c.terms.iter().map(|t| t[0]).sum();
+        for (x0, h, count) in [(-3.7, 0.01, 64), (395.0, 1.0e-3, 4096)] {
+            let along = p.along(x0, h, count);
+            assert_eq!(along.len(), count + 1);
+            for (k, r) in along.iter().enumerate() {
+                let x = x0 + k as f64 * h;
+                let at = p.at(x, x)[0];
+                assert!((r - at).abs() < 1e-11 * size, "x {x}: {r} against {at}");
             }
         }
     }

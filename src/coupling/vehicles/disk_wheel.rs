@@ -38,9 +38,14 @@ impl VehiclesOnBeam<'_> {
     /// The track's height at x (the deck at q, on the mesh, averaged over the patch, and the
     /// profile) with its slope and curvature along x.
     pub(super) fn surface(&self, x: f64, mesh: &[f64]) -> [f64; 3] {
+        self.on_deck(x, mesh, self.profile.at(x, x))
+    }
+
+    /// `profile` (the road's r, r', r'' at x) with the deck's, where x is on it.
+    fn on_deck(&self, x: f64, mesh: &[f64], profile: [f64; 3]) -> [f64; 3] {
         let beam = self.loaded.beam;
         let (b, length) = (self.patch, beam.length);
-        let mut out = self.profile.at(x, x);
+        let mut out = profile;
         if x > -b && x < length + b {
             for nb in beam.patch_basis_at(x, b, PastFreeEnd::Slab) {
                 if let Some(i) = nb.w {
@@ -69,10 +74,7 @@ impl VehiclesOnBeam<'_> {
         resting: Option<Resting>,
     ) -> (f64, DiskContact) {
         let centre = at + toward * 1e-9 * a;
-        let height = |x: f64| -> f64 {
-            let u = (x - centre) / a;
-            self.surface(x, mesh)[0] + a * (1.0 - u * u).max(0.0).sqrt()
-        };
+        let height = |x: f64| -> f64 { self.surface(x, mesh)[0] + arc(x, centre, a) };
         let corners: Vec<f64> = self
             .profile
             .kinks()
@@ -227,7 +229,14 @@ impl VehiclesOnBeam<'_> {
         let count = count.max(DISK_SCAN);
         let spacing = 2.0 * a / count as f64;
         let at = |k: usize| centre - a + spacing * k as f64;
-        let samples: Vec<f64> = (0..=count).map(|k| height(at(k))).collect();
+        // `height` at the samples, the road summed along the grid rather than point by point.
+        let road = self.profile.along(centre - a, spacing, count);
+        let samples: Vec<f64> = (road.iter().enumerate())
+            .map(|(k, &r)| {
+                let x = at(k);
+                self.on_deck(x, mesh, [r, 0.0, 0.0])[0] + arc(x, centre, a)
+            })
+            .collect();
         let best = samples.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let hidden = self.profile.curvature_bound() * spacing * spacing / 4.0;
         let floor = floor(best, hidden);
@@ -418,10 +427,7 @@ impl VehiclesOnBeam<'_> {
         let Some(count) = self.profile.crest_scan(a) else {
             return (1.0, None);
         };
-        let height = |x: f64| -> f64 {
-            let u = (x - centre) / a;
-            self.surface(x, mesh)[0] + a * (1.0 - u * u).max(0.0).sqrt()
-        };
+        let height = |x: f64| -> f64 { self.surface(x, mesh)[0] + arc(x, centre, a) };
         let resting = height(crest);
         let other = self
             .scanned_crests(centre, a, mesh, count as usize, &height, |_, hidden| {
@@ -459,6 +465,13 @@ const FOLLOW_STRIDES: usize = 400;
 /// bracket of a scan spacing (at least a 4096th of the reach) to a ten-billionth of the radius
 /// in under 30.
 const CREST_ITERATIONS: usize = 60;
+
+/// How far above the track at x a disk of radius a centred over `centre` has its centre: the
+/// centre's height H(x) is the track's plus this.
+fn arc(x: f64, centre: f64, a: f64) -> f64 {
+    let u = (x - centre) / a;
+    a * (1.0 - u * u).max(0.0).sqrt()
+}
 
 /// The maximum of `height` bracketed by [lo, hi], by golden section to a bracket of `tol`.
 fn golden_max(height: &dyn Fn(f64) -> f64, mut lo: f64, mut hi: f64, tol: f64) -> f64 {
