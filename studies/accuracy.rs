@@ -404,60 +404,46 @@ fn the_rubber_beam_s_headlines_within_the_accuracy_at_the_defaults() {
 /// setting left to the plan: each probe's extremes of w and φ and its largest acceleration,
 /// and the envelope's, located on the solution after two seconds of free vibration, within the
 /// accuracy (10⁻³) of their largest over the beam from the same model converged
-/// (generalized-α at rtol 10⁻⁸, atol rtol × 9.7 mm; rtol 10⁻⁹ agrees within 2·10⁻⁴). The
-/// switched load excites every mode of the mesh, and what the run reports two seconds later
-/// carries every step's error: at a thousandth of the accuracy the tip's largest acceleration
-/// missed by 3.1·10⁻³ and its largest rotation by 2.3·10⁻³. The same run lands within the
-/// accuracy of C1's stored reference too ([`crate::tradeoff`]).
+/// (generalized-α at rtol 10⁻⁸, atol rtol × 9.7 mm; rtol 10⁻⁹ agrees within 2·10⁻⁴; stored,
+/// [`SWITCHED_LOADS`]). The switched load excites every mode of the mesh, and what the run
+/// reports two seconds later carries every step's error: at a thousandth of the accuracy the
+/// tip's largest acceleration missed by 3.1·10⁻³ and its largest rotation by 2.3·10⁻³. The
+/// same run lands within the accuracy of C1's stored reference too ([`crate::tradeoff`]).
 #[test]
 fn a_switched_load_s_extremes_within_the_accuracy_at_the_defaults() {
-    let scene = changed("cantilever-c1.yaml", &SOLVER_LEFT_TO_THE_PLAN);
-    let (planned, converged) = common::side_by_side(
-        || run::run(&scene, &Overrides::default(), false).expect("the run completes"),
-        || run_beam(&scene, Method::GenAlpha, 1e-8, 1e-8 * 9.73e-3),
-    );
+    let (name, scene, _) = switched_load(0);
+    let planned = run::run(&scene, &Overrides::default(), false).expect("the run completes");
     crate::tradeoff::lands_within_its_reference("cantilever-c1", &planned);
-    let planned = planned.beam().expect("a beam scene");
-    let largest = |r: &BeamRun, k: usize| {
-        let e = &r.envelope;
-        e.min
-            .iter()
-            .chain(&e.max)
-            .map(|d| [d.u, d.w, d.phi][k].abs())
+    let planned = Reported::of(&planned.beam().expect("a beam scene"));
+    let converged = Reported::stored(name);
+    let largest = |r: &Reported, k: usize| {
+        (r.envelope_min.iter().chain(&r.envelope_max))
+            .map(|d| d[k].abs())
             .fold(0.0, f64::max)
     };
     let (w_scale, phi_scale) = (largest(&converged, 1), largest(&converged, 2));
-    let a_scale = converged.envelope.a_max.0;
-    let mut pairs = vec![envelope_acceleration(&planned, a_scale)];
-    for (p, c) in planned
-        .extremes
-        .probes
-        .iter()
-        .zip(&converged.extremes.probes)
-    {
+    let a_scale = converged.a_max;
+    let mut pairs = vec![(
+        "the envelope's largest acceleration",
+        planned.a_max,
+        a_scale,
+        a_scale,
+    )];
+    for (p, c) in planned.probes.iter().zip(&converged.probes) {
         for (k, what, scale) in [(1, "w", w_scale), (2, "φ", phi_scale)] {
-            pairs.push((what, p[k].min, c[k].min, scale));
-            pairs.push((what, p[k].max, c[k].max, scale));
+            pairs.push((what, p.min[k], c.min[k], scale));
+            pairs.push((what, p.max[k], c.max[k], scale));
         }
-        pairs.push((
-            "a probe's largest acceleration",
-            p[3].largest_magnitude().0,
-            c[3].largest_magnitude().0,
-            a_scale,
-        ));
+        pairs.push(("a probe's largest acceleration", p.a, c.a, a_scale));
     }
     for (k, what, scale) in [
         (1, "the envelope's w", w_scale),
         (2, "the envelope's φ", phi_scale),
     ] {
-        for (a, b) in planned
-            .envelope
-            .min
-            .iter()
-            .zip(&converged.envelope.min)
-            .chain(planned.envelope.max.iter().zip(&converged.envelope.max))
-        {
-            pairs.push((what, [a.u, a.w, a.phi][k], [b.u, b.w, b.phi][k], scale));
+        let stations = (planned.envelope_min.iter().zip(&converged.envelope_min))
+            .chain(planned.envelope_max.iter().zip(&converged.envelope_max));
+        for (a, b) in stations {
+            pairs.push((what, a[k], b[k], scale));
         }
     }
     within_the_accuracy("C1", &pairs);
@@ -465,48 +451,164 @@ fn a_switched_load_s_extremes_within_the_accuracy_at_the_defaults() {
 
 /// A load switched off asked for ten times the default accuracy: C3's cantilever on 4 elements,
 /// its 3 kN tip load taken off at 1 s, accuracy 10⁻⁴ and the rest left to the plan, against
-/// ESDIRK4 at rtol 3·10⁻⁹ (within 4·10⁻⁶ of 10⁻⁹'s). Every extreme of u, w and φ the summary
-/// reports, at the probes and over the beam, the largest accelerations and the axis's stretch
-/// land within the accuracy of their family's largest: the plan steps it with ESDIRK4 at a
-/// thousandth of the accuracy (2.6·10⁻⁵). Generalized-α's undamped steps at a ten-thousandth,
-/// which hold the default accuracy, read the tip's rotation 3·10⁻⁴ off here: their global error
-/// falls only as rtol^(2/3).
+/// ESDIRK4 at rtol 3·10⁻⁹ (within 4·10⁻⁶ of 10⁻⁹'s; stored, [`SWITCHED_LOADS`]). Every
+/// extreme of u, w and φ the summary reports, at the probes and over the beam, the largest
+/// accelerations and the axis's stretch land within the accuracy of their family's largest:
+/// the plan steps it with ESDIRK4 at a thousandth of the accuracy (2.6·10⁻⁵). Generalized-α's
+/// undamped steps at a ten-thousandth, which hold the default accuracy, read the tip's rotation
+/// 3·10⁻⁴ off here: their global error falls only as rtol^(2/3).
 #[test]
 fn a_switched_load_s_extremes_within_a_tighter_accuracy() {
-    let mut changes = SOLVER_LEFT_TO_THE_PLAN.to_vec();
-    changes.extend([
-        Set::Number("solver.accuracy", 1.0e-4),
-        Set::Number("track.beam.elements", 4.0),
-        Set::Number("duration", 1.5),
-    ]);
-    let scene = changed("cantilever-c3.yaml", &changes);
-    let (planned, converged) = common::side_by_side(
-        || common::at_defaults(&scene),
-        || run_beam(&scene, Method::Esdirk4, 3e-9, 3e-9 * 1.01e-2),
-    );
+    let (name, scene, _) = switched_load(1);
+    let planned = Reported::of(&common::at_defaults(&scene));
+    let converged = Reported::stored(name);
     extremes_within("C3 on 4 elements", &planned, &converged, 1e-4);
-    let (ps, cs) = (planned.envelope.stretch_max, converged.envelope.stretch_max);
+    let (ps, cs) = (planned.stretch_max, converged.stretch_max);
     assert!(
         (ps - cs).abs() <= 1e-4 * cs,
         "stretch {ps:e} against {cs:e}"
     );
 }
 
+/// The switched loads' converged runs, each (its stored name, the method, rtol, atol / rtol):
+/// together three minutes of a core, so computed once by [`make_converged_switched_loads`]
+/// and stored in `studies/references/converged/`.
+const SWITCHED_LOADS: [(&str, Method, f64, f64); 2] = [
+    ("cantilever-c1-switched", Method::GenAlpha, 1e-8, 9.73e-3),
+    (
+        "cantilever-c3-switched-1e-4",
+        Method::Esdirk4,
+        3e-9,
+        1.01e-2,
+    ),
+];
+
+/// Switched load `i` of [`SWITCHED_LOADS`]: its stored name, its scene with the solver left to
+/// the plan, and the converged run's settings.
+fn switched_load(i: usize) -> (&'static str, Scene, (Method, f64, f64)) {
+    let scene = if i == 0 {
+        changed("cantilever-c1.yaml", &SOLVER_LEFT_TO_THE_PLAN)
+    } else {
+        let mut changes = SOLVER_LEFT_TO_THE_PLAN.to_vec();
+        changes.extend([
+            Set::Number("solver.accuracy", 1.0e-4),
+            Set::Number("track.beam.elements", 4.0),
+            Set::Number("duration", 1.5),
+        ]);
+        changed("cantilever-c3.yaml", &changes)
+    };
+    let (name, method, rtol, size) = SWITCHED_LOADS[i];
+    (name, scene, (method, rtol, rtol * size))
+}
+
+/// Remakes the switched loads' stored converged runs:
+/// `cargo test --release --test studies -- --ignored make_converged_switched_loads`.
+#[test]
+#[ignore = "remakes stored references: three minutes of a core"]
+fn make_converged_switched_loads() {
+    for i in 0..SWITCHED_LOADS.len() {
+        let (name, scene, (method, rtol, atol)) = switched_load(i);
+        let r = Reported::of(&run_beam(&scene, method, rtol, atol));
+        r.store(
+            name,
+            &format!("{method:?} at rtol {rtol:.0e}, atol {atol:.3e}"),
+        );
+    }
+}
+
+/// What the switched-load tests compare of a beam run: each probe's least and largest u, w and
+/// φ and largest |a|; per station of the envelope its least and largest u, w and φ; the
+/// envelope's largest acceleration and the axis's largest stretch.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct Reported {
+    converged_by: String,
+    probes: Vec<ProbeReported>,
+    envelope_min: Vec<[f64; 3]>,
+    envelope_max: Vec<[f64; 3]>,
+    a_max: f64,
+    stretch_max: f64,
+}
+
+#[derive(serde::Serialize, serde::Deserialize)]
+struct ProbeReported {
+    min: [f64; 3],
+    max: [f64; 3],
+    a: f64,
+}
+
+impl Reported {
+    fn of(r: &BeamRun) -> Reported {
+        let uwphi = |d: &PointDisplacement| [d.u, d.w, d.phi];
+        Reported {
+            converged_by: String::new(),
+            probes: (r.extremes.probes.iter())
+                .map(|p| ProbeReported {
+                    min: [p[0].min, p[1].min, p[2].min],
+                    max: [p[0].max, p[1].max, p[2].max],
+                    a: p[3].largest_magnitude().0,
+                })
+                .collect(),
+            envelope_min: r.envelope.min.iter().map(uwphi).collect(),
+            envelope_max: r.envelope.max.iter().map(uwphi).collect(),
+            a_max: r.envelope.a_max.0,
+            stretch_max: r.envelope.stretch_max,
+        }
+    }
+
+    fn path(name: &str) -> std::path::PathBuf {
+        common::studies_dir()
+            .join("references/converged")
+            .join(format!("{name}.yaml"))
+    }
+
+    /// The stored converged run `name`.
+    fn stored(name: &str) -> Reported {
+        let path = Self::path(name);
+        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| {
+            panic!(
+                "{}: {e}; make it with `cargo test --release --test studies -- --ignored make_converged_switched_loads`",
+                path.display()
+            )
+        });
+        serde_saphyr::from_str(&text).expect("a stored converged run")
+    }
+
+    /// Stored as `name`, every number to eight significant digits: the references settle to
+    /// 2·10⁻⁴ (C1) and 4·10⁻⁶ (C3), so the rounding moves none of them.
+    fn store(mut self, name: &str, converged_by: &str) {
+        let round = |x: &mut f64| *x = format!("{x:.7e}").parse().expect("a number");
+        for p in &mut self.probes {
+            p.min.iter_mut().chain(&mut p.max).for_each(round);
+            round(&mut p.a);
+        }
+        (self.envelope_min.iter_mut().chain(&mut self.envelope_max))
+            .flatten()
+            .for_each(round);
+        round(&mut self.a_max);
+        round(&mut self.stretch_max);
+        self.converged_by = converged_by.to_string();
+        let path = Self::path(name);
+        std::fs::create_dir_all(path.parent().expect("a folder")).expect("the folder");
+        let text = serde_saphyr::to_string(&self).expect("serialised");
+        std::fs::write(&path, text).expect("written");
+    }
+}
+
 /// Every extreme of u, w and φ the summary reports (at the probes and over the beam), and the
 /// largest accelerations, within `accuracy` of their family's largest in the converged run.
-fn extremes_within(scene: &str, planned: &BeamRun, converged: &BeamRun, accuracy: f64) {
-    let family = |r: &BeamRun, k: usize| -> Vec<(f64, f64)> {
-        let e = &r.envelope;
-        let component = |d: &PointDisplacement| [d.u, d.w, d.phi][k];
+fn extremes_within(scene: &str, planned: &Reported, converged: &Reported, accuracy: f64) {
+    let family = |r: &Reported, k: usize| -> Vec<(f64, f64)> {
         let over_the_beam = (
-            e.min.iter().map(component).fold(f64::INFINITY, f64::min),
-            e.max
+            r.envelope_min
                 .iter()
-                .map(component)
+                .map(|d| d[k])
+                .fold(f64::INFINITY, f64::min),
+            (r.envelope_max.iter())
+                .map(|d| d[k])
                 .fold(f64::NEG_INFINITY, f64::max),
         );
-        (r.extremes.probes.iter())
-            .map(|p| (p[k].min, p[k].max))
+        (r.probes.iter())
+            .map(|p| (p.min[k], p.max[k]))
             .chain([over_the_beam])
             .collect()
     };
@@ -524,10 +626,10 @@ fn extremes_within(scene: &str, planned: &BeamRun, converged: &BeamRun, accuracy
             );
         }
     }
-    let largest = |r: &BeamRun| {
-        (r.extremes.probes.iter())
-            .map(|p| p[3].largest_magnitude().0)
-            .chain([r.envelope.a_max.0])
+    let largest = |r: &Reported| {
+        (r.probes.iter())
+            .map(|p| p.a)
+            .chain([r.a_max])
             .collect::<Vec<f64>>()
     };
     let (p, c) = (largest(planned), largest(converged));
