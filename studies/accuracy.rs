@@ -15,6 +15,7 @@ use rollbeam::ode::Method;
 use rollbeam::run::beam::BeamRun;
 use rollbeam::run::{self, Overrides};
 use rollbeam::scene::Scene;
+use rollbeam::workflows::tradeoff::store::scene_hash;
 
 /// The solver's settings left to the plan, and the shapes, which cost a switched load's runs
 /// their time.
@@ -412,10 +413,10 @@ fn the_rubber_beam_s_headlines_within_the_accuracy_at_the_defaults() {
 #[test]
 fn a_switched_load_s_extremes_within_the_accuracy_at_the_defaults() {
     let (name, scene, _) = switched_load(0);
+    let converged = Reported::stored(name);
     let planned = run::run(&scene, &Overrides::default(), false).expect("the run completes");
     crate::tradeoff::lands_within_its_reference("cantilever-c1", &planned);
     let planned = Reported::of(&planned.beam().expect("a beam scene"));
-    let converged = Reported::stored(name);
     let largest = |r: &Reported, k: usize| {
         (r.envelope_min.iter().chain(&r.envelope_max))
             .map(|d| d[k].abs())
@@ -460,8 +461,8 @@ fn a_switched_load_s_extremes_within_the_accuracy_at_the_defaults() {
 #[test]
 fn a_switched_load_s_extremes_within_a_tighter_accuracy() {
     let (name, scene, _) = switched_load(1);
-    let planned = Reported::of(&common::at_defaults(&scene));
     let converged = Reported::stored(name);
+    let planned = Reported::of(&common::at_defaults(&scene));
     extremes_within("C3 on 4 elements", &planned, &converged, 1e-4);
     let (ps, cs) = (planned.stretch_max, converged.stretch_max);
     assert!(
@@ -473,10 +474,17 @@ fn a_switched_load_s_extremes_within_a_tighter_accuracy() {
 /// The switched loads' converged runs, each (its stored name, the method, rtol, atol / rtol):
 /// together three minutes of a core, so computed once by [`make_converged_switched_loads`]
 /// and stored in `studies/references/converged/`.
-const SWITCHED_LOADS: [(&str, Method, f64, f64); 2] = [
-    ("cantilever-c1-switched", Method::GenAlpha, 1e-8, 9.73e-3),
+const SWITCHED_LOADS: [(&str, &str, Method, f64, f64); 2] = [
+    (
+        "cantilever-c1-switched",
+        "cantilever-c1.yaml",
+        Method::GenAlpha,
+        1e-8,
+        9.73e-3,
+    ),
     (
         "cantilever-c3-switched-1e-4",
+        "cantilever-c3.yaml",
         Method::Esdirk4,
         3e-9,
         1.01e-2,
@@ -486,8 +494,9 @@ const SWITCHED_LOADS: [(&str, Method, f64, f64); 2] = [
 /// Switched load `i` of [`SWITCHED_LOADS`]: its stored name, its scene with the solver left to
 /// the plan, and the converged run's settings.
 fn switched_load(i: usize) -> (&'static str, Scene, (Method, f64, f64)) {
+    let (name, study, method, rtol, size) = SWITCHED_LOADS[i];
     let scene = if i == 0 {
-        changed("cantilever-c1.yaml", &SOLVER_LEFT_TO_THE_PLAN)
+        changed(study, &SOLVER_LEFT_TO_THE_PLAN)
     } else {
         let mut changes = SOLVER_LEFT_TO_THE_PLAN.to_vec();
         changes.extend([
@@ -495,9 +504,8 @@ fn switched_load(i: usize) -> (&'static str, Scene, (Method, f64, f64)) {
             Set::Number("track.beam.elements", 4.0),
             Set::Number("duration", 1.5),
         ]);
-        changed("cantilever-c3.yaml", &changes)
+        changed(study, &changes)
     };
-    let (name, method, rtol, size) = SWITCHED_LOADS[i];
     (name, scene, (method, rtol, rtol * size))
 }
 
@@ -522,6 +530,8 @@ fn make_converged_switched_loads() {
 #[derive(serde::Serialize, serde::Deserialize)]
 struct Reported {
     converged_by: String,
+    /// The study file's hash when the run was stored: a study changed since leaves it stale.
+    scene_hash: String,
     probes: Vec<ProbeReported>,
     envelope_min: Vec<[f64; 3]>,
     envelope_max: Vec<[f64; 3]>,
@@ -541,6 +551,7 @@ impl Reported {
         let uwphi = |d: &PointDisplacement| [d.u, d.w, d.phi];
         Reported {
             converged_by: String::new(),
+            scene_hash: String::new(),
             probes: (r.extremes.probes.iter())
                 .map(|p| ProbeReported {
                     min: [p[0].min, p[1].min, p[2].min],
@@ -561,16 +572,29 @@ impl Reported {
             .join(format!("{name}.yaml"))
     }
 
-    /// The stored converged run `name`.
+    /// The stored converged run `name`, made from the study it names as it is now.
     fn stored(name: &str) -> Reported {
         let path = Self::path(name);
-        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| {
-            panic!(
-                "{}: {e}; make it with `cargo test --release --test studies -- --ignored make_converged_switched_loads`",
-                path.display()
-            )
-        });
-        serde_saphyr::from_str(&text).expect("a stored converged run")
+        let remake = "make it with `cargo test --release --test studies -- --ignored make_converged_switched_loads`";
+        let text = std::fs::read_to_string(&path)
+            .unwrap_or_else(|e| panic!("{}: {e}; {remake}", path.display()));
+        let stored: Reported = serde_saphyr::from_str(&text).expect("a stored converged run");
+        assert_eq!(
+            stored.scene_hash,
+            Self::study_hash(name),
+            "{}: its study changed since it was stored; {remake}",
+            path.display()
+        );
+        stored
+    }
+
+    /// The hash of the study file the stored run `name` was made from.
+    fn study_hash(name: &str) -> String {
+        let study = (SWITCHED_LOADS.iter())
+            .find(|s| s.0 == name)
+            .expect("a stored switched load")
+            .1;
+        scene_hash(&common::studies_dir().join(study)).expect("the study file")
     }
 
     /// Stored as `name`, every number to eight significant digits: the references settle to
@@ -587,6 +611,7 @@ impl Reported {
         round(&mut self.a_max);
         round(&mut self.stretch_max);
         self.converged_by = converged_by.to_string();
+        self.scene_hash = Self::study_hash(name);
         let path = Self::path(name);
         std::fs::create_dir_all(path.parent().expect("a folder")).expect("the folder");
         let text = serde_saphyr::to_string(&self).expect("serialised");
