@@ -6,8 +6,8 @@
 use crate::common;
 
 use common::{
-    at_defaults, changed, hslm_bridge, hslm_bridge_probed, mid_headlines, parse, run_beam,
-    run_with, Set, FRYBA_BRIDGE,
+    at_defaults, changed, converged, hslm_bridge, hslm_bridge_probed, mid_headlines, parse,
+    run_beam, run_with, Set, FRYBA_BRIDGE,
 };
 use rollbeam::analysis::modes::{modes, ModeKind};
 use rollbeam::beam::{Beam, PointDisplacement};
@@ -15,7 +15,6 @@ use rollbeam::ode::Method;
 use rollbeam::run::beam::BeamRun;
 use rollbeam::run::{self, Overrides};
 use rollbeam::scene::Scene;
-use rollbeam::workflows::tradeoff::store::scene_hash;
 
 /// The solver's settings left to the plan, and the shapes, which cost a switched load's runs
 /// their time.
@@ -566,35 +565,17 @@ impl Reported {
         }
     }
 
-    fn path(name: &str) -> std::path::PathBuf {
-        common::studies_dir()
-            .join("references/converged")
-            .join(format!("{name}.yaml"))
-    }
-
     /// The stored converged run `name`, made from the study it names as it is now.
     fn stored(name: &str) -> Reported {
-        let path = Self::path(name);
-        let remake = "make it with `cargo test --release --test studies -- --ignored make_converged_switched_loads`";
-        let text = std::fs::read_to_string(&path)
-            .unwrap_or_else(|e| panic!("{}: {e}; {remake}", path.display()));
-        let stored: Reported = serde_saphyr::from_str(&text).expect("a stored converged run");
-        assert_eq!(
-            stored.scene_hash,
-            Self::study_hash(name),
-            "{}: its study changed since it was stored; {remake}",
-            path.display()
-        );
-        stored
+        converged::read(name, Self::study(name), "make_converged_switched_loads")
     }
 
-    /// The hash of the study file the stored run `name` was made from.
-    fn study_hash(name: &str) -> String {
-        let study = (SWITCHED_LOADS.iter())
+    /// The study file the stored run `name` was made from.
+    fn study(name: &str) -> &'static str {
+        (SWITCHED_LOADS.iter())
             .find(|s| s.0 == name)
             .expect("a stored switched load")
-            .1;
-        scene_hash(&common::studies_dir().join(study)).expect("the study file")
+            .1
     }
 
     /// Stored as `name`, every number to eight significant digits: the references settle to
@@ -611,11 +592,8 @@ impl Reported {
         round(&mut self.a_max);
         round(&mut self.stretch_max);
         self.converged_by = converged_by.to_string();
-        self.scene_hash = Self::study_hash(name);
-        let path = Self::path(name);
-        std::fs::create_dir_all(path.parent().expect("a folder")).expect("the folder");
-        let text = serde_saphyr::to_string(&self).expect("serialised");
-        std::fs::write(&path, text).expect("written");
+        self.scene_hash = converged::study_hash(Self::study(name));
+        converged::write(name, &self);
     }
 }
 

@@ -2,6 +2,8 @@
 //! settings, read the history at given times.
 #![allow(dead_code)]
 
+pub mod converged;
+
 use std::path::{Path, PathBuf};
 
 use rollbeam::analysis::moving_load::MovingForce;

@@ -1,0 +1,81 @@
+//! Converged runs too long to repeat in every test run, stored in
+//! `studies/references/converged/` with the hash of the study file each was made from: a
+//! study edited since is refused with the command that makes its runs again, as the
+//! work–precision store refuses a stale reference.
+
+use std::path::PathBuf;
+
+use rollbeam::workflows::tradeoff::store::scene_hash;
+
+/// The file of the stored converged run `name`.
+pub fn path(name: &str) -> PathBuf {
+    super::studies_dir()
+        .join("references/converged")
+        .join(format!("{name}.yaml"))
+}
+
+/// The hash of study file `study` as it is now.
+pub fn study_hash(study: &str) -> String {
+    scene_hash(&super::studies_dir().join(study)).expect("the study file")
+}
+
+/// What every stored run holds besides its numbers.
+#[derive(serde::Deserialize)]
+struct Made {
+    scene_hash: String,
+}
+
+/// The stored converged run `name`, made from `study` as it is now; `remake` names the
+/// command that makes it again.
+pub fn read<T: serde::de::DeserializeOwned>(name: &str, study: &str, remake: &str) -> T {
+    let path = path(name);
+    let remake =
+        format!("make it with `cargo test --release --test studies -- --ignored {remake}`");
+    let text = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("{}: {e}; {remake}", path.display()));
+    let made: Made = serde_saphyr::from_str(&text).expect("a stored converged run");
+    assert_eq!(
+        made.scene_hash,
+        study_hash(study),
+        "{}: its study changed since it was stored; {remake}",
+        path.display()
+    );
+    serde_saphyr::from_str(&text).expect("a stored converged run")
+}
+
+/// Stores `value` (which carries its study's [`study_hash`]) as the converged run `name`.
+pub fn write<T: serde::Serialize>(name: &str, value: &T) {
+    let path = path(name);
+    std::fs::create_dir_all(path.parent().expect("a folder")).expect("the folder");
+    let text = serde_saphyr::to_string(value).expect("serialised");
+    std::fs::write(&path, text).expect("written");
+}
+
+/// A study's converged Hann-windowed mean, as stored.
+#[derive(serde::Serialize, serde::Deserialize)]
+pub struct WindowedMean {
+    converged_by: String,
+    scene_hash: String,
+    mean: f64,
+}
+
+impl WindowedMean {
+    fn name(study: &str) -> String {
+        format!("{}-windowed-mean", study.trim_end_matches(".yaml"))
+    }
+
+    /// The stored mean of study file `study`; `remake` names the test that makes it.
+    pub fn stored(study: &str, remake: &str) -> f64 {
+        read::<WindowedMean>(&Self::name(study), study, remake).mean
+    }
+
+    /// Stores `mean` as study file `study`'s, converged as `converged_by` says.
+    pub fn store(study: &str, converged_by: String, mean: f64) {
+        let stored = WindowedMean {
+            converged_by,
+            scene_hash: study_hash(study),
+            mean,
+        };
+        write(&Self::name(study), &stored);
+    }
+}
