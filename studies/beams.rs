@@ -5,7 +5,7 @@
 
 use crate::common;
 
-use common::converged::WindowedMean;
+use common::converged;
 use common::{changed, hann_mean, load, parse, run_beam, Set};
 use rollbeam::ode::Method;
 use rollbeam::run::beam::BeamRun;
@@ -173,8 +173,11 @@ fn mesh_convergence_of_the_peak_deflection() {
 #[test]
 fn mesh_convergence_of_the_cantilevers_mean_deflection() {
     for name in CANTILEVERS {
-        let reference =
-            WindowedMean::stored(&format!("{name}.yaml"), "make_converged_cantilever_means");
+        let reference = converged::Number::stored(
+            &format!("{name}-windowed-mean"),
+            &format!("{name}.yaml"),
+            "make_converged_cantilever_means",
+        );
         let errors: Vec<f64> = [4, 8, 16]
             .iter()
             .map(|&e| (cantilever_mean(name, e, 1) / reference - 1.0).abs())
@@ -204,7 +207,8 @@ fn cantilever_mean(name: &str, elements: usize, p: usize) -> f64 {
 #[ignore = "remakes stored references: forty seconds of a core"]
 fn make_converged_cantilever_means() {
     for name in CANTILEVERS {
-        WindowedMean::store(
+        converged::Number::store(
+            &format!("{name}-windowed-mean"),
             &format!("{name}.yaml"),
             "degree 4 on 16 elements, generalized-α at ρ∞ 0.8, rtol 1e-6".to_string(),
             cantilever_mean(name, 16, 4),

@@ -5,7 +5,7 @@ use crate::common;
 
 use std::f64::consts::PI;
 
-use common::converged::WindowedMean;
+use common::converged;
 use common::{changed, hann_mean, load, log_slope, run_beam, studies_dir, Set};
 use rollbeam::coupling::Coupling;
 use rollbeam::ode::Method;
@@ -132,14 +132,17 @@ fn drift(r: &BeamRun) -> f64 {
 /// The consistent coupling conserves beam + disk energy: its drift is an integration error
 /// and falls with rtol, to ≤ 10⁻⁶ at rtol 10⁻⁸ (generalized-α at ρ∞ = 1, energy-neutral for
 /// the linear part). The thesis coupling's error is a model error: it stays when rtol falls.
-/// On the first 0.1 s of each study (the disk on the beam throughout).
+/// On the first 0.1 s of each study (the disk on the beam throughout). The zip-line's tight
+/// run is at 10⁻⁷: its rope's axial waves make a run at 10⁻⁸ take half a minute of a core,
+/// and its consistent drift at 10⁻⁷ (1.7·10⁻¹⁰) already lies five decades below the thesis
+/// coupling's (3.5·10⁻⁵).
 #[test]
 fn energy_consistent_conserves_thesis_does_not() {
-    for file in [
-        "bridge-d44.yaml",
-        "bridge-d50.yaml",
-        "zipline.yaml",
-        "rubber.yaml",
+    for (file, tight_rtol) in [
+        ("bridge-d44.yaml", 1e-8),
+        ("bridge-d50.yaml", 1e-8),
+        ("zipline.yaml", 1e-7),
+        ("rubber.yaml", 1e-8),
     ] {
         let window = |c: Coupling| {
             variant(
@@ -151,45 +154,27 @@ fn energy_consistent_conserves_thesis_does_not() {
                 ],
             )
         };
-        let loose = drift(&run_beam(
-            &window(Coupling::Consistent),
-            Method::GenAlpha,
-            1e-6,
-            1e-12,
-        ));
-        let tight = drift(&run_beam(
-            &window(Coupling::Consistent),
-            Method::GenAlpha,
-            1e-8,
-            1e-14,
-        ));
+        let drift_at = |c: Coupling, rtol: f64| {
+            drift(&run_beam(&window(c), Method::GenAlpha, rtol, rtol * 1e-6))
+        };
+        let loose = drift_at(Coupling::Consistent, 1e-6);
+        let tight = drift_at(Coupling::Consistent, tight_rtol);
         assert!(
             tight <= 1e-6,
-            "{file}: consistent drift {tight:.2e} at rtol 1e-8"
+            "{file}: consistent drift {tight:.2e} at rtol {tight_rtol:.0e}"
         );
         assert!(
             tight < loose,
-            "{file}: drift {tight:.2e} (1e-8) vs {loose:.2e} (1e-6)"
+            "{file}: drift {tight:.2e} ({tight_rtol:.0e}) vs {loose:.2e} (1e-6)"
         );
-        let t_loose = drift(&run_beam(
-            &window(Coupling::Thesis),
-            Method::GenAlpha,
-            1e-6,
-            1e-12,
-        ));
-        let t_tight = drift(&run_beam(
-            &window(Coupling::Thesis),
-            Method::GenAlpha,
-            1e-8,
-            1e-14,
-        ));
-
+        let t_loose = drift_at(Coupling::Thesis, 1e-6);
+        let t_tight = drift_at(Coupling::Thesis, tight_rtol);
         eprintln!(
-            "{file}: consistent drift {loose:.2e} (rtol 1e-6), {tight:.2e} (1e-8); thesis {t_loose:.2e}, {t_tight:.2e}"
+            "{file}: consistent drift {loose:.2e} (rtol 1e-6), {tight:.2e} ({tight_rtol:.0e}); thesis {t_loose:.2e}, {t_tight:.2e}"
         );
         assert!(
             t_tight > 0.3 * t_loose && t_tight > 10.0 * tight,
-            "{file}: thesis error {t_tight:.2e} (1e-8) vs {t_loose:.2e} (1e-6)"
+            "{file}: thesis error {t_tight:.2e} ({tight_rtol:.0e}) vs {t_loose:.2e} (1e-6)"
         );
     }
 }
@@ -747,7 +732,11 @@ fn patch_width_from_the_section_and_its_shear_kink() {
 #[test]
 fn mesh_convergence_of_the_rubber_beam_and_the_zipline() {
     let converges = |(file, until, order, meshes, _): MeshSequence| {
-        let reference = WindowedMean::stored(file, "make_converged_windowed_means");
+        let reference = converged::Number::stored(
+            &windowed_mean_name(file),
+            file,
+            "make_converged_windowed_means",
+        );
         let errors: Vec<f64> = meshes
             .iter()
             .map(|&e| (windowed_mean(file, until, e, order) / reference - 1.0).abs())
@@ -789,13 +778,19 @@ fn windowed_mean(file: &str, until: f64, elements: usize, p: usize) -> f64 {
     hann_mean(&run_beam(&scene, Method::GenAlpha, 1e-7, 1e-11), until)
 }
 
+/// The name study `file`'s windowed mean is stored by.
+fn windowed_mean_name(file: &str) -> String {
+    format!("{}-windowed-mean", file.trim_end_matches(".yaml"))
+}
+
 /// Remakes the mesh sequences' stored references:
 /// `cargo test --release --test studies -- --ignored make_converged_windowed_means`.
 #[test]
 #[ignore = "remakes stored references: a minute and a half of a core"]
 fn make_converged_windowed_means() {
     for (file, until, _, _, fine) in MESH_SEQUENCES {
-        WindowedMean::store(
+        converged::Number::store(
+            &windowed_mean_name(file),
             file,
             format!("degree 4 on {fine} elements, generalized-α at rtol 1e-7"),
             windowed_mean(file, until, fine, 4),

@@ -51,31 +51,28 @@ pub fn write<T: serde::Serialize>(name: &str, value: &T) {
     std::fs::write(&path, text).expect("written");
 }
 
-/// A study's converged Hann-windowed mean, as stored.
+/// One converged number of a study (a windowed mean, a peak), as stored.
 #[derive(serde::Serialize, serde::Deserialize)]
-pub struct WindowedMean {
+pub struct Number {
     converged_by: String,
     scene_hash: String,
-    mean: f64,
+    value: f64,
 }
 
-impl WindowedMean {
-    fn name(study: &str) -> String {
-        format!("{}-windowed-mean", study.trim_end_matches(".yaml"))
+impl Number {
+    /// The stored number `name` of study file `study`; `remake` names the test that makes it.
+    pub fn stored(name: &str, study: &str, remake: &str) -> f64 {
+        read::<Number>(name, study, remake).value
     }
 
-    /// The stored mean of study file `study`; `remake` names the test that makes it.
-    pub fn stored(study: &str, remake: &str) -> f64 {
-        read::<WindowedMean>(&Self::name(study), study, remake).mean
-    }
-
-    /// Stores `mean` as study file `study`'s, converged as `converged_by` says.
-    pub fn store(study: &str, converged_by: String, mean: f64) {
-        let stored = WindowedMean {
+    /// Stores `value` as the number `name` of study file `study`, converged as `converged_by`
+    /// says.
+    pub fn store(name: &str, study: &str, converged_by: String, value: f64) {
+        let stored = Number {
             converged_by,
             scene_hash: study_hash(study),
-            mean,
+            value,
         };
-        write(&Self::name(study), &stored);
+        write(name, &stored);
     }
 }
