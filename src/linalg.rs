@@ -106,10 +106,10 @@ pub fn mul(a: &Sparse, x: &[f64], y: &mut [f64]) {
     let col_ptr = a.symbolic().col_ptr();
     let row_idx = a.symbolic().row_idx();
     let val = a.val();
-    for j in 0..a.ncols() {
-        let xj = x[j];
-        for k in col_ptr[j]..col_ptr[j + 1] {
-            y[row_idx[k]] += val[k] * xj;
+    for (j, &xj) in x[..a.ncols()].iter().enumerate() {
+        let column = col_ptr[j]..col_ptr[j + 1];
+        for (&i, &v) in row_idx[column.clone()].iter().zip(&val[column]) {
+            y[i] += v * xj;
         }
     }
 }

@@ -5,6 +5,11 @@
 
 mod common;
 
+/// The allocator the command line runs with (`src/main.rs`), so that the suite times the runs
+/// users get: with glibc's, malloc and free took a tenth of the heaviest tests.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 mod accuracy;
 mod bad_input;
 mod beam_element;
