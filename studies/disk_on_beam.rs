@@ -831,6 +831,40 @@ fn overlapping_disks_are_said_to_pass_through_each_other() {
     assert!(!said(0.9), "disks 0.9 m apart, radii 0.4");
 }
 
+/// Two disks that start clear of each other but roll into one another pass through each other
+/// as well: the run says where they meet. Two moving forces (their speeds prescribed, so the
+/// meeting is where their paths say) from the two ends of D44's bridge at 17.6 and −8.8 m/s
+/// come within their radii together at (20 − 0.8) / 26.4 = 0.727 s, their contacts at 12.8 and
+/// 13.6 m, which the warning states to its printed digits (the midpoint). Run for less than
+/// that, or with the front disk the faster, they are not warned about.
+#[test]
+fn disks_rolling_into_each_other_are_said_to_meet() {
+    let meeting = |(s1, v1): (f64, f64), (s2, v2): (f64, f64), duration: f64| {
+        let disk = |s0: f64, v: f64| {
+            format!(
+                "{{mass: 1500, radius: 0.4, s0: {s0}, omega0: {}, coupling: moving-force}}",
+                -v / 0.4
+            )
+        };
+        let disks = [disk(s1, v1), disk(s2, v2)];
+        let scene = bridge_with_disks("modal\n    modes: 8", &disks, duration);
+        let r = common::at_defaults(&scene);
+        (r.warnings().into_iter()).find(|w| w.contains("come within their radii together"))
+    };
+    let said = meeting((0.0, 17.6), (20.0, -8.8), 1.0).expect("disks rolling into each other");
+    assert!(said.contains("at t = 0.727 s near s = 13.20 m"), "{said}");
+    assert_eq!(
+        meeting((0.0, 17.6), (20.0, -8.8), 0.7),
+        None,
+        "ended before they meet"
+    );
+    assert_eq!(
+        meeting((0.0, 8.8), (10.0, 17.6), 1.0),
+        None,
+        "the front disk the faster"
+    );
+}
+
 /// A disk of D44's (1500 kg, a = 0.4 m, Ω0 = −44 1/s) starting at s0 with the coupling named.
 fn d44_disk(s0: f64, coupling: &str) -> String {
     format!("{{mass: 1500, radius: 0.4, s0: {s0}, omega0: -44, coupling: {coupling}}}")

@@ -40,7 +40,7 @@ impl fmt::Display for Described<'_> {
         writeln!(f, "scene {}: valid", scene.name)?;
         match &scene.model {
             Model::Rolling(setup) => rolling(f, setup)?,
-            Model::Beam(setup) => beam(f, setup)?,
+            Model::Beam(setup) => beam(f, setup, scene.duration)?,
         }
         if let (Some(b), Some(why)) = (scene.beam(), &scene.solver.method_chosen) {
             writeln!(f, "  method chosen for accuracy {:e}: {why}", b.accuracy)?;
@@ -117,7 +117,7 @@ fn rolling(f: &mut fmt::Formatter<'_>, setup: &RollingScene) -> fmt::Result {
 }
 
 /// The beam and its mesh (and what chose it), the disk on it, the loads and the probes.
-fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
+fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene, duration: f64) -> fmt::Result {
     let b = Beam::shared(&setup.beam);
     let spec = &b.spec;
     writeln!(
@@ -197,7 +197,11 @@ fn beam(f: &mut fmt::Formatter<'_>, setup: &BeamScene) -> fmt::Result {
     } else if setup.train.is_none() && setup.vehicles.is_empty() {
         writeln!(f, "  disk: none (no disk unknowns)")?;
     }
-    for w in setup.warnings() {
+    for w in setup
+        .warnings()
+        .into_iter()
+        .chain(setup.disks_meeting(duration))
+    {
         writeln!(f, "  warning: {w}")?;
     }
     writeln!(

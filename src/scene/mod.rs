@@ -139,11 +139,16 @@ pub struct BeamScene {
 }
 
 impl BeamScene {
+    /// The beam's undeformed length (m): the material points s run over [0, length].
+    fn length(&self) -> f64 {
+        let b = &self.beam;
+        (b.to[0] - b.from[0]).hypot(b.to[1] - b.from[1])
+    }
+
     /// Where the beam holds w: its ends whose supports hold it, and its bearings.
     fn held_w(&self) -> Vec<f64> {
         let b = &self.beam;
-        let length = (b.to[0] - b.from[0]).hypot(b.to[1] - b.from[1]);
-        let ends = [0.0, length].into_iter().zip(b.supports);
+        let ends = [0.0, self.length()].into_iter().zip(b.supports);
         let mut held: Vec<f64> = (ends.filter(|(_, s)| s.held_components().contains(&1)))
             .map(|(x, _)| x)
             .chain(b.bearings.iter().copied())
@@ -387,6 +392,32 @@ impl BeamScene {
             }
         }
         out
+    }
+
+    /// Where two disks that start apart would come within their radii together before `until`
+    /// (s), both still on the track, at their starting speeds: the disks do not touch one
+    /// another, so one said to roll into another passes through it. A rolling disk's speed
+    /// changes only as the deck it rolls on sags and rises, so its starting speed places the
+    /// meeting to within that.
+    pub fn disks_meeting(&self, until: f64) -> Option<String> {
+        let length = self.length();
+        let on = |s: f64| (0.0..=length).contains(&s);
+        let disks = &self.disks;
+        let (j, k, t, s) = disks.iter().enumerate().find_map(|(j, a)| {
+            disks[j + 1..].iter().enumerate().find_map(|(i, b)| {
+                let (gap, reach) = (b.s0 - a.s0, a.disk.radius + b.disk.radius);
+                let closing = (a.v0() - b.v0()) * gap.signum();
+                if gap.abs() < reach || !(closing > 0.0) {
+                    return None;
+                }
+                let t = (gap.abs() - reach) / closing;
+                let (sa, sb) = (a.s0 + a.v0() * t, b.s0 + b.v0() * t);
+                (t <= until && on(sa) && on(sb)).then_some((j + 1, j + i + 2, t, 0.5 * (sa + sb)))
+            })
+        })?;
+        Some(format!(
+            "disks[{j}] and disks[{k}] come within their radii together at t = {t:.3} s near s = {s:.2} m, at their starting speeds: the disks do not touch one another, and one passes through the other as two loads do"
+        ))
     }
 }
 

@@ -174,6 +174,7 @@ impl BeamRun {
     /// and what the run itself met.
     pub fn warnings(&self) -> Vec<String> {
         let mut out = self.setup.warnings();
+        out.extend(self.setup.disks_meeting(self.header.t_end));
         if let [first, _, ..] = &self.flights[..] {
             let who = if self.setup.disks.len() > 1 {
                 "the disks"
