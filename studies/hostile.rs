@@ -4,6 +4,7 @@
 //! abort, a hang (each case has a wall-clock bound far above its normal cost), or a file
 //! outside the output folder.
 
+use crate::common;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -1145,7 +1146,11 @@ fn item_13_work_and_damping_are_bounded() {
 ///     10⁻²⁰ m/s (a crossing of 10²¹ s) and a duration of 10¹⁵ s stopped with "the solution
 ///     is not smooth enough to follow there", which sent the user looking at the physics;
 ///     each now says how long the run is: the vehicle's before it starts (its ride needs 10²³
-///     steps a sixteenth of the lowest period long), the other with its finest step.
+///     steps a sixteenth of the lowest period long), the other with its finest step. HSLM-A1
+///     followed by 10¹² s of free vibration hung: its finest step (10⁻² s) was longer than
+///     the axles' node crossings (1.7·10⁻³ s apart), and a step to a crossing, rejected and
+///     shortened by less than that, snapped back to the same crossing forever; it now stops
+///     on the first such step and says how long the run is.
 #[test]
 fn item_14_an_endless_run_names_its_length() {
     let creeping = scene(
@@ -1168,6 +1173,21 @@ fn item_14_an_endless_run_names_its_length() {
         &["run", &long, "--out", &out("long")],
         2,
         &["a run 1.000e15 s long", "shorten the run"],
+    );
+    let study = std::fs::read_to_string(common::studies_dir().join("hslm-15m.yaml"))
+        .expect("the HSLM study");
+    let after_the_train = scene(
+        "after-the-train",
+        &study.replace("\nduration: 0.5 ", "\nduration: 1.0e12 "),
+    );
+    fails(
+        &["run", &after_the_train, "--out", &out("after-the-train")],
+        2,
+        &[
+            "next breakpoint",
+            "a run 1.000e12 s long",
+            "shorten the run",
+        ],
     );
 }
 

@@ -206,6 +206,15 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             let err = match self.attempt(h_try)? {
                 Trial::Accepted { err } => err,
                 Trial::Rejected { h: next, on_error } => {
+                    // Snapped to the breakpoint, a step the controller shortens by less than the
+                    // run's time resolution snaps to it again: the same step, rejected forever.
+                    if last && self.t + next >= target - self.h_min {
+                        return Err(SolveError::BelowResolution {
+                            t: self.t,
+                            h: target - self.t,
+                            floor: self.h_min,
+                        });
+                    }
                     h = next;
                     just_rejected |= on_error;
                     continue;

@@ -289,6 +289,13 @@ pub enum SolveError {
         h: f64,
         floor: f64,
     },
+    /// A step of h to a breakpoint was rejected, and the step asked instead is shorter by less
+    /// than `floor`, the finest the run resolves: both end on the breakpoint.
+    BelowResolution {
+        t: f64,
+        h: f64,
+        floor: f64,
+    },
     NewtonFailed {
         t: f64,
     },
@@ -317,6 +324,9 @@ impl fmt::Display for SolveError {
             }
             SolveError::StepSizeUnderflow { t, h, .. } => {
                 write!(f, "the step size fell to {h:.3e} s at t = {t:.6} s: the solution is not smooth enough to follow there")
+            }
+            SolveError::BelowResolution { t, h, floor } => {
+                write!(f, "at t = {t:.6} s the step of {h:.3e} s to the next breakpoint (a load entering, leaving or passing a node) was rejected, and the shorter one its error asks for ends closer to that breakpoint than the finest time a run {:.3e} s long resolves ({floor:.3e} s, 1e-14 of it): shorten the run (its duration, or a crossing a near-zero speed makes endless)", floor / 1e-14)
             }
             SolveError::NewtonFailed { t } => {
                 write!(f, "Newton iterations did not converge at t = {t:.6} s even with a fresh Jacobian and smaller steps")
