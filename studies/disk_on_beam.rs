@@ -124,6 +124,40 @@ fn residual_vibration_after_exit_by_coupling() {
     }
 }
 
+/// The thesis coupling on a modal beam with the solver left to the plan runs: the plan keeps
+/// generalized-α for it and says why, where its choice for a rolling disk (ESDIRK4) would
+/// integrate the coupling as the published 3n + 6 system, which holds the exact beam only, and
+/// the run would have refused the method the plan chose. D44 on 8 modes for 0.2 s.
+#[test]
+fn the_thesis_coupling_on_a_modal_beam_runs_at_the_defaults() {
+    let mut changes = vec![
+        Set::Name("disk.coupling", "thesis"),
+        Set::Name("track.beam.model", "modal"),
+        Set::Number("track.beam.modes", 8.0),
+        Set::Number("duration", 0.2),
+    ];
+    changes.extend(
+        [
+            "solver.method",
+            "solver.rho_inf",
+            "solver.rtol",
+            "solver.atol",
+        ]
+        .map(Set::LeftOut),
+    );
+    let scene = variant("bridge-d44.yaml", &changes);
+    assert_eq!(scene.solver.method, Method::GenAlpha);
+    let why = scene.solver.method_chosen.as_deref().unwrap_or_default();
+    assert!(why.contains("thesis coupling"), "{why}");
+    let r = common::at_defaults(&scene);
+    assert_eq!(
+        r.header.stop,
+        rollbeam::run::Stop::End,
+        "{:?}",
+        r.header.stop
+    );
+}
+
 /// Largest |total(t) − total(0)| relative to the largest energy, over a window of the run.
 fn drift(r: &BeamRun) -> f64 {
     r.header.energy.max_rel_drift()
