@@ -507,23 +507,10 @@ pub(crate) fn grouped_norm(
     let mut largest = 0.0_f64;
     for g in groups {
         let (e, a, b) = (&e[g.clone()], &a[g.clone()], &b[g.clone()]);
-        let (mut size, mut error) = (0.0_f64, 0.0_f64);
-        match weights {
-            Some(w) => {
-                for (((&w, &e), &a), &b) in w[g.clone()].iter().zip(e).zip(a).zip(b) {
-                    size = size.max(w * a.abs().max(b.abs()));
-                    error = error.max(w * e.abs());
-                    nan |= e.is_nan();
-                }
-            }
-            None => {
-                for ((&e, &a), &b) in e.iter().zip(a).zip(b) {
-                    size = size.max(a.abs().max(b.abs()));
-                    error = error.max(e.abs());
-                    nan |= e.is_nan();
-                }
-            }
-        }
+        let (size, error) = match weights {
+            Some(w) => group_maxima(w[g.clone()].iter().copied(), e, a, b, &mut nan),
+            None => group_maxima(std::iter::repeat(1.0), e, a, b, &mut nan),
+        };
         let ratio = error / (atol + rtol * size);
         nan |= ratio.is_nan();
         largest = largest.max(ratio);
@@ -533,6 +520,24 @@ pub(crate) fn grouped_norm(
     } else {
         largest
     }
+}
+
+/// One group's largest weighted max(|a|, |b|) and weighted |e|, with `nan` set where an e is
+/// NaN. Unweighted, the weights are ones, which the product by them leaves exact.
+fn group_maxima(
+    weights: impl Iterator<Item = f64>,
+    e: &[f64],
+    a: &[f64],
+    b: &[f64],
+    nan: &mut bool,
+) -> (f64, f64) {
+    let (mut size, mut error) = (0.0_f64, 0.0_f64);
+    for (((w, &e), &a), &b) in weights.zip(e).zip(a).zip(b) {
+        size = size.max(w * a.abs().max(b.abs()));
+        error = error.max(w * e.abs());
+        *nan |= e.is_nan();
+    }
+    (size, error)
 }
 
 /// Shared per-run context: tolerances, statistics and the weighted error norm.
