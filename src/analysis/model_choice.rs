@@ -3,7 +3,8 @@
 //!
 //! 1. Geometric nonlinearity, measured: the exact and the linear static response of the
 //!    scene's mesh under the largest load the scene applies (all its loads together, with the
-//!    disk's weight standing at each probe in turn), compared in the deflection across the
+//!    disk's weight, or the most a span's length of a train's axles weighs, standing at each
+//!    probe in turn), compared in the deflection across the
 //!    undeformed axis, which the accuracy is asked of. Where the two differ at a probe by more
 //!    than ε/4 of the largest deflection, what the linear models leave out is visible at the
 //!    accuracy asked, and the beam is `exact`; otherwise it is `modal`. (The shortening of
@@ -467,8 +468,13 @@ pub struct ModelInputs<'a> {
     /// chosen).
     pub given: Option<BeamModel>,
     pub loads: &'a [PointLoad],
-    /// The largest weight one rider or axle puts on the beam, stood at each probe in turn.
+    /// The largest weight one rider or axle puts on the beam, stood at each probe in turn: the
+    /// load the modes' shares are counted under.
     pub weight: Option<f64>,
+    /// The most what rides on the beam puts on it at once (a train's axles a span's length
+    /// apart together), stood at each probe in turn: the load the nonlinearity is measured
+    /// under, which grows with the load where the modes' shares do not.
+    pub at_once: Option<f64>,
     /// Whether a rider follows the kept modes (a disk that is not a moving force, a vehicle's
     /// wheels, moving masses), without the static correction of those left out.
     pub followers: bool,
@@ -489,6 +495,7 @@ pub fn choose(inputs: &ModelInputs) -> Choice {
         given,
         loads,
         weight,
+        at_once,
         followers,
         xs,
         accuracy,
@@ -496,7 +503,7 @@ pub fn choose(inputs: &ModelInputs) -> Choice {
         thesis_coupling,
         cutoff,
     } = inputs;
-    let cases = largest_loads(loads, weight, xs);
+    let cases = largest_loads(loads, at_once, xs);
     let switching: Vec<&PointLoad> = loads
         .iter()
         .filter(|l| !(start == BeamStart::Static && l.active(0.0) && l.until == f64::INFINITY))
@@ -570,12 +577,22 @@ pub fn choose(inputs: &ModelInputs) -> Choice {
             uncarried: None,
             static_gap: None,
         },
-        Ok((size, gap)) => Choice {
-            static_gap: Some((size, gap / size)),
-            ..modal(format!(
-                "modal: under the largest load the scene applies the linear and the exact static deflections at the probes differ by {:.1e} of them (within {tol:.1e}); ",
-                gap / size
-            ))
-        },
+        Ok((size, gap)) => {
+            // What a run foresees of its growth is measured from one rider's or axle's static
+            // deflection (`BeamRun::nonlinear_gap_foreseen`), the response a train builds up
+            // from.
+            let one = if at_once == weight {
+                Ok((size, gap))
+            } else {
+                nonlinearity(spec, &largest_loads(loads, weight, xs), xs)
+            };
+            Choice {
+                static_gap: one.ok().map(|(s, g)| (s, g / s)),
+                ..modal(format!(
+                    "modal: under the largest load the scene applies the linear and the exact static deflections at the probes differ by {:.1e} of them (within {tol:.1e}); ",
+                    gap / size
+                ))
+            }
+        }
     }
 }

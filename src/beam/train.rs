@@ -99,6 +99,23 @@ impl Train {
         self.axles.last().copied().unwrap_or(0.0)
     }
 
+    /// The most the axles put on a stretch of track `span` long at once: the largest sum of
+    /// loads over axles within `span` of each other.
+    pub fn heaviest_within(&self, span: f64) -> f64 {
+        let mut heaviest = 0.0_f64;
+        let mut sum = 0.0;
+        let mut first = 0;
+        for (&d, &p) in self.axles.iter().zip(&self.loads) {
+            sum += p.abs();
+            while d - self.axles[first] > span {
+                sum -= self.loads[first].abs();
+                first += 1;
+            }
+            heaviest = heaviest.max(sum);
+        }
+        heaviest
+    }
+
     /// Where axle a is at time t (it is on a beam of length L while 0 ≤ x ≤ L).
     pub fn position(&self, a: usize, t: f64) -> f64 {
         self.speed * t - self.axles[a]
@@ -211,6 +228,40 @@ mod tests {
                 .filter(|&a| (0.0..=length).contains(&train.position(a, t)))
                 .collect();
             assert_eq!(train.on(length, t).collect::<Vec<_>>(), brute, "t = {t}");
+        }
+    }
+
+    /// The most a stretch of track holds at once, against every window of axles counted
+    /// by hand: HSLM-A1's axles over spans from 1 to 60 m, and a span shorter than any gap.
+    #[test]
+    fn the_heaviest_stretch_of_a_train_against_every_window() {
+        let (axles, load) = hslm("A1").expect("a known train");
+        let loads: Vec<f64> = (0..axles.len())
+            .map(|a| load * (1.0 + 0.01 * a as f64))
+            .collect();
+        let train = Train {
+            name: "A1".into(),
+            loads,
+            axles,
+            speed: 83.0,
+            model: TrainModel::MovingForce,
+            masses: Vec::new(),
+            patch: 0.0,
+        };
+        for span in [0.5, 1.0, 2.0, 3.525, 15.0, 18.0, 60.0] {
+            let brute = (0..train.axles.len())
+                .map(|i| {
+                    (i..train.axles.len())
+                        .filter(|&j| train.axles[j] - train.axles[i] <= span)
+                        .map(|j| train.loads[j])
+                        .sum::<f64>()
+                })
+                .fold(0.0, f64::max);
+            let found = train.heaviest_within(span);
+            assert!(
+                (found - brute).abs() <= 1e-9 * brute,
+                "span {span}: {found} against {brute}"
+            );
         }
     }
 
