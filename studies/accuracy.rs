@@ -1245,19 +1245,28 @@ fn moving_loads_on_a_named_mesh_within_the_accuracy_at_the_defaults() {
 }
 
 /// Two 2 t moving masses 3 m apart at 20 m/s over D44's section (the plan's modal beam, 16
-/// modes), every setting left to the plan, against ESDIRK4 at rtol 10⁻⁹ (within 3·10⁻⁶ of
-/// 10⁻¹⁰): each probe's extremes within the accuracy of the deepest deflection and of the
-/// envelope's largest acceleration. Each mass turns with the beam's slope at every node and
-/// drops off at the far support, and the deck's accelerations carry those impulses:
-/// generalized-α (ρ∞ = 1) at the rtol of moving forces read the envelope's largest
-/// acceleration 1.9·10⁻³ and the quarter point's 2.1·10⁻³ of it off, so the plan steps moving
-/// masses with ESDIRK4.
+/// modes), every setting left to the plan, against the same modes stepped by ESDIRK4 at rtol
+/// 10⁻⁹ (within 3·10⁻⁶ of 10⁻¹⁰): each probe's extremes within the accuracy of the deepest
+/// deflection and of the envelope's largest acceleration, what the time integration is asked.
+/// Each mass turns with the beam's slope at every node and drops off at the far support, and
+/// the deck's accelerations carry those impulses: generalized-α (ρ∞ = 1) at the rtol of moving
+/// forces read the envelope's largest acceleration 1.9·10⁻³ and the quarter point's 2.1·10⁻³
+/// of it off, so the plan steps moving masses with ESDIRK4. The modes kept answer those kicks
+/// in the modes left out: midspan's largest acceleration is 4.405 / 4.634 / 4.609 m/s² on 16 /
+/// 32 / 64 modes and 4.609 on the linear mesh, 4.4 % from the 16 modes' reading, and the run
+/// says so.
 #[test]
-fn a_train_of_moving_masses_within_the_accuracy_at_the_defaults() {
+fn a_train_of_moving_masses_is_stepped_within_the_accuracy_and_warns_of_the_modes_kept() {
     let text = d44_section_left_to_the_plan(1.0);
     let scene = parse(&format!(
         "{text}train: {{axles: [0.0, 3.0], load: 2.0e4, speed: 20.0, model: moving-mass}}\noutput:\n  probes: [{{name: mid, x: 10.0}}, {{name: quarter, x: 5.0}}]\n"
     ));
+    assert!(scene
+        .beam()
+        .expect("a beam")
+        .warnings()
+        .iter()
+        .any(|w| w.contains("moving masses on the modal beam")));
     deck_within_the_accuracy("moving masses", &scene, 1e-9, 0.04);
 }
 
