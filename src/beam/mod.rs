@@ -672,18 +672,16 @@ impl Beam {
             if b <= a {
                 continue;
             }
-            self.basis.eval(
-                if e == 0 && end == 0.0 { -1.0 } else { 1.0 },
-                &mut n,
-                &mut dn,
-            );
-            let slope: Vec<f64> = dn.iter().map(|d| d * 2.0 / self.h).collect();
+            self.basis
+                .eval(if end == 0.0 { -1.0 } else { 1.0 }, &mut n, &mut dn);
+            for d in dn.iter_mut() {
+                *d = *d * 2.0 / self.h;
+            }
+            let mut tangent = vec![0.0; p + 1];
             for (x, kernel) in kernel_over(a, b) {
-                let tangent: Vec<f64> = n
-                    .iter()
-                    .zip(&slope)
-                    .map(|(v, d)| v + d * (x - end))
-                    .collect();
+                for ((t, v), d) in tangent.iter_mut().zip(&n).zip(&dn) {
+                    *t = v + d * (x - end);
+                }
                 add(e, &tangent, &kernel);
             }
         }
