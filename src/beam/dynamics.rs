@@ -50,6 +50,8 @@ pub struct LoadedBeam<'a> {
     /// (the cutoff's): where a modal beam's errors are weighed (see `norm_weights`).
     lowest: f64,
     reported: f64,
+    /// On a mesh, the modes below the cutoff as rows of the error norm (see `norm_rows`).
+    reported_modes: Option<Vec<Vec<f64>>>,
 }
 
 /// The fewest steps a period of the beam's lowest mode is cut into. Where the response has
@@ -107,6 +109,7 @@ impl<'a> LoadedBeam<'a> {
             striding: Cell::new(false),
             lowest: 0.0,
             reported: 0.0,
+            reported_modes: None,
         }
     }
 
@@ -145,6 +148,38 @@ impl<'a> LoadedBeam<'a> {
     /// The beam whose accelerations are reported up to the circular frequency `cutoff`.
     pub fn reporting_accelerations_below(mut self, cutoff: f64) -> Self {
         self.reported = cutoff;
+        self
+    }
+
+    /// The mesh whose accelerations are reported in the modes `shapes` (mass-normalised, one
+    /// column each) of circular frequencies `omega`: each weighs in the error norm as the
+    /// displacement of the lowest mode that makes the acceleration it makes, as a modal beam's
+    /// amplitudes do (`norm_weights`). Weighed by the nodal displacements alone, a 10 t force
+    /// crossing a 30 m steel deck at 3 m/s read the quarter point's largest acceleration 2.166
+    /// m/s² against 2.149 converged (with the modes weighed, 2.151): an error of atol in the
+    /// fourth mode's displacement is (ω₄/ω₁)² atol in the acceleration's units.
+    pub fn weighing_reported_modes(
+        mut self,
+        shapes: &nalgebra::DMatrix<f64>,
+        omega: &[f64],
+    ) -> Self {
+        if self.modal.is_some() || !(self.lowest > 0.0) {
+            return self;
+        }
+        let rows: Vec<Vec<f64>> = (0..shapes.ncols())
+            .zip(omega)
+            .filter(|(_, w)| **w > self.lowest)
+            .map(|(k, w)| {
+                let shape: Vec<f64> = shapes.column(k).iter().copied().collect();
+                let largest = shape.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                let weight = (w / self.lowest).powi(2) * largest;
+                let mut row = vec![0.0; shape.len()];
+                crate::linalg::mul(self.beam.mass(), &shape, &mut row);
+                row.iter_mut().for_each(|r| *r *= weight);
+                row
+            })
+            .collect();
+        self.reported_modes = (!rows.is_empty()).then_some(rows);
         self
     }
 
@@ -540,6 +575,9 @@ impl Structure for LoadedBeam<'_> {
     /// come out 5 % low with every displacement within 10⁻⁴.
     fn norm_weights(&self) -> Option<Vec<f64>> {
         self.weights_by_acceleration_up_to(self.reported)
+    }
+    fn norm_rows(&self) -> Option<Vec<Vec<f64>>> {
+        self.reported_modes.clone()
     }
     /// A modal beam under moving forces, point loads and its weight: the modes' oscillators,
     /// damped by α + β ω², under a force that is, between the axles' crossings of the mesh's

@@ -84,6 +84,10 @@ impl Structure for DiskOnBeam<'_> {
         Some(w)
     }
 
+    fn norm_rows(&self) -> Option<Vec<Vec<f64>>> {
+        self.loaded.norm_rows()
+    }
+
     fn norm_groups(&self) -> Vec<Range<usize>> {
         let mut g = vec![0..self.n];
         if self.dim() > self.n {

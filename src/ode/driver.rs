@@ -139,6 +139,7 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
                 mass_lu: None,
                 groups: p.norm_groups(),
                 weights: p.norm_weights(),
+                rows: p.norm_rows(),
             },
             stepper: make_stepper(opts, n),
             t: t0,

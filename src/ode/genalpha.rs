@@ -95,6 +95,8 @@ pub(crate) struct GenAlphaStepper {
     groups: Vec<std::ops::Range<usize>>,
     /// The structure's norm weights (see `Structure::norm_weights`).
     weights: Option<Vec<f64>>,
+    /// The structure's norm rows (see `Structure::norm_rows`).
+    rows: Option<super::NormRows>,
     /// Factorised (1 − α_m) M + (1 − α_f) β h² K and the h it was built for; with a split
     /// mass, M is its constant part B.
     iteration: Option<(f64, SparseLu)>,
@@ -133,6 +135,7 @@ impl GenAlphaStepper {
             c: GenAlpha::new(rho_inf),
             groups: Vec::new(),
             weights: None,
+            rows: None,
             iteration: None,
             woodbury: None,
             k: None,
@@ -168,6 +171,7 @@ impl GenAlphaStepper {
         Ok(())
     }
 
+    /// The norm over the unknowns, which Newton's corrections are measured by.
     fn norm(&self, ctx: &Ctx, e: &[f64], q: &[f64]) -> f64 {
         super::grouped_norm(
             &self.groups,
@@ -178,6 +182,17 @@ impl GenAlphaStepper {
             q,
             q,
         )
+    }
+
+    /// The step's error: over the unknowns and the structure's rows.
+    fn error_norm(&self, ctx: &Ctx, e: &[f64], q: &[f64]) -> f64 {
+        let unknowns = self.norm(ctx, e, q);
+        match &self.rows {
+            Some(rows) if !unknowns.is_nan() => {
+                unknowns.max(rows.norm(ctx.atol, ctx.rtol, e, q, q))
+            }
+            _ => unknowns,
+        }
     }
 
     fn factor(
@@ -391,7 +406,7 @@ impl GenAlphaStepper {
         }
         p.mass_mul(t1, &next.q, raw, e);
         self.solve(e);
-        Ok(Some(self.norm(ctx, e, &next.q)))
+        Ok(Some(self.error_norm(ctx, e, &next.q)))
     }
 }
 
@@ -412,6 +427,10 @@ impl Stepper for GenAlphaStepper {
         let s = structural(p)?;
         self.groups = s.norm_groups();
         self.weights = s.norm_weights();
+        self.rows = s.norm_rows().map(|rows| super::NormRows {
+            rows,
+            offsets: vec![0],
+        });
         let n = self.now.q.len();
         self.now.q.copy_from_slice(&y0[..n]);
         self.now.v.copy_from_slice(&y0[n..]);

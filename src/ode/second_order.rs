@@ -60,6 +60,11 @@ pub trait Structure {
     fn norm_weights(&self) -> Option<Vec<f64>> {
         None
     }
+    /// Rows over the displacements the error norm measures beside them (see
+    /// [`super::NormRows`]), and the same again over the velocities in the first-order view.
+    fn norm_rows(&self) -> Option<Vec<Vec<f64>>> {
+        None
+    }
     /// Where the structure is uncoupled linear oscillators under a force of time alone, which
     /// `exact-modal` integrates in closed form.
     fn linear_modal(&self) -> Option<LinearModal> {
@@ -149,6 +154,12 @@ impl<E: Copy + std::fmt::Debug> Dynamics for FirstOrder<'_, E> {
         self.inner
             .norm_weights()
             .map(|w| w.iter().chain(&w).copied().collect())
+    }
+    fn norm_rows(&self) -> Option<super::NormRows> {
+        self.inner.norm_rows().map(|rows| super::NormRows {
+            rows,
+            offsets: vec![0, self.inner.dim()],
+        })
     }
     fn second_order(&self) -> Option<&dyn Structure> {
         Some(self.inner)

@@ -391,7 +391,7 @@ impl StageSolver {
             if let Some(m) = structure {
                 kinematic(base, z, dh, m);
             }
-            let norm = ctx.norm(&self.g, z, z);
+            let norm = ctx.unknowns_norm(&self.g, z, z);
             if !norm.is_finite() {
                 return false;
             }

@@ -889,6 +889,9 @@ impl Structure for VehiclesOnBeam<'_> {
             w
         })
     }
+    fn norm_rows(&self) -> Option<Vec<Vec<f64>>> {
+        self.loaded.norm_rows()
+    }
 }
 
 impl SecondOrderProblem for VehiclesOnBeam<'_> {

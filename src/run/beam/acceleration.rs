@@ -32,8 +32,9 @@ pub(super) struct AccelerationFilter {
     pub kept: usize,
     /// How many modes of the mesh lie at or below the cutoff.
     below: usize,
-    /// On the mesh, the kept modes' shapes; on a modal beam, nothing more.
-    mesh: Option<DMatrix<f64>>,
+    /// On the mesh, the kept modes' shapes and circular frequencies; on a modal beam, nothing
+    /// more.
+    mesh: Option<(DMatrix<f64>, Vec<f64>)>,
     /// Why the cutoff is what it is.
     pub rule: String,
 }
@@ -65,10 +66,18 @@ impl AccelerationFilter {
                 cutoff_hz,
                 kept: below,
                 below,
-                mesh: Some(m.shapes.columns(0, below).into_owned()),
+                mesh: Some((
+                    m.shapes.columns(0, below).into_owned(),
+                    m.omega[..below].to_vec(),
+                )),
                 rule,
             },
         })
+    }
+
+    /// On the mesh, the kept modes' shapes and circular frequencies.
+    pub fn mesh_modes(&self) -> Option<(&DMatrix<f64>, &[f64])> {
+        self.mesh.as_ref().map(|(s, w)| (s, w.as_slice()))
     }
 
     pub fn report(&self) -> CutoffReport {
@@ -83,7 +92,7 @@ impl AccelerationFilter {
     /// The mesh's accelerations from the model's `a`, the modes above the cutoff left out.
     pub fn filtered(&self, loaded: &LoadedBeam, a: &[f64]) -> Vec<f64> {
         match &self.mesh {
-            Some(shapes) => {
+            Some((shapes, _)) => {
                 let mut ma = vec![0.0; a.len()];
                 linalg::mul(loaded.beam.mass(), a, &mut ma);
                 let amplitudes = shapes.transpose() * nalgebra::DVector::from_vec(ma);

@@ -107,6 +107,9 @@ impl Structure for BeneathFlight<'_> {
     fn norm_weights(&self) -> Option<Vec<f64>> {
         self.loaded.norm_weights()
     }
+    fn norm_rows(&self) -> Option<Vec<Vec<f64>>> {
+        self.loaded.norm_rows()
+    }
 }
 
 impl SecondOrderProblem for BeneathFlight<'_> {
@@ -214,6 +217,9 @@ impl Structure for BesideFlight<'_> {
     }
     fn norm_weights(&self) -> Option<Vec<f64>> {
         self.coupled.norm_weights()
+    }
+    fn norm_rows(&self) -> Option<Vec<Vec<f64>>> {
+        self.coupled.norm_rows()
     }
 }
 

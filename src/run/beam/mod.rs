@@ -378,11 +378,16 @@ pub fn run(
     .resolving(lowest)
     .stepped_exactly(over.options(scene).method == Method::ExactModal);
     let filter = AccelerationFilter::new(&beam, &loaded, setup.acceleration_cutoff_hz);
-    let loaded = loaded.reporting_accelerations_below(
+    let mut loaded = loaded.reporting_accelerations_below(
         filter
             .as_ref()
             .map_or(0.0, |f| std::f64::consts::TAU * f.cutoff_hz),
     );
+    if let Some((shapes, omega)) = filter.as_ref().and_then(|f| f.mesh_modes()) {
+        if loads_only_move(setup) {
+            loaded = loaded.weighing_reported_modes(shapes, omega);
+        }
+    }
     let mut opts = ode::Options {
         rho_inf: setup.rho_inf,
         ..over.options(scene)
@@ -465,6 +470,23 @@ pub fn run(
 /// stepped: the whole run on a mesh, and on a modal beam (whose free vibration after the riders
 /// is integrated exactly) until the last vehicle has left. Without it a vehicle started
 /// 10 000 km before the deck rolls on the level approach for minutes until the budget stops it.
+/// Whether the beam's loads only move over it, none switched and nothing riding with inertia:
+/// its accelerations are then a small share of ω₁² times its deflections (2 % under a 10 t
+/// force crossing a 30 m steel deck at 3 m/s), which the nodal displacements' atol does not
+/// hold, and a mesh weighs its reported modes in the error norm. A switched load or a rider
+/// with inertia rings the mesh's modes far above the lowest, whose accelerations the nodal
+/// atol holds (B1–C3 within 3.9·10⁻⁴ of their peaks at the defaults), and the rows took 1.2 to
+/// 3.2 times the steps of the studies given their own tolerances.
+fn loads_only_move(setup: &BeamScene) -> bool {
+    !setup.load_switched()
+        && !setup.carries_moving_masses()
+        && setup.vehicles.is_empty()
+        && setup
+            .disks
+            .iter()
+            .all(|d| d.coupling == Coupling::MovingForce)
+}
+
 fn steps_within_budget(
     scene: &Scene,
     loaded: &LoadedBeam,
