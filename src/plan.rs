@@ -108,7 +108,8 @@ impl Planner {
             self.choose_method(b, &mut scene.solver);
         }
         if !rtol_given {
-            choose_tolerances(b, &mut scene.solver, atol_given);
+            let folds = self.folds(b);
+            choose_tolerances(b, &mut scene.solver, atol_given, folds);
         }
         Ok(scene)
     }
@@ -244,8 +245,8 @@ impl Planner {
 }
 
 /// rtol from the accuracy and, unless the scene gives it, atol from the response's size.
-fn choose_tolerances(b: &BeamScene, solver: &mut SolverSettings, atol_given: bool) {
-    let (rtol, why) = rtol_for(b, solver.method);
+fn choose_tolerances(b: &BeamScene, solver: &mut SolverSettings, atol_given: bool, folds: bool) {
+    let (rtol, why) = rtol_for(b, solver.method, folds);
     solver.rtol = rtol;
     solver.rtol_chosen = Some(why.to_string());
     if !atol_given {
@@ -319,13 +320,13 @@ const SWITCHED: &str = "esdirk4: a load switched during the run excites every mo
 /// one moving force at 4 m/s for 1 s, gaps 0.032, 0.2 and 0.6, generalized-α (ρ∞ = 1) at a
 /// three-hundredth of the accuracy missed midspan's least deflection by 7·10⁻⁵, 4.1·10⁻⁴ and
 /// 4.6·10⁻³ of it (over 3 s at 0.95, 7.9·10⁻³) against ESDIRK4 at rtol 10⁻⁸, the energy
-/// balance drifting by 7·10⁻⁴ at 0.6; ESDIRK4 at the same rtol lands within 3·10⁻⁶ there (the
-/// accelerations within 8.7·10⁻⁴), at four times the cost; the milder gaps keep the cheaper steps.
+/// balance drifting by 7·10⁻⁴ at 0.6; ESDIRK4 at the same rtol lands within 3·10⁻⁶ there, at
+/// four times the cost; the milder gaps keep the cheaper steps. Its rtol: [`rtol_for`].
 const FOLDING_GAP: f64 = 0.1;
 
 /// Why the plan integrates an exact beam that folds under its loads with the fourth-order
 /// ESDIRK ([`FOLDING_GAP`]).
-const FOLDING: &str = "esdirk4: the exact beam folds under its loads (its static deflection more than a tenth off the linear one), where generalized-alpha's steps, each within rtol, add up to more than the accuracy over the crossing (D44's section under one moving force, the exact static deflection 0.6 off the linear one: midspan's least deflection 4.6e-3 off at a three-hundredth of the accuracy), and the fourth-order steps at the same rtol land within 3e-6 (the accelerations within 8.7e-4)";
+const FOLDING: &str = "esdirk4: the exact beam folds under its loads (its static deflection more than a tenth off the linear one), where generalized-alpha's steps, each within rtol, add up to more than the accuracy over the crossing (D44's section under one moving force, the exact static deflection 0.6 off the linear one: midspan's least deflection 4.6e-3 off at a three-hundredth of the accuracy), and the fourth-order steps at the same rtol land within 3e-6";
 
 /// Why the plan integrates moving forces with the fourth-order ESDIRK where `exact-modal` does
 /// not take them (a mesh, or a moving-force disk) and the plan leaves generalized-α undamped
@@ -568,6 +569,10 @@ pub const PLANNED_RHO_INF: f64 = 0.9;
 ///   linear one, its rebound and its acceleration by 1.0 ε; the global error of the
 ///   generalized-α steps falls as rtol^(2/3), and at ε/300 these land within 0.6 ε and
 ///   0.4 ε. The peak alone was within 0.2 ε at ε/30.
+/// - An exact beam that folds under its loads swings far from its linear modes, and its
+///   accelerations carry the error of every step: under a moving force that sinks D44's
+///   midspan 8.7 m they missed by 0.9 ε at ε/300, by 0.04 ε at ε/3000; a 40 t force over a
+///   30 m beam of half D44's area, which swings 10 m after it, by 7.9 ε and 0.22 ε.
 /// - Under the planned ρ∞ = 0.9 (a moving-force disk on a mesh that responds linearly) the
 ///   damping takes a share of the ringing each node crossing sets off, which shrinks with the
 ///   step: D44's quarter point's largest acceleration 1.1 ε off at ε/300, 0.5 ε at ε/500,
@@ -581,7 +586,7 @@ pub const PLANNED_RHO_INF: f64 = 0.9;
 ///   ([`SWITCHED`]). Damped, such a peak is not monotone in rtol (B1 at
 ///   ρ∞ = 0.8: 0.54 ε, 2.3 ε, 1.3 ε at ε/100, ε/300, ε/1000), since what moves it is how much
 ///   of the mesh's highest modes the damping removes; the scene is told so.
-pub fn rtol_for(scene: &BeamScene, method: crate::ode::Method) -> (f64, &'static str) {
+pub fn rtol_for(scene: &BeamScene, method: crate::ode::Method, folds: bool) -> (f64, &'static str) {
     let accuracy = scene.accuracy;
     let switched = scene.load_switched();
     if !scene.vehicles.is_empty() && method == crate::ode::Method::Esdirk4 {
@@ -606,6 +611,12 @@ pub fn rtol_for(scene: &BeamScene, method: crate::ode::Method) -> (f64, &'static
         return (
             accuracy / 30.0,
             "a thirtieth of the accuracy: the fourth-order steps carry the disk's contact force and the deck's acceleration over the crossing with a global error of a few times rtol (D44's modal beam: 6.9e-4 of the weight and 6e-6 of the acceleration at a thirtieth, 1.7e-3 of the weight at a tenth; its 10- and 20-element exact meshes started carrying the disk: the acceleration within 1.1e-4, the contact force within 1.1e-3 of the weight, which rings in the mesh's highest modes with a phase that tightening rtol does not settle: 1.4e-3 at a hundredth; D50's mesh at 20 m/s: the acceleration 4.4e-3 off)",
+        );
+    }
+    if method == crate::ode::Method::Esdirk4 && folds {
+        return (
+            accuracy / 3000.0,
+            "a three-thousandth of the accuracy: the exact beam folds under its loads, and swinging far from its linear modes its accelerations carry the error of every step (D44's section under a moving force that sinks midspan 8.7 m: the largest accelerations 9e-4 off at a three-hundredth, 3.6e-5 at this rtol; a 40 t force over a 30 m beam of half its area that swings 10 m after it: 7.9e-3 and 2.2e-4)",
         );
     }
     if method == crate::ode::Method::Esdirk4 && switched && accuracy >= DEFAULT_ACCURACY {

@@ -156,7 +156,7 @@ impl<'a> LoadedBeam<'a> {
     /// displacement of the lowest mode that makes the acceleration it makes, as a modal beam's
     /// amplitudes do (`norm_weights`). Weighed by the nodal displacements alone, a 10 t force
     /// crossing a 30 m steel deck at 3 m/s read the quarter point's largest acceleration 2.166
-    /// m/s² against 2.149 converged (with the modes weighed, 2.151): an error of atol in the
+    /// m/s² against 2.150 converged (with the modes weighed, 2.151): an error of atol in the
     /// fourth mode's displacement is (ω₄/ω₁)² atol in the acceleration's units.
     pub fn weighing_reported_modes(
         mut self,
