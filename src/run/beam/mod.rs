@@ -465,11 +465,6 @@ pub fn run(
     ))
 }
 
-/// Refuses, before the run, a time-stepped run that its step budget cannot cover even at the
-/// longest step the beam allows, a sixteenth of its lowest period, over the time it is surely
-/// stepped: the whole run on a mesh, and on a modal beam (whose free vibration after the riders
-/// is integrated exactly) until the last vehicle has left. Without it a vehicle started
-/// 10 000 km before the deck rolls on the level approach for minutes until the budget stops it.
 /// Whether the beam's loads only move over it, none switched and nothing riding with inertia:
 /// its accelerations are then a small share of ω₁² times its deflections (2 % under a 10 t
 /// force crossing a 30 m steel deck at 3 m/s), which the nodal displacements' atol does not
@@ -487,6 +482,11 @@ fn loads_only_move(setup: &BeamScene) -> bool {
             .all(|d| d.coupling == Coupling::MovingForce)
 }
 
+/// Refuses, before the run, a time-stepped run that its step budget cannot cover even at the
+/// longest step the beam allows, a sixteenth of its lowest period, over the time it is surely
+/// stepped: the whole run on a mesh, and on a modal beam (whose free vibration after the riders
+/// is integrated exactly) until the last vehicle has left. Without it a vehicle started
+/// 10 000 km before the deck rolls on the level approach for minutes until the budget stops it.
 fn steps_within_budget(
     scene: &Scene,
     loaded: &LoadedBeam,
