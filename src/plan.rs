@@ -108,8 +108,7 @@ impl Planner {
             self.choose_method(b, &mut scene.solver);
         }
         if !rtol_given {
-            let folds = self.folds(b);
-            choose_tolerances(b, &mut scene.solver, atol_given, folds);
+            choose_tolerances(b, &mut scene.solver, atol_given, || self.folds(b));
         }
         Ok(scene)
     }
@@ -245,7 +244,12 @@ impl Planner {
 }
 
 /// rtol from the accuracy and, unless the scene gives it, atol from the response's size.
-fn choose_tolerances(b: &BeamScene, solver: &mut SolverSettings, atol_given: bool, folds: bool) {
+fn choose_tolerances(
+    b: &BeamScene,
+    solver: &mut SolverSettings,
+    atol_given: bool,
+    folds: impl FnOnce() -> bool,
+) {
     let (rtol, why) = rtol_for(b, solver.method, folds);
     solver.rtol = rtol;
     solver.rtol_chosen = Some(why.to_string());
@@ -586,7 +590,12 @@ pub const PLANNED_RHO_INF: f64 = 0.9;
 ///   ([`SWITCHED`]). Damped, such a peak is not monotone in rtol (B1 at
 ///   ρ∞ = 0.8: 0.54 ε, 2.3 ε, 1.3 ε at ε/100, ε/300, ε/1000), since what moves it is how much
 ///   of the mesh's highest modes the damping removes; the scene is told so.
-pub fn rtol_for(scene: &BeamScene, method: crate::ode::Method, folds: bool) -> (f64, &'static str) {
+/// `folds` says whether the exact beam folds under its loads, asked only where it decides.
+pub fn rtol_for(
+    scene: &BeamScene,
+    method: crate::ode::Method,
+    folds: impl FnOnce() -> bool,
+) -> (f64, &'static str) {
     let accuracy = scene.accuracy;
     let switched = scene.load_switched();
     if !scene.vehicles.is_empty() && method == crate::ode::Method::Esdirk4 {
@@ -613,7 +622,7 @@ pub fn rtol_for(scene: &BeamScene, method: crate::ode::Method, folds: bool) -> (
             "a thirtieth of the accuracy: the fourth-order steps carry the disk's contact force and the deck's acceleration over the crossing with a global error of a few times rtol (D44's modal beam: 6.9e-4 of the weight and 6e-6 of the acceleration at a thirtieth, 1.7e-3 of the weight at a tenth; its 10- and 20-element exact meshes started carrying the disk: the acceleration within 1.1e-4, the contact force within 1.1e-3 of the weight, which rings in the mesh's highest modes with a phase that tightening rtol does not settle: 1.4e-3 at a hundredth; D50's mesh at 20 m/s: the acceleration 4.4e-3 off)",
         );
     }
-    if method == crate::ode::Method::Esdirk4 && folds {
+    if method == crate::ode::Method::Esdirk4 && folds() {
         return (
             accuracy / 3000.0,
             "a three-thousandth of the accuracy: the exact beam folds under its loads, and swinging far from its linear modes its accelerations carry the error of every step (D44's section under a moving force that sinks midspan 8.7 m: the largest accelerations 9e-4 off at a three-hundredth, 3.6e-5 at this rtol; a 40 t force over a 30 m beam of half its area that swings 10 m after it: 7.9e-3 and 2.2e-4)",
