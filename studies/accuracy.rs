@@ -1165,8 +1165,8 @@ fn d44_started_static_on_its_mesh_within_the_accuracy_at_the_defaults() {
 /// 10⁶ kg's weight at 4 m/s over D44's section from 5 m for 1 s (midspan sinks 8.7 m of the
 /// 20 m span; the exact static deflection 0.6 off the linear one), against rtol 10⁻⁷ (within
 /// 10⁻⁵ of 10⁻⁸); a 40 t moving force at 40 m/s over a 30 m beam of half that section's area
-/// and a quarter of its I, which swings ±10 m after it, against rtol 3·10⁻⁸ (within 10⁻⁵ of
-/// 10⁻⁹). Each probe's extremes and the envelope's largest acceleration within the accuracy of
+/// and a quarter of its I, which swings ±10 m after it, against rtol 3·10⁻⁸ (within 6.4·10⁻⁵
+/// of 10⁻⁹). Each probe's extremes and the envelope's largest acceleration within the accuracy of
 /// the deepest deflection and of that acceleration. At a three-hundredth of the accuracy the
 /// swinging beam's largest acceleration missed by 7.9·10⁻³ of it (the deflections within
 /// 5·10⁻⁵), D44's by 9·10⁻⁴; generalized-α (ρ∞ = 1) there missed the least deflection by
