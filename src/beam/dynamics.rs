@@ -51,7 +51,7 @@ pub struct LoadedBeam<'a> {
     lowest: f64,
     reported: f64,
     /// On a mesh, the modes below the cutoff as rows of the error norm (see `norm_rows`).
-    reported_modes: Option<Vec<Vec<f64>>>,
+    reported_modes: Option<crate::ode::ModeRows>,
 }
 
 /// The fewest steps a period of the beam's lowest mode is cut into. Where the response has
@@ -179,7 +179,7 @@ impl<'a> LoadedBeam<'a> {
                 row
             })
             .collect();
-        self.reported_modes = (!rows.is_empty()).then_some(rows);
+        self.reported_modes = (!rows.is_empty()).then(|| rows.into());
         self
     }
 
@@ -576,7 +576,7 @@ impl Structure for LoadedBeam<'_> {
     fn norm_weights(&self) -> Option<Vec<f64>> {
         self.weights_by_acceleration_up_to(self.reported)
     }
-    fn norm_rows(&self) -> Option<Vec<Vec<f64>>> {
+    fn norm_rows(&self) -> Option<crate::ode::ModeRows> {
         self.reported_modes.clone()
     }
     /// A modal beam under moving forces, point loads and its weight: the modes' oscillators,

@@ -84,7 +84,7 @@ impl Structure for DiskOnBeam<'_> {
         Some(w)
     }
 
-    fn norm_rows(&self) -> Option<Vec<Vec<f64>>> {
+    fn norm_rows(&self) -> Option<crate::ode::ModeRows> {
         self.loaded.norm_rows()
     }
 

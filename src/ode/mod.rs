@@ -545,6 +545,10 @@ fn group_maxima(
     (size, error)
 }
 
+/// The rows of a [`NormRows`], formed once per run and shared by every driver start (a flight
+/// restarts the driver).
+pub type ModeRows = std::sync::Arc<[Vec<f64>]>;
+
 /// Rows r_k over the first unknowns of a block, which the error norm measures beside the
 /// unknowns: max_k |r_k · e| against atol + rtol max_k max(|r_k · a|, |r_k · b|), once per block
 /// start in `offsets` (the displacements, and the velocities after them in a first-order view).
@@ -555,7 +559,7 @@ fn group_maxima(
 /// on a mesh, both within the accuracy.
 #[derive(Clone, Debug)]
 pub struct NormRows {
-    pub rows: Vec<Vec<f64>>,
+    pub rows: ModeRows,
     pub offsets: Vec<usize>,
 }
 
@@ -564,7 +568,7 @@ impl NormRows {
         let mut largest = 0.0_f64;
         for &o in &self.offsets {
             let (mut error, mut size) = (0.0_f64, 0.0_f64);
-            for r in &self.rows {
+            for r in self.rows.iter() {
                 let dot = |x: &[f64]| -> f64 { r.iter().zip(&x[o..]).map(|(r, x)| r * x).sum() };
                 error = worst(error, dot(e).abs());
                 size = size.max(dot(a).abs()).max(dot(b).abs());

@@ -62,7 +62,7 @@ pub trait Structure {
     }
     /// Rows over the displacements the error norm measures beside them (see
     /// [`super::NormRows`]), and the same again over the velocities in the first-order view.
-    fn norm_rows(&self) -> Option<Vec<Vec<f64>>> {
+    fn norm_rows(&self) -> Option<super::ModeRows> {
         None
     }
     /// Where the structure is uncoupled linear oscillators under a force of time alone, which

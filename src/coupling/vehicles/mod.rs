@@ -889,7 +889,7 @@ impl Structure for VehiclesOnBeam<'_> {
             w
         })
     }
-    fn norm_rows(&self) -> Option<Vec<Vec<f64>>> {
+    fn norm_rows(&self) -> Option<crate::ode::ModeRows> {
         self.loaded.norm_rows()
     }
 }

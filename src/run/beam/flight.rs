@@ -107,7 +107,7 @@ impl Structure for BeneathFlight<'_> {
     fn norm_weights(&self) -> Option<Vec<f64>> {
         self.loaded.norm_weights()
     }
-    fn norm_rows(&self) -> Option<Vec<Vec<f64>>> {
+    fn norm_rows(&self) -> Option<crate::ode::ModeRows> {
         self.loaded.norm_rows()
     }
 }
@@ -218,7 +218,7 @@ impl Structure for BesideFlight<'_> {
     fn norm_weights(&self) -> Option<Vec<f64>> {
         self.coupled.norm_weights()
     }
-    fn norm_rows(&self) -> Option<Vec<Vec<f64>>> {
+    fn norm_rows(&self) -> Option<crate::ode::ModeRows> {
         self.coupled.norm_rows()
     }
 }
