@@ -7,7 +7,7 @@
 
 use nalgebra::DMatrix;
 
-use crate::analysis::modes::{acceleration_cutoff, modes};
+use crate::analysis::modes::{acceleration_cutoff, modes, within_cutoff};
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::modal::MAX_MODES;
 use crate::beam::Beam;
@@ -50,10 +50,15 @@ impl AccelerationFilter {
         };
         let (cutoff_hz, rule) = acceleration_cutoff(beam, given)?;
         // Modes until one is past the cutoff (or the mesh, or the bound, runs out).
-        while m.omega.len() < available && hz(&m).last().is_some_and(|f| *f <= cutoff_hz) {
+        while m.omega.len() < available
+            && hz(&m).last().is_some_and(|f| within_cutoff(*f, cutoff_hz))
+        {
             m = modes(beam, (2 * m.omega.len()).min(available))?;
         }
-        let below = hz(&m).iter().take_while(|f| **f <= cutoff_hz).count();
+        let below = hz(&m)
+            .iter()
+            .take_while(|f| within_cutoff(**f, cutoff_hz))
+            .count();
         Some(match loaded.modal {
             Some(modal) => AccelerationFilter {
                 cutoff_hz,
