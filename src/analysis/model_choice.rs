@@ -268,9 +268,7 @@ fn mode_shares(
         crate::analysis::modes::acceleration_cutoff(&beam, cutoff).map_or(0, |(hz, _)| {
             m.omega
                 .iter()
-                .take_while(|w| {
-                    crate::analysis::modes::within_cutoff(**w / std::f64::consts::TAU, hz)
-                })
+                .take_while(|w| crate::beam::modal::within_cutoff(**w / std::f64::consts::TAU, hz))
                 .count()
         });
     Ok(ModeShares {

@@ -186,18 +186,6 @@ pub fn rayleigh(beam: &Beam) -> Result<Option<Rayleigh>, String> {
 /// EN 1991-2's lower bound of the deck acceleration's cutoff (Hz).
 const CUTOFF_FLOOR_HZ: f64 = 30.0;
 
-/// How far past the cutoff a mode's frequency still counts as at it, relative. The cutoff is
-/// most often f3 itself, and two eigensolutions of one mesh (the three lowest bending modes, and
-/// every mode) give that mode 7·10⁻¹⁴ apart: compared exactly, a 6 m steel beam's plan counted
-/// three modes below its cutoff instead of four, and left f3 out of the deck's acceleration (its
-/// largest 24 % off). Far above round-off, far below the spacing of two modes.
-const CUTOFF_ROUNDOFF: f64 = 1e-9;
-
-/// Whether a mode of `hz` lies at or below `cutoff_hz`, the deck acceleration's cutoff.
-pub fn within_cutoff(hz: f64, cutoff_hz: f64) -> bool {
-    hz <= cutoff_hz * (1.0 + CUTOFF_ROUNDOFF)
-}
-
 /// The frequency (Hz) above which the deck's acceleration leaves the modes out, and why: `given`,
 /// or EN 1991-2 §6.4.6.4's max(30 Hz, 1.5 f1, f3), f1 and f3 the first and third bending modes.
 /// `None` where the modes cannot be computed.

@@ -615,7 +615,7 @@ impl LoadedBeam<'_> {
         let mut w = m.displacement_per_amplitude();
         if self.lowest > 0.0 {
             for (w, omega) in w.iter_mut().zip(&m.omega) {
-                if *omega <= reported {
+                if crate::beam::modal::within_cutoff(*omega, reported) {
                     *w *= (omega / self.lowest).powi(2).max(1.0);
                 }
             }

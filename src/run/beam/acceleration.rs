@@ -7,9 +7,9 @@
 
 use nalgebra::DMatrix;
 
-use crate::analysis::modes::{acceleration_cutoff, modes, within_cutoff};
+use crate::analysis::modes::{acceleration_cutoff, modes};
 use crate::beam::dynamics::LoadedBeam;
-use crate::beam::modal::MAX_MODES;
+use crate::beam::modal::{within_cutoff, MAX_MODES};
 use crate::beam::Beam;
 use crate::linalg;
 
