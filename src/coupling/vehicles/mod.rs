@@ -7,6 +7,8 @@
 //! over a contact patch (as a moving-mass axle does: `beam::train`), so the track under it is
 //! d_a = gᵀq + r(X_a), with g the patch-averaged shape functions of w. It moves with
 //! ḋ_a = gᵀq̇ + V (g'ᵀq + r') and d̈_a = gᵀq̈ + 2V g'ᵀq̇ + V² g''ᵀq + A g'ᵀq + V² r'' + A r'.
+//! On a modal beam a point wheel's track adds s_a(t), the static response of the modes left
+//! out to the wheels' static loads (`VehiclesOnBeam::settle`), which it rides as a profile.
 //! The wheel bears R_a = P_a + m_a d̈_a − S_a: its static load, the unsprung mass's inertia,
 //! less S_a = Σ (k e + c ė) of the springs on it (e the stretch from static). The beam feels
 //! −R_a through g; the bodies feel the springs.
@@ -63,6 +65,14 @@ fn bridging<'v>(vehicles: &'v [Vehicle], profile: &'v Profile) -> impl Iterator<
         .map(|(k, _)| k)
 }
 
+/// The k-th derivative along the axis of w under a patch, as a row over the mesh's unknowns.
+fn mesh_row(basis: &[crate::beam::NodeBasis], k: usize) -> Row {
+    basis
+        .iter()
+        .filter_map(|nb| nb.w.map(|i| (i, nb.d[k])))
+        .collect()
+}
+
 /// One wheel at one instant.
 pub struct Contact {
     pub vehicle: usize,
@@ -77,6 +87,10 @@ pub struct Contact {
     pub rows: [Row; 3],
     /// r, r', r'' of the profile under it.
     pub r: [f64; 3],
+    /// On a modal beam, the static response of the modes left out to the point wheels' static
+    /// loads, read under this one, and its first two rates in time: the wheel rides on it as
+    /// on a profile (zero on the mesh, and for disk wheels).
+    pub settled: [f64; 3],
     /// A disk wheel's contact: how fast its centre rises per metre it travels, ∂H/∂X, with
     /// H(X) = max over the contact x of the track there plus √(a² − (x − X)²), and the part of
     /// its centre's rise not in gᵀq (the profile and the disk's shape at the contact, less a).
@@ -353,6 +367,7 @@ impl<'a> VehiclesOnBeam<'a> {
             self.segment.get()
         };
         let mut out = Vec::new();
+        let mut on_mesh = Vec::new();
         for (i, v) in self.vehicles.iter().enumerate() {
             let (x_first, speed, accel) = v.travel(t);
             let x_side = v.travel(side_t).0;
@@ -368,12 +383,15 @@ impl<'a> VehiclesOnBeam<'a> {
                         (x, Some(d))
                     }
                 };
-                let rows = if x > -b && x < length + b {
-                    let basis = beam.patch_basis_at(x, b, PastFreeEnd::Slab);
-                    std::array::from_fn(|k| self.model_row(&basis, k))
+                let basis = if x > -b && x < length + b {
+                    beam.patch_basis_at(x, b, PastFreeEnd::Slab)
                 } else {
-                    [Vec::new(), Vec::new(), Vec::new()]
+                    Vec::new()
                 };
+                let rows = std::array::from_fn(|k| self.model_row(&basis, k));
+                if self.loaded.modal.is_some() {
+                    on_mesh.push(std::array::from_fn(|k| mesh_row(&basis, k)));
+                }
                 out.push(Contact {
                     vehicle: i,
                     axle: a,
@@ -383,22 +401,77 @@ impl<'a> VehiclesOnBeam<'a> {
                     accel,
                     rows,
                     r: self.profile.at(x, side),
+                    settled: [0.0; 3],
                     disk,
                 });
             }
         }
+        if !self.disks() && self.loaded.modal.is_some() {
+            self.settle(&mut out, &on_mesh);
+        }
         out
+    }
+
+    /// Fill each point wheel's `settled` on a modal beam. What the modes left out hold under a
+    /// wheel is, as in the outputs (`ModalBasis::add_static_correction`), their static
+    /// response R F to the loads; the wheels' forces are taken at their static loads P_b, so
+    /// that the track stays a given function of time and the springs see no loop through it
+    /// (what the bodies' and wheels' inertia add to R_b stays on the modes kept alone). With
+    /// u⁽ᵏ⁾ = R Σ_b (−P_b) dᵏ/dtᵏ g_b, the wheel at X_a reads gₐᵀu⁽⁰⁾, its rate
+    /// Vₐ gₐ'ᵀu⁽⁰⁾ + gₐᵀu⁽¹⁾ and its acceleration
+    /// Vₐ² gₐ''ᵀu⁽⁰⁾ + Aₐ gₐ'ᵀu⁽⁰⁾ + 2 Vₐ gₐ'ᵀu⁽¹⁾ + gₐᵀu⁽²⁾.
+    fn settle(&self, contacts: &mut [Contact], on_mesh: &[[Row; 3]]) {
+        let Some(modal) = self.loaded.modal else {
+            return;
+        };
+        let n = self.loaded.beam.dim();
+        let mut loads = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        for (c, rows) in contacts.iter().zip(on_mesh) {
+            let p = -self.vehicles[c.vehicle].static_loads[c.axle];
+            let (v, a) = (c.speed, c.accel);
+            for &(i, g) in &rows[0] {
+                loads[0][i] += p * g;
+            }
+            for &(i, g) in &rows[1] {
+                loads[1][i] += p * v * g;
+                loads[2][i] += p * a * g;
+            }
+            for &(i, g) in &rows[2] {
+                loads[2][i] += p * v * v * g;
+            }
+        }
+        let response = loads.map(|f| {
+            let mut u = vec![0.0; n];
+            modal.add_static_correction(&f, &mut u);
+            u
+        });
+        let read = |row: &Row, u: &[f64]| -> f64 { row.iter().map(|&(i, g)| g * u[i]).sum() };
+        for (c, rows) in contacts.iter_mut().zip(on_mesh) {
+            let (v, a) = (c.speed, c.accel);
+            let [u0, u1, u2] = &response;
+            let slope0 = read(&rows[1], u0);
+            c.settled = [
+                read(&rows[0], u0),
+                v * slope0 + read(&rows[0], u1),
+                v * v * read(&rows[2], u0)
+                    + a * slope0
+                    + 2.0 * v * read(&rows[1], u1)
+                    + read(&rows[0], u2),
+            ];
+        }
     }
 
     /// The k-th derivative along the axis of w under a patch, as a row over the model's
     /// beam unknowns (on a modal beam, Φᵀ of the mesh's row).
     fn model_row(&self, basis: &[crate::beam::NodeBasis], k: usize) -> Row {
-        let mesh = basis.iter().filter_map(|nb| nb.w.map(|i| (i, nb.d[k])));
         match self.loaded.modal {
-            None => mesh.collect(),
+            None => mesh_row(basis, k),
+            Some(_) if basis.is_empty() => Vec::new(),
             Some(m) => {
                 let mut dense = vec![0.0; m.dim()];
-                mesh.for_each(|(i, g)| m.add_row(i, g, &mut dense));
+                for (i, g) in mesh_row(basis, k) {
+                    m.add_row(i, g, &mut dense);
+                }
                 dense.into_iter().enumerate().collect()
             }
         }
@@ -430,13 +503,14 @@ impl<'a> VehiclesOnBeam<'a> {
         let (slope, vs) = (dot(&c.rows[1], q), dot(&c.rows[1], v));
         let (vel, a) = (c.speed, c.accel);
         Track {
-            d: dot(&c.rows[0], q) + c.r[0],
-            rate: dot(&c.rows[0], v) + vel * (slope + c.r[1]),
+            d: dot(&c.rows[0], q) + c.r[0] + c.settled[0],
+            rate: dot(&c.rows[0], v) + vel * (slope + c.r[1]) + c.settled[1],
             convective: 2.0 * vel * vs
                 + vel * vel * dot(&c.rows[2], q)
                 + a * slope
                 + vel * vel * c.r[2]
-                + a * c.r[1],
+                + a * c.r[1]
+                + c.settled[2],
         }
     }
 
@@ -644,8 +718,9 @@ impl<'a> VehiclesOnBeam<'a> {
             .sum()
     }
 
-    /// The drive's power at (t, z, ż, z̈): Σ R_a V (g'ᵀq + r'), what holds the vehicles'
-    /// horizontal motion against their wheels' forces on the slopes under them.
+    /// The drive's power at (t, z, ż, z̈): Σ R_a (V (g'ᵀq + r') + ṡ_a), what holds the
+    /// vehicles' horizontal motion against their wheels' forces on the slopes under them, the
+    /// static correction's s_a (`Contact::settled`) among them.
     pub fn drive_power(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> f64 {
         let rn = self.contact_forces(t, z, zd, zdd);
         self.contacts(t, &z[..self.n])
@@ -656,7 +731,7 @@ impl<'a> VehiclesOnBeam<'a> {
                     Some(d) => d.rise,
                     None => c.rows[1].iter().map(|&(i, g)| g * z[i]).sum::<f64>() + c.r[1],
                 };
-                r * c.speed * rise
+                r * (c.speed * rise + c.settled[1])
             })
             .sum()
     }
