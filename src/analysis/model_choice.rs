@@ -48,6 +48,19 @@ pub struct Choice {
     pub static_gap: Option<(f64, f64)>,
 }
 
+impl Choice {
+    /// The model, with nothing to recount or refuse and no static gap kept.
+    fn plain(model: BeamModel, why: String) -> Choice {
+        Choice {
+            model,
+            why,
+            recount: None,
+            uncarried: None,
+            static_gap: None,
+        }
+    }
+}
+
 /// What a modal beam's count of modes is chosen from, for any speed of its moving forces.
 #[derive(Clone, Debug)]
 pub struct Recount {
@@ -531,52 +544,30 @@ pub fn choose(inputs: &ModelInputs) -> Choice {
                     static_gap: None,
                 }
             }
-            Err((modes, count_why)) => Choice {
-                model: BeamModel::Modal { modes },
-                why: format!("{why}{count_why}"),
-                recount: None,
-                uncarried: None,
-                static_gap: None,
-            },
+            Err((modes, count_why)) => {
+                Choice::plain(BeamModel::Modal { modes }, format!("{why}{count_why}"))
+            }
         };
     if given == Some(BeamModel::Modal { modes: 0 }) {
         return modal(String::new());
     }
     if thesis_coupling {
-        return Choice {
-            model: BeamModel::Exact,
-            why: "exact: the thesis coupling is the thesis' equations, which are written for the exact beam".into(),
-            recount: None,
-            uncarried: None,
-            static_gap: None,
-        };
+        return Choice::plain(BeamModel::Exact, "exact: the thesis coupling is the thesis' equations, which are written for the exact beam".into());
     }
     let tol = SHARE * accuracy;
     match nonlinearity(spec, &cases, xs) {
-        Err(Unmeasured::Nothing) => Choice {
-            model: BeamModel::Exact,
-            why: "exact: the beam has no static response to measure its nonlinearity by (the supports leave a mechanism, or it does not carry the load statically)".into(),
-            recount: None,
-            uncarried: None,
-            static_gap: None,
-        },
+        Err(Unmeasured::Nothing) => Choice::plain(BeamModel::Exact, "exact: the beam has no static response to measure its nonlinearity by (the supports leave a mechanism, or it does not carry the load statically)".into()),
         Err(Unmeasured::Uncarried(why)) => Choice {
-            model: BeamModel::Exact,
-            why: format!("exact: {why}"),
-            recount: None,
-            uncarried: Some(why),
-            static_gap: None,
+            uncarried: Some(why.clone()),
+            ..Choice::plain(BeamModel::Exact, format!("exact: {why}"))
         },
-        Ok((size, gap)) if !linear_enough(gap / size, accuracy) => Choice {
-            model: BeamModel::Exact,
-            why: format!(
+        Ok((size, gap)) if !linear_enough(gap / size, accuracy) => Choice::plain(
+            BeamModel::Exact,
+            format!(
                 "exact: under the largest load the scene applies the linear beam's static deflection at the probes is off the exact one by {:.1e} of it, more than {tol:.1e}",
                 gap / size
             ),
-            recount: None,
-            uncarried: None,
-            static_gap: None,
-        },
+        ),
         Ok((size, gap)) => {
             // What a run foresees of its growth is measured from one rider's or axle's static
             // deflection (`BeamRun::nonlinear_gap_foreseen`), the response a train builds up

@@ -368,26 +368,8 @@ pub fn run(
 ) -> Result<BeamRun, Error> {
     let beam = Beam::shared(&setup.beam);
     let (modal, damping, lowest) = modes_and_damping(scene, &beam)?;
-    let loaded = LoadedBeam::new(
-        &beam,
-        &setup.loads,
-        modal.as_deref(),
-        damping,
-        setup.train.as_ref(),
-    )
-    .resolving(lowest)
-    .stepped_exactly(over.options(scene).method == Method::ExactModal);
-    let filter = AccelerationFilter::new(&beam, &loaded, setup.acceleration_cutoff_hz);
-    let mut loaded = loaded.reporting_accelerations_below(
-        filter
-            .as_ref()
-            .map_or(0.0, |f| std::f64::consts::TAU * f.cutoff_hz),
-    );
-    if let Some((shapes, omega)) = filter.as_ref().and_then(|f| f.mesh_modes()) {
-        if loads_only_move(setup) {
-            loaded = loaded.weighing_reported_modes(shapes, omega);
-        }
-    }
+    let exact = over.options(scene).method == Method::ExactModal;
+    let (loaded, filter) = loaded_beam(&beam, setup, modal.as_deref(), (damping, lowest), exact);
     let mut opts = ode::Options {
         rho_inf: setup.rho_inf,
         ..over.options(scene)
@@ -463,6 +445,33 @@ pub fn run(
     Ok(collect(
         scene, setup, &opts, unknowns, ridden, t_end, stats, recorded, damping, beam,
     ))
+}
+
+/// The beam under the scene's loads (resolved for its lowest circular frequency, stepped
+/// exactly where `exact`) and the deck acceleration's filter: the beam reports the modes below
+/// the cutoff, and where its loads only move, weighs them in the error norm.
+fn loaded_beam<'a>(
+    beam: &'a Beam,
+    setup: &'a BeamScene,
+    modal: Option<&'a ModalBasis>,
+    (damping, lowest): (Option<Rayleigh>, f64),
+    exact: bool,
+) -> (LoadedBeam<'a>, Option<AccelerationFilter>) {
+    let loaded = LoadedBeam::new(beam, &setup.loads, modal, damping, setup.train.as_ref())
+        .resolving(lowest)
+        .stepped_exactly(exact);
+    let filter = AccelerationFilter::new(beam, &loaded, setup.acceleration_cutoff_hz);
+    let mut loaded = loaded.reporting_accelerations_below(
+        filter
+            .as_ref()
+            .map_or(0.0, |f| std::f64::consts::TAU * f.cutoff_hz),
+    );
+    if let Some((shapes, omega)) = filter.as_ref().and_then(|f| f.mesh_modes()) {
+        if loads_only_move(setup) {
+            loaded = loaded.weighing_reported_modes(shapes, omega);
+        }
+    }
+    (loaded, filter)
 }
 
 /// Whether the beam's loads only move over it, none switched and nothing riding with inertia:

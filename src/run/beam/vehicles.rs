@@ -140,41 +140,22 @@ pub(super) fn drive<'a>(
         if !v.can_fly(k) {
             break (Stop::Event(StopReason::ContactLost), Some(v.wheel(k)));
         }
-        let record = |rec: &mut Recorder<'a>, y: &[f64]| {
-            if rec.history.rows.last().is_none_or(|r| r.t < t) {
-                rec.output(t, y);
-            }
-        };
         if v.flies(k) {
-            record(rec, &y);
+            record_once(rec, t, &y);
             rec.restart();
-            let (lost, work) = v.land(k, t, &mut y);
-            rec.ledger.wheel_lands(lost, work);
-            if let Some(f) = flights.iter_mut().rev().find(|f| f.wheel == k) {
-                f.land_t = Some(t);
-                f.energy_lost = Some(f.energy_lost.unwrap_or(0.0) + lost);
-            }
-            // Landed with the body pulling the axle up: it flies on at the track's speed.
-            if pulls(v, k, t, &y) {
-                v.lift(k, t, &mut y);
-                if let Some(f) = flights.iter_mut().rev().find(|f| f.wheel == k) {
-                    f.land_t = None;
-                }
-            }
+            land(v, k, t, &mut y, rec, &mut flights);
         } else {
             // The row at the lift-off is the wheel's first in the air: its contact force may
             // drop to zero at once (a disk wheel at a crest), and on the track past that
             // instant the wheel would pull on the deck.
             v.lift(k, t, &mut y);
-            record(rec, &y);
+            record_once(rec, t, &y);
             rec.restart();
             take_off(scene, &mut flights, k, t)?;
         }
         rec.ledger.restart(&rec.phase, t, &y);
     };
-    if rec.history.rows.last().is_none_or(|r| r.t < t) {
-        rec.output(t, &y);
-    }
+    record_once(rec, t, &y);
     Ok(Ridden {
         stop,
         left_track_t: None,
@@ -185,6 +166,36 @@ pub(super) fn drive<'a>(
         stopped_disk: None,
         wheel_flights: flights,
     })
+}
+
+/// The row at t, unless the history already ends there.
+fn record_once(rec: &mut Recorder, t: f64, y: &[f64]) {
+    if rec.history.rows.last().is_none_or(|r| r.t < t) {
+        rec.output(t, y);
+    }
+}
+
+/// Flying wheel k lands at t ([`VehiclesOnBeam::land`]): the ledger books what the landing
+/// took, and its flight ends, unless the body pulls the axle up at once and it flies on at the
+/// track's speed.
+fn land(
+    v: &VehiclesOnBeam,
+    k: usize,
+    t: f64,
+    y: &mut [f64],
+    rec: &mut Recorder,
+    flights: &mut [WheelFlight],
+) {
+    let (lost, work) = v.land(k, t, y);
+    rec.ledger.wheel_lands(lost, work);
+    let flies_on = pulls(v, k, t, y);
+    if flies_on {
+        v.lift(k, t, y);
+    }
+    if let Some(f) = flights.iter_mut().rev().find(|f| f.wheel == k) {
+        f.land_t = (!flies_on).then_some(t);
+        f.energy_lost = Some(f.energy_lost.unwrap_or(0.0) + lost);
+    }
 }
 
 /// Wheel k meets the crest ahead at t ([`VehiclesOnBeam::meet_crest`]), and flies on from it

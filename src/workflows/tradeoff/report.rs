@@ -144,19 +144,9 @@ pub(super) fn diagram(
     let err =
         |e: &dyn std::fmt::Display| Error::Output(format!("cannot draw {}: {e}", path.display()));
     let (mut lines, by_method) = lines_of(trials, score);
-    let all = lines.iter().flat_map(|(_, p)| p.iter());
-    let (x0, x1, y0, y1) = all.fold(
-        (
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ),
-        |(a, b, c, d), &(x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
-    );
-    if !x0.is_finite() {
+    let Some((x0, x1, y0, y1)) = bounds(lines.iter().flat_map(|(_, p)| p.iter())) else {
         return Ok(());
-    }
+    };
     // More lines than the palette has colours cannot be told apart (D44's grid makes 37):
     // then each method is drawn as its front, the cheapest of its settings for each accuracy,
     // over every setting tried in grey; tradeoff.csv names the settings.
@@ -235,6 +225,20 @@ pub(super) fn diagram(
             .map_err(|e| err(&e))?;
         Ok(())
     })
+}
+
+/// The smallest and largest work and error of the points, `None` without points.
+fn bounds<'p>(points: impl Iterator<Item = &'p (f64, f64)>) -> Option<(f64, f64, f64, f64)> {
+    let (x0, x1, y0, y1) = points.fold(
+        (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ),
+        |(a, b, c, d), &(x, y)| (a.min(x), b.max(x), c.min(y), d.max(y)),
+    );
+    x0.is_finite().then_some((x0, x1, y0, y1))
 }
 
 /// Points (work, error): one line per setting (method, mesh, model), and all of a method's
