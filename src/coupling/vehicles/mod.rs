@@ -88,8 +88,9 @@ pub struct Contact {
     /// r, r', r'' of the profile under it.
     pub r: [f64; 3],
     /// On a modal beam, the static response of the modes left out to the point wheels' static
-    /// loads, read under this one, and its first two rates in time: the wheel rides on it as
-    /// on a profile (zero on the mesh, and for disk wheels).
+    /// loads, read under this one, and its first two rates in time (the second only where an
+    /// unsprung mass feels it): the wheel rides on it as on a profile (zero on the mesh, and
+    /// for disk wheels).
     pub settled: [f64; 3],
     /// A disk wheel's contact: how fast its centre rises per metre it travels, ∂H/∂X, with
     /// H(X) = max over the contact x of the track there plus √(a² − (x − X)²), and the part of
@@ -440,23 +441,27 @@ impl<'a> VehiclesOnBeam<'a> {
                 loads[2][i] += p * v * v * g;
             }
         }
-        let response = loads.map(|f| {
+        let solve = |f: &[f64]| {
             let mut u = vec![0.0; n];
-            modal.add_static_correction(&f, &mut u);
+            modal.add_static_correction(f, &mut u);
             u
-        });
+        };
+        let (u0, u1) = (solve(&loads[0]), solve(&loads[1]));
+        // The track's acceleration enters only through an unsprung mass's inertia.
+        let u2 = self.unsprung().then(|| solve(&loads[2]));
         let read = |row: &Row, u: &[f64]| -> f64 { row.iter().map(|&(i, g)| g * u[i]).sum() };
         for (c, rows) in contacts.iter_mut().zip(on_mesh) {
             let (v, a) = (c.speed, c.accel);
-            let [u0, u1, u2] = &response;
-            let slope0 = read(&rows[1], u0);
+            let slope0 = read(&rows[1], &u0);
             c.settled = [
-                read(&rows[0], u0),
-                v * slope0 + read(&rows[0], u1),
-                v * v * read(&rows[2], u0)
-                    + a * slope0
-                    + 2.0 * v * read(&rows[1], u1)
-                    + read(&rows[0], u2),
+                read(&rows[0], &u0),
+                v * slope0 + read(&rows[0], &u1),
+                u2.as_ref().map_or(0.0, |u2| {
+                    v * v * read(&rows[2], &u0)
+                        + a * slope0
+                        + 2.0 * v * read(&rows[1], &u1)
+                        + read(&rows[0], u2)
+                }),
             ];
         }
     }
