@@ -202,7 +202,8 @@ pub struct ModeShares {
     /// The loads switch on or off during the run (the beam's weight dropping included).
     switched: bool,
     /// Something rides on the beam (a disk, a vehicle's wheels, moving masses): it follows
-    /// the kept modes alone, without the static correction of those left out.
+    /// the kept modes (a vehicle's point wheels get the static correction of those left out
+    /// under their static loads alone).
     riding: bool,
 }
 
@@ -416,7 +417,7 @@ impl ModeShares {
                 "each adds more than {tol:.1e} {what} in its vibration about its static part, which forces passing at {v} m/s make up to 2 v κ/ω of it (κ its shape's steepest slope over its largest deflection), the static correction holding the rest"
             ),
             None if self.riding => format!(
-                "each adds more than {tol:.1e} {what}, whole: what rides on the beam follows the kept modes alone, without the static correction of those left out"
+                "each adds more than {tol:.1e} {what}, whole: what rides on the beam moves with the kept modes, the static correction of those left out reaching only a vehicle's point wheels, under their static loads"
             ),
             None => format!("each adds more than {tol:.1e} {what}"),
         };
@@ -489,7 +490,8 @@ pub struct ModelInputs<'a> {
     /// under, which grows with the load where the modes' shares do not.
     pub at_once: Option<f64>,
     /// Whether a rider follows the kept modes (a disk that is not a moving force, a vehicle's
-    /// wheels, moving masses), without the static correction of those left out.
+    /// wheels, moving masses): the static correction of those left out reaches only a
+    /// vehicle's point wheels, under their static loads.
     pub followers: bool,
     /// The probes' places, where the deflections are weighed.
     pub xs: &'a [f64],
