@@ -47,9 +47,9 @@ use crate::ode::EventSpec;
 use crate::vehicle::profile::Profile;
 use crate::vehicle::{Part, Vehicle, Wheel};
 pub use disk_wheel::DiskContact;
+use disk_wheel::Resting;
 pub use track::Contact;
 use track::Track;
-use disk_wheel::Resting;
 
 /// A sparse row over the beam's unknowns of the model.
 type Row = Vec<(usize, f64)>;

@@ -4,10 +4,10 @@
 
 use std::rc::Rc;
 
+use super::disk_wheel::DiskContact;
 use super::{Row, VehiclesOnBeam};
 use crate::beam::PastFreeEnd;
 use crate::vehicle::Wheel;
-use super::disk_wheel::DiskContact;
 
 /// The k-th derivative along the axis of w under a patch, as a row over the mesh's unknowns.
 fn mesh_row(basis: &[crate::beam::NodeBasis], k: usize) -> Row {
