@@ -20,8 +20,8 @@ pub const MAX_SPARSE_MODES: usize = 200;
 const SETTLED: f64 = 1e-8;
 /// A sparse eigenvalue within this fraction of the shift σ of zero is a rigid-body motion,
 /// settled: its round-off jitter is about 3e-7 σ from pass to pass (a pinned–free D44 beam on
-/// 40 elements), where D44's lowest bending mode lies at 3·10⁵ σ on that mesh and near σ on
-/// the finest mesh allowed (σ grows with the mesh's highest modes).
+/// 40 elements), where D44's lowest bending mode lies at 3·10⁵ σ on that mesh and, σ growing
+/// with the square of the mesh's density, at about σ on the finest mesh allowed.
 const RIGID: f64 = 1e-3;
 /// Subspace iterations before the sparse path gives up.
 const MAX_ITERATIONS: usize = 300;
@@ -615,8 +615,8 @@ fn inverted(
     // is on the diagonal), by a power of two, which leaves every digit as it was. faer's
     // symmetric solver resolves small eigenvalues only to about 10⁻¹⁶ in absolute terms:
     // unscaled, a 1 m beam of density 1 kg/m³ on 33 elements, whose μ run from 10⁻⁹ down to
-    // 10⁻¹⁷, had its highest mode come out negative, and the same beam in millimetres and
-    // tonnes lost every mode.
+    // 10⁻¹⁷, had its highest mode come out negative, and so had D44's beam at 10⁻⁸ of its
+    // density (a density in tonnes per cubic millimetre is of that order).
     let largest = (0..n).fold(0.0_f64, |m, i| m.max(b[(i, i)].abs()));
     if !(largest > 0.0 && largest.is_finite()) {
         return None;
@@ -734,11 +734,12 @@ fn subspace(k: &Sparse, m: &Sparse, count: usize) -> Option<(Vec<f64>, DMatrix<f
             q,
         )?;
         x = y * phi;
+        let rigid = |mu: f64| (mu - sigma).abs() <= RIGID * sigma;
         let settled = previous.as_ref().is_some_and(|p: &Vec<f64>| {
-            mu.iter().zip(p).take(count).all(|(a, b)| {
-                let rigid = |mu: f64| (mu - sigma).abs() <= RIGID * sigma;
-                (a - b).abs() <= SETTLED * a.abs() || (rigid(*a) && rigid(*b))
-            })
+            mu.iter()
+                .zip(p)
+                .take(count)
+                .all(|(&a, &b)| (a - b).abs() <= SETTLED * a.abs() || (rigid(a) && rigid(b)))
         });
         if settled {
             let lambda = mu.iter().take(count).map(|mu| mu - sigma).collect();
