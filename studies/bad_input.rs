@@ -484,6 +484,18 @@ fn bad_bearings_and_starts() {
         ),
         &["track.beam.initial", "rigid body"],
     );
+    // Three reactions, all across the axis: the beam still slides along it.
+    rejected(
+        "start-static-sliding",
+        &beam_scene(
+            &[
+                ("supports", "{from: roller, to: roller, intermediate: [4]}"),
+                ("initial", "static"),
+            ],
+            "",
+        ),
+        &["track.beam.initial", "rigid body"],
+    );
 }
 
 /// A disk on a beam: each bad setting is named with its key.

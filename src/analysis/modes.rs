@@ -7,6 +7,7 @@
 use nalgebra::{DMatrix, SymmetricEigen};
 
 use crate::beam::damping::{DampingSpec, Rayleigh};
+use crate::beam::supports::rigid_motions;
 use crate::beam::{Beam, BeamModel, BeamSpec};
 use crate::linalg::{self, Combination, Sparse, SparseLu};
 use crate::recent::SharedRecent;
@@ -45,6 +46,9 @@ pub enum ModeKind {
     Bending,
     /// Stretch along the axis, w ≡ 0.
     Axial,
+    /// A motion the supports leave free (sliding, moving across, turning), at zero frequency:
+    /// no rule on bending modes counts it.
+    Rigid,
 }
 
 impl ModeKind {
@@ -52,20 +56,26 @@ impl ModeKind {
         match self {
             ModeKind::Bending => "bending",
             ModeKind::Axial => "axial",
+            ModeKind::Rigid => "rigid",
         }
     }
 }
 
 impl Modes {
-    /// Each mode's kind, by where its kinetic energy φᵀ M φ lies: mostly in the axial
-    /// displacements u, an axial mode; otherwise a bending one.
+    /// Each mode's kind: the lowest as many as the supports leave rigid-body motions are
+    /// those (their frequencies are round-off); of the others, by where the kinetic energy
+    /// φᵀ M φ lies, mostly in the axial displacements u an axial mode, otherwise a bending one.
     pub fn kinds(&self, beam: &Beam) -> Vec<ModeKind> {
         let axial: Vec<usize> = (0..beam.nodes())
             .filter_map(|node| beam.eq_of(node, 0))
             .collect();
+        let rigid = rigid_motions(beam.spec.supports, beam.spec.bearings.len());
         let mass = beam.mass();
         (0..self.shapes.ncols())
             .map(|j| {
+                if j < rigid {
+                    return ModeKind::Rigid;
+                }
                 let phi = self.shapes.column(j);
                 let mut m_phi = vec![0.0; phi.len()];
                 linalg::mul(mass, phi.as_slice(), &mut m_phi);
@@ -861,6 +871,48 @@ mod tests {
             let dot: f64 = dense_x.column(j).dot(&sparse_x.column(j));
             let scale = dense_x.column(j).norm() * sparse_x.column(j).norm();
             assert!((dot.abs() / scale - 1.0).abs() < 1e-6, "shape {}", j + 1);
+        }
+    }
+
+    /// The rigid-body motions the supports leave, counted from the supports alone, against
+    /// the null space of the mesh's K₀ (its eigenvalues at round-off of the largest, every
+    /// other above 10⁻⁷ of it on four elements): the same count on every pair of ends with
+    /// and without bearings, and the kinds name exactly those modes rigid.
+    #[test]
+    fn the_modes_at_zero_are_the_motions_the_supports_leave() {
+        use crate::beam::supports::Support::*;
+        for (ends, bearings) in [
+            ([Pinned, Roller], vec![]),
+            ([Pinned, Free], vec![]),
+            ([Roller, Free], vec![]),
+            ([Roller, Roller], vec![10.0]),
+            ([Free, Free], vec![]),
+            ([Free, Free], vec![5.0, 15.0]),
+            ([Clamped, Free], vec![]),
+        ] {
+            let mut spec = d44_beam(4).spec.clone();
+            spec.supports = ends;
+            spec.bearings = bearings.clone();
+            let beam = Beam::new(spec);
+            let n = beam.dim();
+            let all = modes(&beam, n).unwrap();
+            let largest = all.omega[n - 1].powi(2);
+            let at_zero = all
+                .omega
+                .iter()
+                .filter(|w| w.powi(2) <= 1e-10 * largest)
+                .count();
+            let case = format!("{ends:?} with bearings at {bearings:?}");
+            assert_eq!(at_zero, rigid_motions(ends, bearings.len()), "{case}");
+            let kinds = all.kinds(&beam);
+            assert!(
+                kinds[..at_zero].iter().all(|k| *k == ModeKind::Rigid),
+                "{case}"
+            );
+            assert!(
+                kinds[at_zero..].iter().all(|k| *k != ModeKind::Rigid),
+                "{case}"
+            );
         }
     }
 

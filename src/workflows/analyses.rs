@@ -104,10 +104,14 @@ fn wheels_standing_on(setup: &BeamScene, length: f64) -> Vec<(f64, [f64; 2], f64
 pub fn static_solution(scene: &Scene, setup: &BeamScene) -> Result<StaticFile, Error> {
     if !statically_supported(setup.beam.supports, setup.beam.bearings.len()) {
         return Err(Error::Input(format!(
-            "scene {}: the beam is not supported enough for a static solution (supports {} and {} hold fewer than 3 independent motions)",
+            "scene {}: the beam is not supported enough for a static solution (supports {} and {}{} leave it free to move as a rigid body)",
             scene.name,
             setup.beam.supports[0].name(),
-            setup.beam.supports[1].name()
+            setup.beam.supports[1].name(),
+            match setup.beam.bearings.len() {
+                0 => String::new(),
+                n => format!(" and {n} intermediate bearing(s)"),
+            }
         )));
     }
     let beam = Beam::shared(&setup.beam);
