@@ -156,11 +156,7 @@ fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Result<(f64, 
 /// run may follow, or a mechanism, whose tangent factors only to round-off).
 fn uncarried(spec: &BeamSpec, case: &Pattern, linear: &[f64], span: f64) -> Unmeasured {
     let deepest = linear.iter().fold(0.0_f64, |m, w| m.max(w.abs()));
-    let held_along = spec
-        .supports
-        .iter()
-        .any(|s| s.held_components().contains(&0));
-    let held = statically_supported(spec.supports, spec.bearings.len()) && held_along;
+    let held = statically_supported(spec.supports, spec.bearings.len());
     if !(held && deepest > span) {
         return Unmeasured::Nothing;
     }
