@@ -1474,3 +1474,71 @@ fn a_moving_mass_leaving_a_free_end_converges_with_the_mesh() {
         );
     }
 }
+
+/// D44's rolling disk written in newtons, millimetres, tonnes and seconds against the same
+/// scene in SI units, both at the defaults: nothing in the model, the plan or the solver may
+/// hold an absolute size, so each reported number is the other's times its unit (10³ for a
+/// length, an acceleration and an energy per unit of N·mm, 1 for a force, an angle and a
+/// time). The two runs differ only in round-off, which the step control turns into slightly
+/// different steps: each number within 10⁻⁴ of its kind's scale, a thirtieth of the
+/// accuracy the plan holds them to.
+#[test]
+fn a_scene_in_millimetres_and_tonnes_reports_the_si_scene_s_numbers() {
+    let si = "name: si\nduration: 1.6\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [20.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 181.0e-4\n    Av: 46.8e-4\n    I: 43190.0e-8\n    depth: 0.36\n    supports: {from: pinned, to: roller}\ndisk:\n  mass: 1500\n  radius: 0.4\n  omega0: -44\noutput:\n  probes: [{name: mid, x: 10.0}, {name: quarter, x: 5.0}]\n";
+    let mm = "name: mm\nduration: 1.6\ngravity: 9810\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [20000.0, 0.0]\n    E: 210.0e3\n    G: 81.0e3\n    rho: 7.85e-9\n    A: 181.0e2\n    Av: 46.8e2\n    I: 43190.0e4\n    depth: 360\n    supports: {from: pinned, to: roller}\ndisk:\n  mass: 1.5\n  radius: 400\n  omega0: -44\noutput:\n  probes: [{name: mid, x: 10000.0}, {name: quarter, x: 5000.0}]\n";
+    let (a, b) = common::side_by_side(
+        || common::at_defaults(&common::parse(si)),
+        || common::at_defaults(&common::parse(mm)),
+    );
+    assert_eq!(a.beam.spec.elements, b.beam.spec.elements, "the same mesh");
+    let close = |what: &str, x: f64, y: f64, unit: f64, scale: f64| {
+        eprintln!(
+            "{what}: {x:e} against {:e} ({:.1e} of the scale)",
+            y / unit,
+            (y / unit - x).abs() / scale
+        );
+        assert!(
+            (y / unit - x).abs() <= 1e-4 * scale,
+            "{what}: {x:e} against {:e}",
+            y / unit
+        );
+    };
+    let (da, db) = (a.extremes.disk().unwrap(), b.extremes.disk().unwrap());
+    close("contact force, least", da[0].min, db[0].min, 1.0, da[0].max);
+    close(
+        "contact force, largest",
+        da[0].max,
+        db[0].max,
+        1.0,
+        da[0].max,
+    );
+    let w_scale = a.extremes.probes[0][1].min.abs();
+    let a_scale = a.extremes.probes[0][3].largest_magnitude().0;
+    for (k, name) in ["mid", "quarter"].iter().enumerate() {
+        let (pa, pb) = (a.extremes.probes[k], b.extremes.probes[k]);
+        close(&format!("{name} w min"), pa[1].min, pb[1].min, 1e3, w_scale);
+        close(&format!("{name} w max"), pa[1].max, pb[1].max, 1e3, w_scale);
+        close(
+            &format!("{name} a"),
+            pa[3].largest_magnitude().0,
+            pb[3].largest_magnitude().0,
+            1e3,
+            a_scale,
+        );
+        close(
+            &format!("{name} w min at"),
+            pa[1].min_t,
+            pb[1].min_t,
+            1.0,
+            1.0,
+        );
+    }
+    let residual = |r: &BeamRun| r.amplitude_after_exit(0).expect("the disk leaves");
+    close(
+        "residual amplitude",
+        residual(&a),
+        residual(&b),
+        1e3,
+        w_scale,
+    );
+}
