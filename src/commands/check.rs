@@ -3,6 +3,7 @@
 use std::fmt;
 use std::path::PathBuf;
 
+use crate::analysis::modes::ModeKind;
 use crate::beam::damping::DampingSpec;
 use crate::beam::load::BeamStart;
 use crate::beam::supports::statically_supported;
@@ -289,7 +290,7 @@ fn damping(f: &mut fmt::Formatter<'_>, b: &Beam) -> fmt::Result {
             m.omega
                 .iter()
                 .zip(m.kinds(b))
-                .filter(|(w, _)| w.is_normal())
+                .filter(|(w, kind)| w.is_normal() && *kind != ModeKind::Rigid)
                 .map(|(w, kind)| {
                     format!(
                         "{:.3} Hz ({}) {:.4}",
