@@ -61,6 +61,16 @@ impl std::fmt::Display for Value {
     }
 }
 
+/// A swept value as `sweep.csv` holds it: a name that reads as a number (`nan`, `inf`, `3` at
+/// a key of names) quoted, so that it reads back as the name it is and the table's check for
+/// non-finite numbers does not take it for one.
+fn csv_cell(v: &Value) -> String {
+    match v {
+        Value::Name(n) if n.parse::<f64>().is_ok() => format!("\"{n}\""),
+        _ => v.to_string(),
+    }
+}
+
 /// A swept number as the table and the case files write it: the shortest text that reads
 /// back to it, with an exponent where plain digits would run past a few dozen (1e-300 is
 /// three hundred digits written out).
@@ -598,7 +608,7 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
         }
     };
     for r in rows {
-        let values: Vec<String> = r.values.iter().map(|v| v.to_string()).collect();
+        let values: Vec<String> = r.values.iter().map(csv_cell).collect();
         let values = values.join(",");
         match &r.outcome {
             Ok(s) => {
