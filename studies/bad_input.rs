@@ -484,6 +484,25 @@ fn bad_bearings_and_starts() {
         ),
         &["track.beam.initial", "rigid body"],
     );
+    // One past the bound each: refused before a run allocates a column or a curve for each.
+    let probes: Vec<String> = (0..1001).map(|i| format!("{{name: p{i}, x: 1}}")).collect();
+    rejected(
+        "too-many-probes",
+        &beam_scene(
+            &[],
+            &format!("output:\n  probes: [{}]\n", probes.join(", ")),
+        ),
+        &["output.probes", "1001 entries", "at most 1000"],
+    );
+    let shapes: Vec<String> = (0..1001).map(|i| format!("{}", i as f64 * 1e-5)).collect();
+    rejected(
+        "too-many-shapes",
+        &beam_scene(
+            &[],
+            &format!("output:\n  shapes: [{}]\n", shapes.join(", ")),
+        ),
+        &["output.shapes", "1001 entries", "at most 1000"],
+    );
     // Three reactions, all across the axis: the beam still slides along it.
     rejected(
         "start-static-sliding",

@@ -745,6 +745,30 @@ pub(super) fn outputs(
     let mut shapes = Vec::new();
     let mut magnify = 1.0;
     if let Some(o) = &raw.output {
+        for (list, key, most) in [
+            (
+                o.probes
+                    .as_ref()
+                    .map(|v| (v.referenced.line(), v.value.len())),
+                "output.probes",
+                MAX_PROBES,
+            ),
+            (
+                o.shapes
+                    .as_ref()
+                    .map(|v| (v.referenced.line(), v.value.len())),
+                "output.shapes",
+                MAX_SHAPES,
+            ),
+        ] {
+            if let Some((line, n)) = list.filter(|&(_, n)| n > most) {
+                return c.err(
+                    line,
+                    key,
+                    format!("lists {n} entries; at most {most} are allowed"),
+                );
+            }
+        }
         for p in o.probes.iter().flat_map(|v| v.value.iter()) {
             let name = &p.value.name;
             let why = name_flaw(&name.value, 40).or_else(|| {

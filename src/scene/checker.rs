@@ -9,6 +9,12 @@ pub(super) const MIN_ACCURACY: f64 = 1e-7;
 /// Rows of history.csv a run may write.
 pub(super) const MAX_ROWS: f64 = 1e6;
 
+/// Probes and shape times a beam scene may name: each probe is four columns of history.csv at
+/// every row and each shape time a curve of `shapes.svg`; 40 000 probes wrote 360 MB and held
+/// 700 MB, 200 000 shape times held 1.3 GB, from scenes of a few megabytes.
+pub(super) const MAX_PROBES: usize = 1000;
+pub(super) const MAX_SHAPES: usize = 1000;
+
 /// Mesh nodes a beam may have (three unknowns each): its sparse factor then takes some
 /// hundred megabytes, and one solve about a second.
 pub(super) const MAX_NODES: f64 = 100_001.0;
