@@ -108,8 +108,10 @@ pub fn content_hash(text: &str) -> String {
 mod tests {
     use super::*;
 
-    fn temp(name: &str) -> PathBuf {
-        let d = std::env::temp_dir().join(format!("rollbeam-files-{}", std::process::id()));
+    /// A folder of the test's own: tests run in parallel, and one that counts the files
+    /// in its folder must not see another's write in flight.
+    fn temp(test: &str, name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("rollbeam-files-{}-{test}", std::process::id()));
         std::fs::create_dir_all(&d).unwrap();
         d.join(name)
     }
@@ -127,7 +129,7 @@ mod tests {
     /// The limit holds on the bytes read, and exactly `limit` bytes are allowed.
     #[test]
     fn the_limit_is_on_the_bytes() {
-        let p = temp("eleven.txt");
+        let p = temp("limit", "eleven.txt");
         write_whole(&p, "hello world").unwrap();
         assert_eq!(read_text(&p, 11, "record").unwrap(), "hello world");
         assert!(read_text(&p, 10, "record").is_err());
@@ -137,8 +139,8 @@ mod tests {
     /// temporary file behind.
     #[test]
     fn a_link_is_replaced_not_followed() {
-        let target = temp("target.txt");
-        let link = temp("link.txt");
+        let target = temp("link", "target.txt");
+        let link = temp("link", "link.txt");
         std::fs::write(&target, "kept").unwrap();
         let _ = std::fs::remove_file(&link);
         std::os::unix::fs::symlink(&target, &link).unwrap();
