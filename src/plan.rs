@@ -122,13 +122,15 @@ impl Planner {
         multiple: usize,
     ) {
         let (weight, xs) = (riding_weight(b), b.planning_points());
+        let ridden = !b.vehicles.is_empty();
         let key = format!(
-            "{:?} {elements:?} {order:?} {:?} {weight:?} {xs:?} {:?} {multiple} {:?}",
+            "{:?} {elements:?} {order:?} {:?} {weight:?} {xs:?} {:?} {multiple} {:?} {ridden}",
             b.beam, b.loads, b.accuracy, b.start
         );
         let d = kept(&self.chosen, key, || {
             choose(
                 &b.beam, elements, order, &b.loads, weight, &xs, b.accuracy, multiple, b.start,
+                ridden,
             )
         });
         b.beam.elements = d.elements;
