@@ -200,18 +200,44 @@ impl ModalBasis {
             if fj == 0.0 {
                 continue;
             }
-            let column = columns[j].get_or_insert_with(|| {
-                let mut unit = vec![0.0; f.len()];
-                unit[j] = 1.0;
-                let mut r = unit.clone();
-                lu.solve_in_place(&mut r);
-                self.subtract_modal_part(&unit, &mut r);
-                r.into_boxed_slice()
-            });
+            let column = columns[j].get_or_insert_with(|| self.column_of_r(lu, j));
             q.iter_mut()
                 .zip(column.iter())
                 .for_each(|(a, r)| *a += r * fj);
         }
+    }
+
+    /// (R f)ᵢ at each unknown i of `at`, for a force acting on the unknowns `acting` (index,
+    /// value): R is symmetric, so each is R's column i against the force, a few products per
+    /// unknown where [`Self::add_static_correction`] forms R f over the whole mesh. Vehicles'
+    /// wheels read their track at the unknowns under them alone; `None` on a mesh past
+    /// [`KEPT_COLUMNS_UP_TO`] unknowns or without a flexibility.
+    pub fn static_correction_at(&self, acting: &[(usize, f64)], at: &[usize]) -> Option<Vec<f64>> {
+        let lu = self.flexibility.as_ref()?;
+        let n = self.shapes.nrows();
+        if n > KEPT_COLUMNS_UP_TO {
+            return None;
+        }
+        let mut columns = self.columns_of_r.borrow_mut();
+        columns.resize(n, None);
+        Some(
+            at.iter()
+                .map(|&i| {
+                    let column = columns[i].get_or_insert_with(|| self.column_of_r(lu, i));
+                    acting.iter().map(|&(j, f)| column[j] * f).sum()
+                })
+                .collect(),
+        )
+    }
+
+    /// R's column j: K₀⁻¹ eⱼ less the modes' part of it.
+    fn column_of_r(&self, lu: &SparseLu, j: usize) -> Box<[f64]> {
+        let mut unit = vec![0.0; self.shapes.nrows()];
+        unit[j] = 1.0;
+        let mut r = unit.clone();
+        lu.solve_in_place(&mut r);
+        self.subtract_modal_part(&unit, &mut r);
+        r.into_boxed_slice()
     }
 
     /// R f, the static response of the modes left out to f (`None` where no flexibility is

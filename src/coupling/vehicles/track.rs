@@ -136,24 +136,34 @@ impl VehiclesOnBeam<'_> {
             return;
         };
         let n = self.loaded.beam.dim();
-        let mut loads = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        let mut loads: [Vec<(usize, f64)>; 3] = Default::default();
         for (c, rows) in contacts.iter().zip(on_mesh) {
             let p = -self.vehicles[c.vehicle].static_loads[c.axle];
             let (v, a) = (c.speed, c.accel);
-            for &(i, g) in &rows[0] {
-                loads[0][i] += p * g;
-            }
+            loads[0].extend(rows[0].iter().map(|&(i, g)| (i, p * g)));
             for &(i, g) in &rows[1] {
-                loads[1][i] += p * v * g;
-                loads[2][i] += p * a * g;
+                loads[1].push((i, p * v * g));
+                loads[2].push((i, p * a * g));
             }
-            for &(i, g) in &rows[2] {
-                loads[2][i] += p * v * v * g;
-            }
+            loads[2].extend(rows[2].iter().map(|&(i, g)| (i, p * v * v * g)));
         }
-        let solve = |f: &[f64]| {
+        // The wheels read u at the unknowns under them alone.
+        let mut under: Vec<usize> = on_mesh
+            .iter()
+            .flat_map(|rows| rows.iter().flatten().map(|&(i, _)| i))
+            .collect();
+        under.sort_unstable();
+        under.dedup();
+        let solve = |f: &[(usize, f64)]| {
             let mut u = vec![0.0; n];
-            modal.add_static_correction(f, &mut u);
+            match modal.static_correction_at(f, &under) {
+                Some(values) => under.iter().zip(values).for_each(|(&i, v)| u[i] = v),
+                None => {
+                    let mut dense = vec![0.0; n];
+                    f.iter().for_each(|&(i, v)| dense[i] += v);
+                    modal.add_static_correction(&dense, &mut u);
+                }
+            }
             u
         };
         let (u0, u1) = (solve(&loads[0]), solve(&loads[1]));
