@@ -425,7 +425,7 @@ fn excited_modes(est: &Estimate, tol: f64) -> Option<(usize, f64)> {
 /// less than `tol` relative, the probes' static deflection by less than `deflection` and the
 /// shapes (`shapes`, 0 where no wheel reads them) by less than `tol`, or a further doubling
 /// would pass [`MAX_NODES`]: the elements chosen and why; `None` where a mesh has no static
-/// deflection or its modes are not found.
+/// deflection.
 fn refine(
     on: impl Fn(usize) -> Option<Estimate>,
     shapes: impl Fn(usize) -> Option<f64>,
@@ -441,7 +441,13 @@ fn refine(
         let df = (coarse.omega[k] - fine.omega[k]).abs() / fine.omega[k];
         let settled =
             df <= tol && within(&coarse.static_at_probes, &fine.static_at_probes, deflection);
-        let moved = if settled { shapes(n)? } else { 0.0 };
+        // Where a mesh's modes are not found the shapes cannot be compared: the frequencies
+        // and the static deflection decide, as without wheels.
+        let moved = if settled {
+            shapes(n).unwrap_or(0.0)
+        } else {
+            0.0
+        };
         let ok = settled && moved <= tol;
         if ok || nodes(4 * n) > MAX_NODES {
             let f_hz = fine.omega[k] / std::f64::consts::TAU;
