@@ -10,7 +10,7 @@ use std::path::Path;
 use std::sync::{Arc, Mutex};
 
 use crate::analysis::discretisation::{
-    choose, passage_share, response_size, Discretisation, DEFAULT_ACCURACY,
+    choose, passage_share, response_size, Discretisation, MovingLoads, DEFAULT_ACCURACY,
 };
 use crate::analysis::model_choice;
 use crate::beam::train::TrainModel;
@@ -122,15 +122,19 @@ impl Planner {
         multiple: usize,
     ) {
         let (weight, xs) = (riding_weight(b), b.planning_points());
-        let ridden = !b.vehicles.is_empty();
+        let moving = (!b.vehicles.is_empty() || b.train.is_some() || !b.disks.is_empty())
+            .then_some(MovingLoads {
+                vehicles: !b.vehicles.is_empty(),
+                cutoff_hz: b.acceleration_cutoff_hz,
+            });
         let key = format!(
-            "{:?} {elements:?} {order:?} {:?} {weight:?} {xs:?} {:?} {multiple} {:?} {ridden}",
+            "{:?} {elements:?} {order:?} {:?} {weight:?} {xs:?} {:?} {multiple} {:?} {moving:?}",
             b.beam, b.loads, b.accuracy, b.start
         );
         let d = kept(&self.chosen, key, || {
             choose(
                 &b.beam, elements, order, &b.loads, weight, &xs, b.accuracy, multiple, b.start,
-                ridden,
+                moving,
             )
         });
         b.beam.elements = d.elements;
