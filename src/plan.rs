@@ -169,9 +169,13 @@ impl Planner {
         if let Some(why) = uncarried {
             return Err(why);
         }
-        if let (Some(r), Some(v)) = (recount, passing_speed(b)) {
+        if let (Some(r), Some(v)) = (&recount, passing_speed(b)) {
             (model, why) = r.at(Some(v));
         }
+        b.left_out_share = match (&recount, model) {
+            (Some(r), BeamModel::Modal { modes }) => Some(r.shares.left_out(modes)),
+            _ => None,
+        };
         b.beam.model = model;
         b.model_choice = Some(why);
         b.static_gap = gap;

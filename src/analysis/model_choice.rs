@@ -336,6 +336,26 @@ fn steepness_and_free_ends(beam: &Beam, shape: &[f64], stations: &[f64]) -> (f64
 }
 
 impl ModeShares {
+    /// What the modes past the first `count` add together, each whole, to the static
+    /// deflection at the probes (or to their rotations times the longest span over π, the
+    /// larger), of its peak: the share the static correction of the modes left out holds, and
+    /// holds for static loads alone.
+    pub fn left_out(&self, count: usize) -> f64 {
+        let width = self.parts.first().map_or(0, Vec::len);
+        let mut rest = vec![[0.0; 3]; width];
+        for part in self.parts.iter().skip(count) {
+            for (r, d) in rest.iter_mut().zip(part) {
+                for (rc, dc) in r.iter_mut().zip(d) {
+                    *rc += dc;
+                }
+            }
+        }
+        let largest = rest
+            .iter()
+            .fold(0.0_f64, |m, r| m.max(r[0].hypot(r[1])).max(r[2].abs()));
+        largest / self.scale
+    }
+
     /// How many modes the dynamics asks for at `accuracy`, and why. With `passing` (the speed
     /// of moving forces, the only loads that change), each mode's part counts by how far they
     /// set it vibrating about it, 2 v κ/ω (entering and leaving) and its share at an end where
