@@ -470,9 +470,9 @@ fn excited_modes(est: &Estimate, tol: f64) -> Option<(usize, f64)> {
 
 /// Double the mesh from `n` elements until the highest excited mode's frequency moves by
 /// less than `tol` relative, the probes' static deflection by less than `deflection` and the
-/// shapes of the lowest `read` modes (`shapes`, 0 where no load moves) by less than `tol`, or a further doubling
-/// would pass [`MAX_NODES`]: the elements chosen and why; `None` where a mesh has no static
-/// deflection.
+/// shapes of the lowest `read` modes (`shapes`, 0 where no load moves) by less than `tol`, or
+/// a further doubling would pass [`MAX_NODES`]: the elements chosen and why; `None` where a
+/// mesh has no static deflection.
 fn refine(
     on: impl Fn(usize) -> Option<Estimate>,
     (shapes, read): (impl Fn(usize) -> Option<f64>, usize),
