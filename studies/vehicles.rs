@@ -1885,30 +1885,15 @@ output:
 #[test]
 fn vehicles_over_an_undamped_deck_are_said_to_move_with_the_modes() {
     let deck = |damping: &str, beam: &str| {
-        parse(&format!(
-            "name: stiff-clamped
-duration: 0.1
-track:
-  beam:
-    from: [0.0, 0.0]
-    to: [20.0, 0.0]
-    E: 35.0e9
-    G: 14.58e9
-    rho: 2500
-    A: 18.0
-    Av: 15.0
-    I: 1.98
-    supports: {{from: clamped, to: clamped}}
-{damping}{beam}vehicles:
-  - name: car
-    speed: 20.0
-    bodies: [{{name: body, mass: 40000.0}}]
-    axles: [{{name: w, x: 0.0}}]
-    springs: [{{upper: body, lower: w, x: 0.0, k: 1.0106e8, c: 402124.0}}]
-output:
-  probes: [{{name: mid, x: 10.0}}, {{name: q, x: 5.0}}]
-"
-        ))
+        let section = "    E: 35.0e9\n    G: 14.58e9\n    rho: 2500\n    A: 18.0\n    Av: 15.0\n    I: 1.98\n    supports: {from: clamped, to: clamped}\n";
+        let car = [40000.0, 1.0106e8, 402124.0, 20.0];
+        one_car(
+            "stiff-clamped",
+            0.1,
+            20.0,
+            &format!("{section}{damping}{beam}"),
+            car,
+        )
     };
     let warned = |s: &Scene| {
         (s.beam().expect("a beam").warnings().iter())
@@ -1916,23 +1901,7 @@ output:
     };
     let damped = "    damping: {ratio: 0.001, modes: [1, 2]}\n";
     assert!(warned(&deck("", "")) && !warned(&deck(damped, "")));
-    let scene = deck("", "");
-    let planned_modes = match scene.beam().expect("a beam").beam.model {
-        rollbeam::beam::BeamModel::Modal { modes } => modes,
-        other => panic!("planned {other:?}, not the modal beam"),
-    };
-    let more = deck(
-        "",
-        &format!("    model: modal\n    modes: {}\n", 2 * planned_modes),
-    );
-    let (planned, more) = common::side_by_side(|| at_defaults(&scene), || at_defaults(&more));
-    let body = |r: &BeamRun| r.vehicles[0].bodies[0].1.largest_magnitude().0;
-    let (a, b) = (body(&planned), body(&more));
-    assert!(
-        (a - b).abs() > 1e-3 * b,
-        "the body's largest acceleration {a} as planned, {b} on {} modes",
-        2 * planned_modes
-    );
+    body_moves_on_twice_the_modes(|beam| deck("", beam));
 }
 
 /// The static correction of the modes left out follows the wheels' static loads: of a wheel
@@ -1945,87 +1914,76 @@ output:
 #[test]
 fn wheel_forces_swinging_past_the_static_correction_are_said_to_move_with_the_modes() {
     let heavy = |beam: &str| {
-        parse(&format!(
-            "name: heavy-on-steel
-duration: 1.0
-track:
-  beam:
-    from: [0.0, 0.0]
-    to: [30.0, 0.0]
-    E: 210.0e9
-    G: 81.0e9
-    rho: 7850
-    A: 0.0724
-    Av: 0.01872
-    I: 0.0069104
-    depth: 0.72
-    supports: {{from: clamped, to: roller}}
-    damping: {{ratio: 0.02, modes: [1, 2]}}
-{beam}vehicles:
-  - name: car
-    speed: 80.0
-    bodies: [{{name: body, mass: 40000.0}}]
-    axles: [{{name: w, x: 0.0}}]
-    springs: [{{upper: body, lower: w, x: 0.0, k: 1.4212e7, c: 150796.0}}]
-output:
-  probes: [{{name: mid, x: 15.0}}, {{name: q, x: 7.5}}]
-"
-        ))
+        let section = "    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 0.0724\n    Av: 0.01872\n    I: 0.0069104\n    depth: 0.72\n    supports: {from: clamped, to: roller}\n    damping: {ratio: 0.02, modes: [1, 2]}\n";
+        let car = [40000.0, 1.4212e7, 150796.0, 80.0];
+        one_car(
+            "heavy-on-steel",
+            1.0,
+            30.0,
+            &format!("{section}{beam}"),
+            car,
+        )
     };
     let says =
         |r: &BeamRun| (r.warnings().iter()).any(|w| w.contains("follows the static loads alone"));
-    let scene = heavy("");
-    let planned_modes = match scene.beam().expect("a beam").beam.model {
-        rollbeam::beam::BeamModel::Modal { modes } => modes,
-        other => panic!("planned {other:?}, not the modal beam"),
-    };
-    let more = heavy(&format!(
-        "    model: modal\n    modes: {}\n",
-        2 * planned_modes
-    ));
-    let (planned, more) = (at_defaults(&scene), at_defaults(&more));
-    assert!(says(&planned));
-    let body = |r: &BeamRun| r.vehicles[0].bodies[0].1.largest_magnitude().0;
-    let (a, b) = (body(&planned), body(&more));
-    assert!(
-        (a - b).abs() > 1e-3 * b,
-        "the body's largest acceleration {a} as planned, {b} on {} modes",
-        2 * planned_modes
-    );
+    assert!(says(&at_defaults(&heavy(""))));
+    body_moves_on_twice_the_modes(heavy);
     for study in ["vehicle-sprung.yaml", "vehicle-railcar.yaml"] {
         let run = at_defaults(&load(study));
         assert!(!says(&run), "{study} warned");
     }
 }
 
-/// A 10 t body on an 8 Hz suspension (ζ 5 %) at `speed` over a 20 m concrete span of 0.5 %
-/// Rayleigh damping, probes at midspan and the quarter; `beam` adds lines to the beam's.
-fn damped_car(speed: f64, beam: &str) -> Scene {
+/// One car over a straight deck from (0, 0) to (`length`, 0) with the lines `beam` (its
+/// section, supports and what else the deck has): a body of `mass` on a spring `k` and a damper
+/// `c` over a massless point wheel at `speed`, probes at midspan and the quarter.
+fn one_car(name: &str, duration: f64, length: f64, beam: &str, car: [f64; 4]) -> Scene {
+    let [mass, k, c, speed] = car;
+    let (mid, quarter) = (length / 2.0, length / 4.0);
     parse(&format!(
-        "name: damped-car
-duration: 1.0
+        "name: {name}
+duration: {duration}
 track:
   beam:
     from: [0.0, 0.0]
-    to: [20.0, 0.0]
-    E: 35.0e9
-    G: 14.58e9
-    rho: 2500
-    A: 6.0
-    Av: 5.0
-    I: 0.22
-    supports: {{from: pinned, to: roller}}
-    damping: {{ratio: 0.005, modes: [1, 2]}}
+    to: [{length}, 0.0]
 {beam}vehicles:
   - name: car
     speed: {speed}
-    bodies: [{{name: body, mass: 10000.0}}]
+    bodies: [{{name: body, mass: {mass}}}]
     axles: [{{name: w, x: 0.0}}]
-    springs: [{{upper: body, lower: w, x: 0.0, k: 2.5266e7, c: 50265.0}}]
+    springs: [{{upper: body, lower: w, x: 0.0, k: {k}, c: {c}}}]
 output:
-  probes: [{{name: mid, x: 10.0}}, {{name: q, x: 5.0}}]
+  probes: [{{name: mid, x: {mid}}}, {{name: q, x: {quarter}}}]
 "
     ))
+}
+
+/// The body's largest acceleration at the defaults of the modal beam the plan chooses for
+/// `scene("")`, and on twice its modes (`scene` given the lines that ask for them), moves by
+/// more than the accuracy.
+fn body_moves_on_twice_the_modes(scene: impl Fn(&str) -> Scene) {
+    let planned = scene("");
+    let modes = match planned.beam().expect("a beam").beam.model {
+        rollbeam::beam::BeamModel::Modal { modes } => 2 * modes,
+        other => panic!("planned {other:?}, not the modal beam"),
+    };
+    let more = scene(&format!("    model: modal\n    modes: {modes}\n"));
+    let (planned, more) = common::side_by_side(|| at_defaults(&planned), || at_defaults(&more));
+    let body = |r: &BeamRun| r.vehicles[0].bodies[0].1.largest_magnitude().0;
+    let (a, b) = (body(&planned), body(&more));
+    assert!(
+        (a - b).abs() > 1e-3 * b,
+        "the body's largest acceleration {a} as planned, {b} on {modes} modes"
+    );
+}
+
+/// A 10 t body on an 8 Hz suspension (ζ 5 %) at `speed` over a 20 m concrete span of 0.5 %
+/// Rayleigh damping, probes at midspan and the quarter; `beam` adds lines to the beam's.
+fn damped_car(speed: f64, beam: &str) -> Scene {
+    let section = "    E: 35.0e9\n    G: 14.58e9\n    rho: 2500\n    A: 6.0\n    Av: 5.0\n    I: 0.22\n    supports: {from: pinned, to: roller}\n    damping: {ratio: 0.005, modes: [1, 2]}\n";
+    let car = [10000.0, 2.5266e7, 50265.0, speed];
+    one_car("damped-car", 1.0, 20.0, &format!("{section}{beam}"), car)
 }
 
 /// A wheel reads the modes' shapes everywhere along the span, and between the nodes they
