@@ -303,7 +303,13 @@ impl BeamRun {
         }
         let (mut swing, mut worst) = (0.0_f64, None);
         for (v, report) in self.setup.vehicles.iter().zip(&self.vehicles) {
-            for ((axle, r), p) in report.axles.iter().zip(&v.static_loads) {
+            // A wheel bearing no static load has no swing to measure against it.
+            let loaded = report
+                .axles
+                .iter()
+                .zip(&v.static_loads)
+                .filter(|(_, p)| **p > 0.0);
+            for ((axle, r), p) in loaded {
                 let x = (r.max - p).max(p - r.min) / p;
                 if x > swing {
                     (swing, worst) = (x, Some((&report.name, axle)));
