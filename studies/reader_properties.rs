@@ -231,3 +231,78 @@ fn mutated_scenes_are_accepted_finite_or_refused_in_one_sentence() {
         "{accepted} accepted, {refused} refused"
     );
 }
+
+/// The fuzzing corpus under `fuzz/corpus` (the inputs the campaign kept, each reaching code
+/// no other did), replayed through the two targets' properties, so that a change to reading,
+/// planning or the curve formula that breaks one of them fails here, where `cargo fuzz` does
+/// not run: a scene is accepted with a finite plan and a printout free of NaN, or refused in
+/// one line under 600 bytes; a formula parses to a tree that evaluates, or is refused in one
+/// line. Each within [`BOUND`].
+#[test]
+fn the_fuzzing_corpus_keeps_the_targets_properties() {
+    let corpus = |target: &str| -> Vec<(String, String)> {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("fuzz/corpus")
+            .join(target);
+        let mut files: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+            .map(|entry| entry.expect("a corpus entry").path())
+            .collect();
+        files.sort();
+        files
+            .into_iter()
+            .filter_map(|path| {
+                let bytes = std::fs::read(&path).expect("a corpus file");
+                let text = String::from_utf8(bytes).ok()?;
+                Some((path.display().to_string(), text))
+            })
+            .collect()
+    };
+    let scenes = corpus("scene");
+    let mut accepted = 0;
+    for (file, text) in &scenes {
+        let started = Instant::now();
+        let planned = SceneSpec::parse(text, "fuzz.yaml", "fuzz")
+            .map_err(|e| rollbeam::error::Error::Input(e.to_string()))
+            .and_then(|s| Planner::default().plan(&s));
+        match planned {
+            Ok(scene) => {
+                assert!(
+                    scene.duration.is_finite() && scene.solver.rtol < 1.0,
+                    "{file}"
+                );
+                let printed = Described(&scene).to_string();
+                assert!(!printed.contains("NaN"), "{file}: {printed}");
+                accepted += 1;
+            }
+            Err(e) => {
+                let m = e.to_string();
+                assert_eq!(m.lines().count(), 1, "{file}: {m}");
+                assert!(m.len() < 600, "{file}: {m}");
+            }
+        }
+        assert!(
+            started.elapsed() < BOUND,
+            "{file} took {:?}",
+            started.elapsed()
+        );
+    }
+    let formulas = corpus("formula");
+    for (file, text) in &formulas {
+        match rollbeam::curve::expr::Formula::parse(text) {
+            Ok(f) => {
+                for s in [-1.5, 0.0, 0.3, 2.0] {
+                    let _ = f.eval(s);
+                }
+            }
+            Err(m) => assert_eq!(m.lines().count(), 1, "{file}: {m}"),
+        }
+    }
+    // A corpus that no longer reaches the planner, or was lost, tests nothing.
+    assert!(
+        accepted > 100 && scenes.len() > 1000 && formulas.len() > 100,
+        "{accepted} of {} scenes accepted, {} formulas",
+        scenes.len(),
+        formulas.len()
+    );
+}
