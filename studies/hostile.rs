@@ -439,6 +439,21 @@ fn item_4_no_hangs() {
         "planning 300 bearings took {:?}",
         started.elapsed()
     );
+    // A disk wheel of 10⁻⁹ m sought its contact below the positions' round-off at every
+    // evaluation, and the drive's power, turned to noise, halved every step to the ledger's
+    // depth: not done in minutes. Refused, with the least radius the deck takes.
+    let nano_wheel = scene(
+        "nano-wheel",
+        &beam(
+            "",
+            "vehicles: [{name: car, speed: 25.0, wheel: disk, radius: 1.0e-9, bodies: [{name: body, mass: 5750.0}], axles: [{name: wheel, x: 0.0}], springs: [{upper: body, lower: wheel, x: 0.0, k: 1.6e6}]}]\n",
+        ),
+    );
+    fails(
+        &["run", &nano_wheel, "--out", &out("nano-wheel")],
+        1,
+        &["`vehicles.radius`", "`wheel: point`", "at least 2.000e-5 m"],
+    );
 }
 
 /// 5. No infinity or NaN is written: the friction needed is left empty where the disk does not
