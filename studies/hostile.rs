@@ -366,6 +366,21 @@ fn item_4_no_hangs() {
             "`output.acceleration_cutoff_hz`",
         ],
     );
+    // A time-stepped run watches and books its steps on the same grid: a cutoff given at
+    // 10³⁰ Hz under a vehicle asked for the memory of 10¹⁶ pieces in one step and aborted
+    // (found probing the vehicles' keys).
+    let s = scene(
+        "cutoff-stepped",
+        &beam(
+            "",
+            "vehicles: [{name: car, speed: 25.0, bodies: [{name: body, mass: 5750.0}], axles: [{name: wheel, x: 0.0}], springs: [{upper: body, lower: wheel, x: 0.0, k: 1.6e6}]}]\noutput: {acceleration_cutoff_hz: 1.0e30}\n",
+        ),
+    );
+    fails(
+        &["run", &s, "--out", &out("cutoff-stepped")],
+        2,
+        &["would be watched at about", "the run lasts"],
+    );
     // A vehicle started 10 000 km before the deck rolled on the level approach for minutes
     // before the step budget stopped it (found probing the vehicles' keys): the steps a
     // sixteenth of the lowest period long that its ride needs at the least are counted first.

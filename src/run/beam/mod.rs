@@ -374,12 +374,11 @@ pub fn run(
         rho_inf: setup.rho_inf,
         ..over.options(scene)
     };
-    if opts.method == Method::ExactModal {
-        watch::grid_within_budget(scene, &loaded, filter.as_ref())?;
-    }
     let coupled = (!setup.disks.is_empty()).then(|| DiskOnBeam::new(&loaded, setup.disks.clone()));
     let vehicles = vehicles_on(scene, setup, &loaded)?;
     steps_within_budget(scene, &loaded, vehicles.as_ref(), &opts)?;
+    let given = setup.acceleration_cutoff_hz.is_some();
+    watch::grid_within_budget(scene, &loaded, filter.as_ref(), (exact, given))?;
     let outputs = output_times(scene, setup, over.no_history);
     let mass_lu = SparseLu::factor(loaded.model_mass(), None).ok_or_else(|| {
         Error::Solver(format!("scene {}: the mass matrix is singular", scene.name))

@@ -19,27 +19,38 @@ pub(super) const SAMPLES_PER_PATCH: f64 = 20.0;
 /// default step budget allows steps, each sample costing about what a step does.
 const MAX_GRID_SAMPLES: f64 = 1.0e7;
 
-/// Refuses, before the run, an exact-modal run whose deck acceleration the watch's grid would
-/// sample more than [`MAX_GRID_SAMPLES`] times before its loads stop changing (a train's last
-/// axle leaves, a load switches for the last time). An exact step is as long as the loads
-/// allow, so the step budget does not see a tiny time scale, and the grid is watched all the
-/// same: a beam nearly massless puts EN 1991-2's cutoff at megahertz, billions of samples over
-/// a train's passage. What follows can be strided over once it settles (`settled.rs`).
+/// Refuses, before the run, a run whose deck acceleration the watch's grid would sample more
+/// than [`MAX_GRID_SAMPLES`] times. An exact step is as long as the loads allow, so the step
+/// budget does not see a tiny time scale, and the grid is watched all the same: a beam nearly
+/// massless puts EN 1991-2's cutoff at megahertz, billions of samples over a train's passage
+/// (counted until the loads stop changing: what follows can be strided over once it settles,
+/// `settled.rs`). A time-stepped run's steps follow the beam's own modes, which the rule's
+/// cutoff follows too, but not a cutoff the scene gives: its steps are watched and booked in
+/// pieces of the grid's spacing over the whole run, and a cutoff given at 10³⁰ Hz asked for
+/// the memory of 10¹⁶ pieces in one step.
 pub(super) fn grid_within_budget(
     scene: &Scene,
     loaded: &LoadedBeam,
     filter: Option<&AccelerationFilter>,
+    (exact, given): (bool, bool),
 ) -> Result<(), Error> {
     let Some(f) = filter else { return Ok(()) };
-    let changing = (loaded.breakpoints().into_iter())
-        .fold(0.0, f64::max)
-        .min(scene.duration);
-    let samples = changing * SAMPLES_PER_CUTOFF_PERIOD * f.cutoff_hz;
+    let (watched, over) = if exact {
+        let changing = (loaded.breakpoints().into_iter())
+            .fold(0.0, f64::max)
+            .min(scene.duration);
+        (changing, "the loads move or switch")
+    } else if given {
+        (scene.duration, "the run lasts")
+    } else {
+        return Ok(());
+    };
+    let samples = watched * SAMPLES_PER_CUTOFF_PERIOD * f.cutoff_hz;
     if samples <= MAX_GRID_SAMPLES {
         return Ok(());
     }
     Err(Error::Solver(format!(
-        "scene {}: the deck's acceleration, cut off at {:.3e} Hz ({}), would be watched at about {samples:.1e} samples over the {changing:.3e} s the loads move or switch, past the budget of {MAX_GRID_SAMPLES:.0e}: shorten the crossing, set `output.acceleration_cutoff_hz` lower, or look for a time scale the scene makes tiny (a near-zero mass or density, a huge stiffness)",
+        "scene {}: the deck's acceleration, cut off at {:.3e} Hz ({}), would be watched at about {samples:.1e} samples over the {watched:.3e} s {over}, past the budget of {MAX_GRID_SAMPLES:.0e}: shorten the run, set `output.acceleration_cutoff_hz` lower, or look for a time scale the scene makes tiny (a near-zero mass or density, a huge stiffness)",
         scene.name, f.cutoff_hz, f.rule
     )))
 }
