@@ -2082,3 +2082,65 @@ fn point_wheels_on_the_modal_beam_ride_its_static_correction() {
         }
     }
 }
+
+/// A random road's seed and class are sweep keys, as the file gives them: each case of a
+/// sweep over `track.profile.iso8608.seed` and `.class` reports, to the last bit, what a
+/// one-case sweep of the scene with that seed and class written in the file does; different
+/// seeds give different roads (the body's largest acceleration moves by more than a tenth),
+/// so the key reaches the road. A Monte Carlo estimate over roads is one sweep.
+#[test]
+fn a_road_s_seed_and_class_are_swept_as_the_file_gives_them() {
+    use rollbeam::workflows::sweep::{run_grid, Setting, SweepRow};
+    let road = |class: &str, seed: u64| {
+        let path = common::studies_dir().join("vehicle-truck.yaml");
+        let text = std::fs::read_to_string(path)
+            .expect("the truck's scene")
+            .replace(
+                "points: [[-1.0, 0.0], [0.0, 0.01], [25.0, 0.01], [26.0, 0.0]]",
+                &format!("iso8608: {{class: {class}, seed: {seed}}}"),
+            )
+            .replace("duration: 1.0", "duration: 0.6");
+        assert!(
+            text.contains("iso8608"),
+            "the truck's road was not replaced"
+        );
+        rollbeam::scene::SceneSpec::parse(&text, "road.yaml", "road").expect("the scene")
+    };
+    let bodies = |row: &SweepRow| -> Vec<(String, f64)> {
+        row.outcome
+            .as_ref()
+            .expect("a case that ran")
+            .bodies
+            .clone()
+    };
+    let swept = run_grid(
+        &road("A", 0),
+        &[
+            Setting::parse("track.profile.iso8608.seed=3,4").expect("seeds"),
+            Setting::parse("track.profile.iso8608.class=B,C").expect("classes"),
+        ],
+        &Default::default(),
+        false,
+    )
+    .expect("the sweep");
+    assert_eq!(swept.len(), 4);
+    let same = Setting::parse("duration=0.6").expect("one case");
+    for row in &swept {
+        let (seed, class) = (row.values[0].to_string(), row.values[1].to_string());
+        let given = road(&class, seed.parse().expect("a seed"));
+        let one = run_grid(
+            &given,
+            std::slice::from_ref(&same),
+            &Default::default(),
+            false,
+        )
+        .expect("the scene as written");
+        assert_eq!(bodies(row), bodies(&one[0]), "seed {seed}, class {class}");
+    }
+    let a = |row: &SweepRow| bodies(row)[0].1;
+    let (three, four) = (a(&swept[0]), a(&swept[2]));
+    assert!(
+        (three - four).abs() > 0.1 * three.max(four),
+        "seeds 3 and 4 on class B: {three} and {four} m/s²"
+    );
+}

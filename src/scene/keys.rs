@@ -72,6 +72,8 @@ pub const KEYS: &[Key] = &[
     key("train.hslm", Name),
     key("train.model", Name),
     key("train.speed", Number),
+    key("track.profile.iso8608.class", Name),
+    key("track.profile.iso8608.seed", Whole),
     key("vehicles.<name>.speed", Number),
     key("vehicles.<name>.x0", Number),
     key("vehicles.<name>.acceleration", Number),
@@ -150,6 +152,10 @@ enum Slot<'f> {
     MaybeNumber(&'f mut Option<Spanned<f64>>),
     Whole(&'f mut Option<Spanned<i64>>),
     Name(&'f mut Option<Spanned<String>>),
+    /// A name the file must give.
+    RequiredName(&'f mut Spanned<String>),
+    /// A whole number that is not negative, which the file may leave out.
+    Count(&'f mut Option<Spanned<u64>>),
     Flag(&'f mut Option<Spanned<bool>>),
     Part(&'f mut dyn LeftOut),
     /// The train's HSLM name, which replaces the axles and loads the file gives.
@@ -217,6 +223,16 @@ fn track_slot<'f>(
     field: &str,
     make: bool,
 ) -> Result<Option<Slot<'f>>, Absent> {
+    if let Some(iso) = field.strip_prefix("profile.iso8608.") {
+        let road = t.profile.as_mut().and_then(|p| p.value.iso8608.as_mut());
+        let road = &mut road
+            .ok_or_else(|| no("ISO 8608 road (`track.profile.iso8608`)"))?
+            .value;
+        return Ok(Some(match iso {
+            "class" => Slot::RequiredName(&mut road.class),
+            _ => Slot::Count(&mut road.seed),
+        }));
+    }
     if field == "curve.parabola.k" {
         let p = t.curve.as_mut().and_then(|c| c.value.parabola.as_mut());
         return Ok(Some(Slot::Number(&mut p.ok_or_else(|| no("parabola"))?.k)));
@@ -440,6 +456,7 @@ impl SceneSpec {
                 Slot::Number(s) => s.value = value,
                 Slot::MaybeNumber(s) => put(s, value),
                 Slot::Whole(s) => put(s, whole_number(value, dotted)?),
+                Slot::Count(s) => put(s, count(value, dotted)?),
                 _ => return Err(not_a_number(dotted)),
             }
         }
@@ -456,9 +473,10 @@ impl SceneSpec {
         };
         for slot in self.places(dotted, Edit::LeaveOut, |_| true, required)? {
             match slot {
-                Slot::Number(_) | Slot::Hslm(_) => return Err(required()),
+                Slot::Number(_) | Slot::RequiredName(_) | Slot::Hslm(_) => return Err(required()),
                 Slot::MaybeNumber(s) => *s = None,
                 Slot::Whole(s) => *s = None,
+                Slot::Count(s) => *s = None,
                 Slot::Name(s) => *s = None,
                 Slot::Flag(s) => *s = None,
                 Slot::Part(s) => s.leave_out(),
@@ -485,6 +503,7 @@ impl SceneSpec {
         for slot in self.places(dotted, Edit::Set, named, not_a_name)? {
             match slot {
                 Slot::Name(s) => put(s, value.to_string()),
+                Slot::RequiredName(s) => s.value = value.to_string(),
                 Slot::Flag(s) => put(s, flag(value, dotted)?),
                 Slot::Hslm(t) => {
                     put(&mut t.hslm, value.to_string());
@@ -516,6 +535,16 @@ fn whole_number(value: f64, dotted: &str) -> Result<i64, Error> {
     Ok(value as i64)
 }
 
+/// `value` as a whole number that is not negative (a seed), which it must be.
+fn count(value: f64, dotted: &str) -> Result<u64, Error> {
+    if value < 0.0 {
+        return Err(Error::Input(format!(
+            "`{dotted}` takes a whole number that is not negative (got {value})"
+        )));
+    }
+    whole_number(value, dotted).map(|v| v as u64)
+}
+
 fn flag(value: &str, dotted: &str) -> Result<bool, Error> {
     match value {
         "true" => Ok(true),
@@ -543,7 +572,7 @@ mod tests {
     use super::*;
 
     /// A file holding every section an edit can reach (read, not checked: a curve and a beam,
-    /// a disk and a list of them).
+    /// a road, a disk and a list of them).
     const EVERYTHING: &str = "
 name: all
 duration: 1.0
@@ -559,6 +588,7 @@ track:
     Av: 1.0
     I: 1.0
     supports: {from: pinned, to: roller}
+  profile: {iso8608: {class: B}}
 disk: {mass: 1.0, radius: 0.1}
 disks: [{mass: 1.0, radius: 0.1}, {mass: 2.0, radius: 0.1}]
 train: {hslm: A1, speed: 50.0}
