@@ -1277,3 +1277,29 @@ fn item_16_a_slow_disk_over_the_crest_ends() {
     let rows = std::fs::read_to_string(format!("{o}/sweep.csv")).expect("sweep.csv");
     assert_eq!(rows.lines().filter(|l| l.contains(",ok,")).count(), 101);
 }
+
+/// 17. A solver failure under a method the scene names says what to try. Generalized-α gave
+///     up on a 150 kg rolling disk beside a 10 t moving mass on a 20 m HEB 360 deck (at rtol
+///     10⁻⁵ and 10⁻⁷, ρ∞ 0.5 and 0.8, exact and modal beam; each rider alone runs) with
+///     "Newton iterations did not converge", which left the user nothing to act on; the plan
+///     steps the pair with ESDIRK4, and the sentence now names leaving the method out.
+#[test]
+fn item_17_a_failure_under_a_named_method_names_the_plan() {
+    let pair = "disk: {mass: 150, radius: 0.4, s0: 10.0, omega0: -44}\ntrain: {axles: [0.0], load: 1.0e5, speed: 17.6, model: moving-mass}\n";
+    let named = scene(
+        "named-genalpha",
+        &beam(
+            "",
+            &format!("{pair}solver: {{method: genalpha, rtol: 1.0e-5}}\n"),
+        ),
+    );
+    fails(
+        &["run", &named, "--out", &out("named-genalpha")],
+        2,
+        &[
+            "Newton iterations did not converge",
+            "the scene names the method (genalpha)",
+            "leave `solver.method` out",
+        ],
+    );
+}

@@ -139,7 +139,7 @@ impl<'a> OnTheBeam<'a, '_> {
             self.opts,
             rec,
         )
-        .map_err(|e| solver_error(scene, e))?;
+        .map_err(|e| solver_error(scene, self.opts.method, e))?;
         self.stats.add(&out.stats);
         self.note_gap();
         let k = launch.disk;
@@ -199,7 +199,7 @@ impl<'a> OnTheBeam<'a, '_> {
             .map_or(scene.duration, |(te, _)| te.min(scene.duration));
         let ahead = self.ahead(t0);
         let out = integrate(problem, t0, &z0, &zd0, until, &ahead, self.opts, self.rec)
-            .map_err(|e| solver_error(scene, e))?;
+            .map_err(|e| solver_error(scene, self.opts.method, e))?;
         self.stats.add(&out.stats);
         self.note_gap();
         let (t, y) = (out.t, out.y);

@@ -117,7 +117,7 @@ pub(super) fn drive<'a>(
             .filter(|&o| t == 0.0 || o > t)
             .collect();
         let out = integrate(v, t, &y[..n], &y[n..], scene.duration, &ahead, opts, rec)
-            .map_err(|e| solver_error(scene, e))?;
+            .map_err(|e| solver_error(scene, opts.method, e))?;
         stats.add(&out.stats);
         (t, y) = (out.t, out.y);
         let Some(hit) = out.stopped_by else {
