@@ -346,29 +346,7 @@ impl BeamScene {
         if rider && !meshed {
             out.push("a disk with a mass on the modal beam: its instantaneous contact force (`rn_min`, `rn_max`, `rt_min`, `rt_max`, `mu_needed_max`) and the accelerations move with the modes kept by more than the accuracy, for the modes below the cutoff answer the contact force's ringing in the modes above it (D44 started carrying the disk, on 16 / 32 / 64 / 128 modes: midspan's largest acceleration 3.044 / 2.958 / 3.014 / 3.011 m/s², the least contact force 12 986 / 12 947 / 12 949 / 12 915 N); `contact_mean`, the force averaged over a period of the acceleration's cutoff, moves by less (13 133 / 13 136 / 13 143 / 13 141 N); a run with `track.beam.modes` doubled shows what a scene's move by".to_string());
         }
-        // Measured at the defaults against the same scene on the linear mesh (and on four
-        // times the modes, which agree with it within 2e-4): two 2 t moving masses at 20 m/s
-        // over D44's section, two 50 kN at 10 m/s over a 20 m beam of A 0.05 m², I 0.01 m⁴,
-        // and twelve 135 kN axles at 100 m/s over the railway study's deck.
-        if self.carries_moving_masses() && !meshed {
-            out.push("a train of moving masses on the modal beam: the accelerations can move with the modes kept by more than the accuracy, for each mass turns with the beam's slope as it enters and crosses, and the modes below the cutoff answer those kicks in the modes above it (two 2 t masses at 20 m/s over D44's section, on 16 / 32 / 64 modes: midspan's largest acceleration 4.405 / 4.634 / 4.609 m/s², the linear mesh 4.609; two 50 kN at 10 m/s over a 20 m beam, on 48 / 96 / 144 modes: 2.066 / 2.091 / 2.093, the mesh 2.093; the railcar's axles at 100 m/s over the railway study's 15 m concrete deck: 5e-5 of the largest from the mesh's); `track.beam.model: linear` holds them, and a run with `track.beam.modes` doubled shows what a scene's move by".to_string());
-        }
-        // Measured on the planned 22 modes, on 88 modes of twice the mesh and on the linear
-        // mesh of 24 elements, each at rtol 1e-8 (42.6 m/s² at the defaults); the railcars on
-        // 18 modes as planned against 72 of 40 elements, at the defaults.
-        if !meshed && self.vehicles.iter().any(|v| v.has_unsprung_mass()) {
-            out.push("vehicles on unsprung masses (axles with a `mass`) on the modal beam: the accelerations can move with the modes kept by more than the accuracy, for each unsprung mass rides the deck as a moving mass does, kicked where the beam's slope turns, and the modes below the cutoff answer those kicks in the modes above it (a 40 t body on an 8 Hz suspension over a 400 kg wheel at 10 m/s across a 15 m steel beam of 4.3 t: midspan's largest acceleration 44.9 m/s² on the 22 modes planned, 53.3 on 88, 55.1 on the linear mesh; the railway study's railcars over its 15 m concrete deck: 4e-5 of the largest on four times the modes); a run with `track.beam.modes` doubled shows what a scene's move by".to_string());
-        }
-        // Measured on a 40 t body on an 8 Hz suspension (ζ 10 %) at 10 m/s over a 20 m clamped
-        // concrete deck (A 18 m², I 1.98 m⁴): the planned 46 modes of 28 elements, 92 of 56 and
-        // the linear meshes of 28 and 56 elements, the last two at rtol 1e-9; the same deck with
-        // 0.1 % Rayleigh damping; a 2 t car on an 8 Hz suspension (ζ 10 %) at 40 m/s over a 30 m
-        // clamped-roller steel beam (A 90.5 cm², I 10 798 cm⁴) on 21 modes of 20 elements and
-        // the linear mesh of 40 at rtol 1e-10; Biggs' sprung mass on 7 and 14 modes.
-        let quiet = (self.beam.damping.as_ref()).is_some_and(|d| d.damps_high_modes());
-        if !self.vehicles.is_empty() && !quiet {
-            out.push("vehicles on a deck without stiffness-proportional damping: the accelerations, the bodies' and the deck's, can move with the modes the beam holds (kept, or its mesh's) by more than the accuracy, for the modes above those the loads excite ring without decay and the vehicles hand them to the bodies and back to the deck (a 40 t body on an 8 Hz suspension at 10 m/s over a 20 m concrete deck: its largest acceleration 5.037e-3 m/s² on the 46 modes planned, 5.146e-3 on every mode of the planned mesh, 5.182e-3 on 92 modes of twice the mesh and on its every mode; a 2 t car at 40 m/s over a 2.1 t, 30 m steel beam: the deck's largest acceleration 99.14 m/s² on the 21 modes planned, 99.54 on every mode of twice the mesh; Biggs' sprung mass: 2e-5 on half its modes); damping quiets them (`track.beam.damping`: at ζ 0.1 % the same body holds within 2e-4), and a run with `track.beam.modes` doubled shows what a scene's move by".to_string());
-        }
+        out.extend(self.riders_moving_with_the_discretisation(meshed));
         if self.disks.len() > 1
             && self
                 .disks
@@ -416,6 +394,43 @@ impl BeamScene {
             if top > MAX_SPEED_WITH_UNSPRUNG_MASS && v.has_unsprung_mass() {
                 out.push(format!("vehicle `{}` runs at up to {top} m/s on wheels with a mass of their own: the plan's tolerance for their impulses at the deck's ends and kinks is measured to {MAX_SPEED_WITH_UNSPRUNG_MASS} m/s; beyond, compare a run at a tenth of `solver.rtol`", v.name));
             }
+        }
+        out
+    }
+
+    /// Where the trains' moving masses and the vehicles move the accelerations with the modes
+    /// kept or the mesh by more than the accuracy, one sentence each.
+    fn riders_moving_with_the_discretisation(&self, meshed: bool) -> Vec<String> {
+        let mut out = Vec::new();
+        // Measured at the defaults against the same scene on the linear mesh (and on four
+        // times the modes, which agree with it within 2e-4): two 2 t moving masses at 20 m/s
+        // over D44's section, two 50 kN at 10 m/s over a 20 m beam of A 0.05 m², I 0.01 m⁴,
+        // and twelve 135 kN axles at 100 m/s over the railway study's deck.
+        if self.carries_moving_masses() && !meshed {
+            out.push("a train of moving masses on the modal beam: the accelerations can move with the modes kept by more than the accuracy, for each mass turns with the beam's slope as it enters and crosses, and the modes below the cutoff answer those kicks in the modes above it (two 2 t masses at 20 m/s over D44's section, on 16 / 32 / 64 modes: midspan's largest acceleration 4.405 / 4.634 / 4.609 m/s², the linear mesh 4.609; two 50 kN at 10 m/s over a 20 m beam, on 48 / 96 / 144 modes: 2.066 / 2.091 / 2.093, the mesh 2.093; the railcar's axles at 100 m/s over the railway study's 15 m concrete deck: 5e-5 of the largest from the mesh's); `track.beam.model: linear` holds them where its mesh does, and a run with `track.beam.modes` doubled shows what a scene's move by".to_string());
+        }
+        // Measured at the defaults (the exact beam on 12 elements, ESDIRK4 at rtol 1e-7), the
+        // finer meshes at rtol 1e-9, which moved two 40 t masses' reading on the 12 elements
+        // by 3e-7. A 40 t mass leaving a light two-span beam whipped it the same way: 4.49e5
+        // and 3.17e5 m/s² on 16 and 32 elements.
+        if self.carries_moving_masses() && meshed {
+            out.push("a train of moving masses on a mesh: the accelerations can move with the mesh by more than the accuracy, for each mass turns with the beam's slope at every node it crosses, kicks whose size and timing are the mesh's, and where the deck is stiff the loads' own accelerations are small beside them (two 1 t masses at 10 m/s over a 30 m clamped HEB 360 beam, on 12 / 24 / 48 / 96 elements: the envelope's largest acceleration 0.0978 / 0.0924 / 0.0957 / 0.0958 m/s², midspan's 0.0837 / 0.0861 / 0.0833 / 0.0832; the same beam pinned and sliding, ten times the accelerations, on the linear mesh of 24 / 48 / 96: 0.9934 / 0.9941 / 0.9941); a run with `track.beam.elements` doubled shows what a scene's move by".to_string());
+        }
+        // Measured on the planned 22 modes, on 88 modes of twice the mesh and on the linear
+        // mesh of 24 elements, each at rtol 1e-8 (42.6 m/s² at the defaults); the railcars on
+        // 18 modes as planned against 72 of 40 elements, at the defaults.
+        if !meshed && self.vehicles.iter().any(|v| v.has_unsprung_mass()) {
+            out.push("vehicles on unsprung masses (axles with a `mass`) on the modal beam: the accelerations can move with the modes kept by more than the accuracy, for each unsprung mass rides the deck as a moving mass does, kicked where the beam's slope turns, and the modes below the cutoff answer those kicks in the modes above it (a 40 t body on an 8 Hz suspension over a 400 kg wheel at 10 m/s across a 15 m steel beam of 4.3 t: midspan's largest acceleration 44.9 m/s² on the 22 modes planned, 53.3 on 88, 55.1 on the linear mesh; the railway study's railcars over its 15 m concrete deck: 4e-5 of the largest on four times the modes); a run with `track.beam.modes` doubled shows what a scene's move by".to_string());
+        }
+        // Measured on a 40 t body on an 8 Hz suspension (ζ 10 %) at 10 m/s over a 20 m clamped
+        // concrete deck (A 18 m², I 1.98 m⁴): the planned 46 modes of 28 elements, 92 of 56 and
+        // the linear meshes of 28 and 56 elements, the last two at rtol 1e-9; the same deck with
+        // 0.1 % Rayleigh damping; a 2 t car on an 8 Hz suspension (ζ 10 %) at 40 m/s over a 30 m
+        // clamped-roller steel beam (A 90.5 cm², I 10 798 cm⁴) on 21 modes of 20 elements and
+        // the linear mesh of 40 at rtol 1e-10; Biggs' sprung mass on 7 and 14 modes.
+        let quiet = (self.beam.damping.as_ref()).is_some_and(|d| d.damps_high_modes());
+        if !self.vehicles.is_empty() && !quiet {
+            out.push("vehicles on a deck without stiffness-proportional damping: the accelerations, the bodies' and the deck's, can move with the modes the beam holds (kept, or its mesh's) by more than the accuracy, for the modes above those the loads excite ring without decay and the vehicles hand them to the bodies and back to the deck (a 40 t body on an 8 Hz suspension at 10 m/s over a 20 m concrete deck: its largest acceleration 5.037e-3 m/s² on the 46 modes planned, 5.146e-3 on every mode of the planned mesh, 5.182e-3 on 92 modes of twice the mesh and on its every mode; a 2 t car at 40 m/s over a 2.1 t, 30 m steel beam: the deck's largest acceleration 99.14 m/s² on the 21 modes planned, 99.54 on every mode of twice the mesh; Biggs' sprung mass: 2e-5 on half its modes); damping quiets them (`track.beam.damping`: at ζ 0.1 % the same body holds within 2e-4), and a run with `track.beam.modes` doubled shows what a scene's move by".to_string());
         }
         out
     }
