@@ -62,6 +62,9 @@ pub(super) struct Recorder<'a> {
     pub(super) last: Option<(f64, Snapshot)>,
     /// The snapshot before that: with the stations, the start of the last step watched.
     pub(super) before: Option<(f64, Snapshot)>,
+    /// Whether the watches restarted (`Recorder::restart`) and have not sampled since: the
+    /// next step's start is the state after the jump, a sample of its own.
+    pub(super) restarted: bool,
     /// The least time between samples of steps far shorter than it (see `Recorder::watch`).
     pub(super) spacing: f64,
     /// The output times: the ledger reads a piece from its last booked time to each, so that
@@ -682,6 +685,7 @@ pub(super) fn recorder<'a>(
         vehicles_end: None,
         grid_check: GridCheck::new(setup.accuracy),
         before: None,
+        restarted: false,
         trail: Vec::new(),
         along_trail: Vec::new(),
         spacing,
