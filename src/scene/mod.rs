@@ -411,10 +411,10 @@ impl BeamScene {
         }
         // Measured at the defaults (the exact beam on 12 elements, ESDIRK4 at rtol 1e-7), the
         // finer meshes at rtol 1e-9, which moved two 40 t masses' reading on the 12 elements
-        // by 3e-7. A 40 t mass leaving a light two-span beam whipped it the same way: 4.49e5
-        // and 3.17e5 m/s² on 16 and 32 elements.
+        // by 3e-7. A 40 t mass leaving a light two-span beam whipped it: 4.49e5 and 3.17e5
+        // m/s² on 16 and 32 elements; the 6 m beam's, both meshes at rtol 1e-9 and 1e-7.
         if self.carries_moving_masses() && meshed {
-            out.push("a train of moving masses on a mesh: the accelerations can move with the mesh by more than the accuracy, for each mass turns with the beam's slope at every node it crosses, kicks whose size and timing are the mesh's, and where the deck is stiff the loads' own accelerations are small beside them (two 1 t masses at 10 m/s over a 30 m clamped HEB 360 beam, on 12 / 24 / 48 / 96 elements: the envelope's largest acceleration 0.0978 / 0.0924 / 0.0957 / 0.0958 m/s², midspan's 0.0837 / 0.0861 / 0.0833 / 0.0832; the same beam pinned and sliding, ten times the accelerations, on the linear mesh of 24 / 48 / 96: 0.9934 / 0.9941 / 0.9941); a run with `track.beam.elements` doubled shows what a scene's move by".to_string());
+            out.push("a train of moving masses on a mesh: the accelerations can move with the mesh by more than the accuracy, for each mass turns with the beam's slope at every node it crosses, kicks whose size and timing are the mesh's, and where the deck is stiff the loads' own accelerations are small beside them (two 1 t masses at 10 m/s over a 30 m clamped HEB 360 beam, on 12 / 24 / 48 / 96 elements: the envelope's largest acceleration 0.0978 / 0.0924 / 0.0957 / 0.0958 m/s², midspan's 0.0837 / 0.0861 / 0.0833 / 0.0832; the same beam pinned and sliding, ten times the accelerations, on the linear mesh of 24 / 48 / 96: 0.9934 / 0.9941 / 0.9941); a mass far heavier than the beam sets it whipping as it leaves, and then the deflections move with the mesh too (a 40 t mass at 20 m/s off a 6 m steel beam of 0.43 t: midspan's deepest deflection after it -0.461 and -0.422 m on 12 and 24 elements); a run with `track.beam.elements` doubled shows what a scene's move by".to_string());
         }
         // Measured on the planned 22 modes, on 88 modes of twice the mesh and on the linear
         // mesh of 24 elements, each at rtol 1e-8 (42.6 m/s² at the defaults); the railcars on
