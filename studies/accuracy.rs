@@ -1020,15 +1020,7 @@ fn the_deck_s_acceleration_just_after_a_disk_leaves_is_read() {
     );
     let (planned, converged) =
         common::side_by_side(|| at_defaults(&planned), || at_defaults(&stepped));
-    let a_scale = converged.envelope.a_max.0;
-    let mut pairs = vec![envelope_acceleration(&planned, a_scale)];
-    pairs.extend(probe_pairs(
-        &planned,
-        &converged,
-        deepest(&converged),
-        a_scale,
-    ));
-    within_the_accuracy("a disk leaving over a roller", &pairs);
+    deck_within_the_accuracy_of("a disk leaving over a roller", &planned, &converged);
 }
 
 /// The first probe's largest acceleration reported `within` this share of the largest its
@@ -1410,12 +1402,7 @@ fn a_train_of_moving_masses_is_stepped_within_the_accuracy_and_warns_of_the_mode
 /// on 96 elements at rtol 10⁻⁹) moves by more than the accuracy, and the run says so.
 #[test]
 fn a_train_of_moving_masses_on_a_mesh_is_said_to_move_with_it() {
-    let text = |elements: &str| {
-        format!(
-            "name: clamped-masses\nduration: 1.0\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [30.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 181.0e-4\n    Av: 46.8e-4\n    I: 43190.0e-8\n    depth: 0.36\n{elements}    supports: {{from: clamped, to: clamped}}\n    damping: {{ratio: 0.005, modes: [1, 2]}}\ntrain: {{axles: [0.0, 2.0], load: 9810.0, speed: 10.0, model: moving-mass}}\noutput:\n  probes: [{{name: mid, x: 15.0}}, {{name: q, x: 7.5}}]\n"
-        )
-    };
-    let planned = parse(&text(""));
+    let planned = clamped_masses("");
     let beam = planned.beam().expect("a beam");
     assert_eq!(beam.beam.model, BeamModel::Exact);
     assert!(
@@ -1424,17 +1411,25 @@ fn a_train_of_moving_masses_on_a_mesh_is_said_to_move_with_it() {
             .any(|w| w.contains("moving masses on a mesh")),
         "no warning for moving masses on the planned mesh"
     );
-    let finer = parse(&text(&format!(
+    let four_times = format!(
         "    elements: {}\n    order: {}\n",
         4 * beam.beam.elements,
         beam.beam.order
-    )));
+    );
+    let finer = clamped_masses(&four_times);
     let (coarse, fine) = common::side_by_side(|| at_defaults(&planned), || at_defaults(&finer));
     let (a, b) = (coarse.envelope.a_max.0, fine.envelope.a_max.0);
     assert!(
         (a - b).abs() > 1e-2 * b,
         "the mesh held the accelerations: {a:e} and {b:e} m/s²"
     );
+}
+
+/// Two 1 t moving masses over a 30 m clamped HEB 360 beam, its mesh as `mesh` lines give it.
+fn clamped_masses(mesh: &str) -> Scene {
+    parse(&format!(
+        "name: clamped-masses\nduration: 1.0\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [30.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 181.0e-4\n    Av: 46.8e-4\n    I: 43190.0e-8\n    depth: 0.36\n{mesh}    supports: {{from: clamped, to: clamped}}\n    damping: {{ratio: 0.005, modes: [1, 2]}}\ntrain: {{axles: [0.0, 2.0], load: 9810.0, speed: 10.0, model: moving-mass}}\noutput:\n  probes: [{{name: mid, x: 15.0}}, {{name: q, x: 7.5}}]\n"
+    ))
 }
 
 /// D44's consistent disk on the plan's modal beam (16 modes of 8 elements), started carrying
@@ -1743,14 +1738,14 @@ fn deck_within_the_accuracy(name: &str, scene: &Scene, rtol: f64, size: f64) {
         || at_defaults(scene),
         || run_beam(scene, Method::Esdirk4, rtol, rtol * size),
     );
+    deck_within_the_accuracy_of(name, &planned, &converged);
+}
+
+/// The deck's headlines of the `planned` run within the accuracy of the `converged` one.
+fn deck_within_the_accuracy_of(name: &str, planned: &BeamRun, converged: &BeamRun) {
     let a_scale = converged.envelope.a_max.0;
-    let mut pairs = vec![envelope_acceleration(&planned, a_scale)];
-    pairs.extend(probe_pairs(
-        &planned,
-        &converged,
-        deepest(&converged),
-        a_scale,
-    ));
+    let mut pairs = vec![envelope_acceleration(planned, a_scale)];
+    pairs.extend(probe_pairs(planned, converged, deepest(converged), a_scale));
     within_the_accuracy(name, &pairs);
 }
 
