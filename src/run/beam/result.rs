@@ -260,7 +260,7 @@ impl BeamRun {
 
     /// A warning where the exact beam, on a mesh the plan chose from its modes about the
     /// undeformed axis, bent by more than [`FAR_BENT`] of its length at a probe or along the
-    /// envelope. Measured at the defaults (the planned 10 elements, ESDIRK4 at rtol 3.3e-7)
+    /// envelope. Measured at the defaults (the planned 10 elements, ESDIRK4 at the plan's rtol)
     /// against 20 and 40 elements: the time converged within 3.3e-4 of the largest
     /// acceleration (rtol 1e-9 on the 10 elements); the same train at a tenth of the load
     /// (sagging 2.5 % of the span) moved by 9.5e-4, at a thousandth (the modal beam against
