@@ -129,9 +129,6 @@ pub struct Discretisation {
     pub order: usize,
     pub excited_modes: usize,
     pub why: String,
-    /// Whether the plan chose the element count (the scene left it out).
-    #[serde(skip)]
-    pub elements_chosen: bool,
 }
 
 /// Linear static deflection and the modes of `spec` meshed into `elements`: the probes'
@@ -326,14 +323,12 @@ pub fn choose(
 ) -> Discretisation {
     let order = order.unwrap_or(DEFAULT_ORDER);
     let admissible = |n: usize| n.div_ceil(multiple) * multiple;
-    let left_out = elements.is_none();
-    let chosen = |n: usize, excited_modes: usize, why: String| Discretisation {
+    let chosen = |elements: usize, excited_modes: usize, why: String| Discretisation {
         accuracy,
-        elements: n,
+        elements,
         order,
         excited_modes,
         why,
-        elements_chosen: left_out,
     };
     let fallback = |why: &str| {
         let n = elements.unwrap_or(admissible(FALLBACK_ELEMENTS));

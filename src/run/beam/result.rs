@@ -5,7 +5,7 @@ use super::acceleration::CutoffReport;
 use super::vehicles::VehicleReport;
 use crate::analysis::model_choice::SHARE;
 use crate::beam::damping::Rayleigh;
-use crate::beam::{Beam, BeamModel, PointDisplacement};
+use crate::beam::{Beam, PointDisplacement};
 use crate::coupling::vehicles::VehicleObservation;
 use crate::disk::DiskObservation;
 use crate::run::extremes::Range;
@@ -163,10 +163,6 @@ impl Extremes {
 /// its axis by 1.6 %; two 5 MN moving masses over D44's section by 380 %.
 const SMALL_STRAIN: f64 = 0.1;
 
-/// The deflection, of the beam's length, past which the modes about its undeformed axis the
-/// plan chose the mesh from no longer say how fine a mesh the accelerations need.
-const FAR_BENT: f64 = 0.05;
-
 impl BeamRun {
     /// Half the range of w at probe k after the last load left the beam: the residual
     /// vibration. `None` without an exit, or with nothing of the run after it.
@@ -197,7 +193,6 @@ impl BeamRun {
         out.extend(self.nonlinearity_outgrown());
         out.extend(self.ends_drawn_in());
         out.extend(self.strained_past_small_strains());
-        out.extend(self.bent_far_from_the_modes_meshed());
         if let Some(c) = self.acceleration.as_ref().filter(|c| c.below > c.modes) {
             out.push(format!(
                 "the modal beam keeps {} modes, fewer than the {} at or below the deck acceleration's cutoff ({:.2} Hz): the accelerations leave the others out; `track.beam.modes: {}` or more counts them all",
@@ -255,37 +250,6 @@ impl BeamRun {
             "as the {} beam bends, the end that may slide would draw in by up to {draw_in:.2e} m ({:.1e} of the largest deflection, past a quarter of the accuracy {accuracy:e}), a second-order motion its u leaves out; `track.beam.model: exact` holds it",
             self.setup.beam.model.name(),
             draw_in / peak
-        ))
-    }
-
-    /// A warning where the exact beam, on a mesh the plan chose from its modes about the
-    /// undeformed axis, bent by more than [`FAR_BENT`] of its length at a probe or along the
-    /// envelope. Measured at the defaults (the planned 10 elements, ESDIRK4 at the plan's rtol)
-    /// against 20 and 40 elements: the time converged within 3.3e-4 of the largest
-    /// acceleration (rtol 1e-9 on the 10 elements); the same train at a tenth of the load
-    /// (sagging 2.5 % of the span) moved by 9.5e-4, at a thousandth (the modal beam against
-    /// the linear mesh) by 8.5e-4.
-    fn bent_far_from_the_modes_meshed(&self) -> Option<String> {
-        let setup = &self.setup;
-        let chosen = setup
-            .discretisation
-            .as_ref()
-            .is_some_and(|d| d.elements_chosen);
-        if setup.beam.model != BeamModel::Exact || !chosen {
-            return None;
-        }
-        let ([x0, y0], [x1, y1]) = (setup.beam.from, setup.beam.to);
-        let length = (x1 - x0).hypot(y1 - y0);
-        let at_probes = (self.extremes.probes.iter()).flat_map(|p| [p[1].min, p[1].max]);
-        let along = (self.envelope.min.iter().chain(&self.envelope.max)).map(|d| d.w);
-        let deepest = (at_probes.chain(along))
-            .map(f64::abs)
-            .filter(|w| w.is_finite())
-            .fold(0.0_f64, f64::max);
-        (deepest > FAR_BENT * length).then(|| format!(
-            "the beam bent by up to {deepest:.3e} m, {:.1} % of its length, on the {} elements the plan chose from its modes about the undeformed axis: bent this far, the accelerations can move with the mesh by more than the accuracy, for each load turns with the beam's slope at every node it crosses (eight 10 t forces at 10 m/s over a 30 m clamped-roller HEB 360 beam, which they bend 6 % of its span: the quarter point's largest acceleration 7.029 / 7.046 / 7.050 m/s² on 10 / 20 / 40 elements, 2.5e-3 of midspan's 8.270 apart; at a tenth of the loads, bending it 2.5 %, 9.5e-4); a run with `track.beam.elements` doubled shows what a scene's move by",
-            100.0 * deepest / length,
-            setup.beam.elements
         ))
     }
 
