@@ -11,10 +11,13 @@
 //! degree-4 elements is started with one element per two of those modes' half-waves, and
 //! confirmed by one refinement: it is kept once mode K's frequency and the static deflection
 //! at the probes change by less than ε/4 when the element count doubles, and doubled
-//! otherwise. Where vehicles ride the beam, their wheels read the modes' shapes everywhere
-//! along the span, not at the nodes or the probes alone, and the shapes between the nodes
-//! converge far more slowly than the frequencies (as h⁵ against h⁸ at degree 4): the mesh is
-//! kept only once the excited modes' shapes along the whole span also move by less than ε/4.
+//! otherwise. Loads moving along the span read the modes' shapes everywhere along it, not at
+//! the nodes or the probes alone, and turn with their slopes, which the elements' shapes
+//! carry with a jump at every node; shapes between the nodes converge far more slowly than
+//! the frequencies (as h⁵ against h⁸ at degree 4), slopes more slowly still: the mesh is kept
+//! only once the shapes of the modes the loads read (below the acceleration's cutoff; under
+//! vehicles every excited mode too) and the slopes of those below the cutoff also move by
+//! less than ε/4.
 //! The tolerances the integrator is asked for are the plan's (`plan.rs`), from the
 //! same accuracy and from the response's size ([`response_size`]).
 
@@ -238,18 +241,24 @@ fn estimate(
 
 /// How far the shapes of the bending modes among the lowest `count` move from `elements` to
 /// twice as many, each as its largest displacement against the finer mesh's, read along the
-/// whole span. A wheel riding the beam samples the shapes everywhere: a 10 t body on an 8 Hz
-/// suspension over a 20 m concrete span, at 6 to 40 m/s on 8, 12, 16 and 24 elements, read its
-/// largest acceleration up to 5.4·10⁻³, 1.5·10⁻³, 2.4·10⁻⁴ and 1.7·10⁻⁵ off, where the eighth
-/// mode's shape (the last the loads excite) moves by 4·10⁻³, 5·10⁻⁴, 10⁻⁴ and 2·10⁻⁵, and its
-/// frequency by 1.4·10⁻⁴ already on 8. `None` where either mesh's modes are not found.
-fn shapes_move(spec: &BeamSpec, elements: usize, count: usize) -> Option<f64> {
+/// whole span; and the slopes of those among the lowest `sloped`, each as its largest
+/// slope against the finer mesh's steepest (see [`ShapesMoved::slopes`]). A wheel riding the
+/// beam samples the shapes everywhere: a 10 t body on an 8 Hz suspension over a 20 m concrete
+/// span, at 6 to 40 m/s on 8, 12, 16 and 24 elements, read its largest acceleration up to
+/// 5.4·10⁻³, 1.5·10⁻³, 2.4·10⁻⁴ and 1.7·10⁻⁵ off, where the eighth mode's shape (the last the
+/// loads excite) moves by 4·10⁻³, 5·10⁻⁴, 10⁻⁴ and 2·10⁻⁵, and its frequency by 1.4·10⁻⁴
+/// already on 8. `None` where either mesh's modes are not found.
+fn shapes_move(
+    spec: &BeamSpec,
+    elements: usize,
+    (count, sloped): (usize, usize),
+) -> Option<ShapesMoved> {
     let length = (spec.to[0] - spec.from[0]).hypot(spec.to[1] - spec.from[1]);
     let samples = SHAPE_POINTS_PER_ELEMENT * elements;
     let points: Vec<f64> = (0..=samples)
         .map(|i| length * i as f64 / samples as f64)
         .collect();
-    let shapes = |elements: usize| -> Option<Vec<Vec<[f64; 2]>>> {
+    let shapes = |elements: usize| -> Option<Vec<(usize, Vec<[f64; 2]>)>> {
         let beam = Beam::shared(&BeamSpec {
             elements,
             ..spec.clone()
@@ -261,35 +270,75 @@ fn shapes_move(spec: &BeamSpec, elements: usize, count: usize) -> Option<f64> {
             bending
                 .map(|k| {
                     let q: Vec<f64> = m.shapes.column(k).iter().copied().collect();
-                    (points.iter())
+                    let along = (points.iter())
                         .map(|&x| {
                             let d = beam.displacement_at(&q, x);
                             [d.u, d.w]
                         })
-                        .collect()
+                        .collect();
+                    (k, along)
                 })
                 .collect(),
         )
     };
     let (coarse, fine) = (shapes(elements)?, shapes(2 * elements)?);
-    let moved = coarse.iter().zip(&fine).map(|(c, f)| {
+    let spacing = length / samples as f64;
+    let slopes = |d: &[[f64; 2]]| -> Vec<[f64; 2]> {
+        (d.windows(2))
+            .map(|p| [(p[1][0] - p[0][0]) / spacing, (p[1][1] - p[0][1]) / spacing])
+            .collect()
+    };
+    let mut moved = ShapesMoved::default();
+    for ((k, c), (_, f)) in coarse.iter().zip(&fine) {
         let along: f64 = c
             .iter()
             .zip(f)
             .map(|(a, b)| a[0] * b[0] + a[1] * b[1])
             .sum();
         let sign = if along < 0.0 { -1.0 } else { 1.0 };
-        let top = f.iter().fold(0.0_f64, |m, b| m.max(b[0].hypot(b[1])));
-        let apart = c.iter().zip(f).fold(0.0_f64, |m, (a, b)| {
-            m.max((sign * a[0] - b[0]).hypot(sign * a[1] - b[1]))
-        });
-        if top > 0.0 {
-            apart / top
-        } else {
-            0.0
+        let c: Vec<[f64; 2]> = c.iter().map(|a| [sign * a[0], sign * a[1]]).collect();
+        moved.shapes = moved.shapes.max(largest_apart(&c, f));
+        if *k < sloped {
+            moved.slopes = moved.slopes.max(largest_apart(&slopes(&c), &slopes(f)));
         }
-    });
-    Some(moved.fold(0.0, f64::max))
+    }
+    Some(moved)
+}
+
+/// How far two meshes' modes lie apart as [`shapes_move`] measures them.
+#[derive(Clone, Copy, Debug, Default)]
+struct ShapesMoved {
+    /// The largest displacement apart, of each mode's largest.
+    shapes: f64,
+    /// The largest slope apart (over each of the finer mesh's pieces, a sixteenth of an
+    /// element), of each mode's steepest. A mode's quasi-static part under a force P moving at
+    /// v, P φ(vt)/ω², turns with the slope φ' under it, and where the slope turns sharply the
+    /// mode cannot follow and vibrates on with an acceleration of P v Δφ'/ω. The elements'
+    /// slopes jump at every node, kicks the beam itself has not, which a slow load over a
+    /// stiff deck reads as much as the deck's own small accelerations: eight forces at 10 to
+    /// 40 m/s over a 30 m clamped-roller HEB 360 beam read its largest accelerations 8·10⁻⁴ to
+    /// 9.5·10⁻⁴ off on the 10 elements the shapes and frequencies chose (the fourth mode's
+    /// slopes 8.4·10⁻⁴ apart from 20's, its shape 9.5·10⁻⁵).
+    slopes: f64,
+}
+
+impl ShapesMoved {
+    fn worst(&self) -> f64 {
+        self.shapes.max(self.slopes)
+    }
+}
+
+/// The largest distance between the points of `coarse` and `fine`, of the largest of `fine`'s;
+/// 0 where `fine` is all zero.
+fn largest_apart(coarse: &[[f64; 2]], fine: &[[f64; 2]]) -> f64 {
+    let top = fine.iter().fold(0.0_f64, |m, b| m.max(b[0].hypot(b[1])));
+    let apart = (coarse.iter().zip(fine))
+        .fold(0.0_f64, |m, (a, b)| m.max((a[0] - b[0]).hypot(a[1] - b[1])));
+    if top > 0.0 {
+        apart / top
+    } else {
+        0.0
+    }
 }
 
 /// Loads that move along the span (a disk, a train's axles, a vehicle's wheels): each reads
@@ -374,17 +423,17 @@ pub fn choose(
     };
     let largest = (MAX_NODES - 1) / order / 2 / multiple * multiple;
     let first = admissible(excited.div_ceil(2).max(2)).min(largest.max(multiple));
-    let read = moving.map_or(0, |m| {
+    let (read, sloped) = moving.map_or((0, 0), |m| {
         shapes_read(&spec, estimation_elements, &est, excited, m)
     });
     let shapes = |n: usize| {
         if read > 0 {
-            shapes_move(&spec, n, read)
+            shapes_move(&spec, n, (read, sloped))
         } else {
-            Some(0.0)
+            Some(ShapesMoved::default())
         }
     };
-    match refine(on, (shapes, read), first, excited, (tol, tol * scale), nodes) {
+    match refine(on, (shapes, (read, sloped)), first, excited, (tol, tol * scale), nodes) {
         Some((n, reason)) => chosen(n, excited, format!(
             "elements {n} of degree {order}: the loads excite {excited} modes (each adds more than {tol:.1e} of the peak static deflection at the probes); {reason}"
         )),
@@ -407,7 +456,7 @@ fn shapes_read(
     est: &Estimate,
     excited: usize,
     moving: MovingLoads,
-) -> usize {
+) -> (usize, usize) {
     let beam = Beam::shared(&BeamSpec {
         elements,
         ..spec.clone()
@@ -418,9 +467,9 @@ fn shapes_read(
             .count()
     });
     if moving.vehicles {
-        excited.max(below)
+        (excited.max(below), below)
     } else {
-        below
+        (below, below)
     }
 }
 
@@ -475,7 +524,7 @@ fn excited_modes(est: &Estimate, tol: f64) -> Option<(usize, f64)> {
 /// mesh has no static deflection.
 fn refine(
     on: impl Fn(usize) -> Option<Estimate>,
-    (shapes, read): (impl Fn(usize) -> Option<f64>, usize),
+    (shapes, (read, sloped)): (impl Fn(usize) -> Option<ShapesMoved>, (usize, usize)),
     mut n: usize,
     excited: usize,
     (tol, deflection): (f64, f64),
@@ -491,15 +540,18 @@ fn refine(
         // Where a mesh's modes are not found the shapes cannot be compared: the frequencies
         // and the static deflection decide, as without wheels.
         let moved = if settled {
-            shapes(n).unwrap_or(0.0)
+            shapes(n).unwrap_or_default()
         } else {
-            0.0
+            ShapesMoved::default()
         };
-        let ok = settled && moved <= tol;
+        let ok = settled && moved.worst() <= tol;
         if ok || nodes(4 * n) > MAX_NODES {
             let f_hz = fine.omega[k] / std::f64::consts::TAU;
-            let along = if moved > 0.0 {
-                format!(", the shapes of modes 1–{read} along the span, which the moving loads read, by {moved:.1e}")
+            let along = if moved.worst() > 0.0 {
+                format!(
+                    ", the shapes of modes 1–{read} along the span, which the moving loads read, by {:.1e}, the slopes of modes 1–{sloped} by {:.1e}",
+                    moved.shapes, moved.slopes
+                )
             } else {
                 String::new()
             };
