@@ -310,8 +310,8 @@ fn shapes_move(
 struct ShapesMoved {
     /// The largest displacement apart, of each mode's largest.
     shapes: f64,
-    /// The largest slope apart (over each of the finer mesh's pieces, a sixteenth of an
-    /// element), of each mode's steepest. A mode's quasi-static part under a force P moving at
+    /// The largest slope apart (the secants over pieces a sixteenth of the coarser mesh's
+    /// element long, which no node of either mesh splits), of each mode's steepest. A mode's quasi-static part under a force P moving at
     /// v, P φ(vt)/ω², turns with the slope φ' under it, and where the slope turns sharply the
     /// mode cannot follow and vibrates on with an acceleration of P v Δφ'/ω. The elements'
     /// slopes jump at every node, kicks the beam itself has not, which a slow load over a
