@@ -94,11 +94,17 @@ impl Planner {
             return Ok(scene);
         };
         if elements.is_none() || order.is_none() {
-            self.choose_mesh(b, elements, order, multiple);
+            self.choose_mesh(b, elements, order, multiple, false);
         }
+        let meshed_as = b.beam.model;
         if !model_given || b.beam.model == (BeamModel::Modal { modes: 0 }) {
             self.choose_model(b, model_given)
                 .map_err(|why| Error::Input(format!("scene {}: {why}", scene.name)))?;
+        }
+        if elements.is_none() && self.bends(b) {
+            let model = std::mem::replace(&mut b.beam.model, meshed_as);
+            self.choose_mesh(b, elements, order, multiple, true);
+            b.beam.model = model;
         }
         if !rho_inf_given {
             self.choose_rho_inf(b);
@@ -113,6 +119,16 @@ impl Planner {
         Ok(scene)
     }
 
+    /// Whether loads move along an exact beam that bends visibly from linear under them
+    /// (`MovingLoads::bent`): its mesh is chosen again once the model is.
+    fn bends(&self, b: &BeamScene) -> bool {
+        b.beam.model == BeamModel::Exact
+            && moving(b)
+            && self
+                .gap(b)
+                .is_some_and(|g| !model_choice::linear_enough(g, b.accuracy))
+    }
+
     /// The elements and their degree, where the scene leaves either out.
     fn choose_mesh(
         &self,
@@ -120,13 +136,14 @@ impl Planner {
         elements: Option<usize>,
         order: Option<usize>,
         multiple: usize,
+        bent: bool,
     ) {
         let (weight, xs) = (riding_weight(b), b.planning_points());
-        let moving = (!b.vehicles.is_empty() || b.train.is_some() || !b.disks.is_empty())
-            .then_some(MovingLoads {
-                vehicles: !b.vehicles.is_empty(),
-                cutoff_hz: b.acceleration_cutoff_hz,
-            });
+        let moving = moving(b).then_some(MovingLoads {
+            vehicles: !b.vehicles.is_empty(),
+            cutoff_hz: b.acceleration_cutoff_hz,
+            bent,
+        });
         let key = format!(
             "{:?} {elements:?} {order:?} {:?} {weight:?} {xs:?} {:?} {multiple} {:?} {moving:?}",
             b.beam, b.loads, b.accuracy, b.start
@@ -476,6 +493,11 @@ fn passing_speed(b: &BeamScene) -> Option<f64> {
 
 /// How far the beam's static response to what rides on it and its loads is from linear
 /// (`model_choice::nonlinearity_of`).
+/// Whether anything moves along the beam: a disk, a train or a vehicle.
+fn moving(b: &BeamScene) -> bool {
+    !b.vehicles.is_empty() || b.train.is_some() || !b.disks.is_empty()
+}
+
 fn nonlinearity(b: &BeamScene) -> Option<f64> {
     model_choice::nonlinearity_of(&b.beam, &b.loads, weight_at_once(b), &b.planning_points())
 }

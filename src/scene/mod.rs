@@ -409,8 +409,8 @@ impl BeamScene {
         if self.carries_moving_masses() && !meshed {
             out.push("a train of moving masses on the modal beam: the accelerations can move with the modes kept by more than the accuracy, for each mass turns with the beam's slope as it enters and crosses, and the modes below the cutoff answer those kicks in the modes above it (two 2 t masses at 20 m/s over D44's section, on 16 / 32 / 64 modes: midspan's largest acceleration 4.405 / 4.634 / 4.609 m/s², the linear mesh 4.609; two 50 kN at 10 m/s over a 20 m beam, on 48 / 96 / 144 modes: 2.066 / 2.091 / 2.093, the mesh 2.093; the railcar's axles at 100 m/s over the railway study's 15 m concrete deck: 5e-5 of the largest from the mesh's); `track.beam.model: linear` holds them where its mesh does, and a run with `track.beam.modes` doubled shows what a scene's move by".to_string());
         }
-        // Measured at the defaults (the exact beam on 12 elements, ESDIRK4 at rtol 1e-7), the
-        // finer meshes at rtol 1e-9, which moved two 40 t masses' reading on the 12 elements
+        // Measured with ESDIRK4 at rtol 1e-7 on the exact beam's 12 elements, the finer meshes
+        // at rtol 1e-9, which moved two 40 t masses' reading on the 12 elements
         // by 3e-7. A 40 t mass leaving a light two-span beam whipped it: 4.49e5 and 3.17e5
         // m/s² on 16 and 32 elements; the 6 m beam's, both meshes at rtol 1e-9 and 1e-7.
         if self.carries_moving_masses() && meshed {
