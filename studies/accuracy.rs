@@ -1435,25 +1435,8 @@ fn a_train_of_moving_masses_on_a_mesh_is_said_to_move_with_it() {
 #[test]
 fn a_beam_bent_far_under_a_moving_force_is_meshed_for_the_slopes_of_every_excited_mode() {
     let planned = heavy_force_over_a_light_beam("");
-    let beam = planned.beam().expect("a beam");
-    assert_eq!(beam.beam.model, BeamModel::Exact);
-    let twice = format!(
-        "    model: exact\n    elements: {}\n    order: {}\n",
-        2 * beam.beam.elements,
-        beam.beam.order
-    );
-    let (planned, finer) = common::side_by_side(
-        || at_defaults(&planned),
-        || at_defaults(&heavy_force_over_a_light_beam(&twice)),
-    );
-    let pairs = probe_pairs(&planned, &finer, deepest(&finer), finer.envelope.a_max.0);
-    for (what, a, b, scale) in pairs {
-        let error = (a - b).abs() / scale;
-        assert!(
-            error <= 1e-3,
-            "{what}: {a:e} on the plan's mesh, {b:e} on twice it ({error:.1e})"
-        );
-    }
+    assert_eq!(planned.beam().expect("a beam").beam.model, BeamModel::Exact);
+    within_twice_the_mesh(heavy_force_over_a_light_beam, "exact", 1e-3);
 }
 
 /// A 40 t moving-force disk at 40 m/s over a 15 m pinned–roller steel beam (A 90.5 cm², I
@@ -1475,22 +1458,27 @@ fn heavy_force_over_a_light_beam(beam: &str) -> Scene {
 /// it within 4.7·10⁻⁴ of 40, where the 10 read it 2.5·10⁻³ off.
 #[test]
 fn a_slow_train_on_a_stiff_deck_reads_its_mesh_s_slopes_within_the_accuracy() {
-    let light = forces_over_a_clamped_beam("");
-    let beam = light.beam().expect("a beam");
+    within_twice_the_mesh(forces_over_a_clamped_beam, "linear", 2.5e-4);
+}
+
+/// Every probe's extremes of `scene("")` at the defaults within `tolerance` of their scale
+/// (the deepest deflection, the largest acceleration) of the same scene on twice the planned
+/// mesh of the `model` beam, which `scene` takes as beam lines.
+fn within_twice_the_mesh(scene: fn(&str) -> Scene, model: &str, tolerance: f64) {
+    let planned = scene("");
+    let beam = planned.beam().expect("a beam");
     let twice = format!(
-        "    model: linear\n    elements: {}\n    order: {}\n",
+        "    model: {model}\n    elements: {}\n    order: {}\n",
         2 * beam.beam.elements,
         beam.beam.order
     );
-    let (planned, finer) = common::side_by_side(
-        || at_defaults(&light),
-        || at_defaults(&forces_over_a_clamped_beam(&twice)),
-    );
+    let finer = scene(&twice);
+    let (planned, finer) = common::side_by_side(|| at_defaults(&planned), || at_defaults(&finer));
     let pairs = probe_pairs(&planned, &finer, deepest(&finer), finer.envelope.a_max.0);
     for (what, a, b, scale) in pairs {
         let error = (a - b).abs() / scale;
         assert!(
-            error <= 2.5e-4,
+            error <= tolerance,
             "{what}: {a:e} on the plan's mesh, {b:e} on twice it ({error:.1e})"
         );
     }
