@@ -171,7 +171,7 @@ impl ModeEnergy {
         match self {
             ModeEnergy::Series(pieces) => {
                 let at = sigma * pieces.len() as f64;
-                let i = (at.floor() as usize).min(pieces.len() - 1);
+                let i = (at as usize).min(pieces.len() - 1);
                 let piece = &pieces[i];
                 let local = at - i as f64;
                 (
@@ -211,7 +211,7 @@ impl ModeEnergy {
                     if nu.norm() >= 2.0 {
                         (e - 1.0) / nu
                     } else {
-                        exp_moments(nu, sigma, 1)[0]
+                        sigma * exp_m1_over(nu * sigma)
                     }
                 };
                 let squares = if pair {
@@ -244,6 +244,18 @@ pub(super) fn sum_at(modes: &[ModeEnergy], sigma: f64) -> PowerIntegrals {
 }
 
 type C64 = nalgebra::Complex<f64>;
+
+/// (e^z − 1)/z (1 at z = 0) without the cancellation of the difference at small |z|: its real
+/// part as expm1(x) cos y − 2 sin²(y/2), each term to its own round-off.
+fn exp_m1_over(z: C64) -> C64 {
+    if z.norm() == 0.0 {
+        return C64::new(1.0, 0.0);
+    }
+    let (sin, cos) = z.im.sin_cos();
+    let half = (0.5 * z.im).sin();
+    let e_m1 = C64::new(z.re.exp_m1() * cos - 2.0 * half * half, z.re.exp() * sin);
+    e_m1 / z
+}
 
 /// ∫₀ˢ σʲ e^{μσ} dσ for j < count, Re μ ≤ 0: by the series of e^{μσ} where |μs| ≤ 2 (every
 /// term bounded by 2^m/m!), else by the recurrence K_j = (sʲ e^{μs} − j K_{j−1})/μ, which
@@ -322,8 +334,9 @@ fn antiderivative_of_product(a: &[f64], b: &[f64], scale: f64) -> Vec<f64> {
     let mut out = vec![0.0; a.len() + b.len()];
     for (i, ai) in a.iter().enumerate() {
         let ai = scale * ai;
-        for (j, bj) in b.iter().enumerate() {
-            out[i + j + 1] += ai * bj;
+        // Slices zipped, not indexed: the inner loop runs without bounds checks, vectorised.
+        for (o, bj) in out[i + 1..=i + b.len()].iter_mut().zip(b) {
+            *o += ai * bj;
         }
     }
     divide_by_degree(&mut out);
@@ -342,8 +355,8 @@ fn antiderivative_of_square(a: &[f64], scale: f64) -> Vec<f64> {
         let ai = scale * ai;
         out[2 * i + 1] += ai * a[i];
         let twice = 2.0 * ai;
-        for (j, aj) in a.iter().enumerate().skip(i + 1) {
-            out[i + j + 1] += twice * aj;
+        for (o, aj) in out[2 * i + 2..=i + a.len()].iter_mut().zip(&a[i + 1..]) {
+            *o += twice * aj;
         }
     }
     divide_by_degree(&mut out);
@@ -354,6 +367,31 @@ fn antiderivative_of_square(a: &[f64], scale: f64) -> Vec<f64> {
 mod tests {
     use super::super::{evaluate, motion, TEST_MODES, TEST_STEPS};
     use super::*;
+
+    /// (e^z − 1)/z against the series of [`exp_moments`] (∫₀¹ e^{zσ} dσ, every term bounded
+    /// for |z| ≤ 2) where the two forms meet, at the damped roots' sums the ledger takes it
+    /// for: within 4 ulps of the value's size.
+    #[test]
+    fn the_exponential_s_difference_quotient_matches_its_series() {
+        for &(re, im) in &[
+            (0.0, 0.0),
+            (-1e-12, 0.0),
+            (-3e-4, 0.0),
+            (-0.7, 0.0),
+            (-1.9, 0.3),
+            (-1e-3, 1.5),
+            (-0.2, -1.9),
+            (0.0, 1e-9),
+        ] {
+            let z = C64::new(re, im);
+            let closed = exp_m1_over(z);
+            let series = exp_moments(z, 1.0, 1)[0];
+            assert!(
+                (closed - series).norm() <= 4.0 * f64::EPSILON * series.norm(),
+                "z {z}: {closed} against {series}"
+            );
+        }
+    }
 
     /// The force's work ∫ g ẋ dt and the damping's c ∫ ẋ² dt in closed form, against the
     /// composite four-point Gauss–Legendre rule on the motion itself (pieces of a tenth of a

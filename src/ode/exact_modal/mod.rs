@@ -650,7 +650,8 @@ fn evaluate(m: &Motion, w2: f64, c: f64, h: f64, sigma: f64) -> (f64, f64) {
             let count = pieces.len();
             let hp = h / count as f64;
             let at = sigma * count as f64;
-            let i = (at.floor() as usize).min(count - 1);
+            // σ ≥ 0: the cast's truncation is the floor.
+            let i = (at as usize).min(count - 1);
             series_at(&pieces[i], hp, at - i as f64)
         }
         Motion::Particular { p, e0, e1 } => {
