@@ -135,6 +135,16 @@ pub fn shear_rigid_limit(spec: &BeamSpec, length: f64) -> f64 {
     shear_rigid_ratio(spec) * spec.section.ei / (length * length)
 }
 
+impl BeamSpec {
+    /// Whether supports hold u at both ends, so that the axis cannot draw its ends in as it
+    /// bends.
+    pub fn holds_u_at_both_ends(&self) -> bool {
+        self.supports
+            .iter()
+            .all(|s| s.held_components().contains(&0))
+    }
+}
+
 /// [`shear_rigid_limit`] as the ratio R = G Av L²/(E I) it holds.
 pub fn shear_rigid_ratio(spec: &BeamSpec) -> f64 {
     let (n, p) = (spec.elements as f64, spec.order as f64);
@@ -749,15 +759,6 @@ impl Beam {
         self.spec.supports[usize::from(end)]
             .held_components()
             .contains(&1)
-    }
-
-    /// Whether supports hold u at both ends, so that the axis cannot draw its ends in as it
-    /// bends.
-    pub fn holds_u_at_both_ends(&self) -> bool {
-        self.spec
-            .supports
-            .iter()
-            .all(|s| s.held_components().contains(&0))
     }
 
     /// Displacement (global u, w) and rotation at material point x.

@@ -170,7 +170,7 @@ fn chords<'a>(
 
 /// Whether [`stretch`] reads a linear or modal beam's strain u' alone.
 pub(super) fn grows_by_strain_alone(beam: &Beam) -> bool {
-    beam.spec.model != BeamModel::Exact && !beam.holds_u_at_both_ends()
+    beam.spec.model != BeamModel::Exact && !beam.spec.holds_u_at_both_ends()
 }
 
 /// Deformed shapes at the requested times, and the animation's frames on a coarse grid with
