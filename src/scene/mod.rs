@@ -347,6 +347,11 @@ impl BeamScene {
             out.push("a disk with a mass on the modal beam: its instantaneous contact force (`rn_min`, `rn_max`, `rt_min`, `rt_max`, `mu_needed_max`) and the accelerations move with the modes kept by more than the accuracy, for the modes below the cutoff answer the contact force's ringing in the modes above it (D44 started carrying the disk, on 16 / 32 / 64 / 128 modes: midspan's largest acceleration 3.044 / 2.958 / 3.014 / 3.011 m/s², the least contact force 12 986 / 12 947 / 12 949 / 12 915 N); `contact_mean`, the force averaged over a period of the acceleration's cutoff, moves by less (13 133 / 13 136 / 13 143 / 13 141 N); a run with `track.beam.modes` doubled shows what a scene's move by".to_string());
         }
         out.extend(self.riders_moving_with_the_discretisation(meshed));
+        out.extend(
+            self.discretisation
+                .iter()
+                .filter_map(|d| d.unconfirmed.clone()),
+        );
         if self.disks.len() > 1
             && self
                 .disks
