@@ -13,6 +13,7 @@ use crate::analysis::discretisation::{
     choose, passage_share, response_size, Discretisation, MovingLoads, DEFAULT_ACCURACY,
 };
 use crate::analysis::model_choice;
+use crate::beam::supports::Support;
 use crate::beam::train::TrainModel;
 use crate::beam::BeamModel;
 use crate::coupling::Coupling;
@@ -80,10 +81,30 @@ impl Planner {
     /// after a 40 t moving-force disk on a roller (7.9·10⁻³ off at the three-hundredth), held
     /// pinned at both ends (gap 0.92): within 1.1·10⁻⁴, the deck's numbers 1.9·10⁻⁵.
     fn folds(&self, b: &BeamScene) -> bool {
-        b.beam.model == BeamModel::Exact
+        !b.load_switched() && self.bend(b) == Bend::Folds
+    }
+
+    /// How far the exact beam bends from linear under its loads, and how it is held.
+    fn bend(&self, b: &BeamScene) -> Bend {
+        if b.beam.model != BeamModel::Exact {
+            return Bend::Slight;
+        }
+        let gap = self.gap(b);
+        if gap.is_some_and(|g| g > FOLDING_GAP) {
+            if b.beam.holds_u_at_both_ends() {
+                Bend::Stretches
+            } else {
+                Bend::Folds
+            }
+        } else if moving(b)
             && !b.load_switched()
-            && !b.beam.holds_u_at_both_ends()
-            && self.gap(b).is_some_and(|g| g > FOLDING_GAP)
+            && b.beam.supports.contains(&Support::Free)
+            && gap.is_some_and(|g| !model_choice::linear_enough(g, b.accuracy))
+        {
+            Bend::Whips
+        } else {
+            Bend::Slight
+        }
     }
 
     /// The plan, step by step: the mesh, the beam model, ρ∞, the response's size, the method,
@@ -124,7 +145,13 @@ impl Planner {
             self.choose_method(b, &mut scene.solver);
         }
         if !rtol_given {
-            choose_tolerances(b, &mut scene.solver, atol_given, || self.folds(b));
+            choose_tolerances(b, &mut scene.solver, atol_given, || self.bend(b));
+            if scene.solver.method == Method::Esdirk4
+                && b.load_switched()
+                && self.bend(b) == Bend::Folds
+            {
+                b.plan_warnings.push(switched_folding_warning(self.gap(b)));
+            }
         }
         Ok(scene)
     }
@@ -285,9 +312,9 @@ fn choose_tolerances(
     b: &BeamScene,
     solver: &mut SolverSettings,
     atol_given: bool,
-    folds: impl FnOnce() -> bool,
+    bend: impl Fn() -> Bend,
 ) {
-    let (rtol, why) = rtol_for(b, solver.method, folds);
+    let (rtol, why) = rtol_for(b, solver.method, bend);
     solver.rtol = rtol;
     solver.rtol_chosen = Some(why.to_string());
     if !atol_given {
@@ -364,6 +391,34 @@ const SWITCHED: &str = "esdirk4: a load switched during the run excites every mo
 /// balance drifting by 7·10⁻⁴ at 0.6; ESDIRK4 at the same rtol lands within 3·10⁻⁶ there, at
 /// four times the cost; the milder gaps keep the cheaper steps. Its rtol: [`rtol_for`].
 const FOLDING_GAP: f64 = 0.1;
+
+/// How far an exact beam bends from linear under its loads ([`FOLDING_GAP`]), where the steps'
+/// tolerance depends on it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Bend {
+    /// Within a tenth of the linear beam's static deflection, or not the exact beam.
+    Slight,
+    /// Further, held along its axis at both ends: the axis' tension stiffens it.
+    Stretches,
+    /// Further, with an end free to draw in.
+    Folds,
+    /// Less far but beyond the accuracy, with a free end that moving loads cross: the tip
+    /// whips as each leaves or comes on.
+    Whips,
+}
+
+/// What the plan says of an exact beam folded by a load switched during the run, whose
+/// accelerations no affordable rtol settles. A 10 m clamped steel cantilever (A 149 cm², I
+/// 2.5·10⁻⁴ m⁴, undamped) whose 1.2 MN tip load is taken off after 0.3 s (gap 0.26) read its
+/// largest acceleration 4.2·10⁻³, 2.8·10⁻³ and 1.1·10⁻² off at rtol 3.3·10⁻⁵, 3.3·10⁻⁶ and
+/// 3.3·10⁻⁷, 5·10⁻⁵ at 10⁻⁹ (against 10⁻¹⁰, 1.2 M steps); a 20 m pinned–roller beam (gap 0.11)
+/// holds at the planned three-thousandth.
+fn switched_folding_warning(gap: Option<f64>) -> String {
+    format!(
+        "the exact beam folds under a load switched during the run (its static deflection {:.2} off the linear one, an end free to draw in): it swings in every mode the load excites, passing energy between them, and the extremes of its accelerations can move with the steps by more than the accuracy at the planned rtol (a 10 m cantilever whose 1.2 MN tip load is taken off after 0.3 s, gap 0.26: the largest acceleration 1.1e-2 off at a three-thousandth of the accuracy, 5e-5 at rtol 1e-9); a run at a tenth of `solver.rtol` shows what a scene's move by",
+        gap.unwrap_or(f64::NAN)
+    )
+}
 
 /// Why the plan integrates an exact beam that folds under its loads with the fourth-order
 /// ESDIRK ([`FOLDING_GAP`]).
@@ -632,11 +687,17 @@ pub const PLANNED_RHO_INF: f64 = 0.9;
 ///   ([`SWITCHED`]). Damped, such a peak is not monotone in rtol (B1 at
 ///   ρ∞ = 0.8: 0.54 ε, 2.3 ε, 1.3 ε at ε/100, ε/300, ε/1000), since what moves it is how much
 ///   of the mesh's highest modes the damping removes; the scene is told so.
-/// `folds` says whether the exact beam folds under its loads, asked only where it decides.
+///   Far from linear the switched load's modes pass energy between them: an exact beam folded
+///   by it (an end free to draw in) takes ε/3000 (a 20 m pinned–roller beam under 2 MN for
+///   0.2 s, gap 0.11: 2.6 ε off at ε/30, 3.1 ε at ε/300, 0.41 ε at ε/3000), one held at both
+///   ends and stretched by it ε/300 (a 40 m pinned–pinned beam under 200 kN for 0.32 s, gap
+///   0.87: 2.8 ε at ε/30, 0.29 ε at ε/300; a 20 m clamped one under 3 MN, gap 0.52: 0.82 ε
+///   and 0.12 ε; a 20 m pinned one under 1 MN, gap 0.71: 0.11 ε and 0.07 ε).
+/// `bend` says how far the exact beam bends from linear, asked only where it decides.
 pub fn rtol_for(
     scene: &BeamScene,
     method: crate::ode::Method,
-    folds: impl FnOnce() -> bool,
+    bend: impl Fn() -> Bend,
 ) -> (f64, &'static str) {
     let accuracy = scene.accuracy;
     let switched = scene.load_switched();
@@ -664,10 +725,32 @@ pub fn rtol_for(
             "a thirtieth of the accuracy: the fourth-order steps carry the disk's contact force and the deck's acceleration over the crossing with a global error of a few times rtol (D44's modal beam: 6.9e-4 of the weight and 6e-6 of the acceleration at a thirtieth, 1.7e-3 of the weight at a tenth; its 10- and 20-element exact meshes started carrying the disk: the acceleration within 1.1e-4, the contact force within 1.1e-3 of the weight, which rings in the mesh's highest modes with a phase that tightening rtol does not settle: 1.4e-3 at a hundredth; D50's mesh at 20 m/s: the acceleration 4.4e-3 off)",
         );
     }
-    if method == crate::ode::Method::Esdirk4 && folds() {
+    if method == crate::ode::Method::Esdirk4 && !switched && bend() == Bend::Whips {
+        return (
+            accuracy / 3000.0,
+            "a three-thousandth of the accuracy: moving loads cross an exact beam with a free end that bends visibly off linear under them, whose tip whips as each load leaves or comes on, and its accelerations carry the error of every step (a 15 m steel cantilever under six 100 kN axles at 40 m/s that drop off its tip, its static deflection 7.4e-2 off the linear one: the largest acceleration 9.0e-4 off at a three-hundredth of the accuracy, 1.0e-4 at this rtol; under 60 kN, 2.9e-2 off: 1.2e-3 and 1.4e-4; on the linear beam 2e-6 at either)",
+        );
+    }
+    if method == crate::ode::Method::Esdirk4 && !switched && bend() == Bend::Folds {
         return (
             accuracy / 3000.0,
             "a three-thousandth of the accuracy: the exact beam folds under its loads, and swinging far from its linear modes its accelerations carry the error of every step (D44's section under a moving force that sinks midspan 8.7 m: the largest accelerations 9e-4 off at a three-hundredth, 3.6e-5 at this rtol; a 40 t force over a 30 m beam of half its area that swings 10 m after it: 7.9e-3 and 2.2e-4)",
+        );
+    }
+    if method == crate::ode::Method::Esdirk4 && switched && bend() == Bend::Folds {
+        return (
+            accuracy / 3000.0,
+            "a three-thousandth of the accuracy: a load switched on an exact beam that folds under it (its static deflection more than a tenth off the linear one, an end free to draw in) sets it swinging in every mode, passing energy between them, and the accelerations carry the error of every step (a 20 m pinned-roller beam under 2 MN for 0.2 s, gap 0.11: the largest acceleration 2.6e-3 off at a thirtieth, 3.1e-3 at a three-hundredth, 4.1e-4 at this rtol)",
+        );
+    }
+    if method == crate::ode::Method::Esdirk4
+        && switched
+        && accuracy >= DEFAULT_ACCURACY
+        && bend() == Bend::Stretches
+    {
+        return (
+            accuracy / 300.0,
+            "a three-hundredth of the accuracy: a load switched on an exact beam held along its axis at both ends and stretched by it (its static deflection more than a tenth off the linear one) rings in modes its tension couples, and the accelerations carry the error of every step (a 40 m pinned-pinned beam under 200 kN for 0.32 s, gap 0.87: midspan's largest acceleration 2.8e-3 off at a thirtieth, 2.9e-4 at this rtol; a 20 m clamped one under 3 MN, gap 0.52: 8.2e-4 and 1.2e-4)",
         );
     }
     if method == crate::ode::Method::Esdirk4 && switched && accuracy >= DEFAULT_ACCURACY {

@@ -129,6 +129,7 @@ pub(super) fn beam_scene(
         discretisation: None,
         model_choice: None,
         static_gap: None,
+        plan_warnings: Vec::new(),
         left_out_share: None,
         acceleration_cutoff_hz: match raw
             .output

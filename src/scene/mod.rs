@@ -139,6 +139,8 @@ pub struct BeamScene {
     /// Where what moves over the beam is on it too briefly to load it statically: the share
     /// of the static response it leaves, and how long it is on (s). Set by the plan.
     pub passage: Option<(f64, f64)>,
+    /// What the plan could not hold to the accuracy, one sentence each. Set by the plan.
+    pub plan_warnings: Vec<String>,
 }
 
 impl BeamScene {
@@ -352,6 +354,7 @@ impl BeamScene {
                 .iter()
                 .filter_map(|d| d.unconfirmed.clone()),
         );
+        out.extend(self.plan_warnings.iter().cloned());
         if self.disks.len() > 1
             && self
                 .disks
