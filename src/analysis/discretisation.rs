@@ -583,7 +583,7 @@ fn refine(
         };
         let along = if moved.worst() > 0.0 {
             format!(
-                ", the shapes of modes 1–{read} along the span, which the moving loads read, by {:.1e}, the slopes of modes 1–{sloped} by {:.1e}",
+                ", the shapes of modes 1–{read} along the span, which the loads read, by {:.1e}, the slopes of modes 1–{sloped} by {:.1e}",
                 moved.shapes, moved.slopes
             )
         } else {
