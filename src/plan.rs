@@ -153,17 +153,11 @@ impl Planner {
         Ok(scene)
     }
 
-    /// Whether loads move along, or are switched on, an exact beam that bends visibly from
-    /// linear under them: its mesh is chosen again once the model is, moving loads for every
-    /// excited mode's slopes (`MovingLoads::bent`), a switched load for the shapes and slopes
-    /// of those below the cutoff. Released on a 40 m pinned–roller steel beam (A 263 cm², I
-    /// 2.35·10⁻⁴ m⁴) 6.3·10⁻² off linear, 200 kN read the envelope's largest acceleration
-    /// 1.4·10⁻³ off 16 elements on the 8 the linear modes chose; the 32 this rule takes,
-    /// 1.2·10⁻⁴. Every mode's slopes would put B1–B3 (6.2·10⁻⁴ off linear) on 48 elements
-    /// where the shapes' keep 12.
+    /// Whether loads move along an exact beam that bends visibly from linear under them
+    /// (`MovingLoads::bent`): its mesh is chosen again once the model is.
     fn bends(&self, b: &BeamScene) -> bool {
         b.beam.model == BeamModel::Exact
-            && (moving(b) || b.load_switched())
+            && moving(b)
             && self
                 .gap(b)
                 .is_some_and(|g| !model_choice::linear_enough(g, b.accuracy))
@@ -179,10 +173,17 @@ impl Planner {
         bent: bool,
     ) {
         let (weight, xs) = (riding_weight(b), b.planning_points());
-        let moving = (moving(b) || bent).then_some(MovingLoads {
+        // A switched load excites every mode, and the probes read their shapes and slopes as
+        // under moving loads. On the frequencies' mesh alone, 200 kN released on a 40 m steel
+        // beam 6.3·10⁻² off linear read the envelope's largest acceleration 1.4·10⁻³ off twice
+        // the elements (1.2·10⁻⁴ on the mesh this takes), and 100 kN released on a 25 m
+        // concrete span midspan's rotation 1.5·10⁻³ of the largest off (1.3·10⁻⁴); C1–C3 take
+        // 12 elements where 6 held. Every excited mode's slopes, as moving loads on a bent beam
+        // take them, would put B1–B3 on 48 elements where 12 hold.
+        let moving = (moving(b) || b.load_switched()).then_some(MovingLoads {
             vehicles: !b.vehicles.is_empty(),
             cutoff_hz: b.acceleration_cutoff_hz,
-            bent: bent && moving(b),
+            bent,
         });
         let key = format!(
             "{:?} {elements:?} {order:?} {:?} {weight:?} {xs:?} {:?} {multiple} {:?} {moving:?}",
