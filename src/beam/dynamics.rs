@@ -38,6 +38,9 @@ pub struct LoadedBeam<'a> {
     /// update and the ledger all ask at one t, and each axle's patch basis was most of a
     /// moving-mass run's cost.
     riding_at: RefCell<Option<(f64, Rc<[RidingAxle]>)>>,
+    /// What rides under moving forces, formed once: the modal beam's force is sampled at
+    /// every step.
+    no_riders: Rc<[RidingAxle]>,
     /// The longest step anything may take on this beam: a share of its lowest mode's period
     /// ([`STEPS_PER_PERIOD`]), once [`LoadedBeam::resolving`] has set it.
     longest_step: f64,
@@ -104,6 +107,7 @@ impl<'a> LoadedBeam<'a> {
             scratch: RefCell::new(vec![0.0; beam.dim()]),
             damped: RefCell::new(vec![0.0; modal.map_or(beam.dim(), |m| m.dim())]),
             riding_at: RefCell::new(None),
+            no_riders: Rc::from([]),
             longest_step: f64::INFINITY,
             exact: false,
             striding: Cell::new(false),
@@ -187,7 +191,12 @@ impl<'a> LoadedBeam<'a> {
     fn with_damping_force<R>(&self, v: &[f64], then: impl FnOnce(&[f64]) -> R) -> Option<R> {
         let (c, _) = self.damping.as_ref()?;
         let mut cv = self.damped.borrow_mut();
-        crate::linalg::mul(c, v, &mut cv);
+        // The exact modal integration samples the force with the state at rest.
+        if v.iter().all(|&x| x == 0.0) {
+            cv.fill(0.0);
+        } else {
+            crate::linalg::mul(c, v, &mut cv);
+        }
         Some(then(&cv))
     }
 
@@ -270,6 +279,9 @@ impl<'a> LoadedBeam<'a> {
     /// The train's axles riding on the beam at t as moving masses (none for moving forces):
     /// each while its patch overlaps the beam, so that it comes on and goes off smoothly.
     pub fn riding(&self, t: f64) -> Rc<[RidingAxle]> {
+        if self.moving_masses().is_none() {
+            return self.no_riders.clone();
+        }
         if let Some((at, axles)) = &*self.riding_at.borrow() {
             if *at == t {
                 return axles.clone();
