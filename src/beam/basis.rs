@@ -54,16 +54,16 @@ impl Lagrange {
     pub fn values(&self, xi: f64, n: &mut [f64]) {
         // Π_{b≠a} (ξ − ξ_b) as the product of the factors before a and after a: 3k
         // multiplications instead of k².
-        let k = self.nodes.len();
+        let n = &mut n[..self.nodes.len()];
         let mut before = 1.0;
-        for a in 0..k {
-            n[a] = self.scale[a] * before;
-            before *= xi - self.nodes[a];
+        for ((value, scale), node) in n.iter_mut().zip(&self.scale).zip(&self.nodes) {
+            *value = scale * before;
+            before *= xi - node;
         }
         let mut after = 1.0;
-        for a in (0..k).rev() {
-            n[a] *= after;
-            after *= xi - self.nodes[a];
+        for (value, node) in n.iter_mut().zip(&self.nodes).rev() {
+            *value *= after;
+            after *= xi - node;
         }
     }
 
