@@ -22,6 +22,7 @@ const QUADRATURE_TOLERANCE: f64 = 1e-5;
 /// rt, μ needed, w under it), NaN once it has left, then the flying disk's gap, while a disk
 /// is on or over the beam; and when asked, the envelope's stations' (u, w, φ, a) and the
 /// stretch of the axis.
+#[derive(Clone)]
 pub(super) struct Snapshot {
     pub(super) probes: Vec<f64>,
     pub(super) disk: Option<Vec<f64>>,
@@ -35,6 +36,14 @@ impl Snapshot {
     /// Each probe's w.
     pub(super) fn deflections(&self) -> Vec<f64> {
         self.probes.iter().skip(1).step_by(4).copied().collect()
+    }
+
+    /// Each probe's w, φ and a: what the watch's grid checks its pace by. The axial u, about
+    /// round-off on a beam under transverse loads, is left out of the check.
+    pub(super) fn paced(&self) -> Vec<f64> {
+        (self.probes.chunks(4))
+            .flat_map(|p| p[1..].iter().copied())
+            .collect()
     }
 }
 
@@ -84,6 +93,9 @@ pub(super) struct Recorder<'a> {
     /// The vehicles where the last step watched ended (`watch_the_vehicles`): their squares
     /// are booked up to it.
     pub(super) vehicles_end: Option<DeckEnd<Vec<f64>>>,
+    /// Whether a long step's samples check their own pace (`watch_in_pairs`): a load is
+    /// switched on the beam.
+    pub(super) paces_long_steps: bool,
     pub(super) grid_check: GridCheck,
     /// When the last load left the beam: from then on the residual vibration is watched.
     pub(super) exit_t: Option<f64>,
@@ -684,6 +696,7 @@ pub(super) fn recorder<'a>(
         deck_end: None,
         vehicles_end: None,
         grid_check: GridCheck::new(setup.accuracy),
+        paces_long_steps: setup.load_switched(),
         before: None,
         restarted: false,
         trail: Vec::new(),
