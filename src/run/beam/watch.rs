@@ -157,7 +157,7 @@ fn unresolved_in(five: &[&[f64]], largest: &mut Vec<f64>, accuracy: f64) -> Opti
         *l = l.max(x.abs());
     }
     let mut unresolved = None;
-    for q in 0..largest.len() {
+    for (q, seen) in largest.iter_mut().enumerate() {
         let (a, b, c) = (v(2, q), v(3, q), v(4, q));
         let curvature = a - 2.0 * b + c;
         let turns_at = 0.5 * (a - c) / curvature;
@@ -165,8 +165,8 @@ fn unresolved_in(five: &[&[f64]], largest: &mut Vec<f64>, accuracy: f64) -> Opti
             continue;
         }
         let turning = b - 0.25 * (a - c) * turns_at;
-        largest[q] = largest[q].max(turning.abs());
-        if turning.abs() < 0.5 * largest[q] {
+        *seen = seen.max(turning.abs());
+        if turning.abs() < 0.5 * *seen {
             continue;
         }
         let fourth = v(0, q) - 4.0 * v(1, q) + 6.0 * v(2, q) - 4.0 * v(3, q) + v(4, q);
