@@ -513,8 +513,8 @@ fn loads_only_move(setup: &BeamScene) -> bool {
 /// steps leave in the displacements, up to (ω_k/ω₁)² times it. A 100 kN load released on a
 /// 25 m steel beam (ζ 0.02 at modes 1 and 2) read midspan's largest acceleration 2.1·10⁻³ off
 /// in 118 steps with the nodal displacements within 8·10⁻⁵; with the reported modes weighed,
-/// 7.7·10⁻⁵ in 263 steps (ζ 0.005: the envelope's 5.6·10⁻³ off, 2.8·10⁻⁴ with). Undamped, the ringing holds the step down for the whole run and
-/// the same rows change no step.
+/// 7.7·10⁻⁵ in 263 steps (ζ 0.005: the envelope's 5.6·10⁻³ off, 2.8·10⁻⁴ with). Undamped,
+/// the ringing holds the step down for the whole run and the same rows change no step.
 fn quiets_what_a_switch_rings(setup: &BeamScene, damping: Option<Rayleigh>) -> bool {
     setup.load_switched() && damping.is_some_and(|d| d.beta > 0.0)
 }

@@ -22,7 +22,6 @@ const QUADRATURE_TOLERANCE: f64 = 1e-5;
 /// rt, μ needed, w under it), NaN once it has left, then the flying disk's gap, while a disk
 /// is on or over the beam; and when asked, the envelope's stations' (u, w, φ, a) and the
 /// stretch of the axis.
-#[derive(Clone)]
 pub(super) struct Snapshot {
     pub(super) probes: Vec<f64>,
     pub(super) disk: Option<Vec<f64>>,
@@ -38,8 +37,8 @@ impl Snapshot {
         self.probes.iter().skip(1).step_by(4).copied().collect()
     }
 
-    /// Each probe's w, φ and a: what the watch's grid checks its pace by. The axial u, about
-    /// round-off on a beam under transverse loads, is left out of the check.
+    /// Each probe's w, φ and a: what a long step's watch checks its pace by. The axial u,
+    /// about round-off on a beam under transverse loads, is left out of the check.
     pub(super) fn paced(&self) -> Vec<f64> {
         (self.probes.chunks(4))
             .flat_map(|p| p[1..].iter().copied())

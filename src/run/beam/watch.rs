@@ -77,11 +77,14 @@ const TURNING_ERROR_PER_FOURTH_DIFFERENCE: f64 = 0.04;
 const MAX_GRID_REFINEMENTS: u32 = 4;
 
 /// The probes' and the vehicles' bodies' accelerations at their last samples on the grid, by
-/// which it checks its own premise (see `Recorder::check_the_grid`).
+/// which it checks its own premise (see `Recorder::check_the_grid`); and the measure of the
+/// probes' w, φ and a by which a long step's samples check theirs (`watch_in_pairs`).
 pub(super) struct GridCheck {
     samples: VecDeque<(f64, Vec<f64>)>,
     /// Each quantity's largest value sampled or turned at.
     largest: Vec<f64>,
+    /// The same for the probes' w, φ and a a long step's samples check (`unresolved_within`).
+    largest_in_steps: Vec<f64>,
     accuracy: f64,
     /// How many times the grid was refined.
     refined: u32,
@@ -95,6 +98,7 @@ impl GridCheck {
         GridCheck {
             samples: VecDeque::new(),
             largest: Vec::new(),
+            largest_in_steps: Vec::new(),
             accuracy,
             refined: 0,
             broken: false,
@@ -138,8 +142,7 @@ impl GridCheck {
         if samples.len() < 5 {
             return None;
         }
-        let (largest, accuracy) = (&mut self.largest, self.accuracy);
-        largest.resize(samples[0].len(), 0.0);
+        let (largest, accuracy) = (&mut self.largest_in_steps, self.accuracy);
         samples.windows(5).fold(None, |found, five| {
             found.or(unresolved_in(five, largest, accuracy))
         })
