@@ -458,6 +458,21 @@ impl Recorder<'_> {
                 self.trail_along(times[k], shots[k].along.clone());
             }
         }
+        self.vehicles_in_pairs(finer, inside, &times, &shots, dense);
+        self.keep_the_pairs_end(&times, shots);
+    }
+
+    /// The vehicles' values over a step watched in pairs: at `finer` times where they ask for
+    /// them (the step's ends read from its first and last samples), or on the pairs' samples
+    /// where they are read `inside` them.
+    fn vehicles_in_pairs(
+        &mut self,
+        finer: Option<Vec<f64>>,
+        inside: bool,
+        times: &[f64],
+        shots: &[Snapshot],
+        dense: &dyn Dense,
+    ) {
         if let Some(finer) = finer {
             let last = finer.len() - 1;
             let values = finer
@@ -465,29 +480,35 @@ impl Recorder<'_> {
                 .enumerate()
                 .map(|(k, &t)| match k {
                     0 => shots[0].vehicles.clone(),
-                    k if k == last => shots[n].vehicles.clone(),
+                    k if k == last => shots[shots.len() - 1].vehicles.clone(),
                     _ => self.vehicles_seen(t, dense),
                 })
                 .collect();
             self.watch_the_vehicles(&finer, values, dense);
         } else if inside {
             let values = shots.iter().map(|s| s.vehicles.clone()).collect();
-            self.watch_the_vehicles(&times, values, dense);
+            self.watch_the_vehicles(times, values, dense);
         }
+    }
+
+    /// What the next step starts from: the pairs' last sample, the one before it, and the
+    /// disk's trail at the end.
+    fn keep_the_pairs_end(&mut self, times: &[f64], mut shots: Vec<Snapshot>) {
+        let n = times.len() - 1;
         let end = shots.pop().expect("the step's end");
         let before = shots.pop().expect("a sample before the end");
         self.trail = end
             .disk
             .clone()
             .map(|disk| Trailed {
-                t: t1,
+                t: times[n],
                 probes: end.probes.clone(),
                 disk,
             })
             .into_iter()
             .collect();
         self.before = Some((times[n - 1], before));
-        self.last = Some((t1, end));
+        self.last = Some((times[n], end));
     }
 
     /// The dense output's y'(t) where a snapshot reads it: not with the disk on the beam,
