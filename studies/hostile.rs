@@ -381,6 +381,24 @@ fn item_4_no_hangs() {
         2,
         &["would be watched at about", "the run lasts"],
     );
+    // Each sample of the grid reads the mesh from the modes kept: a railway car with its
+    // cutoff given at 100 kHz kept 200 modes on 960 unknowns, within the samples' budget, and
+    // ran for minutes (found by the scene fuzzer): the reads are counted too.
+    let s = scene(
+        "cutoff-reads",
+        &beam(
+            "    model: modal\n    modes: 200\n    elements: 80\n    order: 4\n",
+            "vehicles: [{name: car, speed: 25.0, bodies: [{name: body, mass: 5750.0}], axles: [{name: wheel, x: 0.0}], springs: [{upper: body, lower: wheel, x: 0.0, k: 1.6e6}]}]\noutput: {acceleration_cutoff_hz: 1.0e5}\n",
+        ),
+    );
+    fails(
+        &["run", &s, "--out", &out("cutoff-reads")],
+        2,
+        &[
+            "each reading the mesh's 960 unknowns from 200 modes",
+            "past the budget of 1e11",
+        ],
+    );
     // A vehicle started 10 000 km before the deck rolled on the level approach for minutes
     // before the step budget stopped it (found probing the vehicles' keys): the steps a
     // sixteenth of the lowest period long that its ride needs at the least are counted first.

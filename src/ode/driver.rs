@@ -137,6 +137,7 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
                 atol: opts.atol,
                 stats: Stats::default(),
                 mass_lu: None,
+                split_lu: None,
                 groups: p.norm_groups(),
                 weights: p.norm_weights(),
                 rows: p.norm_rows(),
@@ -448,10 +449,7 @@ impl Dense for StepperDense<'_> {
         let mut yp = vec![0.0; self.stepper.y_new().len()];
         let inside = t != self.ends.0 && t != self.ends.1;
         let from_problem = match &self.problem {
-            Some((p, ctx)) if inside => ctx
-                .borrow_mut()
-                .derivative(*p, t, &self.at(t), &mut yp)
-                .is_ok(),
+            Some((p, ctx)) if inside => ctx.borrow_mut().rate(*p, t, &self.at(t), &mut yp).is_ok(),
             _ => false,
         };
         if !from_problem {

@@ -586,6 +586,8 @@ pub(crate) struct Ctx {
     pub stats: Stats,
     /// Factorised mass matrix of a problem whose mass is constant.
     mass_lu: Option<SparseLu>,
+    /// Factorised constant part of a mass that splits (a body riding on a structure).
+    split_lu: Option<SparseLu>,
     groups: Option<Vec<std::ops::Range<usize>>>,
     weights: Option<Vec<f64>>,
     rows: Option<NormRows>,
@@ -655,6 +657,36 @@ impl Ctx {
                 .ok_or(SolveError::SingularMatrix { t })?
                 .solve_in_place(yp);
         }
+        Ok(())
+    }
+
+    /// y' = M⁻¹ f where the outputs read it inside a step. A mass that splits into a constant
+    /// part and a few rows (a body riding on a structure) is solved from the constant part,
+    /// factorised once, with the rows added by Woodbury: factorising the whole at each sample
+    /// made a watch at a fine cutoff cost a sparse factorisation per sample.
+    pub fn rate(
+        &mut self,
+        p: &dyn Dynamics,
+        t: f64,
+        y: &[f64],
+        yp: &mut [f64],
+    ) -> Result<(), SolveError> {
+        let Some(s) = p.second_order().filter(|_| !p.mass_is_constant()) else {
+            return self.derivative(p, t, y, yp);
+        };
+        let n = s.dim();
+        let Some((base, rows)) = s.mass_split(t, &y[..n]) else {
+            return self.derivative(p, t, y, yp);
+        };
+        if self.split_lu.is_none() {
+            self.stats.factorizations += 1;
+            self.split_lu =
+                Some(SparseLu::factor(base, None).ok_or(SolveError::SingularMatrix { t })?);
+        }
+        self.rhs(p, t, y, yp);
+        let lu = self.split_lu.as_ref().expect("factorised above");
+        let woodbury = linalg::Woodbury::new(lu, rows).ok_or(SolveError::SingularMatrix { t })?;
+        woodbury.solve_in_place(lu, &mut yp[n..]);
         Ok(())
     }
 

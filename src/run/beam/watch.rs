@@ -19,12 +19,18 @@ pub(super) const SAMPLES_PER_PATCH: f64 = 20.0;
 /// default step budget allows steps, each sample costing about what a step does.
 const MAX_GRID_SAMPLES: f64 = 1.0e7;
 
+/// What the grid's samples may read in all: each reads the mesh's displacements, on a modal
+/// beam from its modes (mesh unknowns times modes). A railway car with its cutoff given at
+/// 100 kHz kept 200 modes on a 960-unknown mesh and would have read them 3.6·10⁶ times,
+/// 7·10¹¹ products.
+const MAX_GRID_READS: f64 = 1.0e11;
+
 /// Refuses, before the run, a run whose deck acceleration the watch's grid would sample more
-/// than [`MAX_GRID_SAMPLES`] times. An exact step is as long as the loads allow, so the step
-/// budget does not see a tiny time scale, and the grid is watched all the same: a beam nearly
-/// massless puts EN 1991-2's cutoff at megahertz, billions of samples over a train's passage
-/// (counted until the loads stop changing: what follows can be strided over once it settles,
-/// `settled.rs`). A time-stepped run's steps follow the beam's own modes, which the rule's
+/// than [`MAX_GRID_SAMPLES`] times, or read more than [`MAX_GRID_READS`]. An exact step is as
+/// long as the loads allow, so the step budget does not see a tiny time scale, and the grid
+/// is watched all the same: a beam nearly massless puts EN 1991-2's cutoff at megahertz,
+/// billions of samples over a train's passage (counted until the loads stop changing: what
+/// follows can be strided over once it settles, `settled.rs`). A time-stepped run's steps follow the beam's own modes, which the rule's
 /// cutoff follows too, but not a cutoff the scene gives: its steps are watched and booked in
 /// pieces of the grid's spacing over the whole run, and a cutoff given at 10³⁰ Hz asked for
 /// the memory of 10¹⁶ pieces in one step.
@@ -46,11 +52,22 @@ pub(super) fn grid_within_budget(
         return Ok(());
     };
     let samples = watched * SAMPLES_PER_CUTOFF_PERIOD * f.cutoff_hz;
-    if samples <= MAX_GRID_SAMPLES {
+    let mesh = loaded.beam.dim();
+    let (read, from) = match loaded.modal {
+        Some(m) => (mesh * m.dim(), format!(" from {} modes", m.dim())),
+        None => (mesh, String::new()),
+    };
+    let reads = samples * read as f64;
+    if samples <= MAX_GRID_SAMPLES && reads <= MAX_GRID_READS {
         return Ok(());
     }
+    let past = if samples > MAX_GRID_SAMPLES {
+        format!("past the budget of {MAX_GRID_SAMPLES:.0e} samples")
+    } else {
+        format!("each reading the mesh's {mesh} unknowns{from}: {reads:.1e} products, past the budget of {MAX_GRID_READS:.0e}")
+    };
     Err(Error::Solver(format!(
-        "scene {}: the deck's acceleration, cut off at {:.3e} Hz ({}), would be watched at about {samples:.1e} samples over the {watched:.3e} s {over}, past the budget of {MAX_GRID_SAMPLES:.0e}: shorten the run, set `output.acceleration_cutoff_hz` lower, or look for a time scale the scene makes tiny (a near-zero mass or density, a huge stiffness)",
+        "scene {}: the deck's acceleration, cut off at {:.3e} Hz ({}), would be watched at about {samples:.1e} samples over the {watched:.3e} s {over}, {past}: shorten the run, set `output.acceleration_cutoff_hz` lower, or look for a time scale the scene makes tiny (a near-zero mass or density, a huge stiffness)",
         scene.name, f.cutoff_hz, f.rule
     )))
 }
