@@ -662,8 +662,8 @@ impl Ctx {
 
     /// y' = M⁻¹ f where the outputs read it inside a step. A mass that splits into a constant
     /// part and a few rows (a body riding on a structure) is solved from the constant part,
-    /// factorised once, with the rows added by Woodbury: factorising the whole at each sample
-    /// made a watch at a fine cutoff cost a sparse factorisation per sample.
+    /// factorised once, with the rows added by Woodbury, rather than factorising the whole at
+    /// every sample of the extremes' watch.
     pub fn rate(
         &mut self,
         p: &dyn Dynamics,

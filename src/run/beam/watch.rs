@@ -30,10 +30,10 @@ const MAX_GRID_READS: f64 = 1.0e11;
 /// long as the loads allow, so the step budget does not see a tiny time scale, and the grid
 /// is watched all the same: a beam nearly massless puts EN 1991-2's cutoff at megahertz,
 /// billions of samples over a train's passage (counted until the loads stop changing: what
-/// follows can be strided over once it settles, `settled.rs`). A time-stepped run's steps follow the beam's own modes, which the rule's
-/// cutoff follows too, but not a cutoff the scene gives: its steps are watched and booked in
-/// pieces of the grid's spacing over the whole run, and a cutoff given at 10³⁰ Hz asked for
-/// the memory of 10¹⁶ pieces in one step.
+/// follows can be strided over once it settles, `settled.rs`). A time-stepped run's steps
+/// follow the beam's own modes, which the rule's cutoff follows too, but not a cutoff the
+/// scene gives: its steps are watched and booked in pieces of the grid's spacing over the
+/// whole run, and a cutoff given at 10³⁰ Hz asked for the memory of 10¹⁶ pieces in one step.
 pub(super) fn grid_within_budget(
     scene: &Scene,
     loaded: &LoadedBeam,
