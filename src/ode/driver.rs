@@ -446,16 +446,16 @@ impl Dense for StepperDense<'_> {
     }
 
     fn rate(&self, t: f64) -> Option<Vec<f64>> {
-        let mut yp = vec![0.0; self.stepper.y_new().len()];
         let inside = t != self.ends.0 && t != self.ends.1;
         let from_problem = match &self.problem {
-            Some((p, ctx)) if inside => ctx.borrow_mut().rate(*p, t, &self.at(t), &mut yp).is_ok(),
-            _ => false,
+            Some((p, ctx)) if inside => ctx.borrow_mut().rate(*p, t, &self.at(t)),
+            _ => None,
         };
-        if !from_problem {
+        Some(from_problem.unwrap_or_else(|| {
+            let mut yp = vec![0.0; self.stepper.y_new().len()];
             self.stepper.interpolate_rate(t, &mut yp);
-        }
-        Some(yp)
+            yp
+        }))
     }
 
     fn power_integrals(&self, ta: f64, tb: f64) -> Option<super::PowerIntegrals> {

@@ -660,34 +660,26 @@ impl Ctx {
         Ok(())
     }
 
-    /// y' = M⁻¹ f where the outputs read it inside a step. A mass that splits into a constant
-    /// part and a few rows (a body riding on a structure) is solved from the constant part,
-    /// factorised once, with the rows added by Woodbury, rather than factorising the whole at
-    /// every sample of the extremes' watch.
-    pub fn rate(
-        &mut self,
-        p: &dyn Dynamics,
-        t: f64,
-        y: &[f64],
-        yp: &mut [f64],
-    ) -> Result<(), SolveError> {
-        let Some(s) = p.second_order().filter(|_| !p.mass_is_constant()) else {
-            return self.derivative(p, t, y, yp);
-        };
-        let n = s.dim();
-        let Some((base, rows)) = s.mass_split(t, &y[..n]) else {
-            return self.derivative(p, t, y, yp);
+    /// y' = M⁻¹ f where the outputs read it inside a step (`None` where M is singular). A
+    /// mass that splits into a constant part and a few rows (a body riding on a structure) is
+    /// solved from the constant part, factorised once, with the rows added by Woodbury, rather
+    /// than factorising the whole at every sample of the extremes' watch.
+    pub fn rate(&mut self, p: &dyn Dynamics, t: f64, y: &[f64]) -> Option<Vec<f64>> {
+        let mut yp = vec![0.0; y.len()];
+        let split = p.second_order().filter(|_| !p.mass_is_constant());
+        let Some((s, (base, rows))) =
+            split.and_then(|s| s.mass_split(t, &y[..s.dim()]).map(|m| (s, m)))
+        else {
+            return self.derivative(p, t, y, &mut yp).ok().map(|()| yp);
         };
         if self.split_lu.is_none() {
             self.stats.factorizations += 1;
-            self.split_lu =
-                Some(SparseLu::factor(base, None).ok_or(SolveError::SingularMatrix { t })?);
+            self.split_lu = Some(SparseLu::factor(base, None)?);
         }
-        self.rhs(p, t, y, yp);
-        let lu = self.split_lu.as_ref().expect("factorised above");
-        let woodbury = linalg::Woodbury::new(lu, rows).ok_or(SolveError::SingularMatrix { t })?;
-        woodbury.solve_in_place(lu, &mut yp[n..]);
-        Ok(())
+        self.rhs(p, t, y, &mut yp);
+        let lu = self.split_lu.as_ref()?;
+        linalg::Woodbury::new(lu, rows)?.solve_in_place(lu, &mut yp[s.dim()..]);
+        Some(yp)
     }
 
     /// ∂f/∂y: the problem's own, or forward differences scaled to each component.
