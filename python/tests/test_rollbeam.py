@@ -20,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
 import rollbeam
 
@@ -113,6 +114,20 @@ def test_dict_scenes_are_checked_as_files_are():
     assert e.value.message.startswith("scene dict: ") and e.value.line is None, e.value
     with pytest.raises(rollbeam.SceneError):
         rollbeam.Scene("not a dict")
+
+
+def test_dict_scenes_name_the_nested_key_the_reader_refused():
+    # The dict is read as JSON, every key quoted: the reader's own errors (a list of the wrong
+    # length, a key left out) still name the dotted key, as a file's do.
+    beam = yaml.safe_load((STUDIES / "beam-b1.yaml").read_text())
+    three = {**beam, "track": {"beam": {**beam["track"]["beam"], "from": [0.0, 0.0, 0.0]}}}
+    with pytest.raises(rollbeam.SceneError) as e:
+        rollbeam.Scene(three)
+    assert e.value.key == "track.beam.from", e.value
+    left_out = {k: v for k, v in beam["track"]["beam"].items() if k != "rho"}
+    with pytest.raises(rollbeam.SceneError) as e:
+        rollbeam.Scene({**beam, "track": {"beam": left_out}})
+    assert e.value.key == "track.beam.rho", e.value
 
 
 def test_with_values_returns_a_changed_copy_and_checks_it():

@@ -191,7 +191,7 @@ fn path_at(text: &str, line: usize, column: usize) -> Option<Vec<String>> {
                 word.clear();
             }
             ':' if is_key(word.trim()) => {
-                last = Some(word.trim().trim_start_matches("- ").to_string());
+                last = Some(key_name(word.trim()).to_string());
                 word.clear();
             }
             ',' => word.clear(),
@@ -214,7 +214,7 @@ fn parents(above: &[&str], mut depth: usize) -> Vec<String> {
         depth = indent(l);
         if let Some((k, _)) = t.trim_start_matches("- ").split_once(':') {
             if is_key(k) {
-                keys.push(k.to_string());
+                keys.push(key_name(k).to_string());
             }
         }
         if depth == 0 {
@@ -230,8 +230,18 @@ fn indent(line: &str) -> usize {
 }
 
 fn is_key(word: &str) -> bool {
-    let w = word.trim_start_matches("- ");
+    let w = key_name(word);
     !w.is_empty() && w.len() <= 40 && w.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// A key as written, without a list item's dash or the quotes around it: JSON, which the
+/// Python package writes a scene dict as, quotes every key.
+fn key_name(word: &str) -> &str {
+    let w = word.trim_start_matches("- ");
+    ['"', '\'']
+        .iter()
+        .find_map(|&q| w.strip_prefix(q).and_then(|w| w.strip_suffix(q)))
+        .unwrap_or(w)
 }
 
 #[cfg(test)]
@@ -257,5 +267,15 @@ mod tests {
         assert_eq!(at(4, 15).as_deref(), Some("track.beam.elements"));
         assert_eq!(at(5, 34).as_deref(), Some("track.beam.supports.to"));
         assert_eq!(at(6, 8).as_deref(), Some("disk.radius"));
+    }
+
+    /// A scene dict from Python arrives as JSON, every key quoted and every map in braces:
+    /// its keys are found as a block file's are.
+    #[test]
+    fn quoted_keys_are_found() {
+        let text = "{\n \"track\": {\n  \"beam\": {\n   \"from\": [\n    0.0\n   ],\n   \"elements\": 8.5\n  }\n }\n}\n";
+        let at = |l, c| path_at(text, l, c).map(|p| p.join("."));
+        assert_eq!(at(4, 12).as_deref(), Some("track.beam.from"));
+        assert_eq!(at(7, 16).as_deref(), Some("track.beam.elements"));
     }
 }
