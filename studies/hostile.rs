@@ -381,6 +381,21 @@ fn item_4_no_hangs() {
         2,
         &["would be watched at about", "the run lasts"],
     );
+    // A time-stepped run watches its long steps at the cutoff's pace while the loads move:
+    // 2 GN of moving masses crawling at 1 mm/s over the HSLM deck ran past fifteen minutes
+    // (found by the scene fuzzer through Python): refused before it starts.
+    let s = scene(
+        "crawl",
+        &beam(
+            "",
+            "train: {axles: [0.0], load: 1.0e5, speed: 0.001, model: moving-mass}\n",
+        ),
+    );
+    fails(
+        &["run", &s, "--out", &out("crawl")],
+        2,
+        &["the loads move or switch", "past the budget of 1e7 samples"],
+    );
     // Each sample of the grid reads the mesh from the modes kept: a railway car with its
     // cutoff given at 100 kHz kept 200 modes on 960 unknowns, within the samples' budget, and
     // ran for minutes (found by the scene fuzzer): the reads are counted too.
