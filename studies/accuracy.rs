@@ -6,8 +6,8 @@
 use crate::common;
 
 use common::{
-    at_defaults, changed, converged, hslm_bridge, hslm_bridge_probed, mid_headlines, parse,
-    run_beam, run_with, Set, FRYBA_BRIDGE,
+    at_defaults, changed, converged, hslm_bridge, hslm_bridge_probed, hslm_bridge_text,
+    mid_headlines, parse, run_beam, run_with, Set, FRYBA_BRIDGE,
 };
 use rollbeam::analysis::modes::{modes, ModeKind};
 use rollbeam::beam::{Beam, BeamModel, PointDisplacement};
@@ -2297,27 +2297,13 @@ fn a_damped_deep_beam_under_point_forces_is_said_to_move_with_the_mesh() {
 #[test]
 fn an_energy_balance_off_by_more_than_a_hundredth_is_said() {
     let scene = |method: &str| {
-        parse(&format!(
-            "name: floating-deck
-duration: 0.3
-track:
-  beam:
-    from: [0.0, 0.0]
-    to: [15.0, 0.0]
-    E: 35.0e9
-    G: 14.5833e9
-    rho: 2500
-    A: 6.0
-    Av: 5.0
-    I: 0.219830886
-    supports: {{from: free, to: free}}
-    damping: {{alpha: 0.0, beta: 1.405e-4}}
-train: {{hslm: A1, speed: 90.0}}
-output:
-  probes: [{{name: mid, x: 7.5}}]
-solver: {{method: {method}}}
-"
-        ))
+        let text = hslm_bridge_text("{hslm: A1, speed: 90.0}", 0.3, "", "[{name: mid, x: 7.5}]")
+            .replace("{from: pinned, to: roller}", "{from: free, to: free}")
+            .replace(
+                "{ratio: 0.0185, modes: [1, 2]}",
+                "{alpha: 0.0, beta: 1.405e-4}",
+            );
+        parse(&format!("{text}solver: {{method: {method}}}\n"))
     };
     let said = |r: &BeamRun| (r.warnings().iter()).any(|w| w.contains("energy balance drifts"));
     let genalpha = at_defaults(&scene("genalpha"));

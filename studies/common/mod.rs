@@ -204,7 +204,12 @@ pub fn hslm_bridge(train: &str, duration: f64, beam: &str) -> Scene {
 
 /// [`hslm_bridge`] with the probes `probes` (a YAML list).
 pub fn hslm_bridge_probed(train: &str, duration: f64, beam: &str, probes: &str) -> Scene {
-    parse(&format!(
+    parse(&hslm_bridge_text(train, duration, beam, probes))
+}
+
+/// The text of [`hslm_bridge_probed`]'s scene.
+pub fn hslm_bridge_text(train: &str, duration: f64, beam: &str, probes: &str) -> String {
+    format!(
         "name: hslm-bridge
 duration: {duration}
 track:
@@ -223,7 +228,7 @@ track:
 output:
   probes: {probes}
 "
-    ))
+    )
 }
 
 /// Probe `mid`'s w extremes, residual amplitude and largest acceleration.
