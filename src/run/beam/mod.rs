@@ -230,6 +230,7 @@ fn integrate<E: Copy + std::fmt::Debug>(
 ) -> Result<ode::Outcome<E>, ode::SolveError> {
     let y0: Vec<f64> = q0.iter().chain(v0).copied().collect();
     rec.ledger.order = opts.method.order();
+    rec.ledger.leaves_fast_modes_ringing = opts.method == ode::Method::GenAlpha;
     ode::solve(&FirstOrder::new(p), t0, &y0, t_end, outputs, opts, rec)
 }
 

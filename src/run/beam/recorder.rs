@@ -334,7 +334,8 @@ impl Recorder<'_> {
         let times = LOBATTO.0.map(|x| start + (t - start) * x);
         let states = times.map(|ti| dense.at(ti));
         let inner = [0, 1, 2].map(|k| (times[k], &states[k][..]));
-        self.ledger.piece(&self.phase, inner, t, &dense.at(t))
+        self.ledger
+            .piece(&self.phase, start, inner, t, &dense.at(t))
     }
 
     /// The time between samples from t0 on: `spacing`, and an eighth of the time the fastest
@@ -518,6 +519,11 @@ impl Observer for Recorder<'_> {
 
     fn span(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
         self.ledger.step_ends(&self.phase, t1, &dense.at(t1));
+        if self.ledger.damps_at_mean_state(&self.phase) {
+            let (y0, y1) = (dense.at(t0), dense.at(t1));
+            let mean: Vec<f64> = y0.iter().zip(&y1).map(|(a, b)| 0.5 * (a + b)).collect();
+            self.ledger.step_mean_state(&self.phase, (t0, t1), &mean);
+        }
         // A long step books the work and the damping on the way (see `ledger_pieces`).
         let sample = self.sample_spacing(t0, dense);
         if let Some((whole, rows)) = self.exact_pieces(t0, t1, dense) {
