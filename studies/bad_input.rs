@@ -306,6 +306,26 @@ fn command_line_errors() {
     }
 }
 
+/// An absolute tolerance the size of the beam holds no step (C2's 3 m cantilever at atol 1000
+/// ran 45 s into a singular iteration matrix): refused before the run, in the scene and on the
+/// command line alike; one below it runs.
+#[test]
+fn an_absolute_tolerance_past_the_beam_is_refused() {
+    rejected(
+        "atol-past-the-beam",
+        &beam_scene(&[], "solver:\n  atol: 8.0\n"),
+        &["`solver.atol` = 8 is not below the beam's length (8 m)"],
+    );
+    let good = scene_path("atol-within", &beam_scene(&[], "solver:\n  atol: 1.0e-3\n"));
+    let (code, err) = rollbeam(&["check", good.to_str().expect("utf-8")]);
+    assert_eq!(code, 0, "{err}");
+    let (code, err) = rollbeam(&["run", good.to_str().expect("utf-8"), "--atol", "1e3"]);
+    assert!(
+        code == 1 && err.contains("--atol = 1000 is not below the beam's length (8 m)"),
+        "{err}"
+    );
+}
+
 /// The body of a valid beam under `track:` (indented), with keys replaced by `changes`.
 fn beam_body(changes: &[(&str, &str)]) -> String {
     let mut keys = vec![

@@ -19,7 +19,7 @@ pub fn solver_overrides(
             .map(|m| parse_method(m, scene, "--method"))
             .transpose()?,
         rtol: rtol_flag(rtol, "--rtol")?,
-        atol: positive(atol, "--atol")?,
+        atol: atol_flag(scene, atol, "--atol")?,
         ..Default::default()
     })
 }
@@ -57,6 +57,16 @@ pub(crate) fn rtol_flag(value: Option<f64>, flag: &str) -> Result<Option<f64>, E
             None => Ok(Some(r)),
         },
         None => Ok(None),
+    }
+}
+
+/// An absolute tolerance given on the command line: positive, and one that holds a step of
+/// the scene's beam ([`crate::scene::BeamScene::atol_problem`]).
+fn atol_flag(scene: &Scene, value: Option<f64>, flag: &str) -> Result<Option<f64>, Error> {
+    let atol = positive(value, flag)?;
+    match atol.zip(scene.beam()).and_then(|(a, b)| b.atol_problem(a)) {
+        Some(why) => Err(Error::Input(format!("{flag} {why}"))),
+        None => Ok(atol),
     }
 }
 
