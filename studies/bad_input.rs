@@ -326,6 +326,30 @@ fn an_absolute_tolerance_past_the_beam_is_refused() {
     );
 }
 
+/// A point load on for less than a trillionth of the run's times lies inside one step, whose
+/// stages see it or not by where they fall (on for 1e-300 s from t = 0, 3 kN threw C1's
+/// cantilever 19 mm): refused; one on for a microsecond runs.
+#[test]
+fn a_load_shorter_than_the_steps_can_resolve_is_refused() {
+    let load = |until: &str| {
+        beam_scene(
+            &[],
+            &format!("loads:\n  - {{x: 8.0, fy: -3.0e3, from: 0.0, until: {until}}}\n"),
+        )
+    };
+    rejected(
+        "load-too-short",
+        &load("1.0e-300"),
+        &[
+            "`loads.until` = 1e-300 leaves the load on for 1e-300 s",
+            "a trillionth",
+        ],
+    );
+    let good = scene_path("load-short", &load("1.0e-6"));
+    let (code, err) = rollbeam(&["check", good.to_str().expect("utf-8")]);
+    assert_eq!(code, 0, "{err}");
+}
+
 /// The body of a valid beam under `track:` (indented), with keys replaced by `changes`.
 fn beam_body(changes: &[(&str, &str)]) -> String {
     let mut keys = vec![

@@ -695,6 +695,10 @@ pub(super) fn within(c: &Checker, x: &Spanned<f64>, key: &str, length: f64) -> R
     Ok(v)
 }
 
+/// The shortest time a point load may act, relative to the run's times: a hundred times the
+/// driver's floor on a step.
+const SHORTEST_LOAD: f64 = 1e-12;
+
 pub(super) fn point_loads(
     c: &Checker,
     raw: &SceneFile,
@@ -719,6 +723,19 @@ pub(super) fn point_loads(
                             format!(
                                 "= {u_v} is not after `from` = {from_t}: the load would never act"
                             ),
+                        );
+                    }
+                    // Steps shorter than 1e-14 of the run's times are not taken (the driver's
+                    // floor): a load on for less lies inside a step, whose stages see it or
+                    // not by where they fall. On for 1e-300 s from t = 0, a 3 kN tip load
+                    // threw C1's cantilever 19 mm, the impulse of a whole step.
+                    let resolved =
+                        SHORTEST_LOAD * from_t.abs().max(u_v).max(raw.duration.value).max(1.0);
+                    if u_v - from_t < resolved {
+                        return c.err(
+                            u.referenced.line(),
+                            "loads.until",
+                            format!("= {u_v} leaves the load on for {:e} s after `from` = {from_t}, less than {resolved:e} s (a trillionth of the run's times), within which the steps cannot hold its start and end apart: give it longer, or leave it out (its impulse is below the force times that)", u_v - from_t),
                         );
                     }
                     u_v
