@@ -736,7 +736,7 @@ impl BeamScene {
         let [x0, y0] = self.beam.from;
         let [x1, y1] = self.beam.to;
         let length = (x1 - x0).hypot(y1 - y0);
-        (!(atol < length)).then(|| format!("= {atol} is not below the beam's length ({length} m): no step would be held to it; leave it out for the plan to choose it from rtol and the response's size"))
+        (atol >= length).then(|| format!("= {atol} is not below the beam's length ({length} m): no step would be held to it; leave it out for the plan to choose it from rtol and the response's size"))
     }
 }
 
