@@ -518,10 +518,12 @@ impl Observer for Recorder<'_> {
     }
 
     fn span(&mut self, t0: f64, t1: f64, dense: &dyn Dense) {
-        self.ledger.step_ends(&self.phase, t1, &dense.at(t1));
+        let y1 = dense.at(t1);
+        self.ledger.step_ends(&self.phase, t1, &y1);
         if self.ledger.damps_at_mean_state(&self.phase) {
-            let (y0, y1) = (dense.at(t0), dense.at(t1));
-            let mean: Vec<f64> = y0.iter().zip(&y1).map(|(a, b)| 0.5 * (a + b)).collect();
+            let mean: Vec<f64> = (dense.at(t0).iter().zip(&y1))
+                .map(|(a, b)| 0.5 * (a + b))
+                .collect();
             self.ledger.step_mean_state(&self.phase, (t0, t1), &mean);
         }
         // A long step books the work and the damping on the way (see `ledger_pieces`).
