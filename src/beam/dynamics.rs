@@ -200,6 +200,12 @@ impl<'a> LoadedBeam<'a> {
         Some(then(&cv))
     }
 
+    /// The stretch between breakpoints the run is in, by its midpoint (NaN outside a run):
+    /// which of the train's axles are on at its ends.
+    pub fn stretch(&self) -> f64 {
+        self.segment.get()
+    }
+
     /// The loads acting at time t (within the current stretch, if one is set).
     pub fn active(&self, t: f64) -> impl Iterator<Item = &PointLoad> {
         let when = if self.segment.get().is_nan() {

@@ -58,8 +58,8 @@ pub(super) struct Ledger<'a> {
     to_outputs: std::collections::VecDeque<Piece>,
     /// The end of the step just taken read on that step's side of its breakpoints: where a
     /// vehicle's wheel crosses a kink of the profile the drive's power jumps, and so does the
-    /// vertical speed of its unsprung mass, and by the time the step is booked the run has
-    /// entered the next stretch. (t, the stretch, the moving loads' power, the vehicles'
+    /// vertical speed of its unsprung mass; a train's axle leaves the deck; and by the time
+    /// the step is booked the run has entered the next stretch. (t, the stretch, the moving loads' power, the vehicles'
     /// kinetic energy.)
     end_power: Option<StepEnd>,
     pub check: EnergyCheck,
@@ -251,6 +251,18 @@ impl<'a> Ledger<'a> {
         }
     }
 
+    /// The stretch between breakpoints whose moving loads the powers read, where the loads
+    /// on the deck change at breakpoints: vehicles' wheels, and a train's axles (a moving
+    /// force leaving a cantilever's tip takes its power there with it, which the step ending
+    /// on that breakpoint still has: read on the next stretch, HSLM-A1 over a cantilever's
+    /// free end drifted by 1e-2).
+    fn stretch(phase: &Phase) -> Option<f64> {
+        match phase.vehicles {
+            Some(v) => Some(v.stretch()),
+            None => phase.loaded.train.is_some().then(|| phase.loaded.stretch()),
+        }
+    }
+
     /// The displacements at the loads' points (none to read without loads).
     fn at_loads(&self, phase: &Phase, y: &[f64]) -> Vec<PointDisplacement> {
         if self.loads.is_empty() {
@@ -388,7 +400,7 @@ impl<'a> Ledger<'a> {
         self.done += work_since(self.loads, self.t, t, &self.at_loads, &now);
         self.t = t;
         self.at_loads = now;
-        let stretch = phase.vehicles.map(|v| v.stretch());
+        let stretch = Self::stretch(phase);
         // Across a kink the wheel's track turns at once: its unsprung mass takes a vertical
         // impulse, whose energy the drive delivers through the wheel's contact, booked with
         // the drive's work.
@@ -423,13 +435,13 @@ impl<'a> Ledger<'a> {
         self.damped = (t, now, damped_done);
     }
 
-    /// The step just taken ends at (t, y), read on its own stretch (with vehicles only: see
-    /// `end_power`).
+    /// The step just taken ends at (t, y), read on its own stretch (with vehicles or a train
+    /// only: see `end_power`).
     pub fn step_ends(&mut self, phase: &Phase, t: f64, y: &[f64]) {
-        if let Some(v) = phase.vehicles {
+        if let Some(stretch) = Self::stretch(phase) {
             self.end_power = Some(StepEnd {
                 t,
-                stretch: v.stretch(),
+                stretch,
                 power: Self::moving_power(phase, t, y),
                 damping: Self::damping_power(phase, t, y),
                 kinetic: Self::vehicle_energies(phase, t, y).0,
