@@ -2378,7 +2378,11 @@ fn a_wheel_leaving_a_free_end_books_the_drive_s_work() {
     assert!(drift(&esdirk) < 1e-3, "{:e}", drift(&esdirk));
     let work = |r: &BeamRun| r.rows.last().expect("rows").work;
     let scale = esdirk.header.energy.scale;
-    assert!(work(&esdirk) > 0.1 * scale, "{:e} of {scale:e}", work(&esdirk));
+    assert!(
+        work(&esdirk) > 0.1 * scale,
+        "{:e} of {scale:e}",
+        work(&esdirk)
+    );
     assert!(
         (work(&genalpha) - work(&esdirk)).abs() <= 1e-3 * scale,
         "{:e} against {:e}, of {scale:e}",

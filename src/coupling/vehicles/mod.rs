@@ -575,8 +575,9 @@ impl<'a> VehiclesOnBeam<'a> {
         let bound = self
             .fastest_on_deck(t, q)
             .map_or(beam, |v| beam.min(self.loaded.beam.element_length() / v));
-        self.crossing_a_free_end(t, q)
-            .map_or(bound, |v| bound.min(2.0 * self.patch / (STEPS_OVER_A_FREE_END * v)))
+        self.crossing_a_free_end(t, q).map_or(bound, |v| {
+            bound.min(2.0 * self.patch / (STEPS_OVER_A_FREE_END * v))
+        })
     }
 
     /// The speed of the fastest wheel whose patch straddles an end where nothing holds w, at
