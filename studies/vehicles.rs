@@ -633,7 +633,7 @@ fn truck(x0: f64, speed: f64, extra: &str) -> String {
 /// deck. Kinetic, strain, spring and weight energy less the drive's work plus what the
 /// dampers took stays at its start within the integration's error, which shrinks as rtol
 /// does: from 10⁻⁶ to 10⁻⁸ the steps shrink by 100^(1/3) and the second-order method's error
-/// by about 20 (measured 8.2·10⁻⁵ to 3.8·10⁻⁶).
+/// by about 20 (measured 7.6·10⁻⁵ to 3.4·10⁻⁶).
 #[test]
 fn the_energy_balance_closes_with_dampers_a_profile_and_braking() {
     let text = BRIDGE.replace(
@@ -665,7 +665,7 @@ fn the_energy_balance_closes_with_dampers_a_profile_and_braking() {
 /// The budget's own quadrature stays below the fourth-order method's error. The drive's work
 /// and the dampers' energy are booked by Simpson's rule over each step (its error h⁵ a step),
 /// so Biggs' sprung mass (`studies/vehicle-sprung.yaml`) by ESDIRK4 balances to 1e-8 at rtol
-/// 10⁻⁸ and its balance shrinks from rtol 10⁻⁶ by more than 25 (measured 2.3·10⁻⁸ to 1.3·10⁻¹⁰).
+/// 10⁻⁸ and its balance shrinks from rtol 10⁻⁶ by more than 25 (measured 2.2·10⁻⁸ to 8.5·10⁻¹¹).
 /// Booked by the trapezoidal rule (h³ a step) it shrank as rtol^½, from 2.1·10⁻⁶ to
 /// 1.8·10⁻⁷: the quadrature's error, not the solution's, would be what the summary reports.
 #[test]
@@ -742,7 +742,7 @@ fn a_wheel_that_cannot_hold_the_road_at_the_start_stops_the_run_at_once() {
 /// The truck over the raised deck (`studies/vehicle-truck.yaml`): its massless wheels cross
 /// the profile's four kinks, where the drive's power jumps; each step's work is booked on its
 /// own side of them, and the balance closes at the defaults within a thousandth of the
-/// accuracy (measured 4.8·10⁻⁹; read on the next stretch's side, it drifted by 2.5·10⁻³).
+/// accuracy (measured 3.7·10⁻⁹; read on the next stretch's side, it drifted by 2.5·10⁻³).
 #[test]
 fn the_energy_balance_closes_over_the_kinks_of_a_raised_deck() {
     let r = at_defaults(&load("vehicle-truck.yaml"));
@@ -929,6 +929,7 @@ fn the_energy_balance_closes_for_disk_wheels_over_kinks() {
     );
     let r = at_defaults(&parse(&text));
     let drift = r.header.energy.max_rel_drift();
+    eprintln!("the truck on 0.5 m disks over the ramps: energy drift {drift:.2e}");
     assert!(drift < 1e-5, "the balance drifts by {drift:.2e}");
 }
 
@@ -1108,7 +1109,7 @@ output:
 /// ISO 8608 class B profile: the wheel hops, lands on the deck and the impact moves the beam
 /// through the wheel's row; the balance, with what the landings took and the drive's work
 /// against their impulses, shrinks with rtol as a second-order method's error does (measured
-/// 1.9·10⁻⁵ at 10⁻⁷, 4.2·10⁻⁶ at 10⁻⁸).
+/// 2.1·10⁻⁵ at 10⁻⁷, 4.7·10⁻⁶ at 10⁻⁸).
 #[test]
 fn the_energy_balance_closes_through_wheel_hops_on_the_deck() {
     let bridge = BRIDGE.replace(
@@ -1140,6 +1141,7 @@ fn the_energy_balance_closes_through_wheel_hops_on_the_deck() {
         r.header.energy.max_rel_drift()
     };
     let (coarse, fine) = (drift(1e-7), drift(1e-8));
+    eprintln!("hops on a class B deck: energy drift {coarse:.2e} at rtol 1e-7, {fine:.2e} at 1e-8");
     assert!(
         fine < coarse / 3.0 && fine < 1e-5,
         "{coarse:.2e} then {fine:.2e}"
@@ -1696,6 +1698,7 @@ fn a_disk_wheel_meets_each_crest_ahead_as_an_impact_and_the_balance_closes() {
         .replace("x0: -10.0", "x0: 20.0");
     let run = at_defaults(&parse(&text));
     let drift = run.header.energy.max_rel_drift();
+    eprintln!("disks meeting class H crests, 100 kg axles: energy drift {drift:.2e}");
     assert!(drift < 1e-4, "the balance drifts by {drift:.2e}");
     for (axle, range) in &run.vehicles[0].axles {
         assert!(
@@ -1726,6 +1729,7 @@ fn a_disk_wheel_landing_on_a_rough_road_holds_to_its_crest() {
     );
     let fast = at_defaults(&scene);
     let drift = fast.header.energy.max_rel_drift();
+    eprintln!("disks landing on a class H road: energy drift {drift:.2e}");
     assert!(drift < 1e-4, "the balance drifts by {drift:.2e}");
     contact_forces_converge(&scene, &fast);
 }
@@ -1783,13 +1787,14 @@ fn a_contact_force_rising_past_a_landing_is_read_at_its_peak() {
 /// between two looks of the events: a disk carried onto it without its impact drifts by
 /// 9.2·10⁻⁴. The ledger integrates the powers within each step, and the disk follows its own
 /// crest and knows when it has gone, so that the impact is found where the crests came level:
-/// the balance closes within a tenth of the accuracy (1.4·10⁻⁵ measured).
+/// the balance closes within a tenth of the accuracy (1.2·10⁻⁵ measured).
 #[test]
 fn a_disk_wheel_sweeping_hollows_keeps_the_balance() {
     let text = truck_on_disks(30.0, 1.0, "{class: D, seed: 2, wavelengths: [0.2, 5.0]}")
         .replace("duration: 1.0", "duration: 0.02");
     let run = at_defaults(&parse(&text));
     let drift = run.header.energy.max_rel_drift();
+    eprintln!("disks sweeping class D hollows, 1 kg axles: energy drift {drift:.2e}");
     assert!(drift < 1e-4, "the balance drifts by {drift:.2e}");
 }
 

@@ -69,6 +69,9 @@ pub(super) struct Ledger<'a> {
     /// sign from step to step (generalized-α, which damps them by ρ∞ a step where TR-BDF2's
     /// BDF2 stage quiets them): its damping is booked at its steps' mean states.
     pub leaves_fast_modes_ringing: bool,
+    /// The integrator is implicit, and its steps may pass over fast modes it damps: inside a
+    /// step the powers read the velocities from the positions (`recorder::BookedStep`).
+    pub steps_over_fast_modes: bool,
     /// The powers at the midpoint of the step under way, where it is booked by Simpson's rule.
     mid: Option<Midpoint>,
     /// The step under way (t0, t1) and the damping's power at the mean of its ends' states,
@@ -226,6 +229,7 @@ impl<'a> Ledger<'a> {
             check,
             order: 2,
             leaves_fast_modes_ringing: false,
+            steps_over_fast_modes: false,
             mid: None,
             mean_damping: None,
         };

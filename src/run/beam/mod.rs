@@ -231,6 +231,10 @@ fn integrate<E: Copy + std::fmt::Debug>(
     let y0: Vec<f64> = q0.iter().chain(v0).copied().collect();
     rec.ledger.order = opts.method.order();
     rec.ledger.leaves_fast_modes_ringing = opts.method == ode::Method::GenAlpha;
+    rec.ledger.steps_over_fast_modes = matches!(
+        opts.method,
+        ode::Method::Esdirk4 | ode::Method::TrBdf2 | ode::Method::GenAlpha
+    );
     ode::solve(&FirstOrder::new(p), t0, &y0, t_end, outputs, opts, rec)
 }
 
