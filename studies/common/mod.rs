@@ -21,6 +21,11 @@ pub fn load(file: &str) -> Scene {
     Scene::load(&studies_dir().join(file)).expect("study scenes are valid")
 }
 
+/// A study scene's text, for a test that edits it as a user would.
+pub fn study_text(file: &str) -> String {
+    std::fs::read_to_string(studies_dir().join(file)).expect("study scenes are readable")
+}
+
 /// One key of a scene changed as the scene format holds it: a number, a name, or left out.
 #[derive(Clone, Copy)]
 pub enum Set<'a> {
