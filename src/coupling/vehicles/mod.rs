@@ -583,24 +583,29 @@ impl<'a> VehiclesOnBeam<'a> {
     /// The speed of the fastest wheel whose patch straddles an end where nothing holds w, at
     /// t; `None` with none there.
     fn crossing_a_free_end(&self, t: f64, q: &[f64]) -> Option<f64> {
-        let beam = self.loaded.beam;
-        let free_ends: Vec<f64> = [(false, 0.0), (true, beam.length)]
-            .into_iter()
-            .filter(|&(end, _)| !beam.holds_w_at(end))
-            .map(|(_, x)| x)
-            .collect();
-        if free_ends.is_empty() {
-            return None;
-        }
+        self.free_ends().next()?;
         let fastest = self
             .contacts(t, q)
             .iter()
             // A wheel at the breakpoint where its patch reaches the end counts, whatever the
             // round-off in when it gets there.
-            .filter(|c| free_ends.iter().any(|e| (c.x - e).abs() < 1.5 * self.patch))
+            .filter(|c| {
+                self.free_ends()
+                    .any(|(e, _)| (c.x - e).abs() < 1.5 * self.patch)
+            })
             .map(|c| c.speed.abs())
             .fold(0.0, f64::max);
         (fastest > 0.0).then_some(fastest)
+    }
+
+    /// Each end of the deck where nothing holds w: where it lies along the beam, and which way
+    /// the deck lies from it (+1 from x = 0, −1 from x = L).
+    fn free_ends(&self) -> impl Iterator<Item = (f64, f64)> + Clone + '_ {
+        let beam = self.loaded.beam;
+        [(false, 0.0, 1.0), (true, beam.length, -1.0)]
+            .into_iter()
+            .filter(|&(end, _, _)| !beam.holds_w_at(end))
+            .map(|(_, x, inward)| (x, inward))
     }
 
     /// On a random road, the time the fastest wheel takes over a [`CREST_SAMPLES`]th of its
@@ -834,14 +839,11 @@ impl SecondOrderProblem for VehiclesOnBeam<'_> {
             };
             // Where a free end lets the patch's slab step by the tip's deflection, the steps
             // shorten from where the patch reaches it ([`Self::crossing_a_free_end`]).
-            let free_ends = [(false, reach), (true, length - reach)]
-                .into_iter()
-                .filter(|&(end, _)| !self.loaded.beam.holds_w_at(end))
-                .map(|(_, x)| x);
+            let reaching = self.free_ends().map(|(x, inward)| x + inward * reach);
             for a in &v.axles {
                 let places = [-reach, length + reach]
                     .into_iter()
-                    .chain(free_ends.clone())
+                    .chain(reaching.clone())
                     .chain(turns.iter().copied());
                 out.extend(places.filter_map(|x| v.time_at(x + a.x)));
             }

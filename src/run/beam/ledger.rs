@@ -59,8 +59,8 @@ pub(super) struct Ledger<'a> {
     /// The end of the step just taken read on that step's side of its breakpoints: where a
     /// vehicle's wheel crosses a kink of the profile the drive's power jumps, and so does the
     /// vertical speed of its unsprung mass; a train's axle leaves the deck; and by the time
-    /// the step is booked the run has entered the next stretch. (t, the stretch, the moving loads' power, the vehicles'
-    /// kinetic energy.)
+    /// the step is booked the run has entered the next stretch. (t, the stretch, the moving
+    /// loads' power, the vehicles' kinetic energy.)
     end_power: Option<StepEnd>,
     pub check: EnergyCheck,
     /// The integrator's order (`Method::order`): how a step is booked.

@@ -329,7 +329,8 @@ impl Recorder<'_> {
         &self.outputs[from..to.max(from)]
     }
 
-    /// The piece from `start` to t, by the Gauss–Lobatto rule on the dense output.
+    /// The piece from `start` to t, by the Gauss–Lobatto rule on the step as the budget reads
+    /// it ([`BookedStep`]).
     fn lobatto_piece(&self, start: f64, t: f64, step: &BookedStep) -> Piece {
         let times = LOBATTO.0.map(|x| start + (t - start) * x);
         let states = times.map(|ti| step.at(ti));
