@@ -541,7 +541,7 @@ impl Observer for Recorder<'_> {
                 self.phase.loaded.stride_freely();
             }
         } else if let Some(piece) = self.ledger_pieces(t0, t1, dense, sample) {
-            let step = BookedStep::new(&self.phase, &self.ledger, (t0, t1), dense);
+            let step = BookedStep::new(&self.phase, &self.ledger, (t0, t1), &y1, dense);
             // Even pieces over the step whatever the output times; an output inside one
             // reads its own piece from that one's start.
             let count = ((t1 - t0) / piece).ceil().max(1.0);
@@ -570,7 +570,7 @@ impl Observer for Recorder<'_> {
             self.ledger.book_in_pieces(pieces);
             self.ledger.to_outputs(rows);
         } else if self.phase.vehicles.is_some() && self.ledger.books_by_simpson(&self.phase) {
-            let step = BookedStep::new(&self.phase, &self.ledger, (t0, t1), dense);
+            let step = BookedStep::new(&self.phase, &self.ledger, (t0, t1), &y1, dense);
             let state = |t: f64| step.at(t);
             let rows = self.outputs_inside(t0, t1);
             let (whole, rows) = self
@@ -580,7 +580,7 @@ impl Observer for Recorder<'_> {
             self.ledger.to_outputs(rows);
         } else if self.ledger.books_by_simpson(&self.phase) {
             let tm = 0.5 * (t0 + t1);
-            let step = BookedStep::new(&self.phase, &self.ledger, (t0, t1), dense);
+            let step = BookedStep::new(&self.phase, &self.ledger, (t0, t1), &y1, dense);
             self.ledger.step_midpoint(&self.phase, t1, tm, &step.at(tm));
         }
         let crests = self.phase.vehicles.and_then(|v| v.crest_pace(t0));
@@ -621,12 +621,19 @@ struct BookedStep<'d> {
 }
 
 impl<'d> BookedStep<'d> {
-    /// The step `ends` of `dense`; where the integrator does not step over fast modes
-    /// (`Ledger::steps_over_fast_modes`) its dense output as it is.
-    fn new(phase: &Phase, ledger: &Ledger, ends: (f64, f64), dense: &'d dyn Dense) -> Self {
+    /// The step `ends` of `dense`, whose end state `span` has read as `y1`; where the
+    /// integrator does not step over fast modes (`Ledger::steps_over_fast_modes`) its dense
+    /// output as it is.
+    fn new(
+        phase: &Phase,
+        ledger: &Ledger,
+        ends: (f64, f64),
+        y1: &[f64],
+        dense: &'d dyn Dense,
+    ) -> Self {
         let states = ledger
             .steps_over_fast_modes
-            .then(|| (dense.at(ends.0), dense.at(ends.1)))
+            .then(|| (dense.at(ends.0), y1.to_vec()))
             .filter(|(y0, _)| y0.len() == 2 * phase.split(y0).0.len());
         BookedStep {
             dense,
