@@ -36,6 +36,7 @@ use crate::beam::damping::Rayleigh;
 use crate::beam::dynamics::LoadedBeam;
 use crate::beam::load::BeamStart;
 use crate::beam::modal::ModalBasis;
+use crate::beam::supports::statically_supported;
 use crate::beam::{Beam, BeamModel, PointDisplacement, Stations};
 use crate::coupling::landing::Landing;
 use crate::coupling::thesis_system::ThesisSystem;
@@ -212,7 +213,9 @@ const START_ITERATIONS: usize = 16;
 fn solver_error(scene: &Scene, method: Method, e: ode::SolveError) -> Error {
     let named = scene.solver.method_chosen.is_none() && method == scene.solver.method;
     let kept_exact_for_a_mechanism = matches!(&scene.model, Model::Beam(b)
-        if b.beam.model == BeamModel::Exact && b.model_choice.is_some() && b.response.is_none());
+        if b.beam.model == BeamModel::Exact
+            && b.model_choice.is_some()
+            && !statically_supported(b.beam.supports, b.beam.bearings.len()));
     let hint = match e {
         ode::SolveError::NewtonFailed { .. } if named => format!(
             "; the scene names the method ({}), whose iteration may not follow this coupling: leave `solver.method` out for the plan's choice",
