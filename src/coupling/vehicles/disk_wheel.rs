@@ -42,7 +42,7 @@ impl VehiclesOnBeam<'_> {
     }
 
     /// `profile` (the road's r, r', r'' at x) with the deck's, where x is on it.
-    fn on_deck(&self, x: f64, mesh: &[f64], profile: [f64; 3]) -> [f64; 3] {
+    pub(super) fn on_deck(&self, x: f64, mesh: &[f64], profile: [f64; 3]) -> [f64; 3] {
         let beam = self.loaded.beam;
         let (b, length) = (self.patch, beam.length);
         let mut out = profile;
