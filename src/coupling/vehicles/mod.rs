@@ -591,7 +591,8 @@ impl<'a> VehiclesOnBeam<'a> {
         let bound = self.crossing_a_free_end(t, q).map_or(bound, |v| {
             bound.min(2.0 * self.patch / (STEPS_OVER_A_FREE_END * v))
         });
-        self.pivot_bound(t, q).map_or(bound, |p| bound.min(p))
+        self.pivot_bound(t, q, bound)
+            .map_or(bound, |p| bound.min(p))
     }
 
     /// While a disk wheel nears or pivots over a crest of the profile: the time to reach the
@@ -601,7 +602,17 @@ impl<'a> VehiclesOnBeam<'a> {
     /// wheel of 0.3 m at 8 m/s over a 5 mm ramp's top, on a 30 m steel beam of 6.6 t sloping
     /// about 0.015 there, pivoted 4.4 mm past where they put it, inside a step, and its lift-off
     /// went unseen.
-    fn pivot_bound(&self, t: f64, q: &[f64]) -> Option<f64> {
+    ///
+    /// A crest whose pivot cannot begin within `within` of t (it lies at least a radius
+    /// before the corner) leaves the bound as it is, and its deck is not read.
+    fn pivot_bound(&self, t: f64, q: &[f64], within: f64) -> Option<f64> {
+        if !self
+            .vehicles
+            .iter()
+            .any(|v| matches!(v.wheel, Wheel::Disk { .. }))
+        {
+            return None;
+        }
         let crests: Vec<_> = (self.profile.corners().into_iter())
             .filter(|(_, left, right)| right < left)
             .collect();
@@ -620,7 +631,9 @@ impl<'a> VehiclesOnBeam<'a> {
             }
             for a in &v.axles {
                 let at = x - a.x;
-                for &(corner, left, right) in crests.iter().filter(|c| c.0 + radius > at) {
+                let near =
+                    |c: &&(f64, f64, f64)| c.0 + radius > at && c.0 - radius - at < speed * within;
+                for &(corner, left, right) in crests.iter().filter(near) {
                     let deck = self.on_deck(corner, &mesh, [0.0; 3])[1];
                     let (from, to) = pivot((corner, left + deck, right + deck), radius);
                     if at >= to {
