@@ -619,7 +619,8 @@ impl<'a> VehiclesOnBeam<'a> {
         if crests.is_empty() {
             return None;
         }
-        let mesh = self.loaded.to_mesh(&q[..self.loaded.dim()]);
+        // The deck on the mesh, formed at the first crest near a wheel.
+        let mut mesh = None;
         let mut bound: Option<f64> = None;
         for v in self.vehicles {
             let Wheel::Disk { radius } = v.wheel else {
@@ -634,7 +635,9 @@ impl<'a> VehiclesOnBeam<'a> {
                 let near =
                     |c: &&(f64, f64, f64)| c.0 + radius > at && c.0 - radius - at < speed * within;
                 for &(corner, left, right) in crests.iter().filter(near) {
-                    let deck = self.on_deck(corner, &mesh, [0.0; 3])[1];
+                    let mesh =
+                        mesh.get_or_insert_with(|| self.loaded.to_mesh(&q[..self.loaded.dim()]));
+                    let deck = self.on_deck(corner, mesh, [0.0; 3])[1];
                     let (from, to) = pivot((corner, left + deck, right + deck), radius);
                     if at >= to {
                         continue;
