@@ -308,11 +308,9 @@ impl BeamScene {
         v: &crate::vehicle::Vehicle,
         axle: &crate::vehicle::Axle,
     ) -> bool {
-        let reach = crate::coupling::patch::dispersed_half_width(self.beam.depth)
-            + match v.wheel {
-                crate::vehicle::Wheel::Point => 0.0,
-                crate::vehicle::Wheel::Disk { radius } => radius,
-            };
+        let reach = v.reach(crate::coupling::patch::dispersed_half_width(
+            self.beam.depth,
+        ));
         let x = v.x0 - axle.x;
         x + reach > 0.0 && x - reach < self.length()
     }

@@ -148,11 +148,7 @@ pub(super) struct IsoFile {
 /// stop before that, when it stops.
 pub(super) fn vehicle_gone(v: &Vehicle, length: f64, patch: f64) -> f64 {
     let last = v.axles.last().map_or(0.0, |a| a.x);
-    let radius = match v.wheel {
-        Wheel::Point => 0.0,
-        Wheel::Disk { radius } => radius,
-    };
-    v.time_at(length + last + patch + radius)
+    v.time_at(length + last + v.reach(patch))
         .or(v.stops_at())
         .unwrap_or(0.0)
 }

@@ -99,6 +99,16 @@ pub type Refusal = String;
 pub const MAX_SUSPENSION_HZ: f64 = 1e6;
 
 impl Vehicle {
+    /// How far from a wheel's centre its contact can touch the deck, given the patch's
+    /// half-width: the patch, and a disk's radius.
+    pub fn reach(&self, patch: f64) -> f64 {
+        patch
+            + match self.wheel {
+                Wheel::Point => 0.0,
+                Wheel::Disk { radius } => radius,
+            }
+    }
+
     /// Whether an axle has a mass of its own, which takes an impulse wherever the track turns.
     pub fn has_unsprung_mass(&self) -> bool {
         self.axles.iter().any(|a| a.mass > 0.0)

@@ -288,16 +288,6 @@ impl<'a> VehiclesOnBeam<'a> {
         self.segment.get()
     }
 
-    /// How far from a wheel's centre its contact can touch the deck: the patch, and a disk's
-    /// radius.
-    fn reach(&self, v: &Vehicle) -> f64 {
-        self.patch
-            + match v.wheel {
-                Wheel::Point => 0.0,
-                Wheel::Disk { radius } => radius,
-            }
-    }
-
     /// When the last wheel leaves the deck, if every vehicle does.
     pub fn gone(&self) -> Option<f64> {
         let length = self.loaded.beam.length;
@@ -306,7 +296,7 @@ impl<'a> VehiclesOnBeam<'a> {
             .map(|v| {
                 v.axles
                     .last()
-                    .and_then(|a| v.time_at(length + a.x + self.reach(v)))
+                    .and_then(|a| v.time_at(length + a.x + v.reach(self.patch)))
             })
             .try_fold(0.0_f64, |m, t| t.map(|t| m.max(t)))
     }
@@ -317,10 +307,10 @@ impl<'a> VehiclesOnBeam<'a> {
         self.vehicles
             .iter()
             .map(|v| {
-                if v.x0 >= -self.reach(v) {
+                if v.x0 >= -v.reach(self.patch) {
                     Some(0.0)
                 } else {
-                    v.time_at(-self.reach(v))
+                    v.time_at(-v.reach(self.patch))
                 }
             })
             .collect()
@@ -885,7 +875,7 @@ impl SecondOrderProblem for VehiclesOnBeam<'_> {
         let mut out = self.loaded.breakpoints();
         for v in self.vehicles {
             out.extend(v.stops_at());
-            let reach = self.reach(v);
+            let reach = v.reach(self.patch);
             // A point wheel's track turns at each kink. A disk pivots over a crest from where
             // its contact reaches the corner to where it leaves it, X = x − a s/√(1 + s²) for
             // each face's slope s; in a hollow it rests on both faces at one place, where its
