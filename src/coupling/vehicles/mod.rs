@@ -67,6 +67,14 @@ const CREST_SAMPLES: f64 = 32.0;
 /// drive's work 21 J off out of 1767 (a drift of 7.8e-3) with the motion right to 1e-6.
 const STEPS_OVER_A_FREE_END: f64 = 64.0;
 
+/// Steps a wheel with a mass takes at least to cross an element of the mesh. It bears the
+/// deck's acceleration under it, which every mode of the mesh carries; the implicit steps
+/// hold a mode faster than themselves at its response to the load as it stands, to the order
+/// of their stages, and the load under a wheel turns at each element it crosses. A 510 kg
+/// wheel under β damping, four steps an element, read its largest contact force 2.8 % high;
+/// sixteen, within 10⁻⁶.
+const STEPS_OVER_AN_ELEMENT_UNDER_A_MASS: f64 = 16.0;
+
 /// Steps a disk wheel takes at least to pivot over a crest of the profile: its contact force
 /// dips by about m V²/a there, which the steps, following the vehicle's and the deck's
 /// motion, would stride over.
@@ -578,6 +586,10 @@ impl<'a> VehiclesOnBeam<'a> {
         let bound = self
             .fastest_on_deck(t, q)
             .map_or(beam, |v| beam.min(self.loaded.beam.element_length() / v));
+        let bound = self.fastest_mass_on_the_mesh(t, q).map_or(bound, |v| {
+            let element = self.loaded.beam.element_length();
+            bound.min(element / (STEPS_OVER_AN_ELEMENT_UNDER_A_MASS * v))
+        });
         let bound = self.crossing_a_free_end(t, q).map_or(bound, |v| {
             bound.min(2.0 * self.patch / (STEPS_OVER_A_FREE_END * v))
         });
@@ -690,6 +702,26 @@ impl<'a> VehiclesOnBeam<'a> {
     }
 
     /// The speed of the fastest wheel on the deck at t; `None` with none on it, or none moving.
+    /// Whether a wheel with a mass is on the deck, and the beam is a mesh: the deck's
+    /// acceleration under it then carries every mode of the mesh into its contact force.
+    pub fn mass_on_the_mesh(&self, t: f64, q: &[f64]) -> bool {
+        self.fastest_mass_on_the_mesh(t, q).is_some()
+    }
+
+    /// The speed of the fastest wheel with a mass on the deck, where the beam is a mesh.
+    fn fastest_mass_on_the_mesh(&self, t: f64, q: &[f64]) -> Option<f64> {
+        if self.loaded.modal.is_some() {
+            return None;
+        }
+        let fastest = self
+            .contacts(t, q)
+            .iter()
+            .filter(|c| !c.rows[0].is_empty() && self.vehicles[c.vehicle].axles[c.axle].mass > 0.0)
+            .map(|c| c.speed.abs())
+            .fold(0.0, f64::max);
+        (fastest > 0.0).then_some(fastest)
+    }
+
     fn fastest_on_deck(&self, t: f64, q: &[f64]) -> Option<f64> {
         let fastest = self
             .contacts(t, q)
