@@ -159,6 +159,21 @@ impl<'a> Phase<'a> {
         Some(v.observe(t, z, zd, &v.acceleration(t, z, zd)))
     }
 
+    /// The vehicles at (t, y), with the accelerations read off `rate` (ẏ) where given.
+    pub fn vehicles_at_rate(
+        &self,
+        t: f64,
+        y: &[f64],
+        rate: Option<&[f64]>,
+    ) -> Option<VehicleObservation> {
+        let v = self.vehicles?;
+        let (z, zd) = self.split(y);
+        match rate {
+            Some(yp) => Some(v.observe(t, z, zd, self.split(yp).1)),
+            None => self.vehicles(t, y),
+        }
+    }
+
     /// The model's accelerations at (t, y): with the disk on the beam, the coupled system's
     /// (from the disk's observation); with vehicles, theirs and the beam's together; the
     /// free beam's otherwise.

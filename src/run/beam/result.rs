@@ -285,7 +285,7 @@ impl BeamRun {
     /// mass's inertia, a share set by how finely the model resolves the contact patch. A 10 t
     /// car on two 1 t wheels, the front one set at the support of a 20 m steel beam of 1.4 t:
     /// its least contact force 13 373, 4 433, 2 599 and 2 363 N on 16, 32 (the plan's), 64 and
-    /// 128 exact elements, of a static 58.9 kN; started static, 25 350, 25 350 and 25 348 N on
+    /// 128 exact elements, of a static 58.9 kN; started static, 25 335, 25 351 and 25 349 N on
     /// 16, 32 and 128, later in the run.
     fn wheels_set_down(&self) -> Vec<String> {
         if self.setup.start != BeamStart::Rest {

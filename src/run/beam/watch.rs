@@ -716,7 +716,9 @@ impl Recorder<'_> {
     /// lags the motion by a share of its step, and where a bogie's acceleration rose steeply
     /// to a wheel's lift-off (a railway car at 1000 m/s) it read the peak 2.3·10⁻³ high.
     fn vehicles_seen(&self, t: f64, dense: &dyn Dense) -> Vec<f64> {
-        let seen = self.phase.vehicles(t, &dense.at(t));
+        let seen = self
+            .phase
+            .vehicles_at_rate(t, &dense.at(t), self.rate(dense, t).as_deref());
         self.vehicle_values(t, seen.as_ref())
     }
 
