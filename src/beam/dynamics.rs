@@ -70,6 +70,12 @@ pub const STEPS_PER_PERIOD: f64 = 16.0;
 /// 0.3 Hz.
 const EXACT_STRIDE: f64 = 32.0;
 
+/// Steps a moving mass takes at least to cross an element of the mesh. It bears the deck's
+/// acceleration under it, which every mode of the mesh carries; the implicit steps hold a
+/// mode faster than themselves at its response to the load as it stands, to the order of
+/// their stages, and the load turns at each element it crosses.
+pub const STEPS_OVER_AN_ELEMENT_UNDER_A_MASS: f64 = 16.0;
+
 impl<'a> LoadedBeam<'a> {
     pub fn new(
         beam: &'a Beam,
@@ -667,7 +673,12 @@ impl LoadedBeam<'_> {
             let x = train.position(a, t);
             x >= -reach && x <= length + reach
         });
-        let passage = self.beam.element_length() / train.speed;
+        let passage = match train.model {
+            TrainModel::MovingMass if self.modal.is_none() => {
+                self.beam.element_length() / (STEPS_OVER_AN_ELEMENT_UNDER_A_MASS * train.speed)
+            }
+            _ => self.beam.element_length() / train.speed,
+        };
         if on && self.exact {
             passage.min(EXACT_STRIDE * self.longest_step)
         } else if on {

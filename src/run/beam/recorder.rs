@@ -716,12 +716,15 @@ impl WatchedStep {
         dense: &dyn Dense,
     ) -> Option<Self> {
         let long = t1 - t0 > SLIVER * t0.abs().max(t1.abs());
-        let vehicles = phase.vehicles?;
         if !ledger.steps_over_fast_modes || !long {
             return None;
         }
         let y0 = dense.at(t0);
-        let carried = |t: f64, y: &[f64]| vehicles.mass_on_the_mesh(t, phase.split(y).0);
+        let on_the_mesh = phase.loaded.modal.is_none();
+        let carried = |t: f64, y: &[f64]| match phase.vehicles {
+            Some(v) => v.mass_on_the_mesh(t, phase.split(y).0),
+            None => on_the_mesh && !phase.loaded.riding(t).is_empty(),
+        };
         if y0.len() != 2 * phase.split(&y0).0.len() || !(carried(t0, &y0) || carried(t1, y1)) {
             return None;
         }
