@@ -687,8 +687,8 @@ impl<'d> BookedStep<'d> {
     }
 }
 
-/// A step as the watches and the rows read it under vehicles, where the integrator steps
-/// over fast modes: the cubic Hermite through the ends' positions and velocities (the dense
+/// A step as the watches and the rows read it while a wheel with a mass or a train's moving
+/// mass rides the mesh, where the integrator steps over fast modes: the cubic Hermite through the ends' positions and velocities (the dense
 /// output's positions), its derivative as the velocities ([`BookedStep`]), and as the
 /// accelerations the derivative of the cubic Hermite through the ends' velocities and
 /// accelerations. A wheel with a mass bears the deck's acceleration under it, into which the
@@ -704,10 +704,10 @@ pub(super) struct WatchedStep {
 
 impl WatchedStep {
     /// The step `ends` of `dense`, whose end state `span` has read as `y1`, where it is read
-    /// so: a wheel with a mass on the mesh at either end (where the steps are held to a
-    /// sixteenth of an element's crossing; after the wheels leave, on the steps of the free
-    /// vibration, the cubic's derivative misses a body's acceleration by (ωh)³), an integrator
-    /// that steps over fast modes, a step longer than a sliver.
+    /// so: a wheel with a mass or a moving mass on the mesh at either end (where the steps are
+    /// held to a sixteenth of an element's crossing; after the loads leave, on the steps of the
+    /// free vibration, the cubic's derivative misses a body's acceleration by (ωh)³), an
+    /// integrator that steps over fast modes, a step longer than a sliver.
     fn new(
         phase: &Phase,
         ledger: &Ledger,
