@@ -2520,46 +2520,14 @@ fn an_energy_balance_off_by_more_than_a_hundredth_is_said() {
 /// accuracy of that run's envelope (measured 3·10⁻⁵).
 #[test]
 fn a_moving_mass_reads_the_deck_inside_the_step() {
+    let masses = "train: {axles: [0.0, 3.0], load: 30000.0, speed: 8.0, model: moving-mass}\n";
     let train = |solver: &str| {
-        parse(&format!(
-            "name: soft-masses
-duration: 0.5
-track:
-  beam:
-    from: [0.0, 0.0]
-    to: [30.0, 0.0]
-    E: 210.0e9
-    G: 81.0e9
-    rho: 7850
-    A: 0.0278183
-    Av: 0.0231819
-    I: 1.91047e-5
-    depth: 0.0907813
-    supports: {{from: pinned, to: pinned}}
-    damping: {{ratio: 0.05, modes: [1, 2]}}
-train: {{axles: [0.0, 3.0], load: 30000.0, speed: 8.0, model: moving-mass}}
-{solver}output:
-  probes: [{{name: mid, x: 15.0}}, {{name: q, x: 7.5}}]
-"
-        ))
+        let text = common::soft_deck_text("", masses, solver);
+        parse(&format!("name: soft-masses\n{text}"))
     };
     let (planned, finer) = common::side_by_side(
         || at_defaults(&train("")),
         || at_defaults(&train("solver: {accuracy: 1.0e-6}\n")),
     );
-    let deck = |r: &BeamRun| -> Vec<f64> {
-        let probes = r.extremes.probes.iter();
-        std::iter::once(r.envelope.a_max.0)
-            .chain(probes.map(|p| p[3].largest_magnitude().0))
-            .collect()
-    };
-    let scale = finer.envelope.a_max.0;
-    for (x, y) in deck(&planned).into_iter().zip(deck(&finer)) {
-        assert!(
-            (x - y).abs() < 1e-3 * scale,
-            "the deck's largest accelerations {:?} at the defaults, {:?} at a thousandth of the accuracy",
-            deck(&planned),
-            deck(&finer)
-        );
-    }
+    common::assert_deck_accelerations_within(&planned, &finer, 1e-3);
 }

@@ -2170,38 +2170,9 @@ fn a_road_s_seed_and_class_are_swept_as_the_file_gives_them() {
 #[test]
 fn a_disk_wheel_lifts_off_where_it_pivots_over_a_crest_of_a_deflected_deck() {
     let ramp = |solver: &str| {
-        parse(&format!(
-            "name: ramp-top
-duration: 0.5
-track:
-  beam:
-    from: [0.0, 0.0]
-    to: [30.0, 0.0]
-    E: 210.0e9
-    G: 81.0e9
-    rho: 7850
-    A: 0.0278183
-    Av: 0.0231819
-    I: 1.91047e-5
-    depth: 0.0907813
-    supports: {{from: pinned, to: pinned}}
-    damping: {{ratio: 0.05, modes: [1, 2]}}
-  profile:
-    points: [[0.0, 0.0], [10.0, 0.0], [10.5, 0.005], [30.0, 0.005]]
-vehicles:
-  - name: car
-    x0: -2.0
-    speed: 8.0
-    bodies: [{{name: body, mass: 5096.84, inertia: 5096.84, x: 1.5}}]
-    axles: [{{name: front, x: 0.0, mass: 509.684}}, {{name: rear, x: 3.0, mass: 509.684}}]
-    springs:
-      - {{upper: body, lower: front, x: 0.0, k: 1177042.3, c: 10953.7}}
-      - {{upper: body, lower: rear, x: 3.0, k: 1177042.3, c: 5476.9}}
-    wheel: disk
-    radius: 0.3
-{solver}output:
-  probes: [{{name: mid, x: 15.0}}, {{name: q, x: 7.5}}]
-"
+        parse(&car_over_a_ramp(
+            "    wheel: disk\n    radius: 0.3\n",
+            solver,
         ))
     };
     let lift_offs = |r: &BeamRun| -> Vec<Vec<f64>> {
@@ -2243,58 +2214,12 @@ vehicles:
 /// accuracy of that run's scale (measured 2·10⁻⁵).
 #[test]
 fn a_wheel_with_a_mass_reads_the_deck_inside_the_step() {
-    let ramp = |solver: &str| {
-        parse(&format!(
-            "name: ramp-kinks
-duration: 0.5
-track:
-  beam:
-    from: [0.0, 0.0]
-    to: [30.0, 0.0]
-    E: 210.0e9
-    G: 81.0e9
-    rho: 7850
-    A: 0.0278183
-    Av: 0.0231819
-    I: 1.91047e-5
-    depth: 0.0907813
-    supports: {{from: pinned, to: pinned}}
-    damping: {{ratio: 0.05, modes: [1, 2]}}
-  profile:
-    points: [[0.0, 0.0], [10.0, 0.0], [10.5, 0.005], [30.0, 0.005]]
-vehicles:
-  - name: car
-    x0: -2.0
-    speed: 8.0
-    bodies: [{{name: body, mass: 5096.84, inertia: 5096.84, x: 1.5}}]
-    axles: [{{name: front, x: 0.0, mass: 509.684}}, {{name: rear, x: 3.0, mass: 509.684}}]
-    springs:
-      - {{upper: body, lower: front, x: 0.0, k: 1177042.3, c: 10953.7}}
-      - {{upper: body, lower: rear, x: 3.0, k: 1177042.3, c: 5476.9}}
-{solver}output:
-  probes: [{{name: mid, x: 15.0}}, {{name: q, x: 7.5}}]
-"
-        ))
-    };
+    let ramp = |solver: &str| parse(&car_over_a_ramp("", solver));
     let (planned, finer) = common::side_by_side(
         || at_defaults(&ramp("")),
         || at_defaults(&ramp("solver: {accuracy: 1.0e-6}\n")),
     );
-    let deck = |r: &BeamRun| -> Vec<f64> {
-        let probes = r.extremes.probes.iter();
-        std::iter::once(r.envelope.a_max.0)
-            .chain(probes.map(|p| p[3].largest_magnitude().0))
-            .collect()
-    };
-    let scale = finer.envelope.a_max.0;
-    for (x, y) in deck(&planned).into_iter().zip(deck(&finer)) {
-        assert!(
-            (x - y).abs() < 1e-3 * scale,
-            "the deck's largest accelerations {:?} at the defaults, {:?} at a thousandth of the accuracy",
-            deck(&planned),
-            deck(&finer)
-        );
-    }
+    common::assert_deck_accelerations_within(&planned, &finer, 1e-3);
     for ((name, p), (_, f)) in planned.vehicles[0]
         .axles
         .iter()
@@ -2310,4 +2235,26 @@ vehicles:
             f.max
         );
     }
+}
+
+/// A car of 5 t on two 510 kg wheels 3 m apart at 8 m/s over a 5 mm ramp at 10 m on the soft
+/// deck, its wheels as `wheel` lines give them.
+fn car_over_a_ramp(wheel: &str, solver: &str) -> String {
+    let car = format!(
+        "vehicles:
+  - name: car
+    x0: -2.0
+    speed: 8.0
+    bodies: [{{name: body, mass: 5096.84, inertia: 5096.84, x: 1.5}}]
+    axles: [{{name: front, x: 0.0, mass: 509.684}}, {{name: rear, x: 3.0, mass: 509.684}}]
+    springs:
+      - {{upper: body, lower: front, x: 0.0, k: 1177042.3, c: 10953.7}}
+      - {{upper: body, lower: rear, x: 3.0, k: 1177042.3, c: 5476.9}}
+{wheel}"
+    );
+    let ramp = "  profile:\n    points: [[0.0, 0.0], [10.0, 0.0], [10.5, 0.005], [30.0, 0.005]]\n";
+    format!(
+        "name: car-over-a-ramp\n{}",
+        common::soft_deck_text(ramp, &car, solver)
+    )
 }

@@ -311,3 +311,49 @@ pub fn runge_kutta(
         }
     }
 }
+
+/// A soft 30 m pinned steel deck of 6.6 t under 5 % Rayleigh damping, its first mode at
+/// 0.24 Hz, with probes at midspan and the quarter point: the scene's text after its `name`,
+/// with `loads` (vehicles or a train) and `solver` lines added.
+pub fn soft_deck_text(profile: &str, loads: &str, solver: &str) -> String {
+    format!(
+        "duration: 0.5
+track:
+  beam:
+    from: [0.0, 0.0]
+    to: [30.0, 0.0]
+    E: 210.0e9
+    G: 81.0e9
+    rho: 7850
+    A: 0.0278183
+    Av: 0.0231819
+    I: 1.91047e-5
+    depth: 0.0907813
+    supports: {{from: pinned, to: pinned}}
+    damping: {{ratio: 0.05, modes: [1, 2]}}
+{profile}{loads}{solver}output:
+  probes: [{{name: mid, x: 15.0}}, {{name: q, x: 7.5}}]
+"
+    )
+}
+
+/// The envelope's largest acceleration, then each probe's.
+pub fn deck_accelerations(r: &BeamRun) -> Vec<f64> {
+    let probes = r.extremes.probes.iter();
+    std::iter::once(r.envelope.a_max.0)
+        .chain(probes.map(|p| p[3].largest_magnitude().0))
+        .collect()
+}
+
+/// Asserts that every deck acceleration of `planned` lies within `accuracy` of `finer`'s
+/// envelope from `finer`'s.
+pub fn assert_deck_accelerations_within(planned: &BeamRun, finer: &BeamRun, accuracy: f64) {
+    let (p, f) = (deck_accelerations(planned), deck_accelerations(finer));
+    let scale = finer.envelope.a_max.0;
+    assert!(
+        p.iter()
+            .zip(&f)
+            .all(|(x, y)| (x - y).abs() < accuracy * scale),
+        "the deck's largest accelerations {p:?} against {f:?}"
+    );
+}
