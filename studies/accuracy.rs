@@ -2517,7 +2517,7 @@ fn an_energy_balance_off_by_more_than_a_hundredth_is_said() {
 /// problem at the dense output's states, on steps of an element's crossing, the envelope's
 /// largest acceleration came out 6.933 m/s² where a run at a thousandth of the accuracy finds
 /// 6.839 (1.4·10⁻²). The envelope's and each probe's largest acceleration must lie within the
-/// accuracy of that run's envelope (measured 3·10⁻⁵).
+/// accuracy of that run's envelope (measured 4·10⁻⁵).
 #[test]
 fn a_moving_mass_reads_the_deck_inside_the_step() {
     let masses = "train: {axles: [0.0, 3.0], load: 30000.0, speed: 8.0, model: moving-mass}\n";
