@@ -719,13 +719,19 @@ impl WatchedStep {
         if !ledger.steps_over_fast_modes || !long {
             return None;
         }
-        let y0 = dense.at(t0);
-        let on_the_mesh = phase.loaded.modal.is_none();
-        let carried = |t: f64, y: &[f64]| match phase.vehicles {
-            Some(v) => v.mass_on_the_mesh(t, phase.split(y).0),
-            None => on_the_mesh && !phase.loaded.riding(t).is_empty(),
+        let y0 = match phase.vehicles {
+            Some(v) => {
+                let y0 = dense.at(t0);
+                let on = |t: f64, y: &[f64]| v.mass_on_the_mesh(t, phase.split(y).0);
+                (on(t0, &y0) || on(t1, y1)).then_some(y0)?
+            }
+            None => {
+                let riding = |t: f64| !phase.loaded.riding(t).is_empty();
+                let on = phase.loaded.modal.is_none() && (riding(t0) || riding(t1));
+                on.then(|| dense.at(t0))?
+            }
         };
-        if y0.len() != 2 * phase.split(&y0).0.len() || !(carried(t0, &y0) || carried(t1, y1)) {
+        if y0.len() != 2 * phase.split(&y0).0.len() {
             return None;
         }
         Some(WatchedStep {
