@@ -70,10 +70,12 @@ pub const STEPS_PER_PERIOD: f64 = 16.0;
 /// 0.3 Hz.
 const EXACT_STRIDE: f64 = 32.0;
 
-/// Steps a moving mass takes at least to cross an element of the mesh. It bears the deck's
-/// acceleration under it, which every mode of the mesh carries; the implicit steps hold a
-/// mode faster than themselves at its response to the load as it stands, to the order of
-/// their stages, and the load turns at each element it crosses.
+/// Steps a moving mass (or a vehicle's wheel with a mass) takes at least to cross an element
+/// of the mesh. It bears the deck's acceleration under it, which every mode of the mesh
+/// carries; the implicit steps hold a mode faster than themselves at its response to the load
+/// as it stands, to the order of their stages, and the load turns at each element it crosses.
+/// A 510 kg wheel under β damping, four steps an element, read its largest contact force
+/// 2.8 % high; sixteen, within 10⁻⁶.
 pub const STEPS_OVER_AN_ELEMENT_UNDER_A_MASS: f64 = 16.0;
 
 impl<'a> LoadedBeam<'a> {

@@ -39,7 +39,7 @@ use std::cell::{Cell, RefCell};
 use std::ops::Range;
 
 use super::LastEvaluation;
-use crate::beam::dynamics::LoadedBeam;
+use crate::beam::dynamics::{LoadedBeam, STEPS_OVER_AN_ELEMENT_UNDER_A_MASS};
 use crate::beam::PastFreeEnd;
 use crate::linalg::{self, Assembly, LowRank, Sparse, SparseLu, Woodbury};
 use crate::ode::second_order::{SecondOrderProblem, Structure};
@@ -66,14 +66,6 @@ const CREST_SAMPLES: f64 = 32.0;
 /// cantilever's tip under generalized-α, whose trapezoidal rule books the pulse, read a
 /// drive's work 21 J off out of 1767 (a drift of 7.8e-3) with the motion right to 1e-6.
 const STEPS_OVER_A_FREE_END: f64 = 64.0;
-
-/// Steps a wheel with a mass takes at least to cross an element of the mesh. It bears the
-/// deck's acceleration under it, which every mode of the mesh carries; the implicit steps
-/// hold a mode faster than themselves at its response to the load as it stands, to the order
-/// of their stages, and the load under a wheel turns at each element it crosses. A 510 kg
-/// wheel under β damping, four steps an element, read its largest contact force 2.8 % high;
-/// sixteen, within 10⁻⁶.
-const STEPS_OVER_AN_ELEMENT_UNDER_A_MASS: f64 = 16.0;
 
 /// Steps a disk wheel takes at least to pivot over a crest of the profile: its contact force
 /// dips by about m V²/a there, which the steps, following the vehicle's and the deck's
