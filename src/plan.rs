@@ -867,13 +867,18 @@ pub fn atol_for(scene: &BeamScene) -> Option<(f64, String)> {
         return None;
     }
     let size = scene.response?;
+    let at = if scene.planning_points().len() > scene.probes.len() {
+        "at a probe or the middle of the longest span, every probe lying near a support"
+    } else {
+        "at a probe"
+    };
     let why = match scene.passage {
         Some((share, crossing)) => format!(
-            "rtol times {size:.3e} m, the largest static displacement the loads cause at a probe ({:.3e} m) times {share:.3e}: they are on the beam for {crossing:.3e} s, short against its first period, an impulse that leaves (2/pi) omega1 T of the static response; each step's error is measured against the response, not against the displacement of the moment, which a vibration takes through zero twice a period",
+            "rtol times {size:.3e} m, the largest static displacement the loads cause {at} ({:.3e} m) times {share:.3e}: they are on the beam for {crossing:.3e} s, short against its first period, an impulse that leaves (2/pi) omega1 T of the static response; each step's error is measured against the response, not against the displacement of the moment, which a vibration takes through zero twice a period",
             size / share
         ),
         None => format!(
-            "rtol times {size:.3e} m, the largest static displacement the loads cause at a probe: each step's error is measured against the response, not against the displacement of the moment, which a vibration takes through zero twice a period"
+            "rtol times {size:.3e} m, the largest static displacement the loads cause {at}: each step's error is measured against the response, not against the displacement of the moment, which a vibration takes through zero twice a period"
         ),
     };
     Some((size, why))
