@@ -170,15 +170,14 @@ impl BeamScene {
         !self.probes.is_empty() && (self.probes.iter()).all(|p| held.iter().any(|&h| close(p.x, h)))
     }
 
-    /// The points the plan measures the response at: the probes, and where every probe lies
-    /// within a tenth of its span from a point that holds w, the middle of the longest span as
-    /// well. The contract measures every number against the beam's peak deflection, which the
-    /// middle stands for, and such probes deflect by a small share of it: they do not set the
-    /// scale alone (the sprung-mass study on the linear mesh, read
-    /// 0.125 m from its pinned end alone, would take 68 elements and atol 8.7·10⁻¹³ m, and
-    /// 294 562 steps; read at midspan, 16 elements, 2.2·10⁻⁹ m and 64 818 steps). Where every
-    /// probe sits where w is held (`probes_all_held`), the middle alone, for at the probes every
-    /// choice would see no response.
+    /// The points the plan measures the response at: the probes, and where every probe lies within
+    /// a tenth of its span from a point that holds w, the middle of the longest span as well. The
+    /// contract measures every number against the beam's peak deflection, which the middle stands
+    /// for, and such probes deflect by a small share of it: they do not set the scale alone (the
+    /// sprung-mass study on the linear mesh, read 0.125 m from its pinned end alone, would take 68
+    /// elements and atol 8.7·10⁻¹³ m, and 294 562 steps; read at midspan, 16 elements, 2.2·10⁻⁹ m
+    /// and 64 818 steps). Where every probe sits where w is held (`probes_all_held`), the middle
+    /// alone, for at the probes every choice would see no response.
     pub fn planning_points(&self) -> Vec<f64> {
         let middle = self.longest_span_middle();
         if self.probes_all_held() {
