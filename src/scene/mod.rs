@@ -143,6 +143,17 @@ pub struct BeamScene {
     pub plan_warnings: Vec<String>,
 }
 
+/// Whether `x` lies within a tenth of its span from a point that holds w, the spans bounded by
+/// `ends` (`BeamScene::span_ends`): a pinned span deflects there by at most 30 % of its middle
+/// under a load at the middle, a clamped one by 10 %.
+fn near_a_support(x: f64, ends: &[f64]) -> bool {
+    let held = &ends[1..ends.len() - 1];
+    let span = (ends.windows(2))
+        .find(|w| w[0] <= x && x <= w[1])
+        .map_or(ends[ends.len() - 1] - ends[0], |w| w[1] - w[0]);
+    held.iter().any(|&h| (x - h).abs() <= 0.1 * span)
+}
+
 impl BeamScene {
     /// The beam's undeformed length (m): the material points s run over [0, length].
     fn length(&self) -> f64 {
@@ -184,37 +195,30 @@ impl BeamScene {
             return vec![middle];
         }
         let mut xs: Vec<f64> = self.probes.iter().map(|p| p.x).collect();
-        if xs.iter().all(|&x| self.near_a_support(x)) {
+        let ends = self.span_ends();
+        if xs.iter().all(|&x| near_a_support(x, &ends)) {
             xs.push(middle);
         }
         xs
     }
 
-    /// Whether `x` lies within a tenth of its span from a point that holds w: a pinned span
-    /// deflects there by at most 30 % of its middle under a load at the middle, a clamped one
-    /// by 10 %.
-    fn near_a_support(&self, x: f64) -> bool {
-        let held = self.held_w();
+    /// The points that bound the spans: the beam's two ends and, in order between them, the
+    /// points that hold w.
+    fn span_ends(&self) -> Vec<f64> {
         let mut ends = vec![0.0];
-        ends.extend(held.iter().copied());
+        ends.extend(self.held_w());
         ends.push(self.length());
-        let span = (ends.windows(2))
-            .find(|w| w[0] <= x && x <= w[1])
-            .map_or(self.length(), |w| w[1] - w[0]);
-        held.iter().any(|&h| (x - h).abs() <= 0.1 * span)
+        ends
     }
 
     /// The middle of the longest stretch between points that hold w and the beam's ends (the
     /// first of equal ones).
     pub fn longest_span_middle(&self) -> f64 {
-        let length = self.length();
-        let mut ends = vec![0.0];
-        ends.extend(self.held_w());
-        ends.push(length);
+        let ends = self.span_ends();
         let (a, z) = (ends.windows(2).rev())
             .map(|w| (w[0], w[1]))
             .max_by(|p, q| (p.1 - p.0).total_cmp(&(q.1 - q.0)))
-            .unwrap_or((0.0, length));
+            .unwrap_or((0.0, self.length()));
         0.5 * (a + z)
     }
 
