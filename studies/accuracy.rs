@@ -11,6 +11,7 @@ use common::{
 };
 use rollbeam::analysis::modes::{modes, ModeKind};
 use rollbeam::beam::{Beam, BeamModel, PointDisplacement};
+use rollbeam::files::content_hash;
 use rollbeam::ode::Method;
 use rollbeam::run::beam::BeamRun;
 use rollbeam::run::{self, Overrides};
@@ -1282,14 +1283,25 @@ fn d44_started_static_on_its_mesh_within_the_accuracy_at_the_defaults() {
 #[test]
 fn a_beam_folded_by_its_load_within_the_accuracy_at_the_defaults() {
     let text = d44_section_left_to_the_plan(1.0);
-    let sinking = parse(&format!(
+    let sinking = format!(
         "{text}disk: {{mass: 1.0e6, radius: 0.4, s0: 5.0, omega0: -10, coupling: moving-force}}\noutput:\n  probes: [{{name: mid, x: 10.0}}]\n"
-    ));
-    deck_within_the_accuracy("a beam sinking 8.7 m", &sinking, 1e-7, 18.0);
-    let swinging = parse(
-        "name: swinging\nduration: 1.75\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [30.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 90.5e-4\n    Av: 23.4e-4\n    I: 10797.5e-8\n    depth: 0.2546\n    elements: 16\n    order: 4\n    supports: {from: pinned, to: roller}\ndisk: {mass: 40000.0, radius: 0.4, s0: 0.0, omega0: -100.0, coupling: moving-force}\noutput:\n  probes: [{name: mid, x: 15.0}, {name: q, x: 7.5}]\n",
     );
-    deck_within_the_accuracy("a beam swinging 10 m", &swinging, 3e-8, 10.0);
+    deck_within_the_accuracy(
+        "a beam sinking 8.7 m",
+        &parse(&sinking),
+        &sinking,
+        1e-7,
+        18.0,
+    );
+    let swinging =
+        "name: swinging\nduration: 1.75\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [30.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 90.5e-4\n    Av: 23.4e-4\n    I: 10797.5e-8\n    depth: 0.2546\n    elements: 16\n    order: 4\n    supports: {from: pinned, to: roller}\ndisk: {mass: 40000.0, radius: 0.4, s0: 0.0, omega0: -100.0, coupling: moving-force}\noutput:\n  probes: [{name: mid, x: 15.0}, {name: q, x: 7.5}]\n";
+    deck_within_the_accuracy(
+        "a beam swinging 10 m",
+        &parse(swinging),
+        swinging,
+        3e-8,
+        10.0,
+    );
 }
 
 /// A beam held along its axis at both ends does not fold under a heavy load: it stretches,
@@ -1303,9 +1315,10 @@ fn a_beam_folded_by_its_load_within_the_accuracy_at_the_defaults() {
 #[test]
 fn a_beam_stretched_by_its_load_is_not_stepped_as_a_folding_one() {
     let text = d44_section_left_to_the_plan(0.1).replace("to: roller", "to: pinned");
-    let scene = parse(&format!(
+    let text = format!(
         "{text}train: {{axles: [0.0], load: 1.0e6, speed: 40.0}}\noutput:\n  probes: [{{name: mid, x: 10.0}}, {{name: q, x: 5.0}}]\n"
-    ));
+    );
+    let scene = parse(&text);
     let beam = scene.beam().expect("a beam");
     assert_eq!(beam.beam.model, BeamModel::Exact);
     assert_eq!(scene.solver.method, Method::Esdirk4);
@@ -1314,7 +1327,8 @@ fn a_beam_stretched_by_its_load_is_not_stepped_as_a_folding_one() {
         "rtol {:e}",
         scene.solver.rtol
     );
-    deck_within_the_accuracy("a beam stretched by its load", &scene, 1e-3 / 3000.0, 1.846);
+    let rtol = 1e-3 / 3000.0;
+    deck_within_the_accuracy("a beam stretched by its load", &scene, &text, rtol, 1.846);
 }
 
 /// A load switched on a beam bent far from linear sets it ringing in modes that pass energy
@@ -1334,17 +1348,19 @@ fn a_load_switched_on_a_beam_far_from_linear_within_the_accuracy_at_the_defaults
             area * 5.0 / 6.0
         )
     };
-    let stretched = parse(&format!(
+    let stretched_text = format!(
         "name: stretched\nduration: 1.0\n{}    damping: {{ratio: 0.005, modes: [1, 2]}}\nloads: [{{x: 27.657, fy: -2.0e5, until: 0.316}}]\noutput:\n  probes: [{{name: mid, x: 20.37}}, {{name: q, x: 10.0}}]\n",
         beam(40.0, "{from: pinned, to: pinned}", 0.0328, 2.93e-4)
-    ));
+    );
+    let stretched = parse(&stretched_text);
     assert_eq!(stretched.solver.method, Method::Esdirk4);
     assert!(
         (stretched.solver.rtol - 1e-3 / 300.0).abs() < 1e-12,
         "rtol {:e}",
         stretched.solver.rtol
     );
-    deck_within_the_accuracy("a switched load stretching a beam", &stretched, 1e-9, 0.7);
+    let name = "a switched load stretching a beam";
+    deck_within_the_accuracy(name, &stretched, &stretched_text, 1e-9, 0.7);
     let folded = parse(&format!(
         "name: folded\nduration: 1.5\n{}loads: [{{x: 10.0, fy: -1.2e6, until: 0.3}}]\n",
         beam(10.0, "{from: clamped, to: free}", 0.0149, 2.5e-4)
@@ -1376,12 +1392,13 @@ fn a_load_switched_on_a_beam_far_from_linear_within_the_accuracy_at_the_defaults
 #[test]
 fn a_load_released_on_a_stiffness_damped_beam_within_the_accuracy_at_the_defaults() {
     for ratio in [0.005, 0.02] {
-        let scene = parse(&format!(
+        let text = format!(
             "name: released\nduration: 1.0\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [25.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 0.034058647\n    Av: 0.028382206\n    I: 5.923953e-4\n    depth: 0.45686\n    supports: {{from: pinned, to: roller}}\n    damping: {{ratio: {ratio}, modes: [1, 2]}}\nloads: [{{x: 9.546, fy: -1.0e5, until: 0.418}}]\noutput:\n  probes: [{{name: mid, x: 12.87}}, {{name: q, x: 6.25}}]\n",
-        ));
+        );
+        let scene = parse(&text);
         assert_eq!(scene.solver.method, Method::Esdirk4);
         let name = format!("a load released on a beam damped at ζ {ratio}");
-        deck_within_the_accuracy(&name, &scene, 1e-9, 0.24);
+        deck_within_the_accuracy(&name, &scene, &text, 1e-9, 0.24);
     }
 }
 
@@ -1395,16 +1412,17 @@ fn a_load_released_on_a_stiffness_damped_beam_within_the_accuracy_at_the_default
 /// three-hundredth, 1.2·10⁻³; on the linear beam the three-hundredth holds to 2·10⁻⁶).
 #[test]
 fn moving_loads_leaving_a_bent_cantilever_within_the_accuracy_at_the_defaults() {
-    let scene = parse(
-        "name: whipped\nduration: 0.25\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [15.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 0.014406564880156075\n    Av: 0.012005470733463397\n    I: 0.0002045924007695517\n    depth: 0.412814698877823\n    supports: {from: clamped, to: free}\n    damping: {alpha: 0.05, beta: 1.0e-5}\ntrain: {axles: [0.0, 2.146, 4.293, 6.439, 8.586, 10.732], load: 6.0e4, speed: 40.0}\noutput:\n  probes: [{name: mid, x: 7.87}, {name: q, x: 3.75}]\n",
-    );
+    let text =
+        "name: whipped\nduration: 0.25\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [15.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 0.014406564880156075\n    Av: 0.012005470733463397\n    I: 0.0002045924007695517\n    depth: 0.412814698877823\n    supports: {from: clamped, to: free}\n    damping: {alpha: 0.05, beta: 1.0e-5}\ntrain: {axles: [0.0, 2.146, 4.293, 6.439, 8.586, 10.732], load: 6.0e4, speed: 40.0}\noutput:\n  probes: [{name: mid, x: 7.87}, {name: q, x: 3.75}]\n";
+    let scene = parse(text);
     assert_eq!(scene.beam().expect("a beam").beam.model, BeamModel::Exact);
     assert!(
         (scene.solver.rtol - 1e-3 / 3000.0).abs() < 1e-12,
         "rtol {:e}",
         scene.solver.rtol
     );
-    deck_within_the_accuracy("moving loads leaving a bent cantilever", &scene, 1e-9, 0.3);
+    let name = "moving loads leaving a bent cantilever";
+    deck_within_the_accuracy(name, &scene, text, 1e-9, 0.3);
 }
 
 /// Where the plan's mesh check reaches its largest mesh (400 nodes) before two meshes agree, it
@@ -1472,8 +1490,8 @@ fn moving_forces_on_a_mesh_within_the_accuracy_at_the_defaults() {
             "disk: {mass: 1.5e3, radius: 0.4, s0: 0.0, omega0: -50, coupling: moving-force}\n",
         ),
     ] {
-        let scene = parse(&format!("{text}{riders}{probes}"));
-        deck_within_the_accuracy(name, &scene, 1e-8, 0.2);
+        let text = format!("{text}{riders}{probes}");
+        deck_within_the_accuracy(name, &parse(&text), &text, 1e-8, 0.2);
     }
 }
 
@@ -1508,8 +1526,8 @@ fn moving_loads_on_a_named_mesh_within_the_accuracy_at_the_defaults() {
         ("a moving-force disk on the named mesh", &text, disk),
         ("a moving-force disk on the damped mesh", &damped, disk),
     ] {
-        let scene = parse(&format!("{beam}{riders}{probes}"));
-        deck_within_the_accuracy(name, &scene, 3e-7, 0.03);
+        let text = format!("{beam}{riders}{probes}");
+        deck_within_the_accuracy(name, &parse(&text), &text, 3e-7, 0.03);
     }
 }
 
@@ -1523,12 +1541,12 @@ fn moving_loads_on_a_named_mesh_within_the_accuracy_at_the_defaults() {
 /// the envelope's. With the modes below the cutoff weighed by their accelerations, 2.151.
 #[test]
 fn a_slow_heavy_crossing_of_an_exact_mesh_within_the_accuracy_at_the_defaults() {
-    let scene = parse(
-        "name: slow-crossing\nduration: 11.0\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [30.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 181.0e-4\n    Av: 46.8e-4\n    I: 43190.0e-8\n    supports: {from: pinned, to: roller}\n    damping: {ratio: 0.005, modes: [1, 2]}\ndisk: {mass: 10000.0, radius: 0.4, s0: 0.0, omega0: -7.5, coupling: moving-force}\noutput:\n  probes: [{name: mid, x: 15.0}, {name: q, x: 7.5}]\n",
-    );
+    let text =
+        "name: slow-crossing\nduration: 11.0\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [30.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 181.0e-4\n    Av: 46.8e-4\n    I: 43190.0e-8\n    supports: {from: pinned, to: roller}\n    damping: {ratio: 0.005, modes: [1, 2]}\ndisk: {mass: 10000.0, radius: 0.4, s0: 0.0, omega0: -7.5, coupling: moving-force}\noutput:\n  probes: [{name: mid, x: 15.0}, {name: q, x: 7.5}]\n";
+    let scene = parse(text);
     let beam = scene.beam().expect("a beam");
     assert_eq!(beam.beam.model, BeamModel::Exact);
-    deck_within_the_accuracy("a slow heavy crossing", &scene, 1e-8, 0.61);
+    deck_within_the_accuracy("a slow heavy crossing", &scene, text, 1e-8, 0.61);
 }
 
 /// A moving force reads every mode's shape wherever it stands, and the deck's accelerations
@@ -1548,21 +1566,15 @@ fn a_force_leaving_a_cantilever_s_tip_within_the_accuracy_at_the_defaults() {
     };
     let scene = parse(&text(""));
     let planned_elements = scene.beam().expect("a beam").beam.elements;
-    let finer = parse(&text(&format!("    elements: {}\n", 2 * planned_elements)));
+    let finer = text(&format!("    elements: {}\n", 2 * planned_elements));
     let coarse = parse(&text("    elements: 4\n"));
-    let (planned, converged) = common::side_by_side(
-        || (at_defaults(&scene), at_defaults(&coarse)),
-        || run_beam(&finer, Method::Esdirk4, 1e-8, 1e-8 * 0.29),
-    );
-    let (planned, coarse) = planned;
-    let a_scale = converged.envelope.a_max.0;
-    let pairs = |r: &BeamRun| {
-        let mut pairs = vec![envelope_acceleration(r, a_scale)];
-        pairs.extend(probe_pairs(r, &converged, deepest(&converged), a_scale));
-        pairs
-    };
-    within_the_accuracy("a force leaving a cantilever's tip", &pairs(&planned));
-    let worst = (pairs(&coarse).iter())
+    let name = "a force leaving a cantilever's tip";
+    let converged = converged_deck(name, &finer, "ESDIRK4 at rtol 1e-8, atol 2.9e-9", || {
+        run_beam(&parse(&finer), Method::Esdirk4, 1e-8, 1e-8 * 0.29)
+    });
+    let (planned, coarse) = common::side_by_side(|| at_defaults(&scene), || at_defaults(&coarse));
+    deck_within(name, &Deck::of(&planned), &converged);
+    let worst = (Deck::of(&coarse).pairs(&converged).iter())
         .map(|(_, a, b, scale)| (a - b).abs() / scale)
         .fold(0.0, f64::max);
     assert!(
@@ -1585,16 +1597,17 @@ fn a_force_leaving_a_cantilever_s_tip_within_the_accuracy_at_the_defaults() {
 #[test]
 fn a_train_of_moving_masses_is_stepped_within_the_accuracy_and_warns_of_the_modes_kept() {
     let text = d44_section_left_to_the_plan(1.0);
-    let scene = parse(&format!(
+    let text = format!(
         "{text}train: {{axles: [0.0, 3.0], load: 2.0e4, speed: 20.0, model: moving-mass}}\noutput:\n  probes: [{{name: mid, x: 10.0}}, {{name: quarter, x: 5.0}}]\n"
-    ));
+    );
+    let scene = parse(&text);
     assert!(scene
         .beam()
         .expect("a beam")
         .warnings()
         .iter()
         .any(|w| w.contains("moving masses on the modal beam")));
-    deck_within_the_accuracy("moving masses", &scene, 1e-9, 0.04);
+    deck_within_the_accuracy("moving masses", &scene, &text, 1e-9, 0.04);
 }
 
 /// Two 1 t moving masses 2 m apart at 10 m/s over a 30 m clamped HEB 360 beam (0.5 % Rayleigh
@@ -1720,17 +1733,18 @@ fn a_lone_probe_near_a_support_is_held_to_the_peak_deflection() {
 /// cutoff chose read it 2.7·10⁻³ off 32.
 #[test]
 fn a_beam_bent_far_under_a_moving_force_is_meshed_for_the_slopes_of_every_excited_mode() {
-    let planned = heavy_force_over_a_light_beam("");
+    let planned = parse(&heavy_force_over_a_light_beam(""));
     assert_eq!(planned.beam().expect("a beam").beam.model, BeamModel::Exact);
-    within_twice_the_mesh(heavy_force_over_a_light_beam, "exact", 1e-3);
+    let name = "a beam bent far, on twice the mesh";
+    within_twice_the_mesh(name, heavy_force_over_a_light_beam, "exact", 1e-3);
 }
 
 /// A 40 t moving-force disk at 40 m/s over a 15 m pinned–roller steel beam (A 90.5 cm², I
 /// 1.08·10⁻⁴ m⁴), its mesh and model as `beam` lines give them.
-fn heavy_force_over_a_light_beam(beam: &str) -> Scene {
-    parse(&format!(
+fn heavy_force_over_a_light_beam(beam: &str) -> String {
+    format!(
         "name: bent-far\nduration: 0.45\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [15.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 90.5e-4\n    Av: 23.4e-4\n    I: 10797.5e-8\n    depth: 0.2546\n{beam}    supports: {{from: pinned, to: roller}}\ndisk: {{coupling: moving-force, mass: 40000.0, radius: 0.4, omega0: -100.0, s0: 0.0}}\noutput:\n  probes: [{{name: mid, x: 7.5}}, {{name: q, x: 3.75}}]\n"
-    ))
+    )
 }
 
 /// Eight 40 kg forces 2 m apart at 20 m/s over a 30 m clamped-roller HEB 360 beam: a slow train on a
@@ -1744,24 +1758,25 @@ fn heavy_force_over_a_light_beam(beam: &str) -> Scene {
 /// it within 4.7·10⁻⁴ of 40, where the 10 read it 2.5·10⁻³ off.
 #[test]
 fn a_slow_train_on_a_stiff_deck_reads_its_mesh_s_slopes_within_the_accuracy() {
-    within_twice_the_mesh(forces_over_a_clamped_beam, "linear", 2.5e-4);
+    let name = "a slow train on a stiff deck, on twice the mesh";
+    within_twice_the_mesh(name, forces_over_a_clamped_beam, "linear", 2.5e-4);
 }
 
 /// Every probe's extremes of `scene("")` at the defaults within `tolerance` of their scale
 /// (the deepest deflection, the largest acceleration) of the same scene on twice the planned
 /// mesh of the `model` beam, which `scene` takes as beam lines.
-fn within_twice_the_mesh(scene: fn(&str) -> Scene, model: &str, tolerance: f64) {
-    let planned = scene("");
+fn within_twice_the_mesh(name: &str, text: fn(&str) -> String, model: &str, tolerance: f64) {
+    let planned = parse(&text(""));
     let beam = planned.beam().expect("a beam");
-    let twice = format!(
+    let twice = text(&format!(
         "    model: {model}\n    elements: {}\n    order: {}\n",
         2 * beam.beam.elements,
         beam.beam.order
-    );
-    let finer = scene(&twice);
-    let (planned, finer) = common::side_by_side(|| at_defaults(&planned), || at_defaults(&finer));
-    let pairs = probe_pairs(&planned, &finer, deepest(&finer), finer.envelope.a_max.0);
-    for (what, a, b, scale) in pairs {
+    ));
+    let finer = converged_deck(name, &twice, "at the defaults", || {
+        at_defaults(&parse(&twice))
+    });
+    for (what, a, b, scale) in Deck::of(&at_defaults(&planned)).probe_pairs(&finer) {
         let error = (a - b).abs() / scale;
         assert!(
             error <= tolerance,
@@ -1772,10 +1787,10 @@ fn within_twice_the_mesh(scene: fn(&str) -> Scene, model: &str, tolerance: f64) 
 
 /// Eight 40 kg forces, 2 m apart, at 20 m/s over a 30 m clamped-roller HEB 360 beam, its mesh
 /// and model as `beam` lines give them.
-fn forces_over_a_clamped_beam(beam: &str) -> Scene {
-    parse(&format!(
+fn forces_over_a_clamped_beam(beam: &str) -> String {
+    format!(
         "name: slow-train\nduration: 0.3\ntrack:\n  beam:\n    from: [0.0, 0.0]\n    to: [30.0, 0.0]\n    E: 210.0e9\n    G: 81.0e9\n    rho: 7850\n    A: 181.0e-4\n    Av: 46.8e-4\n    I: 43190.0e-8\n    depth: 0.36\n{beam}    supports: {{from: clamped, to: roller}}\ntrain: {{axles: [0.0, 2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 14.0], load: 392.4, speed: 20.0, model: moving-force}}\noutput:\n  probes: [{{name: mid, x: 15.0}}, {{name: q, x: 7.5}}]\n"
-    ))
+    )
 }
 
 /// A 10 t car on two 1 t wheels at 20 m/s over a 20 m pinned-roller steel beam of 1.4 t (2 %
@@ -2185,21 +2200,120 @@ fn d44_section_left_to_the_plan(duration: f64) -> String {
 }
 
 /// The deck's headlines at the defaults (the envelope's largest acceleration, each probe's
-/// extremes) within the accuracy of ESDIRK4 at `rtol` (atol `rtol` times `size`, m).
-fn deck_within_the_accuracy(name: &str, scene: &Scene, rtol: f64, size: f64) {
-    let (planned, converged) = common::side_by_side(
-        || at_defaults(scene),
-        || run_beam(scene, Method::Esdirk4, rtol, rtol * size),
+/// extremes) within the accuracy of ESDIRK4 at `rtol` (atol `rtol` times `size`, m), the
+/// converged run stored ([`converged_deck`]) from the scene's `text`.
+fn deck_within_the_accuracy(name: &str, scene: &Scene, text: &str, rtol: f64, size: f64) {
+    let converged_by = format!("ESDIRK4 at rtol {rtol:e}, atol {:e}", rtol * size);
+    let converged = converged_deck(name, text, &converged_by, || {
+        run_beam(scene, Method::Esdirk4, rtol, rtol * size)
+    });
+    deck_within(name, &Deck::of(&at_defaults(scene)), &converged);
+}
+
+/// The deck's headlines of a converged run, which costs several times the planned one and so
+/// is stored in `studies/references/converged/` under `name`, keyed by the scene's `text` and
+/// how it is `converged_by`; with `ROLLBEAM_REMAKE_CONVERGED=1`, made again by `converge` and
+/// stored. A scene edited since is refused with that command.
+fn converged_deck(
+    name: &str,
+    text: &str,
+    converged_by: &str,
+    converge: impl FnOnce() -> BeamRun,
+) -> Deck {
+    let stored = format!(
+        "deck-{}",
+        (name.chars())
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+            .collect::<String>()
     );
-    deck_within_the_accuracy_of(name, &planned, &converged);
+    let key = content_hash(&format!("{text}\n{converged_by}"));
+    if converged::remaking() {
+        return Deck::of(&converge()).store(&stored, converged_by, &key);
+    }
+    let remake = "make it with `ROLLBEAM_REMAKE_CONVERGED=1 cargo test --release --test studies -- accuracy::`";
+    converged::read_keyed(&stored, &key, remake)
 }
 
 /// The deck's headlines of the `planned` run within the accuracy of the `converged` one.
 fn deck_within_the_accuracy_of(name: &str, planned: &BeamRun, converged: &BeamRun) {
-    let a_scale = converged.envelope.a_max.0;
-    let mut pairs = vec![envelope_acceleration(planned, a_scale)];
-    pairs.extend(probe_pairs(planned, converged, deepest(converged), a_scale));
-    within_the_accuracy(name, &pairs);
+    deck_within(name, &Deck::of(planned), &Deck::of(converged));
+}
+
+/// What the deck's headlines are compared by: the deepest deflection over the beam, the
+/// envelope's largest acceleration, and each probe's lowest and highest w and largest
+/// acceleration.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct Deck {
+    converged_by: String,
+    /// The hash of the scene's text and the converged run's settings.
+    scene_hash: String,
+    deepest: f64,
+    a_max: f64,
+    probes: Vec<[f64; 3]>,
+}
+
+impl Deck {
+    fn of(r: &BeamRun) -> Deck {
+        Deck {
+            converged_by: String::new(),
+            scene_hash: String::new(),
+            deepest: deepest(r),
+            a_max: r.envelope.a_max.0,
+            probes: (r.extremes.probes.iter())
+                .map(|p| [p[1].min, p[1].max, p[3].largest_magnitude().0])
+                .collect(),
+        }
+    }
+
+    /// Stored as `name`, every number to six significant digits: each converged run lies
+    /// within 3·10⁻⁶ of its scale from a tighter one (as its test measures), and the 10⁻³
+    /// compared is far above the rounding.
+    fn store(&self, name: &str, converged_by: &str, key: &str) -> Deck {
+        let round = |x: f64| format!("{x:.5e}").parse::<f64>().expect("a number");
+        let stored = Deck {
+            converged_by: converged_by.to_string(),
+            scene_hash: key.to_string(),
+            deepest: round(self.deepest),
+            a_max: round(self.a_max),
+            probes: (self.probes.iter()).map(|p| p.map(round)).collect(),
+        };
+        converged::write(name, &stored);
+        stored
+    }
+
+    /// The envelope's largest acceleration and each probe's extremes ([`Deck::probe_pairs`]),
+    /// here and `converged`.
+    fn pairs(&self, converged: &Deck) -> Vec<Compared> {
+        let a_scale = converged.a_max;
+        let mut pairs = vec![(
+            "the envelope's largest acceleration",
+            self.a_max,
+            a_scale,
+            a_scale,
+        )];
+        pairs.extend(self.probe_pairs(converged));
+        pairs
+    }
+
+    /// Each probe's lowest and highest w and largest acceleration, here and `converged`: the
+    /// deflections against its deepest, the accelerations against its envelope's largest.
+    fn probe_pairs(&self, converged: &Deck) -> Vec<Compared> {
+        assert_eq!(self.probes.len(), converged.probes.len(), "the probes");
+        let (w_scale, a_scale) = (converged.deepest, converged.a_max);
+        let mut pairs = Vec::new();
+        for (a, b) in self.probes.iter().zip(&converged.probes) {
+            pairs.push(("a probe's lowest w", a[0], b[0], w_scale));
+            pairs.push(("a probe's highest w", a[1], b[1], w_scale));
+            pairs.push(("a probe's largest acceleration", a[2], b[2], a_scale));
+        }
+        pairs
+    }
+}
+
+/// The deck's headlines of `planned` within the accuracy of `converged`: the deflections of
+/// the deepest, the accelerations of the envelope's largest.
+fn deck_within(name: &str, planned: &Deck, converged: &Deck) {
+    within_the_accuracy(name, &planned.pairs(converged));
 }
 
 /// Every headline at the defaults within the accuracy (10⁻³) of its scale from the converged.

@@ -28,19 +28,31 @@ struct Made {
 /// The stored converged run `name`, made from `study` as it is now; `remake` names the
 /// command that makes it again.
 pub fn read<T: serde::de::DeserializeOwned>(name: &str, study: &str, remake: &str) -> T {
-    let path = path(name);
     let remake =
         format!("make it with `cargo test --release --test studies -- --ignored {remake}`");
+    read_keyed(name, &study_hash(study), &remake)
+}
+
+/// The stored converged run `name`, made from what hashes to `hash` (a study file, or a
+/// test's scene text with the converged run's settings); `remake` says how to make it again.
+pub fn read_keyed<T: serde::de::DeserializeOwned>(name: &str, hash: &str, remake: &str) -> T {
+    let path = path(name);
     let text = std::fs::read_to_string(&path)
         .unwrap_or_else(|e| panic!("{}: {e}; {remake}", path.display()));
     let made: Made = serde_saphyr::from_str(&text).expect("a stored converged run");
     assert_eq!(
         made.scene_hash,
-        study_hash(study),
-        "{}: its study changed since it was stored; {remake}",
+        hash,
+        "{}: its scene changed since it was stored; {remake}",
         path.display()
     );
     serde_saphyr::from_str(&text).expect("a stored converged run")
+}
+
+/// Whether the tests that read converged runs keyed by their own scene text make them again
+/// (and store them) instead: `ROLLBEAM_REMAKE_CONVERGED=1`.
+pub fn remaking() -> bool {
+    std::env::var_os("ROLLBEAM_REMAKE_CONVERGED").is_some_and(|v| v == "1")
 }
 
 /// Stores `value` (which carries its study's [`study_hash`]) as the converged run `name`.
