@@ -424,12 +424,7 @@ fn a_switched_load_s_extremes_within_the_accuracy_at_the_defaults() {
     };
     let (w_scale, phi_scale) = (largest(&converged, 1), largest(&converged, 2));
     let a_scale = converged.a_max;
-    let mut pairs = vec![(
-        "the envelope's largest acceleration",
-        planned.a_max,
-        a_scale,
-        a_scale,
-    )];
+    let mut pairs = vec![envelope_acceleration(planned.a_max, a_scale)];
     for (p, c) in planned.probes.iter().zip(&converged.probes) {
         for (k, what, scale) in [(1, "w", w_scale), (2, "φ", phi_scale)] {
             pairs.push((what, p.min[k], c.min[k], scale));
@@ -1452,7 +1447,7 @@ fn a_mesh_the_plan_cannot_confirm_is_the_finer_and_said_so() {
     ));
     let (planned, converged) = common::side_by_side(|| at_defaults(&scene), || at_defaults(&finer));
     let a_scale = converged.envelope.a_max.0;
-    let mut pairs = vec![envelope_acceleration(&planned, a_scale)];
+    let mut pairs = vec![envelope_acceleration(planned.envelope.a_max.0, a_scale)];
     pairs.extend(probe_pairs(
         &planned,
         &converged,
@@ -1991,7 +1986,7 @@ fn the_zip_line_s_headlines_within_the_accuracy_at_the_defaults() {
     // atol: rtol times the largest static deflection at a probe (0.584 m), as the plan's.
     let converged = run_beam(&scene, Method::Esdirk4, 1e-5, 1e-5 * 0.584);
     let (w_scale, a_scale) = (deepest(&converged), converged.envelope.a_max.0);
-    let mut pairs = vec![envelope_acceleration(&planned, a_scale)];
+    let mut pairs = vec![envelope_acceleration(planned.envelope.a_max.0, a_scale)];
     pairs.extend(probe_w_pairs(&planned, &converged, w_scale));
     pairs.extend(contact_mean_pairs(&planned, &converged, weight));
     within_the_accuracy("zip-line set down at rest", &pairs);
@@ -2129,7 +2124,7 @@ fn disk_headlines(
     weight: f64,
 ) -> Vec<Compared> {
     let a_scale = converged.envelope.a_max.0;
-    let mut pairs = vec![envelope_acceleration(planned, a_scale)];
+    let mut pairs = vec![envelope_acceleration(planned.envelope.a_max.0, a_scale)];
     pairs.extend(probe_pairs(planned, converged, w_scale, a_scale));
     let (d, e) = (
         planned.extremes.disk().expect("a disk"),
@@ -2179,10 +2174,10 @@ fn contact_mean_pairs(planned: &BeamRun, converged: &BeamRun, weight: f64) -> Ve
 }
 
 /// The envelope's largest acceleration at the defaults against the converged one, `a_scale`.
-fn envelope_acceleration(planned: &BeamRun, a_scale: f64) -> Compared {
+fn envelope_acceleration(planned: f64, a_scale: f64) -> Compared {
     (
         "the envelope's largest acceleration",
-        planned.envelope.a_max.0,
+        planned,
         a_scale,
         a_scale,
     )
@@ -2284,13 +2279,7 @@ impl Deck {
     /// The envelope's largest acceleration and each probe's extremes ([`Deck::probe_pairs`]),
     /// here and `converged`.
     fn pairs(&self, converged: &Deck) -> Vec<Compared> {
-        let a_scale = converged.a_max;
-        let mut pairs = vec![(
-            "the envelope's largest acceleration",
-            self.a_max,
-            a_scale,
-            a_scale,
-        )];
+        let mut pairs = vec![envelope_acceleration(self.a_max, converged.a_max)];
         pairs.extend(self.probe_pairs(converged));
         pairs
     }
