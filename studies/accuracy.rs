@@ -1441,19 +1441,15 @@ fn a_mesh_the_plan_cannot_confirm_is_the_finer_and_said_so() {
             .any(|w| w.contains("not confirmed within the accuracy")),
         "{warnings:?}"
     );
-    let finer = parse(&text.replace(
+    let finer = text.replace(
         "    supports:",
         "    model: exact\n    elements: 128\n    supports:",
-    ));
-    let (planned, converged) = common::side_by_side(|| at_defaults(&scene), || at_defaults(&finer));
-    let a_scale = converged.envelope.a_max.0;
-    let mut pairs = vec![envelope_acceleration(planned.envelope.a_max.0, a_scale)];
-    pairs.extend(probe_pairs(
-        &planned,
-        &converged,
-        deepest(&converged),
-        a_scale,
-    ));
+    );
+    let name = "a mesh the plan cannot confirm, on 128 elements";
+    let converged = converged_deck(name, &finer, "at the defaults", || {
+        at_defaults(&parse(&finer))
+    });
+    let pairs = Deck::of(&at_defaults(&scene)).pairs(&converged);
     for (what, a, b, scale) in pairs {
         let error = (a - b).abs() / scale;
         assert!(
