@@ -117,12 +117,15 @@ pub fn response_size(
 /// The share of the static response a beam keeps after loads that are on it for only
 /// `crossing` seconds: a crossing far shorter than the first mode's period is an impulse,
 /// F ∫φ dt = F T 2/π on a half-sine mode, which leaves an amplitude F T (2/π)/(M ω₁), the
-/// static F/(M ω₁²) times (2/π) ω₁ T. At most 1; `None` where the beam's first mode is not
-/// found.
-pub fn passage_share(spec: &BeamSpec, crossing: f64) -> Option<f64> {
+/// static F/(M ω₁²) times (2/π) ω₁ T, ω₁ the beam's [`lowest_omega`]. At most 1.
+pub fn passage_share(lowest_omega: f64, crossing: f64) -> f64 {
+    (2.0 / std::f64::consts::PI * lowest_omega * crossing).min(1.0)
+}
+
+/// The beam's lowest circular frequency (rad/s); `None` where its first mode is not found.
+pub fn lowest_omega(spec: &BeamSpec) -> Option<f64> {
     let beam = Beam::shared(spec);
-    let first = modes(&beam, 1)?.omega.first().copied()?;
-    (first > 0.0).then(|| (2.0 / std::f64::consts::PI * first * crossing).min(1.0))
+    modes(&beam, 1)?.omega.first().copied().filter(|&w| w > 0.0)
 }
 
 /// What was chosen, and why, for the summary.

@@ -429,7 +429,7 @@ impl Stepper for GenAlphaStepper {
         self.weights = s.norm_weights();
         self.rows = s.norm_rows().map(|rows| super::NormRows {
             rows,
-            offsets: vec![0],
+            blocks: vec![(0, 1.0)],
         });
         let n = self.now.q.len();
         self.now.q.copy_from_slice(&y0[..n]);

@@ -227,6 +227,10 @@ pub struct Options {
     pub whole_budget: bool,
     /// Generalized-α's spectral radius at infinity.
     pub rho_inf: f64,
+    /// The circular frequency ω at which a first-order view's velocities are measured: a
+    /// velocity's error against ω · atol, the speed of a vibration of amplitude atol at ω, so
+    /// that atol in metres means the same for both halves of the state. `None`: against atol.
+    pub velocity_rate: Option<f64>,
 }
 
 impl Default for Options {
@@ -239,6 +243,7 @@ impl Default for Options {
             max_steps: 10_000_000,
             whole_budget: false,
             rho_inf: 1.0,
+            velocity_rate: None,
         }
     }
 }
@@ -551,7 +556,8 @@ pub type ModeRows = std::sync::Arc<[Vec<f64>]>;
 
 /// Rows r_k over the first unknowns of a block, which the error norm measures beside the
 /// unknowns: max_k |r_k · e| against atol + rtol max_k max(|r_k · a|, |r_k · b|), once per block
-/// start in `offsets` (the displacements, and the velocities after them in a first-order view).
+/// in `blocks` (the displacements, and the velocities after them in a first-order view), each
+/// block's values first scaled by its weight as the unknowns are by theirs.
 /// A mesh's modes below the acceleration cutoff are such rows: an error in the nodal
 /// displacements within atol can still be ω_k²/ω₁² times that in the accelerations the run
 /// reports. The step's error is measured with them, Newton's corrections on the unknowns alone:
@@ -560,18 +566,19 @@ pub type ModeRows = std::sync::Arc<[Vec<f64>]>;
 #[derive(Clone, Debug)]
 pub struct NormRows {
     pub rows: ModeRows,
-    pub offsets: Vec<usize>,
+    /// Each block's first unknown and its weight.
+    pub blocks: Vec<(usize, f64)>,
 }
 
 impl NormRows {
     pub(crate) fn norm(&self, atol: f64, rtol: f64, e: &[f64], a: &[f64], b: &[f64]) -> f64 {
         let mut largest = 0.0_f64;
-        for &o in &self.offsets {
+        for &(o, w) in &self.blocks {
             let (mut error, mut size) = (0.0_f64, 0.0_f64);
             for r in self.rows.iter() {
                 let dot = |x: &[f64]| -> f64 { r.iter().zip(&x[o..]).map(|(r, x)| r * x).sum() };
-                error = worst(error, dot(e).abs());
-                size = size.max(dot(a).abs()).max(dot(b).abs());
+                error = worst(error, w * dot(e).abs());
+                size = size.max(w * dot(a).abs()).max(w * dot(b).abs());
             }
             largest = worst(largest, error / (atol + rtol * size));
         }

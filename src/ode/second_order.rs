@@ -106,11 +106,24 @@ pub trait SecondOrderProblem: Structure {
 /// y = (q, v): q' = v, M(q) v' = f(t, q, v). Mass diag(I, M), Jacobian [[0, I], [−K, 0]].
 pub struct FirstOrder<'a, E> {
     pub inner: &'a dyn SecondOrderProblem<Event = E>,
+    /// What a velocity's error counts for beside a displacement's: 1/ω (see
+    /// [`super::Options::velocity_rate`]), or 1.
+    velocity_weight: f64,
 }
 
 impl<'a, E> FirstOrder<'a, E> {
     pub fn new(inner: &'a dyn SecondOrderProblem<Event = E>) -> Self {
-        FirstOrder { inner }
+        FirstOrder {
+            inner,
+            velocity_weight: 1.0,
+        }
+    }
+    /// Velocities measured against ω · atol where `rate` is ω.
+    pub fn measuring_velocities_at(self, rate: Option<f64>) -> Self {
+        FirstOrder {
+            velocity_weight: rate.filter(|w| *w > 0.0).map_or(1.0, f64::recip),
+            ..self
+        }
     }
 }
 
@@ -151,14 +164,19 @@ impl<E: Copy + std::fmt::Debug> Dynamics for FirstOrder<'_, E> {
         Some(q.iter().cloned().chain(v).collect())
     }
     fn norm_weights(&self) -> Option<Vec<f64>> {
-        self.inner
-            .norm_weights()
-            .map(|w| w.iter().chain(&w).copied().collect())
+        let weighs_velocities = self.velocity_weight != 1.0;
+        let w = match self.inner.norm_weights() {
+            Some(w) => w,
+            None if weighs_velocities => vec![1.0; self.inner.dim()],
+            None => return None,
+        };
+        let v = w.iter().map(|w| w * self.velocity_weight);
+        Some(w.iter().copied().chain(v).collect())
     }
     fn norm_rows(&self) -> Option<super::NormRows> {
         self.inner.norm_rows().map(|rows| super::NormRows {
             rows,
-            offsets: vec![0, self.inner.dim()],
+            blocks: vec![(0, 1.0), (self.inner.dim(), self.velocity_weight)],
         })
     }
     fn second_order(&self) -> Option<&dyn Structure> {

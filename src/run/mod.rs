@@ -149,6 +149,7 @@ impl Overrides {
             method: self.method.unwrap_or(scene.solver.method),
             rtol,
             atol: self.atol.unwrap_or(atol),
+            velocity_rate: scene.solver.velocity_rate.filter(|_| self.atol.is_none()),
             fixed_step: self.fixed_step,
             max_steps: self
                 .max_steps

@@ -81,6 +81,9 @@ pub struct SolverSettings {
     pub atol_scale: Option<f64>,
     /// Why, where it was.
     pub atol_chosen: Option<String>,
+    /// With that atol, the beam's lowest circular frequency (rad/s): the velocities' errors
+    /// are measured against it times atol (see `ode::Options::velocity_rate`).
+    pub velocity_rate: Option<f64>,
     /// Why the method is what it is, where the scene left it out and the planner chose it.
     pub method_chosen: Option<String>,
     /// Why the beam's free vibration after its riders leave is integrated exactly, where the
@@ -727,6 +730,7 @@ fn solver_settings(
         rtol_chosen: None,
         atol_scale: None,
         atol_chosen: None,
+        velocity_rate: None,
         method_chosen: None,
         free_vibration_chosen: None,
     };

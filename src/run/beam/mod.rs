@@ -249,7 +249,8 @@ fn integrate<E: Copy + std::fmt::Debug>(
         opts.method,
         ode::Method::Esdirk4 | ode::Method::TrBdf2 | ode::Method::GenAlpha
     );
-    ode::solve(&FirstOrder::new(p), t0, &y0, t_end, outputs, opts, rec)
+    let view = FirstOrder::new(p).measuring_velocities_at(opts.velocity_rate);
+    ode::solve(&view, t0, &y0, t_end, outputs, opts, rec)
 }
 
 /// How the coupled phase ended.
