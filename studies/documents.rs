@@ -76,3 +76,58 @@ fn every_linked_figure_exists() {
         }
     }
 }
+
+/// The documents stay readable at the lengths they were cut to: README.md a front door of at
+/// most 3 000 words, REPORT.md the conclusions in at most 12 000, the method notes in `docs/`
+/// at most 6 000 (the scene-format reference beside them not counted); and no table cell or
+/// line of prose in any of them longer than 400 characters, which a reader can no longer take
+/// in as one statement. Words are counted as `wc -w` counts them.
+#[test]
+fn the_documents_keep_their_lengths() {
+    let words = |text: &str| text.split_whitespace().count();
+    let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs");
+    let mut notes: Vec<String> = std::fs::read_dir(&docs)
+        .expect("docs/ is readable")
+        .map(|e| e.expect("an entry of docs/").path())
+        .filter(|p| p.extension().is_some_and(|x| x == "md"))
+        .map(|p| format!("docs/{}", p.file_name().unwrap().to_string_lossy()))
+        .collect();
+    notes.sort();
+    let method_notes: usize = notes
+        .iter()
+        .filter(|f| !f.ends_with("scene-format.md"))
+        .map(|f| words(&read(f)))
+        .sum();
+    for (what, count, most) in [
+        ("README.md", words(&read("README.md")), 3_000),
+        ("REPORT.md", words(&read("REPORT.md")), 12_000),
+        ("the method notes in docs/", method_notes, 6_000),
+    ] {
+        assert!(count <= most, "{what} has {count} words, past {most}");
+    }
+    for doc in ["README.md".to_string(), "REPORT.md".to_string()]
+        .into_iter()
+        .chain(notes)
+    {
+        for (i, line) in read(&doc).lines().enumerate() {
+            let longest = if line.starts_with('|') {
+                line.split('|')
+                    .map(|c| c.chars().count())
+                    .max()
+                    .unwrap_or(0)
+            } else {
+                line.chars().count()
+            };
+            assert!(
+                longest <= 400,
+                "{doc}:{}: {longest} characters in one {}",
+                i + 1,
+                if line.starts_with('|') {
+                    "table cell"
+                } else {
+                    "line"
+                }
+            );
+        }
+    }
+}
