@@ -482,8 +482,10 @@ fn leaving_at_either_end_and_slipping() {
 /// `rollbeam sweep` runs the same scene as a single run would, in parallel: over the bridge's
 /// two speeds with the moving force its rows hold the residual vibration of the single runs
 /// exactly (the same arithmetic on another thread), and the cancellation of the closed form
-/// shows as the residual growing six-fold from −44 to −50 1/s. A consistent disk's row holds
-/// the contact force averaged over the cutoff's period exactly as its single run reports it.
+/// shows as the residual growing six-fold from −44 to −50 1/s, and they report the solver's
+/// steps, rejected steps and right-hand-side evaluations of the single run. A consistent
+/// disk's row holds the contact force averaged over the cutoff's period exactly as its single
+/// run reports it.
 #[test]
 fn sweep_matches_single_runs() {
     use rollbeam::workflows::sweep::{run_sweep, Setting};
@@ -503,6 +505,13 @@ fn sweep_matches_single_runs() {
     let single = run_beam(&scene, Method::GenAlpha, 1e-5, 1e-9);
     assert_eq!(rows[1].value, -44.0);
     assert_eq!(amplitude(1), residual(&single, "mid"));
+    let case = rows[1].outcome.as_ref().expect("run ok");
+    let done = &single.header.stats;
+    assert_eq!(
+        (case.steps, case.rejected, case.rhs_evals),
+        (done.steps, done.rejected, done.rhs_evals)
+    );
+    assert!(case.rhs_evals > case.steps);
     assert!(
         amplitude(0) > 5.0 * amplitude(1),
         "{} vs {}",

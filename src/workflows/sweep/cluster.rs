@@ -62,6 +62,8 @@ struct RecordSummary {
     t_end: f64,
     energy_drift: f64,
     steps: usize,
+    rejected: usize,
+    rhs_evals: usize,
     wall_s: f64,
     probes: Vec<RecordProbe>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -160,6 +162,8 @@ impl Record {
                     t_end: s.t_end,
                     energy_drift: s.energy_drift,
                     steps: s.steps,
+                    rejected: s.rejected,
+                    rhs_evals: s.rhs_evals,
                     wall_s: s.wall_s,
                     probes: s
                         .probes
@@ -249,6 +253,8 @@ impl Record {
                 t_end: s.t_end,
                 energy_drift: s.energy_drift,
                 steps: s.steps,
+                rejected: s.rejected,
+                rhs_evals: s.rhs_evals,
                 wall_s: s.wall_s,
                 probes: s
                     .probes

@@ -235,6 +235,10 @@ pub struct Summary {
     pub t_end: f64,
     pub energy_drift: f64,
     pub steps: usize,
+    /// The steps the error estimate or Newton turned back, and the right-hand sides
+    /// evaluated: with the steps and the wall time, what the solver did for the case.
+    pub rejected: usize,
+    pub rhs_evals: usize,
     pub wall_s: f64,
     /// Beam scenes: per probe (name, w_min, w_max, amplitude after the last load left or
     /// NaN, largest |vertical acceleration|).
@@ -315,6 +319,8 @@ fn summarise(r: &Run) -> Summary {
         t_end: r.header().t_end,
         energy_drift: r.header().energy.max_rel_drift(),
         steps: r.header().stats.steps,
+        rejected: r.header().stats.rejected,
+        rhs_evals: r.header().stats.rhs_evals,
         wall_s: r.header().stats.wall_s,
         probes,
         disks,
@@ -579,7 +585,7 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
     // A scene without a disk (a train, loads) has no disk columns.
     let disks = disk_names(rows);
     let mut csv = format!(
-        "{},status,stopped,t_end,energy_drift,steps,wall_s",
+        "{},status,stopped,t_end,energy_drift,steps,rejected,rhs_evals,wall_s",
         keys.join(",")
     );
     for (d, averaged) in &disks {
@@ -614,8 +620,8 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
             Ok(s) => {
                 let _ = write!(
                     csv,
-                    "{values},ok,{},{},{},{},{}",
-                    s.stop, s.t_end, s.energy_drift, s.steps, s.wall_s,
+                    "{values},ok,{},{},{},{},{},{},{}",
+                    s.stop, s.t_end, s.energy_drift, s.steps, s.rejected, s.rhs_evals, s.wall_s,
                 );
                 for (name, averaged) in &disks {
                     match s.disks.iter().find(|d| d.name == *name) {
@@ -638,7 +644,7 @@ pub fn sweep_csv(rows: &[SweepRow], keys: &[String]) -> String {
                 }
             }
             Err(e) => {
-                let _ = write!(csv, "{values},\"failed: {}\",,,,,", e.replace('"', "'"));
+                let _ = write!(csv, "{values},\"failed: {}\",,,,,,,", e.replace('"', "'"));
                 for (_, averaged) in &disks {
                     csv.push_str(&empty_disk_cells(*averaged));
                 }
