@@ -949,12 +949,31 @@ fn mkfifo(path: &Path) {
 ///     800 MB read or records written elsewhere; each is now one sentence naming the file.
 ///     A record holding what no run writes (a number not finite, a negative time, a least
 ///     value above the largest) merged into sweep.csv, or stopped it with "the run's numbers
-///     overflowed"; it is now refused as such. A key no plan or record holds (a hand edit
-///     meant to change the sweep) is refused rather than ignored.
+///     overflowed"; it is now refused as such, as is a record of both outcomes (read as a run
+///     that ended), of none, or of a way to end no run takes. A key no plan or record
+///     holds (a hand edit meant to change the sweep) is refused rather than ignored.
 #[test]
 fn item_11_planned_sweeps_trust_no_file() {
     type Edit = fn(&Path);
-    let cases: [(&str, Edit, &str, &str); 14] = [
+    let cases: [(&str, Edit, &str, &str); 17] = [
+        (
+            "both-outcomes",
+            |p| edit(&files(p, "done")[0], |t| t.replacen("ok:", "failed: hand-written\nok:", 1)),
+            "merge",
+            "it holds both `ok` and `failed`",
+        ),
+        (
+            "no-outcome",
+            |p| edit(&files(p, "done")[0], |t| t.split_once("ok:").unwrap().0.to_string()),
+            "merge",
+            "it holds neither `ok` nor `failed`",
+        ),
+        (
+            "unknown-stop",
+            |p| edit(&files(p, "done")[0], |t| set_first(t, "stop", "landed")),
+            "merge",
+            "its stop is 'landed', none of the ways a run ends (end, contact-lost, slip, no-fit, left-track)",
+        ),
         (
             "nan-record",
             |p| edit(&files(p, "done")[0], |t| set_first(t, "w_min", ".nan")),

@@ -25,6 +25,15 @@ pub enum Stop {
 }
 
 impl Stop {
+    /// Every way a run ends.
+    pub const ALL: [Stop; 5] = [
+        Stop::End,
+        Stop::Event(StopReason::ContactLost),
+        Stop::Event(StopReason::Slip),
+        Stop::Event(StopReason::NoFit),
+        Stop::Event(StopReason::LeftTrack),
+    ];
+
     pub fn name(self) -> &'static str {
         match self {
             Stop::End => "end",

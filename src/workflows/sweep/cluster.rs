@@ -25,7 +25,7 @@ use crate::error::{quote, Error};
 use crate::files::{read_text, write_whole};
 use crate::output::{io_error, yaml};
 use crate::plan::Planner;
-use crate::run::{Overrides, Run};
+use crate::run::{Overrides, Run, Stop};
 use crate::scene::SceneSpec;
 
 /// Largest plan file read back: the ids of [`MAX_CASES`] cases with room to spare.
@@ -112,6 +112,14 @@ fn finite(x: f64) -> Option<f64> {
 impl RecordSummary {
     /// What in the summary no run records, if anything.
     fn implausible(&self) -> Option<String> {
+        if !Stop::ALL.iter().any(|s| s.name() == self.stop) {
+            let names: Vec<&str> = Stop::ALL.iter().map(|s| s.name()).collect();
+            return Some(format!(
+                "its stop is {}, none of the ways a run ends ({})",
+                quote(&self.stop),
+                names.join(", ")
+            ));
+        }
         let mut sizes = vec![
             ("t_end", Some(self.t_end)),
             ("energy_drift", Some(self.energy_drift)),
@@ -223,13 +231,22 @@ impl Record {
     }
 
     /// The record in `text`, read from `source`, refused where it holds what no run
-    /// records: a number that is not finite (a run's overflow is recorded as its failure), a
-    /// negative time, drift or acceleration, or a least value above the largest.
+    /// records: an outcome that is not one of `ok` and `failed`, a way to end no run takes, a
+    /// number that is not finite (a run's overflow is recorded as its failure), a negative
+    /// time, drift or acceleration, or a least value above the largest.
     pub fn from_yaml(text: &str, source: &str) -> Result<Record, Error> {
         let record: Record = serde_saphyr::from_str(text).map_err(|e| {
             Error::Input(format!("{source} is not a case record: {}", first_line(&e)))
         })?;
-        match record.ok.as_ref().and_then(RecordSummary::implausible) {
+        let outcomes = match (&record.ok, &record.failed) {
+            (Some(_), Some(_)) => Some("both `ok` and `failed`"),
+            (None, None) => Some("neither `ok` nor `failed`"),
+            _ => None,
+        };
+        let why = outcomes
+            .map(|both| format!("it holds {both}, where a run records one"))
+            .or_else(|| record.ok.as_ref().and_then(RecordSummary::implausible));
+        match why {
             None => Ok(record),
             Some(why) => Err(Error::Input(format!(
                 "{source} is not a record a run writes: {why}; remove it and run the case again"
@@ -237,7 +254,8 @@ impl Record {
         }
     }
 
-    /// The row it records; a value that reads as a number is one.
+    /// The row it records; a value that reads as a number is one. A record holds one outcome
+    /// ([`Record::of`] writes one, [`Record::from_yaml`] refuses any other).
     pub fn row(&self) -> SweepRow {
         let values = self
             .values
@@ -247,8 +265,8 @@ impl Record {
                 _ => Value::Name(v.clone()),
             })
             .collect();
-        let outcome = match (&self.ok, &self.failed) {
-            (Some(s), _) => Ok(Summary {
+        let outcome = match &self.ok {
+            Some(s) => Ok(Summary {
                 stop: s.stop.clone(),
                 t_end: s.t_end,
                 energy_drift: s.energy_drift,
@@ -287,8 +305,7 @@ impl Record {
                     .map(|b| (b.name.clone(), b.a_max.unwrap_or(f64::NAN)))
                     .collect(),
             }),
-            (None, Some(e)) => Err(e.clone()),
-            (None, None) => Err("the record holds no outcome".into()),
+            None => Err(self.failed.clone().unwrap_or_default()),
         };
         row((values, outcome))
     }
