@@ -887,6 +887,24 @@ fn modal_mechanism_and_mode_count() {
     );
 }
 
+/// Nor does `modes` give fewer modes than asked on a beam that keeps its mesh: D44's mesh
+/// holds 120 unknowns, so 120 modes are computed and a 121st is one sentence, exit 1.
+#[test]
+fn modes_past_the_mesh() {
+    let d44 = crate::common::studies_dir().join("bridge-d44.yaml");
+    let p = d44.to_str().unwrap();
+    let out = "/tmp/rollbeam-modes-past-the-mesh";
+    let (code, err) = rollbeam(&["modes", p, "--count", "120", "--out", out]);
+    assert_eq!(code, 0, "{err}");
+    let (code, err) = rollbeam(&["modes", p, "--count", "121", "--out", out]);
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("--count 121 is more than the 120 modes the mesh holds")
+            && err.trim().lines().count() == 1,
+        "{err}"
+    );
+}
+
 /// A free–free beam has no static equilibrium under a load: one sentence, exit 1.
 #[test]
 fn static_solution_of_a_mechanism() {

@@ -325,8 +325,8 @@ class Modes:
 
 
 def modes(scene: Scene, count: Optional[int] = None, samples: int = 200) -> Modes:
-    """The lowest ``count`` modes (default 6, or as many as a modal beam keeps), the shapes
-    at ``samples + 1`` evenly spaced points."""
+    """The lowest ``count`` modes (default 6, or as many as a modal beam keeps or the mesh
+    holds), the shapes at ``samples + 1`` evenly spaced points."""
     _scene(scene, "modes")
     for name, n in (("count", count), ("samples", samples)):
         if n is not None and (isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1):

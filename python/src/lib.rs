@@ -16,7 +16,7 @@ use rollbeam::output;
 use rollbeam::plan::Planner;
 use rollbeam::run::{self as core_run, Overrides, Run};
 use rollbeam::scene::{BeamScene, Scene, SceneSpec};
-use rollbeam::workflows::analyses::{natural_modes, static_solution};
+use rollbeam::workflows::analyses::{default_mode_count, natural_modes, static_solution};
 use rollbeam::workflows::settings::solver_overrides;
 use rollbeam::workflows::sweep::cluster::{self, Record};
 use rollbeam::workflows::sweep::{self, Value};
@@ -258,8 +258,8 @@ fn modes<'py>(
     let m = py
         .detach(|| {
             let setup = beam_of(&s, "modes")?;
-            let kept = setup.beam.model.modes().unwrap_or(usize::MAX);
-            natural_modes(&s, setup, count.unwrap_or(6.min(kept)), samples)
+            let count = count.unwrap_or_else(|| default_mode_count(setup));
+            natural_modes(&s, setup, count, samples)
         })
         .map_err(py_err)?;
     let all = || m.shapes.iter().flat_map(|mode| mode.iter());

@@ -7,7 +7,7 @@ use std::path::Path;
 use super::beam_only;
 use crate::error::Error;
 use crate::scene::Scene;
-use crate::workflows::analyses::{modes, statics};
+use crate::workflows::analyses::{default_mode_count, modes, statics};
 
 #[derive(clap::Args)]
 pub struct StaticArgs {
@@ -30,7 +30,7 @@ pub fn static_command(args: StaticArgs) -> Result<(), Error> {
 #[derive(clap::Args)]
 pub struct ModesArgs {
     scene: PathBuf,
-    /// How many modes (default 6, or as many as a modal beam keeps if fewer).
+    /// How many modes (default 6, or as many as a modal beam keeps or the mesh holds if fewer).
     #[arg(long)]
     count: Option<usize>,
     #[arg(long)]
@@ -47,8 +47,8 @@ pub fn modes_command(args: ModesArgs) -> Result<(), Error> {
     let scene = Scene::load(&path)?;
     let setup = beam_only(&scene, &path, "modes")?;
     let dir = out.unwrap_or_else(|| Path::new("out").join(&scene.name));
-    let kept = setup.beam.model.modes().unwrap_or(usize::MAX);
-    let result = modes(&scene, setup, count.unwrap_or(6.min(kept)), &dir)?;
+    let count = count.unwrap_or_else(|| default_mode_count(setup));
+    let result = modes(&scene, setup, count, &dir)?;
     print!("{result}");
     Ok(())
 }

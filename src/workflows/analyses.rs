@@ -205,6 +205,13 @@ pub struct NaturalModes {
     pub shapes: Vec<Vec<crate::beam::PointDisplacement>>,
 }
 
+/// How many modes `modes` computes when not told: six, or fewer where a modal beam keeps
+/// fewer or the mesh holds fewer.
+pub fn default_mode_count(setup: &BeamScene) -> usize {
+    let kept = setup.beam.model.modes().unwrap_or(usize::MAX);
+    6.min(kept).min(Beam::shared(&setup.beam).dim())
+}
+
 /// The lowest `count` natural frequencies and mode shapes about the undeformed state, the
 /// shapes at `samples` + 1 evenly spaced points.
 pub fn natural_modes(
@@ -224,6 +231,12 @@ pub fn natural_modes(
         )));
     }
     let beam = Beam::shared(&setup.beam);
+    if count > beam.dim() {
+        return Err(Error::Input(format!(
+            "--count {count} is more than the {} modes the mesh holds (its unknowns); ask for fewer, or refine the mesh (`track.beam.elements`)",
+            beam.dim()
+        )));
+    }
     if beam.dim() > modes::DENSE_LIMIT && count > modes::MAX_SPARSE_MODES {
         return Err(Error::Input(format!(
             "--count {count} is more than the {} modes computed on a mesh this large ({} unknowns); ask for fewer",
