@@ -518,10 +518,11 @@ fn the_bridges_windowed_means_scatter_with_the_steps() {
 
 /// Nothing read back from disk is trusted: a stored reference whose history was cut to three
 /// rows (it served, and every run's history error dropped from ~6·10⁻⁷ to ~6·10⁻¹⁶, each run
-/// scored against itself) or replaced by a device is stale, and says why; the same files
+/// scored against itself) or replaced by a device, or whose own file holds a headline, an
+/// rtol or a wall time that is not a finite number, is stale, and says why; the same files
 /// untouched serve.
 #[test]
-fn a_stored_history_cut_or_replaced_is_stale() {
+fn a_stored_reference_cut_edited_or_replaced_is_stale() {
     use rollbeam::workflows::studies;
     let dir = std::env::temp_dir().join(format!("rollbeam-stored-{}", std::process::id()));
     let refs = dir.join("references");
@@ -553,6 +554,31 @@ fn a_stored_history_cut_or_replaced_is_stale() {
     match load() {
         Stored::Stale(why) => assert!(why.contains("a device"), "{why}"),
         _ => panic!("a device served as a history"),
+    }
+    // The reference's own file carries no hash: each number in it is checked instead, for a
+    // headline that is not a number would drop out of every score taken against it.
+    std::fs::remove_file(&history).expect("remove");
+    std::fs::copy(
+        from.join("references").join("parabola-p1.history.csv"),
+        &history,
+    )
+    .expect("copy");
+    let stored = std::fs::read_to_string(&path).expect("the reference");
+    for (from, to, needle) in [
+        (
+            "value: 0.9043378198008877",
+            "value: .nan",
+            "disk.x_end is NaN",
+        ),
+        ("rtol: 1.0e-10", "rtol: .nan", "rtol or wall time"),
+        ("wall_s: 0.000486802", "wall_s: -.inf", "rtol or wall time"),
+    ] {
+        assert!(stored.contains(from), "the stored reference holds {from}");
+        std::fs::write(&path, stored.replacen(from, to, 1)).expect("edit");
+        match load() {
+            Stored::Stale(why) => assert!(why.contains(needle), "{why}"),
+            _ => panic!("a reference with {to} served"),
+        }
     }
 }
 

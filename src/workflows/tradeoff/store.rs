@@ -288,6 +288,16 @@ fn fits(
     if !measure(file.settled_to) || !file.mesh_gap.is_none_or(measure) {
         return Err("its settling or mesh gap is not a finite, non-negative number".into());
     }
+    if !(measure(file.rtol) && file.rtol > 0.0) || !measure(file.wall_s) {
+        return Err("its rtol or wall time is not a finite, positive number".into());
+    }
+    // A headline that is not a number would drop out of every score taken against it.
+    if let Some(h) = file.headlines.iter().find(|h| !h.value.is_finite()) {
+        return Err(format!(
+            "its headline {} is {}, not a finite number",
+            h.name, h.value
+        ));
+    }
     if file.method != method.name() {
         return Err(format!("made with {}, not {}", file.method, method.name()));
     }
