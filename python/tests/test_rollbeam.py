@@ -423,6 +423,8 @@ def test_bad_values_fail_in_pythons_words_naming_the_key(d44):
         with pytest.raises(rollbeam.SceneError) as e:
             rollbeam.modes(d44, count=count)
         assert e.value.key == "count"
+    with pytest.raises(rollbeam.SceneError, match="more than the 120 modes the mesh holds"):
+        rollbeam.modes(d44, count=121)
 
 
 def test_what_is_not_a_scene_fails_in_pythons_words(tmp_path):
