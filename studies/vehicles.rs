@@ -876,9 +876,11 @@ fn exact_modal_is_refused_with_vehicles() {
 /// a/2 f'² above the track, so as its radius shrinks it becomes the point wheel, to first
 /// order in the radius, with or without an unsprung mass (whose inertia then follows the
 /// disk's centre). The sprung mass over an ISO 8608 class A profile (wavelengths from 0.5 m),
-/// at rtol 10⁻⁸: the body's largest acceleration differs from the point wheel's by a tenth as
+/// at rtol 10⁻⁷: the body's largest acceleration differs from the point wheel's by a tenth as
 /// much at each tenth of the radius, and by less than 10⁻⁴ at 3 mm (measured 4.3·10⁻⁴,
-/// 4.2·10⁻⁵, 3.8·10⁻⁶ without, 4.3·10⁻⁴, 4.2·10⁻⁵, 3.1·10⁻⁶ with 700 kg). The two unsprung
+/// 4.1·10⁻⁵, 1.8·10⁻⁶ without, 4.3·10⁻⁴, 4.0·10⁻⁵, 1.5·10⁻⁶ with 700 kg). At 3 mm the
+/// difference sits at the integration's own error: 2.0·10⁻⁶ at rtol 3·10⁻⁸, 3.8·10⁻⁶ at
+/// 10⁻⁸, so the test asks each decade of the radius for a fivefold fall. The two unsprung
 /// masses run side by side: the suite runs this test among its last.
 #[test]
 fn disk_wheels_become_the_point_wheel_as_their_radius_shrinks() {
@@ -897,7 +899,7 @@ fn disk_wheels_become_the_point_wheel_as_their_radius_shrinks() {
                         &format!("{{name: wheel, x: 0.0, mass: {unsprung}}}")
                     )
             ));
-            let r = run_beam(&s, Method::GenAlpha, 1e-8, 1e-12);
+            let r = run_beam(&s, Method::GenAlpha, 1e-7, 1e-11);
             r.vehicles[0].bodies[0].1.largest_magnitude().0
         };
         let point = body_a("");
