@@ -310,7 +310,7 @@ fn a_modal_beam_s_axis_stretches_as_the_exact_beam_s_and_its_end_is_said_to_draw
 
 /// D44's and D50's consistent disks on the beam the plan chooses (16 modes), every solver
 /// setting left to it, against the same model converged (ESDIRK4 at rtol 10⁻⁹, whose
-/// headlines agree with rtol 10⁻¹⁰'s to 10⁻⁷): each probe's extremes, largest acceleration
+/// headlines agree with rtol 10⁻¹⁰'s to 10⁻⁷; stored, [`within_the_accuracy_stored`]): each probe's extremes, largest acceleration
 /// and residual amplitude, the envelope's, the deflection under the disk and the time it leaves,
 /// within the accuracy (10⁻³) of the peak deflection, the largest acceleration and the time;
 /// the contact forces within it of the weight. The contact force is the disk's mass times the
@@ -320,53 +320,65 @@ fn a_modal_beam_s_axis_stretches_as_the_exact_beam_s_and_its_end_is_said_to_draw
 #[test]
 fn a_rolling_disk_s_headlines_within_the_accuracy_at_the_defaults() {
     for study in ["bridge-d44.yaml", "bridge-d50.yaml"] {
-        let scene = changed(study, &left_to_the_plan());
+        let changes = left_to_the_plan();
+        let scene = changed(study, &changes);
         let planned = at_defaults(&scene);
         // atol: rtol times the peak deflection (about 30 mm).
-        let converged = run_beam(&scene, Method::Esdirk4, 1e-9, 1e-9 * 0.03);
-        let (p, c) = (&planned.extremes, &converged.extremes);
-        let w_peak = deepest(&converged);
-        let a_peak = converged.envelope.a_max.0;
-        let weight = 1500.0 * 9.81;
-        let left = converged.left_track_t.expect("the disk leaves");
-        let mut pairs = vec![
-            (
-                "the envelope's largest acceleration",
-                planned.envelope.a_max.0,
-                a_peak,
-                a_peak,
-            ),
-            (
-                "the time the disk leaves",
-                planned.left_track_t.expect("it leaves"),
-                left,
-                left,
-            ),
-        ];
-        for (a, b) in planned.envelope.min.iter().zip(&converged.envelope.min) {
-            pairs.push(("the envelope's lowest w", a.w, b.w, w_peak));
-        }
-        pairs.extend(probe_pairs(&planned, &converged, w_peak, a_peak));
-        for k in 0..p.probes.len() {
-            pairs.push((
-                "a probe's residual amplitude",
-                planned.amplitude_after_exit(k).unwrap(),
-                converged.amplitude_after_exit(k).unwrap(),
-                w_peak,
-            ));
-        }
-        let (d, e) = (p.disk().expect("a disk"), c.disk().expect("a disk"));
-        for (what, k) in [
-            ("the normal contact force", 0),
-            ("the tangential contact force", 1),
-        ] {
-            pairs.push((what, d[k].min, e[k].min, weight));
-            pairs.push((what, d[k].max, e[k].max, weight));
-        }
-        pairs.push(("w under the disk", d[3].min, e[3].min, w_peak));
-        pairs.extend(contact_mean_pairs(&planned, &converged, weight));
-        within_the_accuracy(study, &pairs);
+        within_the_accuracy_stored(
+            &format!("{study} rolling disk"),
+            (study, &changes),
+            "ESDIRK4 at rtol 1e-9, atol 3e-11",
+            &planned,
+            rolling_disk_pairs,
+            || run_beam(&scene, Method::Esdirk4, 1e-9, 1e-9 * 0.03),
+        );
     }
+}
+
+/// What [`a_rolling_disk_s_headlines_within_the_accuracy_at_the_defaults`] compares.
+fn rolling_disk_pairs(planned: &BeamRun, converged: &BeamRun) -> Vec<Compared> {
+    let (p, c) = (&planned.extremes, &converged.extremes);
+    let w_peak = deepest(converged);
+    let a_peak = converged.envelope.a_max.0;
+    let weight = 1500.0 * 9.81;
+    let left = converged.left_track_t.expect("the disk leaves");
+    let mut pairs = vec![
+        (
+            "the envelope's largest acceleration",
+            planned.envelope.a_max.0,
+            a_peak,
+            a_peak,
+        ),
+        (
+            "the time the disk leaves",
+            planned.left_track_t.expect("it leaves"),
+            left,
+            left,
+        ),
+    ];
+    for (a, b) in planned.envelope.min.iter().zip(&converged.envelope.min) {
+        pairs.push(("the envelope's lowest w", a.w, b.w, w_peak));
+    }
+    pairs.extend(probe_pairs(planned, converged, w_peak, a_peak));
+    for k in 0..p.probes.len() {
+        pairs.push((
+            "a probe's residual amplitude",
+            planned.amplitude_after_exit(k).unwrap(),
+            converged.amplitude_after_exit(k).unwrap(),
+            w_peak,
+        ));
+    }
+    let (d, e) = (p.disk().expect("a disk"), c.disk().expect("a disk"));
+    for (what, k) in [
+        ("the normal contact force", 0),
+        ("the tangential contact force", 1),
+    ] {
+        pairs.push((what, d[k].min, e[k].min, weight));
+        pairs.push((what, d[k].max, e[k].max, weight));
+    }
+    pairs.push(("w under the disk", d[3].min, e[3].min, w_peak));
+    pairs.extend(contact_mean_pairs(planned, converged, weight));
+    pairs
 }
 
 /// The rubber beam (a 100 kg disk on a soft, geometrically nonlinear beam, which it leaves
@@ -1958,7 +1970,7 @@ fn the_modes_kept_move_a_rolling_disk_s_accelerations_not_its_mean_contact_force
 /// modes for the whole run, and the instantaneous contact force and the accelerations while
 /// the disk rides carry it: the least contact force read 631, 628, 620 and 618 N and midspan's
 /// largest acceleration 1.57, 1.60, 1.64 and 1.80 m/s² at rtol 3.3·10⁻⁵, 10⁻⁵, 10⁻⁶ and 10⁻⁷,
-/// and the run warns of it. What the contract holds there, against ESDIRK4 at rtol 10⁻⁵ (within
+/// and the run warns of it. Both converged runs are stored ([`within_the_accuracy_stored`]). What the contract holds there, against ESDIRK4 at rtol 10⁻⁵ (within
 /// 2.6·10⁻⁵ of the weight and 4.5·10⁻⁴ of the acceleration of rtol 10⁻⁷'s): each probe's
 /// extremes of w, the envelope's largest acceleration (after the disk left) and the contact
 /// force averaged over a period of the cutoff, within the accuracy of the largest deflection,
@@ -1969,19 +1981,17 @@ fn the_modes_kept_move_a_rolling_disk_s_accelerations_not_its_mean_contact_force
 #[test]
 fn the_zip_line_s_headlines_within_the_accuracy_at_the_defaults() {
     let weight = 80.0 * 9.81;
-    let on = |initial: &'static str| {
-        changed(
-            "zipline.yaml",
-            &[
-                Set::Number("duration", 3.6),
-                Set::Name("track.beam.initial", initial),
-                Set::LeftOut("solver.method"),
-                Set::LeftOut("solver.rho_inf"),
-                Set::LeftOut("solver.rtol"),
-                Set::LeftOut("output.shapes"),
-            ],
-        )
+    let changes = |initial: &'static str| {
+        [
+            Set::Number("duration", 3.6),
+            Set::Name("track.beam.initial", initial),
+            Set::LeftOut("solver.method"),
+            Set::LeftOut("solver.rho_inf"),
+            Set::LeftOut("solver.rtol"),
+            Set::LeftOut("output.shapes"),
+        ]
     };
+    let on = |initial: &'static str| changed("zipline.yaml", &changes(initial));
     let scene = on("rest");
     let warned = |scene: &Scene, what: &str| {
         let warnings = scene.beam().expect("a beam").warnings();
@@ -1991,25 +2001,41 @@ fn the_zip_line_s_headlines_within_the_accuracy_at_the_defaults() {
     let planned = at_defaults(&scene);
     assert_eq!(planned.header.method, Method::Esdirk4);
     // atol: rtol times the largest static deflection at a probe (0.584 m), as the plan's.
-    let converged = run_beam(&scene, Method::Esdirk4, 1e-5, 1e-5 * 0.584);
-    let (w_scale, a_scale) = (deepest(&converged), converged.envelope.a_max.0);
-    let mut pairs = vec![envelope_acceleration(planned.envelope.a_max.0, a_scale)];
-    pairs.extend(probe_w_pairs(&planned, &converged, w_scale));
-    pairs.extend(contact_mean_pairs(&planned, &converged, weight));
-    within_the_accuracy("zip-line set down at rest", &pairs);
+    within_the_accuracy_stored(
+        "zip-line set down at rest",
+        ("zipline.yaml", &changes("rest")),
+        "ESDIRK4 at rtol 1e-5, atol 5.84e-6",
+        &planned,
+        |planned, converged| {
+            let (w_scale, a_scale) = (deepest(converged), converged.envelope.a_max.0);
+            let mut pairs = vec![envelope_acceleration(planned.envelope.a_max.0, a_scale)];
+            pairs.extend(probe_w_pairs(planned, converged, w_scale));
+            pairs.extend(contact_mean_pairs(planned, converged, weight));
+            pairs
+        },
+        || run_beam(&scene, Method::Esdirk4, 1e-5, 1e-5 * 0.584),
+    );
 
     let scene = on("static");
     assert!(!warned(&scene, "at rest"));
     let planned = at_defaults(&scene);
-    let converged = run_beam(&scene, Method::Esdirk4, 1e-6, 1e-6 * 0.584);
-    let mut pairs = disk_headlines(&planned, &converged, deepest(&converged), weight);
-    let (d, e) = (
-        planned.extremes.disk().expect("a disk"),
-        converged.extremes.disk().expect("a disk"),
+    within_the_accuracy_stored(
+        "zip-line started static",
+        ("zipline.yaml", &changes("static")),
+        "ESDIRK4 at rtol 1e-6, atol 5.84e-7",
+        &planned,
+        |planned, converged| {
+            let mut pairs = disk_headlines(planned, converged, deepest(converged), weight);
+            let (d, e) = (
+                planned.extremes.disk().expect("a disk"),
+                converged.extremes.disk().expect("a disk"),
+            );
+            pairs.push(("the least tangential force", d[1].min, e[1].min, weight));
+            pairs.push(("the largest tangential force", d[1].max, e[1].max, weight));
+            pairs
+        },
+        || run_beam(&scene, Method::Esdirk4, 1e-6, 1e-6 * 0.584),
     );
-    pairs.push(("the least tangential force", d[1].min, e[1].min, weight));
-    pairs.push(("the largest tangential force", d[1].max, e[1].max, weight));
-    within_the_accuracy("zip-line started static", &pairs);
 }
 
 /// The jump (a disk over a crest, its flight and bounces) with its solver block left out,
@@ -2234,6 +2260,69 @@ fn converged_deck(
     }
     let remake = "make it with `ROLLBEAM_REMAKE_CONVERGED=1 cargo test --release --test studies -- accuracy::`";
     converged::read_keyed(&stored, &key, remake)
+}
+
+/// The headlines `compare` lists of `planned`, a run of study file `study` with `changes`,
+/// within the accuracy of a converged run, which costs several times the planned one and so
+/// is stored in `studies/references/converged/` under `name`, keyed by the study as it is
+/// now, the changes and how it is `converged_by`: each headline's name, converged value and
+/// scale, to six significant digits (as [`Deck::store`] rounds). With
+/// `ROLLBEAM_REMAKE_CONVERGED=1`, made again by `converge` and stored. `compare(planned,
+/// converged)` takes each value from its run and the scales from `converged`, and lists the
+/// same headlines whichever runs it is given.
+fn within_the_accuracy_stored(
+    name: &str,
+    (study, changes): (&str, &[Set]),
+    converged_by: &str,
+    planned: &BeamRun,
+    compare: impl Fn(&BeamRun, &BeamRun) -> Vec<Compared>,
+    converge: impl FnOnce() -> BeamRun,
+) {
+    let stored = format!(
+        "headlines-{}",
+        (name.chars())
+            .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+            .collect::<String>()
+    );
+    let study = converged::study_hash(study);
+    let key = content_hash(&format!("{study}\n{changes:?}\n{converged_by}"));
+    let converged: Headlines = if converged::remaking() {
+        let round = |x: f64| format!("{x:.5e}").parse::<f64>().expect("a number");
+        let headlines = Headlines {
+            converged_by: converged_by.to_string(),
+            scene_hash: key,
+            headlines: (compare(planned, &converge()).into_iter())
+                .map(|(what, _, b, scale)| (what.to_string(), round(b), round(scale)))
+                .collect(),
+        };
+        converged::write(&stored, &headlines);
+        headlines
+    } else {
+        let remake = "make it with `ROLLBEAM_REMAKE_CONVERGED=1 cargo test --release --test studies -- accuracy::`";
+        converged::read_keyed(&stored, &key, remake)
+    };
+    let ours = compare(planned, planned);
+    assert_eq!(
+        ours.len(),
+        converged.headlines.len(),
+        "{name}: the headlines"
+    );
+    let pairs: Vec<Compared> = (ours.into_iter().zip(&converged.headlines))
+        .map(|((what, a, _, _), (stored_what, b, scale))| {
+            assert_eq!(what, stored_what, "{name}: the headlines");
+            (what, a, *b, *scale)
+        })
+        .collect();
+    within_the_accuracy(name, &pairs);
+}
+
+/// A converged run's headlines as stored: each one's name, value and scale.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct Headlines {
+    converged_by: String,
+    /// The hash of the study, its changes and the converged run's settings.
+    scene_hash: String,
+    headlines: Vec<(String, f64, f64)>,
 }
 
 /// The deck's headlines of the `planned` run within the accuracy of the `converged` one.

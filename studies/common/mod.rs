@@ -27,7 +27,7 @@ pub fn study_text(file: &str) -> String {
 }
 
 /// One key of a scene changed as the scene format holds it: a number, a name, or left out.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug)]
 pub enum Set<'a> {
     Number(&'a str, f64),
     Name(&'a str, &'a str),
