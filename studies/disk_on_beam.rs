@@ -166,17 +166,17 @@ fn drift(r: &BeamRun) -> f64 {
 /// The consistent coupling conserves beam + disk energy: its drift is an integration error
 /// and falls with rtol, to ≤ 10⁻⁶ at rtol 10⁻⁸ (generalized-α at ρ∞ = 1, energy-neutral for
 /// the linear part). The thesis coupling's error is a model error: it stays when rtol falls.
-/// On the first 0.1 s of each study (the disk on the beam throughout). The zip-line's tight
-/// run is at 10⁻⁷: its rope's axial waves make a run at 10⁻⁸ take half a minute of a core,
-/// and its consistent drift at 10⁻⁷ (1.7·10⁻¹⁰) already lies five decades below the thesis
-/// coupling's (3.5·10⁻⁵).
+/// On the first 0.1 s of each study (the disk on the beam throughout), at rtol 10⁻⁶ and 10⁻⁸.
+/// The zip-line's runs are at 10⁻⁵ and 10⁻⁶: its rope's axial waves make each run at 10⁻⁶
+/// take 4–5 s of a core, twice 10⁻⁵'s (10⁻⁸: half a minute), and its consistent drift at 10⁻⁶
+/// (8·10⁻¹⁰) already lies four decades below the thesis coupling's (3.5·10⁻⁵).
 #[test]
 fn energy_consistent_conserves_thesis_does_not() {
-    for (file, tight_rtol) in [
-        ("bridge-d44.yaml", 1e-8),
-        ("bridge-d50.yaml", 1e-8),
-        ("zipline.yaml", 1e-7),
-        ("rubber.yaml", 1e-8),
+    for (file, loose_rtol, tight_rtol) in [
+        ("bridge-d44.yaml", 1e-6, 1e-8),
+        ("bridge-d50.yaml", 1e-6, 1e-8),
+        ("zipline.yaml", 1e-5, 1e-6),
+        ("rubber.yaml", 1e-6, 1e-8),
     ] {
         let window = |c: Coupling| {
             variant(
@@ -191,7 +191,7 @@ fn energy_consistent_conserves_thesis_does_not() {
         let drift_at = |c: Coupling, rtol: f64| {
             drift(&run_beam(&window(c), Method::GenAlpha, rtol, rtol * 1e-6))
         };
-        let loose = drift_at(Coupling::Consistent, 1e-6);
+        let loose = drift_at(Coupling::Consistent, loose_rtol);
         let tight = drift_at(Coupling::Consistent, tight_rtol);
         assert!(
             tight <= 1e-6,
@@ -199,16 +199,16 @@ fn energy_consistent_conserves_thesis_does_not() {
         );
         assert!(
             tight < loose,
-            "{file}: drift {tight:.2e} ({tight_rtol:.0e}) vs {loose:.2e} (1e-6)"
+            "{file}: drift {tight:.2e} ({tight_rtol:.0e}) vs {loose:.2e} ({loose_rtol:.0e})"
         );
-        let t_loose = drift_at(Coupling::Thesis, 1e-6);
+        let t_loose = drift_at(Coupling::Thesis, loose_rtol);
         let t_tight = drift_at(Coupling::Thesis, tight_rtol);
         eprintln!(
-            "{file}: consistent drift {loose:.2e} (rtol 1e-6), {tight:.2e} ({tight_rtol:.0e}); thesis {t_loose:.2e}, {t_tight:.2e}"
+            "{file}: consistent drift {loose:.2e} (rtol {loose_rtol:.0e}), {tight:.2e} ({tight_rtol:.0e}); thesis {t_loose:.2e}, {t_tight:.2e}"
         );
         assert!(
             t_tight > 0.3 * t_loose && t_tight > 10.0 * tight,
-            "{file}: thesis error {t_tight:.2e} ({tight_rtol:.0e}) vs {t_loose:.2e} (1e-6)"
+            "{file}: thesis error {t_tight:.2e} ({tight_rtol:.0e}) vs {t_loose:.2e} ({loose_rtol:.0e})"
         );
     }
 }
