@@ -131,7 +131,8 @@ impl Rolling {
     pub fn first_unfit_point(&self) -> Option<f64> {
         let a = self.disk.radius;
         let kappa = |s: f64| self.curve.at(s).curvature();
-        let fits = |s: f64| 1.0 - a * kappa(s) > 0.0;
+        let fits_at = |k: f64| 1.0 - a * k > 0.0;
+        let fits = |s: f64| fits_at(kappa(s));
         if !fits(self.s0) {
             return Some(self.s0);
         }
@@ -151,24 +152,30 @@ impl Rolling {
         for dir in [-1.0, 1.0] {
             let mut trail = [(self.s0, kappa(self.s0)); 2];
             let mut s = self.s0;
+            // One evaluation of the curve a sample: an expression curve costs microseconds a
+            // point, and a closed one is scanned for all the samples.
+            let mut p = start;
             for _ in 0..SAMPLES {
                 // Steps a fraction of the smaller of the disk radius and the local radius of
                 // curvature, so that no bend is stepped over.
-                let p = self.curve.at(s);
                 let ds = 0.02 * a.min(1.0 / p.curvature().abs().max(1e-12)) / p.speed();
                 s = (s + dir * ds).clamp(lo, hi);
-                let k = kappa(s);
-                if !fits(s) {
+                p = self.curve.at(s);
+                let k = p.curvature();
+                if !fits_at(k) {
                     return Some(s);
                 }
-                if trail[1].1 > trail[0].1 && trail[1].1 >= k {
+                // A rise within round-off is no peak: on a circle every other sample was
+                // refined.
+                let rise = trail[1].1 - trail[0].1;
+                if rise > 1e-12 * trail[1].1.abs() && trail[1].1 >= k {
                     let peak = golden_max(&kappa, trail[0].0.min(s), trail[0].0.max(s));
                     if !fits(peak) {
                         return Some(peak);
                     }
                 }
                 trail = [trail[1], (s, k)];
-                if s <= lo || s >= hi || self.centre(&self.curve.at(s))[1] > reach_height {
+                if s <= lo || s >= hi || self.centre(&p)[1] > reach_height {
                     break;
                 }
             }
