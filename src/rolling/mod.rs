@@ -165,8 +165,8 @@ impl Rolling {
                 if !fits_at(k) {
                     return Some(s);
                 }
-                // A rise within round-off is no peak: on a circle every other sample was
-                // refined.
+                // A rise within round-off is no peak: on a circle round-off alone makes one at
+                // every other sample.
                 let rise = trail[1].1 - trail[0].1;
                 if rise > 1e-12 * trail[1].1.abs() && trail[1].1 >= k {
                     let peak = golden_max(&kappa, trail[0].0.min(s), trail[0].0.max(s));
