@@ -2248,18 +2248,12 @@ fn converged_deck(
     converged_by: &str,
     converge: impl FnOnce() -> BeamRun,
 ) -> Deck {
-    let stored = format!(
-        "deck-{}",
-        (name.chars())
-            .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
-            .collect::<String>()
-    );
+    let stored = stored_name("deck", name);
     let key = content_hash(&format!("{text}\n{converged_by}"));
     if converged::remaking() {
         return Deck::of(&converge()).store(&stored, converged_by, &key);
     }
-    let remake = "make it with `ROLLBEAM_REMAKE_CONVERGED=1 cargo test --release --test studies -- accuracy::`";
-    converged::read_keyed(&stored, &key, remake)
+    converged::read_keyed(&stored, &key, REMAKE)
 }
 
 /// The headlines `compare` lists of `planned`, a run of study file `study` with `changes`,
@@ -2278,28 +2272,21 @@ fn within_the_accuracy_stored(
     compare: impl Fn(&BeamRun, &BeamRun) -> Vec<Compared>,
     converge: impl FnOnce() -> BeamRun,
 ) {
-    let stored = format!(
-        "headlines-{}",
-        (name.chars())
-            .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
-            .collect::<String>()
-    );
+    let stored = stored_name("headlines", name);
     let study = converged::study_hash(study);
     let key = content_hash(&format!("{study}\n{changes:?}\n{converged_by}"));
     let converged: Headlines = if converged::remaking() {
-        let round = |x: f64| format!("{x:.5e}").parse::<f64>().expect("a number");
         let headlines = Headlines {
             converged_by: converged_by.to_string(),
             scene_hash: key,
             headlines: (compare(planned, &converge()).into_iter())
-                .map(|(what, _, b, scale)| (what.to_string(), round(b), round(scale)))
+                .map(|(what, _, b, scale)| (what.to_string(), six_digits(b), six_digits(scale)))
                 .collect(),
         };
         converged::write(&stored, &headlines);
         headlines
     } else {
-        let remake = "make it with `ROLLBEAM_REMAKE_CONVERGED=1 cargo test --release --test studies -- accuracy::`";
-        converged::read_keyed(&stored, &key, remake)
+        converged::read_keyed(&stored, &key, REMAKE)
     };
     let ours = compare(planned, planned);
     assert_eq!(
@@ -2314,6 +2301,23 @@ fn within_the_accuracy_stored(
         })
         .collect();
     within_the_accuracy(name, &pairs);
+}
+
+/// How a stale or missing stored converged run is made again.
+const REMAKE: &str =
+    "make it with `ROLLBEAM_REMAKE_CONVERGED=1 cargo test --release --test studies -- accuracy::`";
+
+/// The stored file's name for the converged run of `kind` (deck, headlines) named `name`.
+fn stored_name(kind: &str, name: &str) -> String {
+    let slug: String = (name.chars())
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+        .collect();
+    format!("{kind}-{slug}")
+}
+
+/// A number as stored: six significant digits ([`Deck::store`] says why that is enough).
+fn six_digits(x: f64) -> f64 {
+    format!("{x:.5e}").parse::<f64>().expect("a number")
 }
 
 /// A converged run's headlines as stored: each one's name, value and scale.
@@ -2361,13 +2365,12 @@ impl Deck {
     /// time-converged runs lie within 3·10⁻⁶ of their scale from tighter ones, as their tests
     /// measure).
     fn store(&self, name: &str, converged_by: &str, key: &str) -> Deck {
-        let round = |x: f64| format!("{x:.5e}").parse::<f64>().expect("a number");
         let stored = Deck {
             converged_by: converged_by.to_string(),
             scene_hash: key.to_string(),
-            deepest: round(self.deepest),
-            a_max: round(self.a_max),
-            probes: (self.probes.iter()).map(|p| p.map(round)).collect(),
+            deepest: six_digits(self.deepest),
+            a_max: six_digits(self.a_max),
+            probes: (self.probes.iter()).map(|p| p.map(six_digits)).collect(),
         };
         converged::write(name, &stored);
         stored
