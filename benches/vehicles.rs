@@ -1,4 +1,4 @@
-//! Vehicles on the bridge (issue targets in REPORT.md's performance table):
+//! Vehicles on the bridge (the targets in REPORT.md's performance table):
 //! - the sprung mass crossing the 25 m bridge (`studies/vehicle-sprung.yaml`) at the defaults,
 //!   against D44 at its defaults, side by side in one run;
 //! - one railway car (the first of `studies/vehicle-railcar.yaml`) swept over 100 speeds from
