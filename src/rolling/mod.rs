@@ -150,18 +150,18 @@ impl Rolling {
             .unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
         const SAMPLES: usize = 200_000;
         for dir in [-1.0, 1.0] {
-            let mut trail = [(self.s0, kappa(self.s0)); 2];
-            let mut s = self.s0;
             // One evaluation of the curve a sample: an expression curve costs microseconds a
             // point, and a closed one is scanned for all the samples.
-            let mut p = start;
+            let (mut p, mut k) = (start, start.curvature());
+            let mut trail = [(self.s0, k); 2];
+            let mut s = self.s0;
             for _ in 0..SAMPLES {
                 // Steps a fraction of the smaller of the disk radius and the local radius of
                 // curvature, so that no bend is stepped over.
-                let ds = 0.02 * a.min(1.0 / p.curvature().abs().max(1e-12)) / p.speed();
+                let ds = 0.02 * a.min(1.0 / k.abs().max(1e-12)) / p.speed();
                 s = (s + dir * ds).clamp(lo, hi);
                 p = self.curve.at(s);
-                let k = p.curvature();
+                k = p.curvature();
                 if !fits_at(k) {
                     return Some(s);
                 }
