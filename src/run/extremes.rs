@@ -110,7 +110,8 @@ fn turning(t: [f64; 3], v: [f64; 3]) -> Option<(f64, f64)> {
 /// turning point moves by less than [`TURNING_TOL`] of the step. Where it settles is not
 /// evaluated: at a turning point the value moves as the square of the time, about
 /// [`TURNING_TOL`]² of the quantity's swing over a step a quarter period long, and each
-/// evaluation is a whole snapshot of the run (the HSLM sweep's extremes moved by 7·10⁻¹³).
+/// evaluation is a whole snapshot of the run (evaluated there, the HSLM sweep's extremes differ
+/// by at most 7·10⁻¹³).
 fn refine(mut points: [(f64, f64); 3], mut t: f64, mut value: impl FnMut(f64) -> f64) {
     let width = points[2].0 - points[0].0;
     for _ in 0..MAX_REFINEMENTS {
