@@ -66,8 +66,6 @@ struct Driver<'a, E> {
     /// The event functions at (t, y).
     g: Vec<f64>,
     breaks: Vec<f64>,
-    /// Where steps end without a restart ([`Problem::step_ends`]).
-    ends: Vec<f64>,
     /// Steps shorter than this are round-off.
     h_min: f64,
     /// The longest step the controller proposes: [`NEWTON_CAP`] of the last step on which
@@ -129,15 +127,6 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
         opts: &'a Options,
     ) -> Self {
         let n = p.dim();
-        let breaks = breakpoints_within(
-            match opts.method {
-                Method::ExactModal => [p.breakpoints(), p.kinks()].concat(),
-                _ => p.breakpoints(),
-            },
-            t0,
-            t_end,
-        );
-        let ends = step_ends_between(&breaks, p.step_ends(), t0, t_end);
         Driver {
             p,
             opts,
@@ -159,8 +148,14 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             next_out: outputs.partition_point(|&o| o < t0),
             events: Vec::new(),
             g: (0..p.events().len()).map(|i| p.event(i, t0, y0)).collect(),
-            breaks,
-            ends,
+            breaks: breakpoints_within(
+                match opts.method {
+                    Method::ExactModal => [p.breakpoints(), p.kinks()].concat(),
+                    _ => p.breakpoints(),
+                },
+                t0,
+                t_end,
+            ),
             h_min: 1e-14 * t0.abs().max(t_end.abs()).max(1.0),
             newton_cap: f64::INFINITY,
             pace_from: (0, t0),
@@ -176,16 +171,6 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             .copied()
             .find(|&b| b > t)
             .unwrap_or(self.t_end)
-    }
-
-    /// Where the step from t ends at the latest: the stretch's end or a step end before it.
-    fn step_target(&self, t: f64) -> f64 {
-        let stretch = self.segment_end(t);
-        self.ends
-            .iter()
-            .copied()
-            .find(|&e| e > t)
-            .map_or(stretch, |e| e.min(stretch))
     }
 
     fn run(&mut self, observer: &mut dyn Observer) -> Result<Option<EventHit<E>>, SolveError> {
@@ -216,10 +201,8 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             if self.opts.fixed_step.is_none() {
                 h = h.min(self.p.max_step(self.t, &self.y));
             }
-            // Steps end exactly on the next breakpoint (or the end), and restart there; on a
-            // step end they go on.
-            let stretch = self.segment_end(self.t + self.h_min);
-            let target = self.step_target(self.t + self.h_min);
+            // Steps end exactly on the next breakpoint (or the end), and restart there.
+            let target = self.segment_end(self.t + self.h_min);
             let last = self.t + h >= target - self.h_min;
             let h_try = if last { target - self.t } else { h };
             let err = match self.attempt(h_try)? {
@@ -243,18 +226,14 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
             if let Some(hit) = self.accept(t_new, observer) {
                 return Ok(Some(hit));
             }
-            let restarts = same_breakpoint(target, stretch);
-            if last && target < self.t_end && restarts {
+            if last && target < self.t_end {
                 self.p.enter_segment(self.t, self.segment_end(self.t));
                 self.stepper
                     .start(dynamics, self.t, &self.y, &mut self.ctx)?;
             }
             observer.step(self.t, &self.y);
             if self.opts.fixed_step.is_none() {
-                let next = self.next_step(h_try, err, just_rejected);
-                // A step cut short to end on a step end says nothing against the step it was
-                // cut from: the smooth solution goes on at that pace.
-                h = if last && !restarts { next.max(h) } else { next };
+                h = self.next_step(h_try, err, just_rejected);
                 just_rejected = false;
             }
         }
@@ -492,18 +471,6 @@ fn breakpoints_within(mut breaks: Vec<f64>, t0: f64, t_end: f64) -> Vec<f64> {
     // make one breakpoint, not a step of round-off between them.
     breaks.dedup_by(|b, a| same_breakpoint(*a, *b));
     breaks
-}
-
-/// The step ends strictly inside (t0, t_end), ascending, without those one of the `breaks`
-/// (ascending) holds.
-fn step_ends_between(breaks: &[f64], ends: Vec<f64>, t0: f64, t_end: f64) -> Vec<f64> {
-    let mut ends = breakpoints_within(ends, t0, t_end);
-    ends.retain(|&e| {
-        let i = breaks.partition_point(|&b| b < e);
-        let near = |k: usize| breaks.get(k).is_some_and(|&b| same_breakpoint(b, e));
-        !(near(i) || (i > 0 && near(i - 1)))
-    });
-    ends
 }
 
 /// Whether two breakpoints are one: a step ends on the first of several that lie within a

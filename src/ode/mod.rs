@@ -98,11 +98,6 @@ pub trait Problem: Dynamics {
     fn kinks(&self) -> Vec<f64> {
         Vec::new()
     }
-    /// Times where every method ends a step and goes on without a restart: f stays smooth
-    /// there, but turns between two of them faster than the steps around would resolve.
-    fn step_ends(&self) -> Vec<f64> {
-        Vec::new()
-    }
     /// Told before the steps of each stretch between breakpoints, so that a jump is seen on
     /// the right side of it by every stage.
     fn enter_segment(&self, _start: f64, _end: f64) {}

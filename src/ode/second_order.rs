@@ -87,10 +87,6 @@ pub trait SecondOrderProblem: Structure {
     fn kinks(&self) -> Vec<f64> {
         Vec::new()
     }
-    /// See [`Problem::step_ends`].
-    fn step_ends(&self) -> Vec<f64> {
-        Vec::new()
-    }
     fn enter_segment(&self, _start: f64, _end: f64) {}
     fn events(&self) -> &[EventSpec<Self::Event>] {
         &[]
@@ -195,9 +191,6 @@ impl<E: Copy + std::fmt::Debug> Problem for FirstOrder<'_, E> {
     }
     fn kinks(&self) -> Vec<f64> {
         self.inner.kinks()
-    }
-    fn step_ends(&self) -> Vec<f64> {
-        self.inner.step_ends()
     }
     fn enter_segment(&self, start: f64, end: f64) {
         self.inner.enter_segment(start, end)

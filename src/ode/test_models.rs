@@ -6,8 +6,7 @@
 //! - the same motion q = sin t from a state-dependent mass (1 + q²/20) q'' = −(1 + q²/20) q,
 //!   and from a mass that varies in time, m(t) q'' = −m(t) q (a body moving over a structure),
 //! - an event at a known time (the oscillator's first downward zero, t = π),
-//! - a breakpoint: a force switched on at t = 1/2;
-//! - step ends, where the oscillator's steps end and go on without a restart.
+//! - a breakpoint: a force switched on at t = 1/2.
 
 use std::borrow::Cow;
 use std::cell::Cell;
@@ -218,38 +217,6 @@ impl SecondOrderProblem for Switched {
     }
     fn enter_segment(&self, start: f64, _end: f64) {
         self.on.set(start >= 0.5);
-    }
-}
-
-/// The oscillator q'' = −q, whose steps end at `ends` without a restart; it counts the
-/// stretches it is told of (restarts and the start).
-struct Ended {
-    ends: Vec<f64>,
-    stretches: Cell<usize>,
-}
-
-impl Structure for Ended {
-    fn dim(&self) -> usize {
-        1
-    }
-    fn mass(&self, _t: f64, _q: &[f64]) -> Cow<'_, Sparse> {
-        Cow::Owned(scalar(1.0))
-    }
-    fn force(&self, _t: f64, q: &[f64], _v: &[f64], f: &mut [f64]) {
-        f[0] = -q[0];
-    }
-    fn stiffness(&self, _t: f64, _q: &[f64]) -> Sparse {
-        scalar(1.0)
-    }
-}
-
-impl SecondOrderProblem for Ended {
-    type Event = NoEvent;
-    fn step_ends(&self) -> Vec<f64> {
-        self.ends.clone()
-    }
-    fn enter_segment(&self, _start: f64, _end: f64) {
-        self.stretches.set(self.stretches.get() + 1);
     }
 }
 
@@ -491,56 +458,6 @@ fn every_method_stops_on_a_breakpoint_and_restarts_there() {
             method.name(),
             out.y[0],
             out.y[1]
-        );
-    }
-}
-
-/// Step ends close together (10⁻⁴ apart, against steps of 0.01 to 0.1 at these tolerances):
-/// every adaptive method ends a step exactly on each, enters no new stretch there (the
-/// start's is the only one), and the run is as good as without them: q(2) within 1.5 times
-/// the error of the same run without the ends (the steps differ a little), in at most two
-/// more steps an end (the short step between a pair does not hold back the steps after it).
-#[test]
-fn every_method_ends_steps_on_step_ends_and_goes_on() {
-    let ends = vec![0.5, 0.5001, 1.25, 1.2501];
-    for method in Method::ALL {
-        let opts = Options {
-            method,
-            rtol: 1e-7,
-            atol: 1e-9,
-            ..Default::default()
-        };
-        let run = |ends: Vec<f64>| {
-            let ended = Ended {
-                ends,
-                stretches: Cell::new(0),
-            };
-            let p = FirstOrder::new(&ended);
-            let mut steps = StepTimes::default();
-            let out = solve(&p, 0.0, &[0.0, 1.0], 2.0, &[], &opts, &mut steps).expect("runs");
-            (
-                (out.y[0] - 2.0_f64.sin()).abs(),
-                steps.0,
-                ended.stretches.get(),
-            )
-        };
-        let (error, steps, stretches) = run(ends.clone());
-        let (plain_error, plain, _) = run(Vec::new());
-        for e in &ends {
-            assert!(steps.contains(e), "{}: no step ends on {e}", method.name());
-        }
-        assert_eq!(stretches, 1, "{}: a step end restarted", method.name());
-        assert!(
-            error <= 1.5 * plain_error,
-            "{}: q(2) off by {error:.2e} with the ends, {plain_error:.2e} without",
-            method.name()
-        );
-        assert!(
-            steps.len() <= plain.len() + 2 * ends.len(),
-            "{}: {} steps with the ends, {} without",
-            method.name(),
-            steps.len(),
-            plain.len()
         );
     }
 }

@@ -935,41 +935,6 @@ impl SecondOrderProblem for VehiclesOnBeam<'_> {
         }
         out
     }
-    /// Where a point wheel's patch reaches and leaves a node of the modal beam's mesh faster
-    /// than a period of the highest mode kept. Its track is the deck averaged over the patch,
-    /// whose slope turns within ±b of each node where the C0 elements meet; no mode the steps
-    /// follow turns that fast, so steps set by them stride over the turn, and the dense output
-    /// the energy budget reads inside such a step is off the solution (Biggs' sprung mass at
-    /// 30 000 m/s balanced its energy to 9.9e-3 so, 4.3e-4 with these ends). Slower, the modes'
-    /// own steps resolve it: the railway cars at 100 m/s, ending steps at every node, took 29 %
-    /// more time for nothing. The solution is smooth there, so the steps go on without a
-    /// restart. A disk wheel's contact runs ahead of or behind its axle by as much as its
-    /// motion sets, which no time given before the run marks; a mesh's highest mode is faster
-    /// than any wheel.
-    fn step_ends(&self) -> Vec<f64> {
-        let Some(fastest) = self.loaded.modal.and_then(|m| m.omega.last()) else {
-            return Vec::new();
-        };
-        let period = std::f64::consts::TAU / fastest;
-        let element = self.loaded.beam.element_length();
-        let nodes = 0..=self.loaded.beam.spec.elements;
-        let mut out = Vec::new();
-        for v in self.vehicles.iter().filter(|v| v.wheel == Wheel::Point) {
-            let reach = v.reach(self.patch);
-            for a in &v.axles {
-                for x in nodes.clone().map(|j| j as f64 * element) {
-                    let Some(t) = v.time_at(x - reach + a.x) else {
-                        continue;
-                    };
-                    let speed = v.travel(t).1;
-                    if 2.0 * reach < speed * period {
-                        out.extend([Some(t), v.time_at(x + reach + a.x)].into_iter().flatten());
-                    }
-                }
-            }
-        }
-        out
-    }
     fn enter_segment(&self, start: f64, end: f64) {
         self.loaded.enter_segment(start, end);
         self.segment.set(0.5 * (start + end));
