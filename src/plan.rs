@@ -552,6 +552,10 @@ const UNSPRUNG_SPEED: f64 = 300.0;
 /// factor [`vehicle_speed_factor`] sets from here.
 const VEHICLE_SPEED: f64 = 150.0;
 
+/// The finest rtol the plan sets: a ten-thousandth of the finest accuracy a scene may ask for
+/// (the checker's bound), past which a step's round-off outweighs the error it is held to.
+const FINEST_RTOL: f64 = 1e-11;
+
 /// How much tighter than a thousandth of the accuracy ESDIRK4 needs rtol for vehicles: 1 up to
 /// [`VEHICLE_SPEED`], that over the fastest vehicle's top speed on the deck beyond.
 fn vehicle_speed_factor(b: &BeamScene) -> f64 {
@@ -816,8 +820,8 @@ pub fn rtol_for(
     let switched = scene.load_switched();
     if !scene.vehicles.is_empty() && method == crate::ode::Method::Esdirk4 {
         return (
-            accuracy / 1000.0 * vehicle_speed_factor(scene),
-            "a thousandth of the accuracy, and faster than 150 m/s times 150 m/s over the speed: the fourth-order steps carry the bodies' vibration on their suspensions and the deck's under them over the whole run with a global error of a few times rtol (Biggs' sprung mass at 27.8 and 100 m/s and a truck over a raised deck: every number within 3.6e-4 of the converged); a wheel that crosses the deck in less than the period of a mode the rotations carry rings them all at once (the sprung mass at a thousandth read the rotation at a support 4.9e-3 off at 1000 m/s, 1.6e-3 at 10 000; with the factor, from 300 to 30 000 m/s, every number within 6.9e-4 of its kind's largest)",
+            (accuracy / 1000.0 * vehicle_speed_factor(scene)).max(FINEST_RTOL),
+            "a thousandth of the accuracy, and faster than 150 m/s times 150 m/s over the speed (not below 1e-11): the fourth-order steps carry the bodies' vibration on their suspensions and the deck's under them over the whole run with a global error of a few times rtol (Biggs' sprung mass at 27.8 and 100 m/s and a truck over a raised deck: every number within 3.6e-4 of the converged); a wheel that crosses the deck in less than the period of a mode the rotations carry rings them all at once (the sprung mass at a thousandth read the rotation at a support 4.9e-3 off at 1000 m/s, 1.6e-3 at 10 000; with the factor, from 300 to 30 000 m/s, every number within 6.9e-4 of its kind's largest)",
         );
     }
     if !scene.vehicles.is_empty() {
