@@ -548,7 +548,7 @@ const FREE_EXACT: &str = "exact-modal once the riders have left: the modal beam 
 const UNSPRUNG_SPEED: f64 = 300.0;
 
 /// The fastest any vehicle runs at a thousandth of the accuracy under ESDIRK4 (m/s): Biggs'
-/// sprung mass holds every number within 2.6e-4 of its kind's largest at 300 m/s with the
+/// sprung mass holds every number within 2.6·10⁻⁴ of its kind's largest at 300 m/s with the
 /// factor [`vehicle_speed_factor`] sets from here.
 const VEHICLE_SPEED: f64 = 150.0;
 
@@ -559,9 +559,7 @@ const FINEST_RTOL: f64 = 1e-11;
 /// How much tighter than a thousandth of the accuracy ESDIRK4 needs rtol for vehicles: 1 up to
 /// [`VEHICLE_SPEED`], that over the fastest vehicle's top speed on the deck beyond.
 fn vehicle_speed_factor(b: &BeamScene) -> f64 {
-    let fastest = (b.vehicles.iter())
-        .map(|v| b.top_speed_on_deck(v))
-        .fold(0.0, f64::max);
+    let fastest = fastest_on_deck(b, |_| true);
     if fastest > VEHICLE_SPEED {
         VEHICLE_SPEED / fastest
     } else {
@@ -569,14 +567,18 @@ fn vehicle_speed_factor(b: &BeamScene) -> f64 {
     }
 }
 
+/// The fastest the vehicles `counted` run on the deck (m/s); 0 without one.
+fn fastest_on_deck(b: &BeamScene, counted: impl Fn(&crate::vehicle::Vehicle) -> bool) -> f64 {
+    (b.vehicles.iter())
+        .filter(|v| counted(v))
+        .map(|v| b.top_speed_on_deck(v))
+        .fold(0.0, f64::max)
+}
+
 /// The fastest a vehicle on wheels with a mass of their own runs on the deck (m/s); 0 without
 /// one: a vehicle without unsprung masses, however fast, deals the deck no impulses.
 fn unsprung_speed(b: &BeamScene) -> f64 {
-    b.vehicles
-        .iter()
-        .filter(|v| v.has_unsprung_mass())
-        .map(|v| b.top_speed_on_deck(v))
-        .fold(0.0, f64::max)
+    fastest_on_deck(b, |v| v.has_unsprung_mass())
 }
 
 /// How much tighter than a three-thousandth of the accuracy generalized-α (where the scene
