@@ -568,6 +568,11 @@ impl Beam {
         self.tangent_pattern.get_or_init(|| a.pattern()).build(&a)
     }
 
+    /// Whether the beam is the linear one, its tangent K₀ at every state.
+    pub fn is_linear(&self) -> bool {
+        self.linear.is_some()
+    }
+
     /// Element and shape-function values at material point x ∈ [0, L].
     fn locate(&self, x: f64) -> (usize, ShapeValues) {
         // The cast truncates and saturates (a point before the start to element 0): the

@@ -13,7 +13,8 @@ use crate::beam::modal::{within_cutoff, MAX_MODES};
 use crate::beam::Beam;
 use crate::linalg;
 
-/// What the recorded accelerations count, for the summary.
+/// What the recorded accelerations count (and the reactions with their inertia), for the
+/// summary.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct CutoffReport {
     pub cutoff_hz: f64,
@@ -97,6 +98,15 @@ impl AccelerationFilter {
     /// The mesh's accelerations from the model's `a`, the modes above the cutoff left out.
     pub fn filtered(&self, loaded: &LoadedBeam, a: &[f64]) -> Vec<f64> {
         match &self.mesh {
+            Some(_) => self.below_in_model(loaded, a),
+            None => loaded.to_mesh(&self.below_in_model(loaded, a)).into_owned(),
+        }
+    }
+
+    /// The model's accelerations (or velocities) `a`, the modes above the cutoff left out, in
+    /// the model's own unknowns.
+    pub fn below_in_model(&self, loaded: &LoadedBeam, a: &[f64]) -> Vec<f64> {
+        match &self.mesh {
             Some((shapes, _)) => {
                 let mut ma = vec![0.0; a.len()];
                 linalg::mul(loaded.beam.mass(), a, &mut ma);
@@ -106,7 +116,7 @@ impl AccelerationFilter {
             None => {
                 let mut kept = a.to_vec();
                 kept[self.kept..].iter_mut().for_each(|v| *v = 0.0);
-                loaded.to_mesh(&kept).into_owned()
+                kept
             }
         }
     }

@@ -21,6 +21,7 @@ mod fly;
 mod ledger;
 mod modal_probes;
 mod phase;
+mod reactions;
 mod recorder;
 mod result;
 mod sensors;

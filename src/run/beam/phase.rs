@@ -212,18 +212,29 @@ impl<'a> Phase<'a> {
         }
     }
 
-    /// What the supports exert on the beam at (t, y), global (fx, fy, mz) at `from` and at
-    /// `to`: the loads acting then, a train's axles, the disks' contact forces, and the
-    /// beam's inertia. `q` is the mesh's displacements as [`Phase::displaced`] reads them, `a`
-    /// the model's accelerations, `disks` the disks as observed.
+    /// What the supports exert on the beam, global (fx, fy, mz) at `from` and at `to`: the
+    /// forces `acting` ([`Phase::acting`]) and the beam's inertia. `q` is the mesh's
+    /// displacements, `a` the model's accelerations.
     pub fn reactions(
+        &self,
+        q: &[f64],
+        acting: &[(f64, [f64; 2], f64)],
+        a: &[f64],
+    ) -> [[f64; 3]; 2] {
+        self.beam
+            .support_reactions(q, acting, Some(&self.loaded.to_mesh(a)))
+    }
+
+    /// The point forces on the beam at (t, y), global (x, force, moment): the loads acting
+    /// then, a train's axles (moving masses with the model's accelerations `a`), the wheels'
+    /// and the disks' contact forces (the disks as observed in `disks`).
+    pub fn acting(
         &self,
         t: f64,
         y: &[f64],
-        q: &[f64],
         a: &[f64],
         disks: &[Option<DiskObservation>],
-    ) -> [[f64; 3]; 2] {
+    ) -> Vec<(f64, [f64; 2], f64)> {
         let mut acting: Vec<(f64, [f64; 2], f64)> = self
             .loaded
             .active(t)
@@ -253,7 +264,6 @@ impl<'a> Phase<'a> {
                 acting.push((d.s, [-on_disk[0], -on_disk[1]], 0.0));
             }
         }
-        self.beam
-            .support_reactions(q, &acting, Some(&self.loaded.to_mesh(a)))
+        acting
     }
 }

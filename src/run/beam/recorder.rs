@@ -4,6 +4,7 @@
 use super::contact_mean::ContactMeans;
 use super::ledger::{Piece, LOBATTO};
 use super::modal_probes::ModalProbes;
+use super::reactions::Reactions;
 use super::*;
 
 /// Samples of the energy ledger while an axle or a wheel passes the beam's shortest wave.
@@ -55,6 +56,8 @@ pub(super) struct Recorder<'a> {
     pub(super) stations: Stations,
     /// What of the acceleration is recorded.
     pub(super) filter: Option<AccelerationFilter>,
+    /// The support reactions, to the filter's cutoff.
+    reactions: Reactions,
     /// On a modal beam, the probes read from the amplitudes.
     pub(super) modal_probes: Option<ModalProbes>,
     pub(super) history: History<'a>,
@@ -455,7 +458,9 @@ impl Observer for Recorder<'_> {
             Some(r) => phase.split(r).1[..phase.loaded.dim()].to_vec(),
             None => phase.acceleration(t, y),
         };
-        let reactions = phase.reactions(t, y, &q, &a, &disks);
+        let reactions = self
+            .reactions
+            .at(phase, self.filter.as_ref(), (t, y), (&q, &a), &disks);
         // The stations are read for the envelope and the pictures alone: a sweep's case, which
         // watches no envelope and draws nothing, skips them.
         let along = if self.watch_along || self.pictures.draws_at(t) {
@@ -849,6 +854,7 @@ pub(super) fn recorder<'a>(
         ledger: Ledger::new(&phase, &setup.loads, y0),
         modal_probes: ModalProbes::new(phase.loaded, &probe_xs),
         filter,
+        reactions: Reactions::new(),
         stations: beam.stations(&xs),
         history: History {
             beam,
