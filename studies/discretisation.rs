@@ -195,6 +195,34 @@ fn a_changed_scene_is_planned_again() {
     assert_eq!(elements(&changed("bridge-d44.yaml", &changes)), 12);
 }
 
+/// A tighter accuracy never gets a coarser mesh. Biggs' bridge (`vehicle-sprung`) is made
+/// Euler–Bernoulli by a shear and a stretch far stiffer than its bending, so a fine mesh's
+/// highest mode lies 10⁷ times above its lowest: read off that ratio, a rigid-body motion would
+/// be seen at 1e-5 and 1e-6 and the default 10 elements kept, where 1e-4 gets 28. The supports
+/// decide whether there is one, and where a finer mesh's modes cannot be had the finest
+/// analysed is kept with a warning.
+#[test]
+fn a_tighter_accuracy_never_gets_a_coarser_mesh() {
+    let mut last = 0;
+    for accuracy in [1e-3, 1e-4, 1e-5, 1e-6] {
+        let scene = changed(
+            "vehicle-sprung.yaml",
+            &[Set::Number("solver.accuracy", accuracy)],
+        );
+        let d = scene
+            .beam()
+            .and_then(|b| b.discretisation.as_ref())
+            .expect("chosen");
+        assert!(!d.why.contains("rigid-body"), "{accuracy:e}: {}", d.why);
+        assert!(
+            d.elements >= last,
+            "{accuracy:e}: {} elements after {last}",
+            d.elements
+        );
+        last = d.elements;
+    }
+}
+
 /// What a scene names is kept: a given mesh is not replaced, and a given rtol is not either.
 #[test]
 fn what_the_scene_gives_is_kept() {
