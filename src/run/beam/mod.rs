@@ -7,7 +7,8 @@
 //! end. The energy budget is kept by `ledger.rs`; the outputs are recorded by the sensors of
 //! `sensors.rs`, which observe and compute nothing, gathered with the extremes watched over
 //! every step by `recorder.rs` (a rolling disk's contact force also averaged over the
-//! acceleration cutoff's period by `contact_mean.rs`) until a free vibration can move none of
+//! acceleration cutoff's period by `contact_mean.rs`, the support reactions counted to that
+//! cutoff by `reactions.rs`) until a free vibration can move none of
 //! them (`settled.rs`); the disks ride through the disk's life at its track
 //! (`disk::life`), the beam's side of it here and its flights and landings in `fly.rs`; the
 //! vehicles' drive over the whole run is `vehicles.rs`. [`run`] names the steps of a run: build the model,
