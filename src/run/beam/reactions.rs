@@ -51,14 +51,14 @@ impl Reactions {
     ) -> [[f64; 3]; 2] {
         let cut = filter.and_then(|f| self.to_the_cutoff(phase, f, (t, y), (q, a), disks));
         match cut {
-            Some((q, a)) => phase.reactions(&q, &phase.acting(t, y, &a, disks), &a),
+            Some((q, a, acting)) => phase.reactions(&q, &acting, &a),
             None => phase.reactions(q, &phase.acting(t, y, a, disks), a),
         }
     }
 
     /// The displacements and the model's accelerations with the modes above the cutoff taken
-    /// quasi-statically; `None` where every mode the model holds lies below it, or where the
-    /// beam has no static response (a mechanism).
+    /// quasi-statically, and the forces acting then; `None` where every mode the model holds
+    /// lies below it, or where the beam has no static response (a mechanism).
     fn to_the_cutoff(
         &self,
         phase: &Phase,
@@ -66,7 +66,7 @@ impl Reactions {
         (t, y): (f64, &[f64]),
         (q, a): (&[f64], &[f64]),
         disks: &[Option<DiskObservation>],
-    ) -> Option<(Vec<f64>, Vec<f64>)> {
+    ) -> Option<(Vec<f64>, Vec<f64>, Vec<(f64, [f64; 2], f64)>)> {
         let loaded = phase.loaded;
         let n = loaded.dim();
         let below = match loaded.modal {
@@ -77,8 +77,9 @@ impl Reactions {
             return None;
         }
         let slow = filter.below_in_model(loaded, a);
+        let acting = phase.acting(t, y, &slow, disks);
         let mut f = vec![0.0; phase.beam.dim()];
-        for (x, force, mz) in phase.acting(t, y, &slow, disks) {
+        for &(x, force, mz) in &acting {
             phase.beam.add_point_load(x, force, mz, &mut f);
         }
         if let Some(weight) = phase.beam.weight() {
@@ -132,6 +133,6 @@ impl Reactions {
                     .for_each(|(a, (b, s))| *a += b - s);
             }
         }
-        Some((q, slow))
+        Some((q, slow, acting))
     }
 }
