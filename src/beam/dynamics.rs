@@ -371,14 +371,42 @@ impl<'a> LoadedBeam<'a> {
         v: &[f64],
         a: &[f64],
     ) -> ([f64; 2], [f64; 2]) {
-        let dot = |g: &[(usize, f64)], y: &[f64]| -> f64 {
-            g.iter().map(|&(i, c)| c * self.on_mesh_at(i, y)).sum()
-        };
+        let acc = self.riding_acceleration(r, speed, q, v, a);
+        let [gx, gy] = r.rows();
+        let force = r.spread(self.beam.to_local([0.0, -r.load]), acc, |_, _| ());
+        (force, [self.row_dot(&gx, v), self.row_dot(&gy, v)])
+    }
+
+    /// d²r/dt² (beam frame) of the point a riding axle rides on, at the model's (q, v, a).
+    fn riding_acceleration(
+        &self,
+        r: &RidingAxle,
+        speed: f64,
+        q: &[f64],
+        v: &[f64],
+        a: &[f64],
+    ) -> [f64; 2] {
         let [gx, gy] = r.rows();
         let c = r.convective(speed, |i| self.on_mesh_at(i, q), |i| self.on_mesh_at(i, v));
-        let acc = [c[0] + dot(&gx, a), c[1] + dot(&gy, a)];
-        let force = r.spread(self.beam.to_local([0.0, -r.load]), acc, |_, _| ());
-        (force, [dot(&gx, v), dot(&gy, v)])
+        [c[0] + self.row_dot(&gx, a), c[1] + self.row_dot(&gy, a)]
+    }
+
+    /// A row over the mesh's unknowns against the model's unknowns y.
+    fn row_dot(&self, g: &[(usize, f64)], y: &[f64]) -> f64 {
+        g.iter().map(|&(i, c)| c * self.on_mesh_at(i, y)).sum()
+    }
+
+    /// The riding masses' inertia, −m d²r/dt² at the model's (q, v, a), added to f on the
+    /// mesh's unknowns as the equations spread it: with [`Self::external`] each moving mass's
+    /// force in full, which the modes a modal beam leaves out answer statically.
+    pub fn add_riding_inertia(&self, t: f64, q: &[f64], v: &[f64], a: &[f64], f: &mut [f64]) {
+        let Some(speed) = self.moving_masses() else {
+            return;
+        };
+        for r in self.riding(t).iter() {
+            let acc = self.riding_acceleration(r, speed, q, v, a);
+            r.spread([0.0; 2], acc, |i, x| f[i] += x);
+        }
     }
 
     /// The train's axles as point forces on the beam (global) at the model's (q, v, a): a

@@ -50,8 +50,8 @@ impl<'a> Phase<'a> {
     }
 
     /// The mesh's displacements as the outputs read them: on a modal beam Φ η plus the static
-    /// response of the modes left out to what acts on the beam at t (its loads and the disks'
-    /// contact forces, the disks as observed in `disks`).
+    /// response of the modes left out to what acts on the beam at t (its loads, the moving
+    /// masses' inertia and the disks' contact forces, the disks as observed in `disks`).
     pub fn displaced<'y>(
         &self,
         t: f64,
@@ -66,6 +66,15 @@ impl<'a> Phase<'a> {
         };
         let mut f = vec![0.0; self.beam.dim()];
         self.loaded.external(t, &mut f);
+        if !self.loaded.riding(t).is_empty() {
+            let a = match rate {
+                Some(yp) => self.split(yp).1[..n].to_vec(),
+                None => self.acceleration(t, y),
+            };
+            let (z, zd) = self.split(y);
+            self.loaded
+                .add_riding_inertia(t, &z[..n], &zd[..n], &a, &mut f);
+        }
         if let Some(c) = self.coupled {
             let (z, zd) = self.split(y);
             c.add_contact_force_on_beam(t, z, zd, disks, &mut f);
