@@ -85,8 +85,7 @@ impl Reactions {
         if let Some(weight) = phase.beam.weight() {
             f.iter_mut().zip(weight).for_each(|(a, w)| *a += w);
         }
-        let mut q = q.to_vec();
-        match loaded.modal {
+        let q = match loaded.modal {
             Some(modal) => {
                 if modal.omega[below..].iter().any(|w| !(*w > 0.0)) {
                     return None;
@@ -101,16 +100,17 @@ impl Reactions {
                 // force carries its inertia, which the loads alone leave out, and the end
                 // element's shear reads its static share in full (HSLM-A1's moving masses at
                 // 90 m/s: the pinned end's reaction 18 % off the linear mesh's without it).
-                q.fill(0.0);
-                modal.expand(&eta, &mut q);
+                let mut out = vec![0.0; q.len()];
+                modal.expand(&eta, &mut out);
                 if phase.correct {
-                    modal.add_static_correction(&f, &mut q);
+                    modal.add_static_correction(&f, &mut out);
                 }
+                out
             }
             None => {
                 let beam = phase.beam;
                 let mut r = vec![0.0; n];
-                beam.internal_force(&q, &mut r);
+                beam.internal_force(q, &mut r);
                 let mut scratch = vec![0.0; n];
                 linalg::mul(beam.mass(), &slow, &mut scratch);
                 f.iter_mut()
@@ -128,17 +128,17 @@ impl Reactions {
                     lu.as_ref()?.solve_in_place(&mut f);
                 } else {
                     let mut last = self.tangent.borrow_mut();
-                    *last = SparseLu::factor(&beam.tangent(&q), last.take());
+                    *last = SparseLu::factor(&beam.tangent(q), last.take());
                     last.as_ref()?.solve_in_place(&mut f);
                 }
                 // The modes below the cutoff stay as the run has them: the forces here are
                 // points where the equations spread a wheel over its patch.
                 let slow_part = filter.below_in_model(loaded, &f);
-                q.iter_mut()
-                    .zip(f.iter().zip(&slow_part))
-                    .for_each(|(a, (b, s))| *a += b - s);
+                (q.iter().zip(f.iter().zip(&slow_part)))
+                    .map(|(a, (b, s))| a + b - s)
+                    .collect()
             }
-        }
+        };
         Some((q, slow, acting))
     }
 }
