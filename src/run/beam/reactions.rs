@@ -9,10 +9,11 @@
 //! to 28 modes).
 //!
 //! On a modal beam each mode above the cutoff is set to gₖ/ωₖ², gₖ its share of the forces
-//! acting, and the modes it leaves out are taken static under the same forces; on the mesh the same follows from one linear solve, q' = q + P K⁻¹(f − f_int(q) −
-//! M a' − C v'), a' and v' the accelerations and velocities of the modes below the cutoff, K
-//! the tangent at q and P what lies above the cutoff: the residual the modes above leave is
-//! what they would hold statically.
+//! acting, and the modes it leaves out are taken static under the same forces; on the mesh
+//! the same follows from one linear solve, q' = q + P K⁻¹(f − f_int(q) − M a' − C v'), a' and
+//! v' the accelerations and velocities of the modes below the cutoff, K the tangent at q and
+//! P what lies above the cutoff: the residual the modes above leave is what they would hold
+//! statically.
 
 use std::cell::{OnceCell, RefCell};
 
