@@ -529,19 +529,19 @@ fn loads_only_move(setup: &BeamScene) -> bool {
             .all(|d| d.coupling == Coupling::MovingForce)
 }
 
-/// Whether what strikes the beam (a load switched on it, a wheel with a mass turned at a kink
-/// of the track or dropping off the deck) rings modes that the damping's stiffness term
-/// quiets: ζ grows with ω, the highest modes of the mesh die within a few of their periods, the
-/// steps then grow to what the lowest modes need, and their accelerations carry the error those
-/// steps leave in the displacements, up to (ω_k/ω₁)² times it. A 100 kN load released on a
-/// 25 m steel beam (ζ 0.02 at modes 1 and 2) read midspan's largest acceleration 2.1·10⁻³ off
-/// in 118 steps with the nodal displacements within 8·10⁻⁵; with the reported modes weighed,
-/// 7.7·10⁻⁵ in 263 steps (ζ 0.005: the envelope's 5.6·10⁻³ off, 2.8·10⁻⁴ with). A car on two
-/// 510 kg wheels over a 5 mm ramp on a soft 30 m deck (ζ 0.05) read the quarter point 1 ms
-/// past the ramp's top 2.3·10⁻³ of the deck's largest acceleration off, and under β = 5·10⁻⁴ s
-/// alone 1.9·10⁻³ off after the car had left; with the modes weighed, every row within
-/// 1.8·10⁻⁵, in 1.16 and 1.74 times the steps. Undamped, the ringing holds the step down for the
-/// whole run and the same rows change no step.
+/// Whether what strikes the beam (a load switched on it, a wheel with a mass turned at a kink of
+/// the track or dropping off the deck) rings modes that the damping's stiffness term quiets: ζ
+/// grows with ω, the highest modes of the mesh die within a few of their periods, the steps then
+/// grow to what the lowest modes need, and their accelerations carry the error those steps leave in
+/// the displacements, up to (ω_k/ω₁)² times it. A 100 kN load released on a 25 m steel beam (ζ 0.02
+/// at modes 1 and 2), at rtol a thirtieth of the accuracy, read midspan's largest acceleration
+/// 2.1·10⁻³ off in 118 steps with the nodal displacements within 8·10⁻⁵; with the reported modes
+/// weighed, 7.7·10⁻⁵ in 263 steps (ζ 0.005: the envelope's 5.6·10⁻³ off, 2.8·10⁻⁴ with). A car on
+/// two 510 kg wheels over a 5 mm ramp on a soft 30 m deck (ζ 0.05) read the quarter point 1 ms past
+/// the ramp's top 2.3·10⁻³ of the deck's largest acceleration off, and under β = 5·10⁻⁴ s alone
+/// 1.9·10⁻³ off after the car had left; with the modes weighed, every row within 1.8·10⁻⁵, in 1.16
+/// and 1.74 times the steps. Undamped, the ringing holds the step down for the whole run and the
+/// same rows change no step.
 fn quiets_what_strikes_it(setup: &BeamScene, damping: Option<Rayleigh>) -> bool {
     let strikes = setup.load_switched() || setup.vehicles.iter().any(|v| v.has_unsprung_mass());
     strikes && damping.is_some_and(|d| d.beta > 0.0)
