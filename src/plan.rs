@@ -307,7 +307,7 @@ impl Planner {
         } else if b.vehicles.is_empty() && !damped_by_the_scene(b) && b.load_switched() {
             Some((Method::Esdirk4, SWITCHED))
         } else if b.vehicles.is_empty()
-            && (b.rho_inf >= 1.0 || b.beam.damping.is_some())
+            && (!damped_by_the_scene(b) || b.beam.damping.is_some())
             && !b.load_switched()
             && b.carries_moving_loads()
         {
@@ -520,26 +520,29 @@ fn damped_kink(share: f64) -> String {
 /// ESDIRK ([`FOLDING_GAP`]).
 const FOLDING: &str = "esdirk4: the exact beam folds under its loads (its static deflection more than a tenth off the linear one, an end free to draw in), where generalized-alpha's steps, each within rtol, add up to more than the accuracy over the crossing (D44's section under one moving force, the exact static deflection 0.6 off the linear one: midspan's least deflection 4.6e-3 off at a three-hundredth of the accuracy), and the fourth-order steps at the same rtol land within 3e-6";
 
-/// Why the plan integrates moving forces with the fourth-order ESDIRK where `exact-modal` does
-/// not take them (a mesh, or a moving-force disk) and the plan leaves generalized-α undamped
-/// (ρ∞ = 1: a modal beam, a train, or a mesh that responds nonlinearly) or the beam is damped,
-/// with nothing switched and no vehicles. Each force crossing a node of the mesh turns the
-/// load vector's rate, which sets the highest modes ringing, and generalized-α (ρ∞ = 1)
-/// carries that ringing into the accelerations with the phase error of every step: at a
-/// three-hundredth of the accuracy,
-/// three 100 kN axles at 10 m/s over D44's section read midspan's largest acceleration 10 %
-/// low (exact beam; 8.5 % on the linear one), one 1 MN axle at 50 m/s 6.5·10⁻³ off, a 1.5 t
-/// moving-force disk on the modal beam 2.6·10⁻², with the deflections within 1.4·10⁻⁴; at a
-/// ten-thousandth still 1.8·10⁻³. The fourth-order steps at the same rtol land within
-/// 2.5·10⁻⁴ of every headline, at 4 to 28 times the cost. On a damped mesh (Rayleigh's βK
-/// damps its highest modes) generalized-α at ρ∞ = 0.9 and accuracy/1000 read the quarter point's
-/// largest acceleration under D44's moving-force disk 1.5·10⁻² off with 0.5 % damping and
-/// 5.5·10⁻³ with 2 % (at ρ∞ = 1: 6.5·10⁻³; at accuracy/10000: 1.1·10⁻³), where the fourth-order
-/// steps at accuracy/300 land within 2.1·10⁻⁴ and 5.4·10⁻⁴ in fewer steps (599 and 394 against
-/// 1152 and 862). A moving-force disk on an undamped mesh that responds linearly keeps
-/// generalized-α with the planned ρ∞ = 0.9 at accuracy/10000 ([`rtol_for`]): ESDIRK4 at
-/// accuracy/300 takes as many steps on D44's section at 3.4 times the time, and 2.2 times
-/// them where the shear is stiff (G × 10⁴), where the damped steps take 1.77 times.
+/// Why the plan integrates moving forces with the fourth-order ESDIRK where `exact-modal` does not
+/// take them (a mesh, or a moving-force disk) and the plan leaves generalized-α undamped (ρ∞ = 1: a
+/// modal beam, a train, or a mesh that responds nonlinearly) or the beam is damped, with nothing
+/// switched and no vehicles. Each force crossing a node of the mesh turns the load vector's rate,
+/// which sets the highest modes ringing, and generalized-α (ρ∞ = 1) carries that ringing into the
+/// accelerations with the phase error of every step: at a three-hundredth of the accuracy, three
+/// 100 kN axles at 10 m/s over D44's section read midspan's largest acceleration 10 % low (exact
+/// beam; 8.5 % on the linear one), one 1 MN axle at 50 m/s 6.5·10⁻³ off, a 1.5 t moving-force disk
+/// on the modal beam 2.6·10⁻², with the deflections within 1.4·10⁻⁴; at a ten-thousandth still
+/// 1.8·10⁻³. The fourth-order steps at the same rtol land within 2.5·10⁻⁴ of every headline, at 4
+/// to 28 times the cost. On a damped mesh (Rayleigh's βK damps its highest modes) generalized-α at
+/// ρ∞ = 0.9 and accuracy/1000 read the quarter point's largest acceleration under D44's
+/// moving-force disk 1.5·10⁻² off with 0.5 % damping and 5.5·10⁻³ with 2 % (at ρ∞ = 1: 6.5·10⁻³; at
+/// accuracy/10000: 1.1·10⁻³), where the fourth-order steps at accuracy/300 land within 2.1·10⁻⁴ and
+/// 5.4·10⁻⁴ in fewer steps (599 and 394 against 1152 and 862). A moving-force disk on an undamped
+/// mesh that responds linearly gets them too: generalized-α at the ρ∞ = 0.9 planned for it held
+/// every extreme of D44's within 2.1·10⁻⁴ at accuracy/1000, but a history row carries every earlier
+/// step's phase error (the accelerations 2.1·10⁻³ and 3.0·10⁻³ off on 10 and 16 exact elements;
+/// started static, 3.5·10⁻³ even at accuracy/10000), and it converges to the damped model's answer
+/// (6.9·10⁻⁴ from the undamped one in the accelerations). ESDIRK4 at accuracy/300 holds every row
+/// within 8.9·10⁻⁴ (started static; 1.5·10⁻⁴ from rest) in about the time generalized-α takes at
+/// accuracy/10000 (1.11 s against 0.96 s on the 10 elements), though where the shear is stiff (G ×
+/// 10⁴) it takes 2.2–2.3 times the steps, the damped steps 1.15 to 1.8 times.
 const MOVING_FORCES: &str = "esdirk4: each force crossing a node of the mesh sets its highest modes ringing, which generalized-alpha carries into the accelerations with the phase error of every step (at a three-hundredth of the accuracy it read midspan's largest acceleration under three 100 kN axles over D44's section 10 % low, under a moving-force disk on its modal beam 2.6e-2 high, the deflections within 1.4e-4), where the fourth-order steps at the same rtol land within 2.5e-4 of every headline";
 
 /// Why the plan integrates a modal beam's free vibration after its riders leave exactly.
@@ -804,10 +807,10 @@ pub const PLANNED_RHO_INF: f64 = 0.9;
 ///   step: D44's quarter point's largest acceleration 1.1 ε off at ε/300, 0.5 ε at ε/500,
 ///   0.21 ε at ε/1000, at 2.2 times the steps. A row of the history carries the phase error of
 ///   every step before it: at ε/1000 the probes' accelerations came 2.1 ε and 3.0 ε off at
-///   some output time on D44's exact meshes of 10 and 16 elements, at ε/10000, which the
-///   moving-force disk gets, within 0.24 ε, at 2.3 and 3.1 times the time. The thesis'
-///   coupling keeps ε/1000: its rows (3.1 ε off there) do not settle with rtol, 4.4 ε at
-///   ε/10000 against rtol 10⁻⁸.
+///   some output time on D44's exact meshes of 10 and 16 elements, at ε/10000 within 0.24 ε,
+///   at 2.3 and 3.1 times the time, so a named generalized-α gets ε/10000; the plan steps the
+///   disk with ESDIRK4 ([`MOVING_FORCES`]). The thesis' coupling keeps ε/1000: its rows (3.1 ε
+///   off there) do not settle with rtol, 4.4 ε at ε/10000 against rtol 10⁻⁸.
 /// - A load switched on or off during the run excites every mode the mesh holds, and
 ///   undamped they all stay in what the run reports: B1's peak read on the output grid missed
 ///   by 2.2 ε at ε/30 and by 0.96 ε at ε/300; located on the solution, C1–C3's largest tip
@@ -817,9 +820,10 @@ pub const PLANNED_RHO_INF: f64 = 0.9;
 ///   ([`SWITCHED`]): at ε/30 every extreme of B1–B3 lands within 0.27 ε, but a row of the
 ///   history carries every earlier step's phase error, and u and φ came 1.0–1.5 ε off at
 ///   some output time on B1–B3's planned exact meshes (C1 on 2 and 4 exact elements: 3.3 ε
-///   and 2.0 ε), at ε/100 within 0.58 ε (0.60 ε and 0.96 ε), at 1.6–2.4 times the steps. Damped, such a peak is not monotone in rtol (B1 at
-///   ρ∞ = 0.8: 0.54 ε, 2.3 ε, 1.3 ε at ε/100, ε/300, ε/1000), since what moves it is how much
-///   of the mesh's highest modes the damping removes; the scene is told so.
+///   and 2.0 ε), at ε/100 within 0.58 ε (0.60 ε and 0.96 ε), at 1.6–2.4 times the steps.
+///   Damped, such a peak is not monotone in rtol (B1 at ρ∞ = 0.8: 0.54 ε, 2.3 ε, 1.3 ε at
+///   ε/100, ε/300, ε/1000), since what moves it is how much of the mesh's highest modes the
+///   damping removes; the scene is told so.
 ///   Far from linear the switched load's modes pass energy between them: an exact beam folded
 ///   by it (an end free to draw in) takes ε/3000 (a 20 m pinned–roller beam under 2 MN for
 ///   0.2 s, gap 0.11: 2.6 ε off at ε/30, 3.1 ε at ε/300, 0.41 ε at ε/3000), one held at both

@@ -239,20 +239,19 @@ fn automatic_choice_reduces_the_bridge_and_keeps_the_rubber_beam_and_the_rope_ex
     }
 }
 
-/// Stiff modes that carry nothing cost few steps. D44's load as a moving force on the exact beam
-/// with everything else left to the plan, at the real shear modulus and with G × 10⁴ (the
-/// Euler–Bernoulli limit, whose shear modes are a hundred times higher). The plan sees a beam that
-/// responds linearly under moving loads and damps the modes above those the loads excite (ρ∞ =
-/// 0.9): at the ten-thousandth of the accuracy its history's rows need the stiff beam may then take
-/// at most twice the steps of the real one (1.77 times measured; 1.15 at a thousandth, where
-/// undamped it took 2.06 times; ESDIRK4 at a three-hundredth, which holds the rows as well, takes
-/// 2.16 times). A rolling disk gets the fourth-order steps instead, whose contact force rings in
-/// those modes (1.9 times the steps with G × 10⁴). Each lands within the accuracy asked of its peak
-/// deflection (what the accuracy is asked of), against its rerun at a tenth of the tolerances on
-/// the same mesh (the damping's share of the error falls with the step, so the rerun shows what it
-/// took).
+/// Stiff modes that carry nothing cost a bounded number of steps. D44's load as a moving force on
+/// the exact beam over its crossing, with everything else left to the plan, at the real shear
+/// modulus and with G × 10⁴ (the Euler–Bernoulli limit, whose shear modes are a hundred times
+/// higher). The plan steps it with ESDIRK4 at a three-hundredth of the accuracy, which holds every
+/// row of its history (`a_moving_force_disk_s_history_within_the_accuracy_at_the_defaults`): the
+/// stiff beam then takes at most 2.5 times the steps of the real one (2.27 measured; a rolling
+/// disk, whose contact force rings in those modes, 1.9 times). Generalized-α at the ρ∞ = 0.9
+/// planned for a linear response damps the stiff modes (1.15 times the steps at a thousandth of the
+/// accuracy, 1.77 at the ten-thousandth its rows need), but converges to the damped model's answer.
+/// Each lands within the accuracy asked of its peak deflection, against its rerun at a tenth of the
+/// tolerances on the same mesh.
 #[test]
-fn stiff_shear_modes_cost_few_steps_on_the_exact_beam() {
+fn stiff_shear_modes_cost_a_bounded_number_of_steps_on_the_exact_beam() {
     let steps: Vec<usize> = [1.0, 1e4]
         .iter()
         .map(|&shear| {
@@ -260,6 +259,7 @@ fn stiff_shear_modes_cost_few_steps_on_the_exact_beam() {
                 "bridge-d44.yaml",
                 &[
                     Set::Number("track.beam.G", 81.0e9 * shear),
+                    Set::Number("duration", 1.2),
                     Set::Name("disk.coupling", "moving-force"),
                     Set::LeftOut("track.beam.elements"),
                     Set::LeftOut("track.beam.order"),
@@ -271,16 +271,11 @@ fn stiff_shear_modes_cost_few_steps_on_the_exact_beam() {
             );
             let b = s.beam().unwrap();
             assert_eq!(b.beam.model, BeamModel::Exact);
-            assert_eq!(b.rho_inf, rollbeam::plan::PLANNED_RHO_INF);
-            assert!(b
-                .rho_inf_chosen
-                .as_ref()
-                .unwrap()
-                .contains("responds linearly"));
+            assert_eq!(s.solver.method, Method::Esdirk4);
             let r = at_defaults(&s);
             let finer = run_beam(
                 &s,
-                Method::GenAlpha,
+                Method::Esdirk4,
                 s.solver.rtol / 10.0,
                 s.solver.atol / 10.0,
             );
@@ -296,7 +291,7 @@ fn stiff_shear_modes_cost_few_steps_on_the_exact_beam() {
         .collect();
     let growth = steps[1] as f64 / steps[0] as f64;
     eprintln!("steps grow x{growth:.2} with G x 1e4");
-    assert!(growth <= 2.0, "steps grow x{growth:.2}");
+    assert!(growth <= 2.5, "steps grow x{growth:.2}");
 }
 
 /// A train's axles load the beam together: its nonlinearity is measured under the most a span's
