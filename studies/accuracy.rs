@@ -351,16 +351,11 @@ fn a_rolling_disk_s_history_within_the_accuracy_at_the_defaults() {
             || at_defaults(&scene),
             || run_beam(&scene, Method::Esdirk4, 1e-8, 1e-8 * 0.03),
         );
-        let weight = 1500.0 * 9.81;
-        let kinds: [Kind; 4] = [
-            ("w", |r| r.probes.iter().map(|p| p.w).collect(), None),
-            ("acceleration", |r| r.accelerations.clone(), None),
-            (
-                "contact force",
-                |r| r.disk().map_or_else(Vec::new, |d| vec![d.rn, d.rt]),
-                Some(weight),
-            ),
-            ("reaction force", reaction_forces, None),
+        let kinds = [
+            BEAM_KINDS[1],
+            BEAM_KINDS[3],
+            STUDY_DISK_CONTACT,
+            BEAM_KINDS[4],
         ];
         rows_within_the_accuracy(study, &planned, &converged, &kinds);
     }
@@ -369,6 +364,23 @@ fn a_rolling_disk_s_history_within_the_accuracy_at_the_defaults() {
 /// A kind of number a history row holds: its name, how a row gives its values, and its scale
 /// where that is not its largest value in the converged run.
 type Kind = (&'static str, fn(&BeamRow) -> Vec<f64>, Option<f64>);
+
+/// What a beam's history rows hold at its probes and supports: u, w, φ, the acceleration and
+/// the supports' forces, each against its own largest.
+const BEAM_KINDS: [Kind; 5] = [
+    ("u", |r| r.probes.iter().map(|p| p.u).collect(), None),
+    ("w", |r| r.probes.iter().map(|p| p.w).collect(), None),
+    ("φ", |r| r.probes.iter().map(|p| p.phi).collect(), None),
+    ("acceleration", |r| r.accelerations.clone(), None),
+    ("reaction force", reaction_forces, None),
+];
+
+/// The normal and tangential contact forces of the 1.5 t disk of D44 and D50, against its weight.
+const STUDY_DISK_CONTACT: Kind = (
+    "contact force",
+    |r| r.disk().map_or_else(Vec::new, |d| vec![d.rn, d.rt]),
+    Some(1500.0 * 9.81),
+);
 
 /// What both supports exert on the beam along and across it, one kind.
 fn reaction_forces(r: &BeamRow) -> Vec<f64> {
@@ -564,14 +576,7 @@ fn a_switched_load_s_history_within_the_accuracy_at_the_defaults() {
         || at_defaults(&scene),
         || run_beam(&scene, Method::Esdirk4, 1e-7, 1e-7 * 9.73e-3),
     );
-    let kinds: [Kind; 5] = [
-        ("u", |r| r.probes.iter().map(|p| p.u).collect(), None),
-        ("w", |r| r.probes.iter().map(|p| p.w).collect(), None),
-        ("φ", |r| r.probes.iter().map(|p| p.phi).collect(), None),
-        ("acceleration", |r| r.accelerations.clone(), None),
-        ("reaction force", reaction_forces, None),
-    ];
-    rows_within_the_accuracy("C1 on 2 elements", &planned, &converged, &kinds);
+    rows_within_the_accuracy("C1 on 2 elements", &planned, &converged, &BEAM_KINDS);
 }
 
 /// The switched loads' converged runs, each (its stored name, the method, rtol, atol / rtol):
@@ -1667,18 +1672,7 @@ fn a_moving_force_disk_s_history_within_the_accuracy_at_the_defaults() {
             || at_defaults(&scene),
             || run_beam(&scene, Method::Esdirk4, 1e-8, 1e-8 * size),
         );
-        let kinds: [Kind; 6] = [
-            ("u", |r| r.probes.iter().map(|p| p.u).collect(), None),
-            ("w", |r| r.probes.iter().map(|p| p.w).collect(), None),
-            ("φ", |r| r.probes.iter().map(|p| p.phi).collect(), None),
-            ("acceleration", |r| r.accelerations.clone(), None),
-            ("reaction force", reaction_forces, None),
-            (
-                "contact force",
-                |r| r.disk().map_or_else(Vec::new, |d| vec![d.rn, d.rt]),
-                Some(1500.0 * 9.81),
-            ),
-        ];
+        let kinds: Vec<Kind> = BEAM_KINDS.into_iter().chain([STUDY_DISK_CONTACT]).collect();
         let name = format!("D44's moving-force disk {name}");
         rows_within_the_accuracy(&name, &planned, &converged, &kinds);
     }
