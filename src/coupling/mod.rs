@@ -17,7 +17,7 @@
 //!   T_z + ½ C θ̇² + V is conserved. Eliminating λ shows the beam feels exactly −F_contact at s
 //!   through the shape functions: the terms of the normal's rotation cancel with the torque.
 //! - `thesis.rs`: thesis Table 9 as published (errata 2–3 corrected), the disk rolling on the
-//!   axis as if it were frozen; with a first-order integrator the run takes the published
+//!   axis as if it were frozen; with Dormand–Prince or TR-BDF2 the run takes the published
 //!   3n + 6 system of [`thesis_system`] instead.
 //! - `moving_mass.rs`: a point mass at s = s0 + v0 t on the axis, following its displacement
 //!   with its inertia; `moving_force.rs`: the constant weight m g at s = s0 + v0 t. Both are

@@ -24,6 +24,7 @@ use crate::beam::modal::MAX_MODES;
 use crate::beam::supports::{mesh_multiple, statically_supported, Support};
 use crate::beam::train::{hslm, Train, TrainModel, HSLM_NAMES};
 use crate::beam::{BeamModel, BeamSpec, Quadrature, MAX_ORDER};
+use crate::coupling::thesis_system::integrates_as_published;
 use crate::coupling::{patch, Coupling, DiskOnBeamSpec};
 use crate::curve::expr::Formula;
 use crate::curve::spline::Spline;
@@ -772,11 +773,11 @@ fn solver_settings(
     }
     if let (Model::Beam(b), Some(m)) = (model, &s.method) {
         if b.disk().is_some_and(|d| d.coupling == Coupling::Thesis)
-            && solver.method != Method::GenAlpha
+            && integrates_as_published(solver.method)
             && b.beam.model != BeamModel::Exact
             && mesh.model
         {
-            return c.err(m.referenced.line(), "solver.method", format!("{} integrates the thesis coupling as the published 3n + 6 system, which transcribes the exact beam; use `model: exact`, or genalpha for the thesis coupling on a {} beam", solver.method.name(), b.beam.model.name()));
+            return c.err(m.referenced.line(), "solver.method", format!("{} integrates the thesis coupling as the published 3n + 6 system, which transcribes the exact beam; use `model: exact`, or genalpha or esdirk4 for the thesis coupling on a {} beam", solver.method.name(), b.beam.model.name()));
         }
     }
     Ok((solver, rtol_given, atol_given))

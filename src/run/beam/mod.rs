@@ -41,7 +41,7 @@ use crate::beam::modal::ModalBasis;
 use crate::beam::supports::statically_supported;
 use crate::beam::{Beam, BeamModel, PointDisplacement, Stations};
 use crate::coupling::landing::Landing;
-use crate::coupling::thesis_system::ThesisSystem;
+use crate::coupling::thesis_system::{integrates_as_published, ThesisSystem};
 use crate::coupling::vehicles::{VehicleObservation, VehiclesOnBeam};
 use crate::coupling::{Coupling, DiskEvent, DiskOnBeam};
 use crate::disk::flight::Flight;
@@ -301,7 +301,6 @@ fn integrate_coupled(
     }
     let (z0, zd0) = c.initial_state(start);
     let (t, stopped_by, y) = if literal {
-        // The thesis coupling with a first-order integrator is the published 3n + 6 system.
         let sys = ThesisSystem { coupled: c };
         let mut through = ThesisSystemObserver { sys: &sys, rec };
         let out = ode::solve(
@@ -631,8 +630,8 @@ fn output_times(scene: &Scene, setup: &BeamScene, no_history: bool) -> Vec<f64> 
     outputs
 }
 
-/// Whether the run integrates the thesis coupling as the published 3n + 6 system (a
-/// first-order method), which transcribes the exact beam only.
+/// Whether the run integrates the thesis coupling as the published 3n + 6 system, which
+/// transcribes the exact beam only.
 fn thesis_system(
     scene: &Scene,
     setup: &BeamScene,
@@ -640,10 +639,10 @@ fn thesis_system(
     opts: &ode::Options,
 ) -> Result<bool, Error> {
     let literal = coupled.is_some_and(|c| c.spec().coupling == Coupling::Thesis)
-        && opts.method != Method::GenAlpha;
+        && integrates_as_published(opts.method);
     if literal && setup.beam.model != BeamModel::Exact {
         return Err(Error::Input(format!(
-            "scene {}: {} integrates the thesis coupling as the published 3n + 6 system, which transcribes the exact beam; use `model: exact`, or genalpha for the thesis coupling on a {} beam",
+            "scene {}: {} integrates the thesis coupling as the published 3n + 6 system, which transcribes the exact beam; use `model: exact`, or genalpha or esdirk4 for the thesis coupling on a {} beam",
             scene.name,
             opts.method.name(),
             setup.beam.model.name()
