@@ -1695,7 +1695,8 @@ fn d44_disk_s_rows_within_the_accuracy(coupling: &str, duration: f64) {
 /// rolling by the thesis' law, set down at rest and started carrying it, every solver setting
 /// left to the plan (ESDIRK4 on the (s, ṡ) form at a three-hundredth of the accuracy), against
 /// ESDIRK4 at rtol 10⁻⁸, which the published 3n + 6 system at the same rtol meets within
-/// 4·10⁻⁷. Measured: 5.9·10⁻⁴ of the largest acceleration from rest, 1.3·10⁻⁴ started static.
+/// 4·10⁻⁷. Measured: 5.9·10⁻⁴ of the largest acceleration from rest; started static, 1.1·10⁻⁴
+/// of it and 1.3·10⁻⁴ of the supports' largest horizontal force.
 /// Generalized-α at the ρ∞ = 0.9 planned for a linear response read the accelerations 7.0·10⁻³
 /// and 1.3·10⁻¹ of their largest off at some rows, at a thousandth of the accuracy.
 #[test]
