@@ -18,7 +18,9 @@
 //! only once the shapes of the modes the loads read (below the acceleration's cutoff; under
 //! vehicles every excited mode too) and the slopes of those below the cutoff (of every excited
 //! mode on an exact beam that responds off linear, which the plan meshes again once it has
-//! chosen the model) also move by less than ε/4.
+//! chosen the model) also move by less than ε/4. A load switched during the run leaves every
+//! mode ringing with its static share, and the probes report rotations beside deflections: the
+//! modes are counted, and the static response checked, in the rotations at the probes too.
 //! The tolerances the integrator is asked for are the plan's (`plan.rs`), from the
 //! same accuracy and from the response's size ([`response_size`]).
 
@@ -145,11 +147,24 @@ pub struct Discretisation {
 
 /// Linear static deflection and the modes of `spec` meshed into `elements`: the probes'
 /// displacement magnitudes |(u, w)| statically, and after the first k modes for every k; the
-/// circular frequencies.
+/// same of their rotations where a load is switched; the circular frequencies.
 #[derive(Clone)]
 struct Estimate {
     static_at_probes: Vec<f64>,
     omega: Vec<f64>,
+    truncated: Vec<Vec<f64>>,
+    rotations: Option<Rotations>,
+}
+
+/// The probes' static rotations, and after the first k modes for every k. A load switched on
+/// an undamped beam leaves every mode ringing with its static share, and a mode's share of a
+/// rotation falls more slowly with its order than its share of a deflection. Counted by the
+/// deflections alone, C1's 12 elements read the rotation rows 1.5·10⁻³ of their largest off 64
+/// elements' (the 16 counted by the rotations too: 8.9·10⁻⁴), and B1's 12 elements 3.2·10⁻³ off
+/// a run asked for a tenth of the accuracy (its 24: 8.0·10⁻⁴).
+#[derive(Clone)]
+struct Rotations {
+    static_at_probes: Vec<f64>,
     truncated: Vec<Vec<f64>>,
 }
 
@@ -162,6 +177,7 @@ fn estimate(
     loads: &[([f64; 4], bool)],
     weight_drops: bool,
     probes: &[f64],
+    rotations: bool,
 ) -> Option<Estimate> {
     let beam = Beam::shared(&BeamSpec {
         elements,
@@ -181,12 +197,20 @@ fn estimate(
         beam.add_weight(&mut f);
     }
     // Each mode's share of the static deflection at a probe needs only the projections of
-    // the loads and of the probe's u and w rows on its shape.
+    // the loads and of the probe's u and w rows on its shape (and of its φ row after them).
     let mut vectors = vec![f];
     for &x in probes {
         for direction in [[1.0, 0.0], [0.0, 1.0]] {
             let mut row = vec![0.0; n];
             beam.add_point_load(x, direction, 0.0, &mut row);
+            vectors.push(row);
+        }
+    }
+    let first_rotation = vectors.len();
+    if rotations {
+        for &x in probes {
+            let mut row = vec![0.0; n];
+            beam.add_point_load(x, [0.0, 0.0], 1.0, &mut row);
             vectors.push(row);
         }
     }
@@ -220,15 +244,16 @@ fn estimate(
     }
     let mut q = all;
     SparseLu::factor(&k, None)?.solve_in_place(&mut q);
-    // `partial` holds the load's entry first, then each probe's u and w.
+    // `partial` holds the load's entry first, then each probe's u and w, then the rotations.
     let at_probes = |partial: &[f64]| -> Vec<f64> {
-        partial[1..]
+        partial[1..first_rotation]
             .chunks_exact(2)
             .map(|u_w| u_w[0].hypot(u_w[1]))
             .collect()
     };
     let mut partial = vec![0.0; vectors.len()];
     let mut truncated = Vec::with_capacity(omega.len());
+    let mut truncated_rotations = Vec::new();
     for k in 0..omega.len() {
         let w2 = omega[k] * omega[k];
         if w2 > 0.0 {
@@ -237,17 +262,19 @@ fn estimate(
             }
         }
         truncated.push(at_probes(&partial));
+        if rotations {
+            truncated_rotations.push(partial[first_rotation..].iter().map(|r| r.abs()).collect());
+        }
     }
+    let displaced = probes.iter().map(|&x| beam.displacement_at(&q, x));
     Some(Estimate {
-        static_at_probes: probes
-            .iter()
-            .map(|&x| {
-                let d = beam.displacement_at(&q, x);
-                d.u.hypot(d.w)
-            })
-            .collect(),
+        static_at_probes: displaced.clone().map(|d| d.u.hypot(d.w)).collect(),
         omega,
         truncated,
+        rotations: rotations.then(|| Rotations {
+            static_at_probes: displaced.map(|d| d.phi.abs()).collect(),
+            truncated: truncated_rotations,
+        }),
     })
 }
 
@@ -423,11 +450,13 @@ pub fn choose(
         ));
     }
     let drops = weight_drops(&spec, start);
-    let Some(est) = estimate(&spec, estimation_elements, &pattern, drops, xs) else {
+    let switched = drops || jumps(loads, start);
+    let Some(est) = estimate(&spec, estimation_elements, &pattern, drops, xs, switched) else {
         return fallback(NO_STATIC);
     };
     let tol = accuracy / 4.0;
-    let Some((excited, scale)) = excited_modes(&est, tol) else {
+    let span = (spec.to[0] - spec.from[0]).hypot(spec.to[1] - spec.from[1]);
+    let Some((excited, scale)) = excited_modes(&est, tol, span) else {
         return fallback("the loads do not deflect the probes (default mesh)");
     };
     if let Some(n) = elements {
@@ -442,7 +471,7 @@ pub fn choose(
         if elements == estimation_elements {
             Some(est.clone())
         } else {
-            estimate(&spec, elements, &pattern, drops, xs)
+            estimate(&spec, elements, &pattern, drops, xs, switched)
         }
     };
     let largest = (MAX_NODES - 1) / order / 2 / multiple * multiple;
@@ -457,11 +486,13 @@ pub fn choose(
             Some(ShapesMoved::default())
         }
     };
-    match refine(on, (shapes, (read, sloped)), first, excited, (tol, tol * scale), nodes) {
+    let static_tol = [tol * scale[0], tol * scale[1]];
+    match refine(on, (shapes, (read, sloped)), first, excited, (tol, static_tol), nodes) {
         Some(Refined { elements: n, reason, unconfirmed }) => Discretisation {
             unconfirmed,
             ..chosen(n, excited, format!(
-                "elements {n} of degree {order}: the loads excite {excited} modes (each adds more than {tol:.1e} of the peak static deflection at the probes); {reason}"
+                "elements {n} of degree {order}: the loads excite {excited} modes (each adds more than {tol:.1e} of the peak static {} at the probes); {reason}",
+                if scale[1] > 0.0 { "deflection or rotation" } else { "deflection" }
             ))
         },
         None => fallback(NO_STATIC),
@@ -502,6 +533,15 @@ fn shapes_read(
     }
 }
 
+/// What of the static response at the probes the mesh is checked on.
+fn statics_read(rotations: bool) -> &'static str {
+    if rotations {
+        "deflection and rotation"
+    } else {
+        "deflection"
+    }
+}
+
 const NO_STATIC: &str = "the supports leave a rigid-body motion, so no static deflection to estimate from (default mesh)";
 
 /// The loads as [`estimate`] takes them, each flagged where it excites the modes; the weight
@@ -527,23 +567,39 @@ fn within(a: &[f64], b: &[f64], tol: f64) -> bool {
     a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol)
 }
 
-/// How many modes the loads excite (the last whose share of the static deflection at a probe
-/// passes `tol` of the largest), and that largest deflection; `None` where the loads do not
-/// deflect the probes.
-fn excited_modes(est: &Estimate, tol: f64) -> Option<(usize, f64)> {
-    let scale = est.static_at_probes.iter().fold(0.0_f64, |m, v| m.max(*v));
+/// How many modes the loads excite (the last whose share of the static deflection at a probe,
+/// or of its rotation where the estimate holds them, passes `tol` of the largest), and the
+/// largest deflection and rotation (0 where the rotations, times the span over π, are within
+/// `tol` of the deflection: nothing to hold them to); `None` where the loads do not deflect
+/// the probes.
+fn excited_modes(est: &Estimate, tol: f64, span: f64) -> Option<(usize, [f64; 2])> {
+    let largest = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(*x));
+    let scale = largest(&est.static_at_probes);
     if !(scale > 0.0) {
         return None;
     }
-    let none = vec![0.0; est.static_at_probes.len()];
-    let excited = (0..est.truncated.len())
-        .rev()
-        .find(|&k| {
-            let before = if k == 0 { &none } else { &est.truncated[k - 1] };
-            !within(&est.truncated[k], before, tol * scale)
-        })
-        .map_or(1, |k| k + 1);
-    Some((excited, scale))
+    let last_adding = |truncated: &[Vec<f64>], scale: f64| {
+        let none = vec![0.0; truncated.first().map_or(0, Vec::len)];
+        (0..truncated.len())
+            .rev()
+            .find(|&k| {
+                let before = if k == 0 { &none } else { &truncated[k - 1] };
+                !within(&truncated[k], before, tol * scale)
+            })
+            .map_or(1, |k| k + 1)
+    };
+    let deflected = last_adding(&est.truncated, scale);
+    let Some(r) = &est.rotations else {
+        return Some((deflected, [scale, 0.0]));
+    };
+    let turned = largest(&r.static_at_probes);
+    if turned * span / std::f64::consts::PI <= tol * scale {
+        return Some((deflected, [scale, 0.0]));
+    }
+    Some((
+        deflected.max(last_adding(&r.truncated, turned)),
+        [scale, turned],
+    ))
 }
 
 /// The mesh [`refine`] settled on, and whether the last two meshes it compared agreed.
@@ -554,8 +610,8 @@ struct Refined {
 }
 
 /// Double the mesh from `n` elements until the highest excited mode's frequency moves by
-/// less than `tol` relative, the probes' static deflection by less than `deflection` and the
-/// shapes of the lowest `read` modes (`shapes`, 0 where no load moves) by less than `tol`, or
+/// less than `tol` relative, the probes' static deflection and rotation (where the estimates
+/// hold them) by less than `limits` and the shapes of the lowest `read` modes (`shapes`, 0 where no load moves) by less than `tol`, or
 /// a further doubling would pass [`MAX_NODES`]; there the finer of the last two meshes is kept,
 /// which the coarser did not match. `None` where a mesh has no static deflection.
 ///
@@ -567,7 +623,7 @@ fn refine(
     (shapes, (read, sloped)): (impl Fn(usize) -> Option<ShapesMoved>, (usize, usize)),
     mut n: usize,
     excited: usize,
-    (tol, deflection): (f64, f64),
+    (tol, limits): (f64, [f64; 2]),
     nodes: impl Fn(usize) -> usize,
 ) -> Option<Refined> {
     let mut coarse = on(n)?;
@@ -587,12 +643,18 @@ fn refine(
         };
         let k = excited.min(coarse.omega.len()) - 1;
         let df = (coarse.omega[k] - fine.omega[k]).abs() / fine.omega[k];
-        let dw = coarse
-            .static_at_probes
-            .iter()
-            .zip(&fine.static_at_probes)
-            .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
-        let settled = df <= tol && dw <= deflection;
+        let apart = |a: &[f64], b: &[f64]| {
+            a.iter()
+                .zip(b)
+                .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
+        };
+        let dw = apart(&coarse.static_at_probes, &fine.static_at_probes);
+        let dphi = match (&coarse.rotations, &fine.rotations) {
+            (Some(a), Some(b)) => apart(&a.static_at_probes, &b.static_at_probes),
+            _ => 0.0,
+        };
+        // A rotation the check does not hold (`limits[1]` 0) moves the mesh nowhere.
+        let settled = df <= tol && dw <= limits[0] && (limits[1] == 0.0 || dphi <= limits[1]);
         // Where a mesh's modes are not found the shapes cannot be compared: the frequencies
         // and the static deflection decide, as without wheels.
         let moved = if settled {
@@ -609,11 +671,12 @@ fn refine(
             String::new()
         };
         let f_hz = fine.omega[k] / std::f64::consts::TAU;
+        let statics = statics_read(limits[1] > 0.0);
         if settled && moved.worst() <= tol {
             return Some(Refined {
                 elements: n,
                 reason: format!(
-                    "on {} elements mode {} ({f_hz:.4} Hz) moves by {df:.1e} and the static deflection at the probes by less than {tol:.1e}{along}",
+                    "on {} elements mode {} ({f_hz:.4} Hz) moves by {df:.1e} and the static {statics} at the probes by less than {tol:.1e}{along}",
                     2 * n,
                     k + 1,
                 ),
@@ -622,10 +685,14 @@ fn refine(
         }
         if nodes(4 * n) > MAX_NODES {
             let apart = format!(
-                "from {n} to {} elements mode {} ({f_hz:.4} Hz) moves by {df:.1e}, the static deflection at the probes by {:.1e} of the largest{along}, more than {tol:.1e}",
+                "from {n} to {} elements mode {} ({f_hz:.4} Hz) moves by {df:.1e}, the static {statics} at the probes by {:.1e} of the largest{along}, more than {tol:.1e}",
                 2 * n,
                 k + 1,
-                dw / (deflection / tol),
+                if limits[1] > 0.0 {
+                    (dw / limits[0]).max(dphi / limits[1]) * tol
+                } else {
+                    dw / limits[0] * tol
+                },
             );
             return Some(Refined {
                 elements: 2 * n,
