@@ -643,14 +643,14 @@ fn refine(
         };
         let k = excited.min(coarse.omega.len()) - 1;
         let df = (coarse.omega[k] - fine.omega[k]).abs() / fine.omega[k];
-        let apart = |a: &[f64], b: &[f64]| {
+        let largest_change = |a: &[f64], b: &[f64]| {
             a.iter()
                 .zip(b)
                 .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
         };
-        let dw = apart(&coarse.static_at_probes, &fine.static_at_probes);
+        let dw = largest_change(&coarse.static_at_probes, &fine.static_at_probes);
         let dphi = match (&coarse.rotations, &fine.rotations) {
-            (Some(a), Some(b)) => apart(&a.static_at_probes, &b.static_at_probes),
+            (Some(a), Some(b)) => largest_change(&a.static_at_probes, &b.static_at_probes),
             _ => 0.0,
         };
         // A rotation the check does not hold (`limits[1]` 0) moves the mesh nowhere.
