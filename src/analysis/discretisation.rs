@@ -31,7 +31,7 @@ use crate::beam::load::{BeamStart, PointLoad};
 use crate::beam::modal::within_cutoff;
 use crate::beam::supports::statically_supported;
 use crate::beam::{Beam, BeamSpec};
-use crate::linalg::SparseLu;
+use crate::linalg::{Sparse, SparseLu};
 
 /// The accuracy a beam scene asks for when it does not say.
 pub const DEFAULT_ACCURACY: f64 = 1e-3;
@@ -215,24 +215,7 @@ fn estimate(
         }
     }
     let k = beam.tangent(&vec![0.0; n]);
-    let (omega, shares) = match projected(&k, beam.mass(), &vectors) {
-        Some((lambda, p)) => {
-            let omega: Vec<f64> = lambda.iter().map(|l| l.sqrt()).collect();
-            (omega, p)
-        }
-        None => {
-            let m = modes(&beam, n)?;
-            let p = vectors
-                .iter()
-                .map(|v| {
-                    (0..m.omega.len())
-                        .map(|k| m.shapes.column(k).iter().zip(v).map(|(a, b)| a * b).sum())
-                        .collect()
-                })
-                .collect();
-            (m.omega, p)
-        }
-    };
+    let (omega, shares) = modal_shares(&beam, &k, &vectors)?;
     // A rigid-body motion leaves no static deflection, whatever a factorisation of the
     // near-singular stiffness returns. The supports say whether there is one: next to the
     // highest mode the lowest can look like one where shear and stretch are far stiffer than
@@ -276,6 +259,29 @@ fn estimate(
             truncated: truncated_rotations,
         }),
     })
+}
+
+/// Every mode's circular frequency and the projection of each of `vectors` on its shape
+/// (row per vector, column per mode): from the projected eigenproblem, or where that fails
+/// from the modes themselves.
+fn modal_shares(
+    beam: &Beam,
+    k: &Sparse,
+    vectors: &[Vec<f64>],
+) -> Option<(Vec<f64>, Vec<Vec<f64>>)> {
+    if let Some((lambda, p)) = projected(k, beam.mass(), vectors) {
+        return Some((lambda.iter().map(|l| l.sqrt()).collect(), p));
+    }
+    let m = modes(beam, beam.dim())?;
+    let p = vectors
+        .iter()
+        .map(|v| {
+            (0..m.omega.len())
+                .map(|k| m.shapes.column(k).iter().zip(v).map(|(a, b)| a * b).sum())
+                .collect()
+        })
+        .collect();
+    Some((m.omega, p))
 }
 
 /// How far the shapes of the bending modes among the lowest `count` move from `elements` to
