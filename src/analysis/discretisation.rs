@@ -21,7 +21,7 @@
 //! chosen the model) also move by less than ε/4. A load switched during the run leaves every
 //! mode ringing with its static share, and the probes report rotations beside deflections: the
 //! modes are counted, and the static response checked, in the rotations at the probes too.
-//! The tolerances the integrator is asked for are the plan's (`plan.rs`), from the
+//! The tolerances the integrator is asked for are the plan's (`plan/tolerances.rs`), from the
 //! same accuracy and from the response's size ([`response_size`]).
 
 use serde::Serialize;

@@ -1,7 +1,7 @@
 //! The scene file (see SCENE-FORMAT in the README): read with locations into a [`SceneSpec`]
 //! (what the user wrote, which a typed [`SceneSpec::set`] may change key by key), and checked
 //! into the model it names, and only that; nothing is chosen or computed here beyond what the
-//! check needs. What the scene leaves out is chosen by the planning step (`plan.rs`). Every
+//! check needs. What the scene leaves out is chosen by the planning step (`plan/`). Every
 //! problem is reported as one sentence with the file, the line and the key.
 //!
 //! Here: the public scene types, reading, and the check of the whole file. `file`: the file's
@@ -602,7 +602,7 @@ pub struct SceneSpec {
     lined: bool,
 }
 
-/// A checked scene, not yet planned: what only the planning step (`plan.rs`) turns into a
+/// A checked scene, not yet planned: what only the planning step (`plan/`) turns into a
 /// [`Scene`], choosing what the scene left out.
 pub struct Checked {
     /// The scene with the mesh and tolerances as given, or provisional where left out.
