@@ -169,6 +169,55 @@ fn an_undamped_default_measures_error_against_the_response() {
     assert_eq!(given_rtol.solver.atol_scale, None);
 }
 
+/// A probe the loads only turn is measured by its rotation: a moment M at the middle of a
+/// simply supported beam, probed there, leaves it undeflected (round-off, 10⁻¹³ m) and turns
+/// it by φ = M L/(12 EI) + M/(L G A_v), the Timoshenko beam's closed form, which the elements
+/// reproduce at a node. The response is that rotation as a length, φ L/π (the half sine that
+/// turns by φ), to round-off; atol is rtol times it, and the linear beam is said to hold the
+/// statics, as it does for 10 kN m on this 10 m steel beam (measured by the round-off, the
+/// exact beam would be chosen, with an atol of 4·10⁻¹⁹, below the round-off of the state).
+#[test]
+fn a_probe_the_loads_only_turn_is_measured_by_its_rotation() {
+    let scene = parse(
+        "name: turned
+duration: 0.5
+track:
+  beam:
+    from: [0.0, 0.0]
+    to: [10.0, 0.0]
+    E: 210.0e9
+    G: 81.0e9
+    rho: 7850
+    A: 59.8e-4
+    Av: 29.9e-4
+    I: 3620.0e-8
+    supports: {from: pinned, to: pinned}
+loads:
+  - {x: 5.0, mz: 10.0e3}
+output:
+  probes: [{name: mid, x: 5.0}]
+",
+    );
+    let beam = scene.beam().expect("a beam scene");
+    let (m, l) = (10.0e3, 10.0);
+    let phi = m * l / (12.0 * 210.0e9 * 3620.0e-8) + m / (l * 81.0e9 * 29.9e-4);
+    let closed = phi * l / std::f64::consts::PI;
+    let size = beam
+        .response
+        .expect("a simply supported beam has a response");
+    assert!(
+        (size - closed).abs() <= 1e-9 * closed,
+        "response {size:e} against {closed:e}"
+    );
+    assert!(beam.response_turned);
+    assert_eq!(scene.solver.atol_scale, Some(size));
+    assert!(
+        !matches!(beam.beam.model, rollbeam::beam::BeamModel::Exact),
+        "a load the linear beam holds got {:?}",
+        beam.beam.model
+    );
+}
+
 /// A typed change of a scene is planned again, not left stale: D44 with every setting left
 /// out and its accuracy set to 1e-4 gets rtol = accuracy/30 (the rule for a rolling disk,
 /// which ESDIRK4 integrates) of the new accuracy and atol = rtol × the same response size, on

@@ -30,7 +30,7 @@ use crate::analysis::modes::{acceleration_cutoff, modes, projected, ModeKind};
 use crate::beam::load::{BeamStart, PointLoad};
 use crate::beam::modal::within_cutoff;
 use crate::beam::supports::statically_supported;
-use crate::beam::{Beam, BeamSpec};
+use crate::beam::{response_scale, Beam, BeamSpec};
 use crate::linalg::{Sparse, SparseLu};
 
 /// The accuracy a beam scene asks for when it does not say.
@@ -67,8 +67,10 @@ pub fn weight_drops(spec: &BeamSpec, start: BeamStart) -> bool {
 }
 
 /// The size of the displacements a beam scene's loads cause: the largest static |(u, w)| at a
-/// probe, under the scene's loads together or one at a time, or under the disk's weight
-/// standing on that probe, each with the beam's own weight where the scene puts it on; `None` when the supports leave a rigid-body motion. An automatic
+/// probe (or its rotation, where the loads only turn the probes: [`response_scale`]), under
+/// the scene's loads together or one at a time, or under the disk's weight standing on that
+/// probe, each with the beam's own weight where the scene puts it on; `None` when the supports
+/// leave a rigid-body motion; and whether it is that rotation. An automatic
 /// atol is rtol times this, so that a step's error is measured against the response and not
 /// against the current displacement, which a vibration takes through zero twice a period
 /// (where rtol |q| alone asks for steps of round-off size and spends most of a run there).
@@ -77,7 +79,7 @@ pub fn response_size(
     loads: &[PointLoad],
     weight: Option<f64>,
     probes: &[f64],
-) -> Option<f64> {
+) -> Option<(f64, bool)> {
     let beam = Beam::shared(spec);
     let n = beam.dim();
     let lu = SparseLu::factor(&beam.tangent(&vec![0.0; n]), None)?;
@@ -94,7 +96,7 @@ pub fn response_size(
     if cases.is_empty() {
         cases.push(Vec::new());
     }
-    let mut size = 0.0_f64;
+    let (mut size, mut turned) = (0.0_f64, 0.0_f64);
     for case in cases {
         let mut q = vec![0.0; n];
         beam.add_weight(&mut q);
@@ -104,17 +106,20 @@ pub fn response_size(
         lu.solve_in_place(&mut q);
         for &x in probes {
             let d = beam.displacement_at(&q, x);
-            let r = d.u.hypot(d.w);
-            if !r.is_finite() {
+            let (r, t) = (d.u.hypot(d.w), spec.rotation_as_length(d.phi));
+            if !(r.is_finite() && t.is_finite()) {
                 return None;
             }
             size = size.max(r);
+            turned = turned.max(t);
         }
     }
+    let scale = response_scale(size, turned);
+    let (size, by_rotation) = (scale, scale != size);
     // A near-singular stiffness (a mechanism) passes the factorisation with a displacement
     // no beam under its loads has: larger than the beam itself.
     let length = (spec.to[0] - spec.from[0]).hypot(spec.to[1] - spec.from[1]);
-    (size > 0.0 && size < length).then_some(size)
+    (size > 0.0 && size < length).then_some((size, by_rotation))
 }
 
 /// The share of the static response a beam keeps after loads that are on it for only
@@ -151,6 +156,8 @@ pub struct Discretisation {
 #[derive(Clone)]
 struct Estimate {
     static_at_probes: Vec<f64>,
+    /// The probes' static rotations as lengths ([`BeamSpec::rotation_as_length`]).
+    turned_at_probes: Vec<f64>,
     omega: Vec<f64>,
     truncated: Vec<Vec<f64>>,
     rotations: Option<Rotations>,
@@ -252,6 +259,9 @@ fn estimate(
     let displaced = probes.iter().map(|&x| beam.displacement_at(&q, x));
     Some(Estimate {
         static_at_probes: displaced.clone().map(|d| d.u.hypot(d.w)).collect(),
+        turned_at_probes: (displaced.clone())
+            .map(|d| spec.rotation_as_length(d.phi))
+            .collect(),
         omega,
         truncated,
         rotations: rotations.then(|| Rotations {
@@ -461,8 +471,7 @@ pub fn choose(
         return fallback(NO_STATIC);
     };
     let tol = accuracy / 4.0;
-    let span = (spec.to[0] - spec.from[0]).hypot(spec.to[1] - spec.from[1]);
-    let Some((excited, scale)) = excited_modes(&est, tol, span) else {
+    let Some((excited, scale)) = excited_modes(&est, tol) else {
         return fallback("the loads do not deflect the probes (default mesh)");
     };
     if let Some(n) = elements {
@@ -578,9 +587,12 @@ fn within(a: &[f64], b: &[f64], tol: f64) -> bool {
 /// largest deflection and rotation (0 where the rotations, times the span over π, are within
 /// `tol` of the deflection: nothing to hold them to); `None` where the loads do not deflect
 /// the probes.
-fn excited_modes(est: &Estimate, tol: f64, span: f64) -> Option<(usize, [f64; 2])> {
+fn excited_modes(est: &Estimate, tol: f64) -> Option<(usize, [f64; 2])> {
     let largest = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(*x));
-    let scale = largest(&est.static_at_probes);
+    let scale = response_scale(
+        largest(&est.static_at_probes),
+        largest(&est.turned_at_probes),
+    );
     if !(scale > 0.0) {
         return None;
     }
@@ -599,7 +611,7 @@ fn excited_modes(est: &Estimate, tol: f64, span: f64) -> Option<(usize, [f64; 2]
         return Some((deflected, [scale, 0.0]));
     };
     let turned = largest(&r.static_at_probes);
-    if turned * span / std::f64::consts::PI <= tol * scale {
+    if largest(&est.turned_at_probes) <= tol * scale {
         return Some((deflected, [scale, 0.0]));
     }
     Some((

@@ -28,7 +28,7 @@ use crate::analysis::modes::modes;
 use crate::analysis::statics;
 use crate::beam::load::{BeamStart, PointLoad};
 use crate::beam::supports::statically_supported;
-use crate::beam::{Beam, BeamModel, BeamSpec};
+use crate::beam::{response_scale, Beam, BeamModel, BeamSpec};
 use crate::linalg::SparseLu;
 
 /// The part of the accuracy each check of the choice may take.
@@ -85,15 +85,6 @@ impl Recount {
 /// Every load as (x, global force, moment).
 type Pattern = Vec<(f64, [f64; 2], f64)>;
 
-fn displacements_at(beam: &Beam, q: &[f64], xs: &[f64]) -> Vec<[f64; 2]> {
-    xs.iter()
-        .map(|&x| {
-            let d = beam.displacement_at(q, x);
-            [d.u, d.w]
-        })
-        .collect()
-}
-
 /// Why the exact beam's static response could not be measured.
 enum Unmeasured {
     /// A mechanism, a load it buckles under, or no response at the probes.
@@ -106,10 +97,16 @@ enum Unmeasured {
 /// The largest linear and exact static response at the probes, and their largest difference,
 /// over the load cases.
 fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Result<(f64, f64), Unmeasured> {
-    let across = |beam: &Beam, q: &[f64]| -> Vec<f64> {
-        displacements_at(beam, q, xs)
-            .iter()
-            .map(|d| beam.to_local(*d)[1])
+    // Each probe's deflection across the axis and its rotation as a length.
+    let across = |beam: &Beam, q: &[f64]| -> Vec<[f64; 2]> {
+        (xs.iter())
+            .map(|&x| {
+                let d = beam.displacement_at(q, x);
+                [
+                    beam.to_local([d.u, d.w])[1],
+                    d.phi * beam.spec.rotation_as_length(1.0),
+                ]
+            })
             .collect()
     };
     let exact = Beam::shared(&BeamSpec {
@@ -124,7 +121,8 @@ fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Result<(f64, 
     });
     let n = exact.dim();
     let lu = SparseLu::factor(&small.tangent(&vec![0.0; n]), None).ok_or(Unmeasured::Nothing)?;
-    let (mut size, mut gap) = (0.0_f64, 0.0_f64);
+    // The largest deflection and rotation, and their largest changes.
+    let (mut size, mut gap) = ([0.0_f64; 2], [0.0_f64; 2]);
     for case in cases {
         let mut f = vec![0.0; n];
         exact.add_weight(&mut f);
@@ -135,14 +133,23 @@ fn nonlinearity(spec: &BeamSpec, cases: &[Pattern], xs: &[f64]) -> Result<(f64, 
         lu.solve_in_place(&mut linear);
         let a = across(&exact, &linear);
         let Ok(solved) = statics::solve(&exact, &f) else {
-            return Err(uncarried(spec, case, &a, exact.length));
+            let deflections: Vec<f64> = a.iter().map(|l| l[0]).collect();
+            return Err(uncarried(spec, case, &deflections, exact.length));
         };
         let b = across(&exact, &solved.q);
         for (l, e) in a.iter().zip(&b) {
-            size = size.max(l.abs());
-            gap = gap.max((l - e).abs());
+            for c in 0..2 {
+                size[c] = size[c].max(l[c].abs());
+                gap[c] = gap[c].max((l[c] - e[c]).abs());
+            }
         }
     }
+    let by_rotation = response_scale(size[0], size[1]) != size[0];
+    let (size, gap) = if by_rotation {
+        (size[1], gap[1])
+    } else {
+        (size[0], gap[0])
+    };
     if size.is_finite() && size > 0.0 {
         Ok((size, gap))
     } else {
@@ -244,8 +251,8 @@ fn mode_shares(
     let mut parts = Vec::with_capacity(m.omega.len());
     let mut passing = Vec::with_capacity(m.omega.len());
     let mut stepping = Vec::with_capacity(m.omega.len());
-    let mut total = vec![[0.0; 2]; xs.len()];
-    let turned = longest_span(&beam) / std::f64::consts::PI;
+    let mut total = vec![[0.0; 3]; xs.len()];
+    let turned = beam.spec.rotation_as_length(1.0);
     for k in 0..m.omega.len() {
         let shape: Vec<f64> = m.shapes.column(k).iter().copied().collect();
         let w2 = m.omega[k] * m.omega[k];
@@ -262,15 +269,19 @@ fn mode_shares(
             vec![[0.0; 3]; xs.len()]
         };
         for (t, p) in total.iter_mut().zip(&part) {
-            t[0] += p[0];
-            t[1] += p[1];
+            for (tc, pc) in t.iter_mut().zip(p) {
+                *tc += pc;
+            }
         }
         parts.push(part);
         let (kappa, at_free_ends) = steepness_and_free_ends(&beam, &shape, &stations);
         passing.push(kappa / m.omega[k]);
         stepping.push(at_free_ends);
     }
-    let scale = total.iter().fold(0.0_f64, |s, v| s.max(v[0].hypot(v[1])));
+    let scale = response_scale(
+        total.iter().fold(0.0_f64, |s, v| s.max(v[0].hypot(v[1]))),
+        total.iter().fold(0.0_f64, |s, v| s.max(v[2].abs())),
+    );
     if !(scale > 0.0) {
         return Err(fallback("12 modes (or as many as the mesh has): the loads that change during the run do not deflect the probes"));
     }
@@ -291,16 +302,6 @@ fn mode_shares(
         switched,
         riding,
     })
-}
-
-/// The longest stretch between the ends and the intermediate bearings: a mode turns by about
-/// π times its deflection over the half wave it makes, which on a continuous beam is a span, not
-/// the whole length.
-fn longest_span(beam: &Beam) -> f64 {
-    let mut ends = vec![0.0];
-    ends.extend(beam.spec.bearings.iter().copied());
-    ends.push(beam.length);
-    ends.windows(2).fold(0.0, |m, w| m.max(w[1] - w[0]))
 }
 
 /// Stations an element the steepest slope of a mode's deflection is sought at.

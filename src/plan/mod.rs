@@ -44,7 +44,7 @@ pub struct Planner {
     chosen: Mutex<BTreeMap<String, Discretisation>>,
     models: Mutex<BTreeMap<String, ChosenModel>>,
     dampings: Mutex<BTreeMap<String, (f64, String)>>,
-    responses: Mutex<BTreeMap<String, Option<f64>>>,
+    responses: Mutex<BTreeMap<String, Option<(f64, bool)>>>,
     gaps: Mutex<BTreeMap<String, Option<f64>>>,
     lowest: Mutex<BTreeMap<String, Option<f64>>>,
 }
@@ -279,9 +279,11 @@ impl Planner {
     fn size_response(&self, b: &mut BeamScene) {
         let (weight, xs) = (riding_weight(b), b.planning_points());
         let key = format!("{:?} {:?} {weight:?} {xs:?}", b.beam, b.loads);
-        b.response = kept(&self.responses, key, || {
+        let response = kept(&self.responses, key, || {
             response_size(&b.beam, &b.loads, weight, &xs)
         });
+        b.response = response.map(|(size, _)| size);
+        b.response_turned = response.is_some_and(|(_, turned)| turned);
         b.passage = loaded_for(b).and_then(|crossing| {
             let share = passage_share(self.lowest_omega(b)?, crossing);
             (share < 1.0).then_some((share, crossing))

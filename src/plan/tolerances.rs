@@ -290,6 +290,11 @@ pub fn atol_for(scene: &BeamScene) -> Option<(f64, String)> {
     } else {
         "at a probe"
     };
+    let at = if scene.response_turned {
+        format!("{at}, here a rotation, which the loads only turn the probes by, times the longest span over pi")
+    } else {
+        at.to_string()
+    };
     let why = match scene.passage {
         Some((share, crossing)) => format!(
             "rtol times {size:.3e} m, the largest static displacement the loads cause {at} ({:.3e} m) times {share:.3e}: they are on the beam for {crossing:.3e} s, short against its first period, an impulse that leaves (2/pi) omega1 T of the static response; each step's error is measured against the response, not against the displacement of the moment, which a vibration takes through zero twice a period",

@@ -140,6 +140,7 @@ pub(super) fn beam_scene(
             Some(f) => Some(c.positive(f, "output.acceleration_cutoff_hz")?),
         },
         response: None,
+        response_turned: false,
         passage: None,
     };
     scene.probe_mid_when_none_given(length);

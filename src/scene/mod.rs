@@ -140,6 +140,9 @@ pub struct BeamScene {
     /// The size of the displacements its loads cause (m), when the supports allow a static
     /// estimate: see `analysis::discretisation::response_size`. Set by the plan.
     pub response: Option<f64>,
+    /// The loads only turn the probes, and `response` is their rotation as a length
+    /// (`beam::response_scale`). Set by the plan.
+    pub response_turned: bool,
     /// Where what moves over the beam is on it too briefly to load it statically: the share
     /// of the static response it leaves, and how long it is on (s). Set by the plan.
     pub passage: Option<(f64, f64)>,
