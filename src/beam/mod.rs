@@ -279,8 +279,8 @@ pub struct NodeBasis {
 /// frame) of its displacement as rows over the free unknowns. What rides on the axis (a
 /// disk's contact, a moving mass) adds its inertia through these.
 pub fn position_rows(basis: &[NodeBasis]) -> [Vec<(usize, f64)>; 2] {
-    let mut gx = Vec::new();
-    let mut gy = Vec::new();
+    let mut gx = Vec::with_capacity(basis.len());
+    let mut gy = Vec::with_capacity(basis.len());
     for nb in basis {
         if let Some(i) = nb.u {
             gx.push((i, nb.d[0]));

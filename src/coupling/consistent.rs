@@ -16,6 +16,8 @@ impl Consistent {
         let tg = at.tangent();
         let dpsi = at.psi_gradient();
         let [mut gx, mut gy] = at.position_gradient();
+        gx.reserve(dpsi.len() + 1);
+        gy.reserve(dpsi.len() + 1);
         for &(i, d) in &dpsi {
             gx.push((i, -a * d * tg[0]));
             gy.push((i, -a * d * tg[1]));
@@ -44,6 +46,7 @@ impl Law for Consistent {
         let [gx, gy, gb] = Self::rows(r, at);
         let c = at.centre(a);
         let theta_quad = at.psi.d2 - at.rp.d1 * at.sdot / a;
+        force.reserve(gx.len() + gy.len() + gb.len());
         for (row, w) in [
             (&gx, -m * (c[0].d2 - g[0])),
             (&gy, -m * (c[1].d2 - g[1])),

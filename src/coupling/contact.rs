@@ -122,7 +122,8 @@ impl AxisPoint {
     /// ∂ψ/∂q: the slope responds to the nodal displacements through S'.
     pub fn psi_gradient(&self) -> Row {
         let rp2 = self.rp.v * self.rp.v;
-        let mut row = Row::new();
+        // Room for the contact coordinate's entry a rolling law adds after these.
+        let mut row = Row::with_capacity(2 * self.nodes.len() + 1);
         for nb in &self.nodes {
             if let Some(i) = nb.u {
                 row.push((i, -self.dw.v * nb.d[1] / rp2));
