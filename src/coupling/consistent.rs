@@ -10,6 +10,19 @@ use super::law::{AddedMass, Law, Motion, Rider};
 pub(crate) struct Consistent;
 
 impl Consistent {
+    /// The force on the rows of [`Self::rows`]: −m (c̈ − g) where c̈ is the centre's
+    /// acceleration at z̈ = 0, and −C times the rolling rate's part that z̈ does not give.
+    fn force_weights(r: &Rider, at: &AxisPoint) -> [f64; 3] {
+        let (m, a, g) = (r.disk.mass, r.disk.radius, r.gravity);
+        let c = at.centre(a);
+        let theta_quad = at.psi.d2 - at.rp.d1 * at.sdot / a;
+        [
+            -m * (c[0].d2 - g[0]),
+            -m * (c[1].d2 - g[1]),
+            -r.disk.inertia() * theta_quad,
+        ]
+    }
+
     /// ∂c_X/∂z, ∂c_Y/∂z and B = ∂θ̇/∂ż.
     fn rows(r: &Rider, at: &AxisPoint) -> [Row; 3] {
         let a = r.disk.radius;
@@ -42,18 +55,16 @@ impl Law for Consistent {
     }
 
     fn force(&self, r: &Rider, at: &AxisPoint, force: &mut Vec<(usize, f64)>) {
-        let (m, a, g) = (r.disk.mass, r.disk.radius, r.gravity);
         let [gx, gy, gb] = Self::rows(r, at);
-        let c = at.centre(a);
-        let theta_quad = at.psi.d2 - at.rp.d1 * at.sdot / a;
+        let weights = Self::force_weights(r, at);
         force.reserve(gx.len() + gy.len() + gb.len());
-        for (row, w) in [
-            (&gx, -m * (c[0].d2 - g[0])),
-            (&gy, -m * (c[1].d2 - g[1])),
-            (&gb, -r.disk.inertia() * theta_quad),
-        ] {
+        for (row, w) in [&gx, &gy, &gb].into_iter().zip(weights) {
             force.extend(row.iter().map(|&(i, v)| (i, v * w)));
         }
+    }
+
+    fn force_on_inertia_rows(&self, r: &Rider, at: &AxisPoint) -> Option<Vec<f64>> {
+        Some(Self::force_weights(r, at).to_vec())
     }
 
     fn motion(&self, r: &Rider, at: &AxisPoint, zd: &[f64], zdd: &[f64]) -> Motion {

@@ -43,6 +43,11 @@ pub(crate) trait Law {
     fn added_mass(&self, r: &Rider, at: &AxisPoint) -> AddedMass;
     /// The rider's generalised force on z, appended to `force` as (index, value).
     fn force(&self, r: &Rider, at: &AxisPoint, force: &mut Vec<(usize, f64)>);
+    /// Where the generalised force is Σ c_k g_k over the rows g_k of [`Law::added_mass`], in
+    /// their order, the c_k: the same force as [`Law::force`], from rows formed once.
+    fn force_on_inertia_rows(&self, _r: &Rider, _at: &AxisPoint) -> Option<Vec<f64>> {
+        None
+    }
     /// The rider's motion at the state whose velocities are `zd` and accelerations `zdd`.
     fn motion(&self, r: &Rider, at: &AxisPoint, zd: &[f64], zdd: &[f64]) -> Motion;
 }

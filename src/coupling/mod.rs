@@ -506,19 +506,32 @@ impl<'a> DiskOnBeam<'a> {
             .on()
             .map(|(_, d)| (d, self.contact_of(d, t, z, zd)))
             .collect();
+        let (forces, added): (Vec<Row>, Vec<AddedMass>) = (contacts.iter())
+            .map(|(d, at)| self.force_and_inertia(d, at))
+            .unzip();
         // Newton's next mass product is at this z: its inertia is formed from these contacts
         // rather than from second ones at zero velocity.
         self.inertia.at(t, &[z], || {
-            contacts
-                .iter()
-                .flat_map(|(d, at)| self.added_mass(d, at))
+            (added.into_iter().flatten())
                 .chain(self.loaded.axle_inertia(t))
                 .collect()
         });
-        contacts
-            .iter()
-            .flat_map(|(d, at)| self.force_at(d, at))
-            .collect()
+        forces.concat()
+    }
+
+    /// Disk `d`'s generalised force and inertia at its contact `at`, each as rows over z. A
+    /// law whose force is a combination of its inertia's rows
+    /// ([`law::Law::force_on_inertia_rows`]) has them formed and reduced once for both: on a
+    /// modal beam the reduction through Φᵀ is most of what a disk costs a right-hand side.
+    fn force_and_inertia(&self, d: &Mounted, at: &AxisPoint) -> (Row, AddedMass) {
+        let added = self.added_mass(d, at);
+        let force = match d.law.force_on_inertia_rows(&d.rider, at) {
+            Some(weights) => (added.iter().zip(weights))
+                .flat_map(|((_, row), c)| row.iter().map(move |&(i, v)| (i, v * c)))
+                .collect(),
+            None => self.force_at(d, at),
+        };
+        (force, added)
     }
 
     /// Disk `d`'s generalised force at its contact `at`.
@@ -575,8 +588,9 @@ impl<'a> DiskOnBeam<'a> {
         let mut added = self.loaded.axle_inertia(t);
         for (_, d) in self.on() {
             let at = self.observed_contact(d, t, z, zd);
-            force.extend(self.force_at(d, &at));
-            added.extend(self.added_mass(d, &at));
+            let (f, a) = self.force_and_inertia(d, &at);
+            force.extend(f);
+            added.extend(a);
         }
         let mut y = vec![0.0; self.dim()];
         self.force_from(t, z, zd, &force, &mut y);

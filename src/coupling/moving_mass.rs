@@ -8,6 +8,13 @@ use super::moving_force::prescribed_motion;
 
 pub(crate) struct MovingMass;
 
+/// The force on the rows of the position's gradient: −m (r̈ − g), r̈ the axis point's
+/// acceleration at z̈ = 0 (its convected part).
+fn weights(r: &Rider, at: &AxisPoint) -> [f64; 2] {
+    let (m, g) = (r.disk.mass, r.gravity);
+    [-m * (at.x.d2 - g[0]), -m * (at.y.d2 - g[1])]
+}
+
 impl Law for MovingMass {
     fn unknowns(&self) -> usize {
         0
@@ -19,11 +26,14 @@ impl Law for MovingMass {
     }
 
     fn force(&self, r: &Rider, at: &AxisPoint, force: &mut Vec<(usize, f64)>) {
-        let (m, g) = (r.disk.mass, r.gravity);
         let [gx, gy] = at.position_gradient();
-        for (row, w) in [(&gx, -m * (at.x.d2 - g[0])), (&gy, -m * (at.y.d2 - g[1]))] {
+        for (row, w) in [&gx, &gy].into_iter().zip(weights(r, at)) {
             force.extend(row.iter().map(|&(i, v)| (i, v * w)));
         }
+    }
+
+    fn force_on_inertia_rows(&self, r: &Rider, at: &AxisPoint) -> Option<Vec<f64>> {
+        Some(weights(r, at).to_vec())
     }
 
     fn motion(&self, r: &Rider, at: &AxisPoint, _zd: &[f64], zdd: &[f64]) -> Motion {
