@@ -136,6 +136,20 @@ impl ModalBasis {
         }
     }
 
+    /// [`Self::expand_at`] of a displacement and a velocity together, each row of Φ read once.
+    pub fn expand_pair_at(
+        &self,
+        at: impl Iterator<Item = usize>,
+        (eta, eta_rate): (&[f64], &[f64]),
+        (q, v): (&mut [f64], &mut [f64]),
+    ) {
+        for i in at {
+            let row = self.row(i);
+            q[i] = row.iter().zip(eta).map(|(p, e)| p * e).sum();
+            v[i] = row.iter().zip(eta_rate).map(|(p, e)| p * e).sum();
+        }
+    }
+
     /// q_i = Σ_k Φ_ik η_k: one unknown of the mesh.
     pub fn value_at(&self, i: usize, eta: &[f64]) -> f64 {
         self.row(i).iter().zip(eta).map(|(p, e)| p * e).sum()

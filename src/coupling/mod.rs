@@ -157,6 +157,9 @@ struct Mounted {
     observed: LastEvaluation<AxisPoint>,
     /// It has left the beam: it no longer acts on it, and its contact coordinate rests.
     gone: Cell<bool>,
+    /// On a modal beam, the mesh's displacements and velocities under its patch, expanded
+    /// from the modes at each contact: only the patch's entries are written and read.
+    under_patch: RefCell<[Vec<f64>; 2]>,
 }
 
 /// The disks on the beam: each with its own law, unknown, events and energy, assembled into
@@ -250,11 +253,12 @@ impl<'a> DiskOnBeam<'a> {
                     }));
                     event_of.extend((0..watched).map(|e| (k, e)));
                 }
+                let mesh = loaded.beam.dim();
                 Mounted {
                     rider: Rider {
                         disk: spec.disk,
                         gravity: loaded.beam.to_local([0.0, -spec.gravity]),
-                        n: loaded.beam.dim(),
+                        n: mesh,
                         omega0: spec.omega0,
                     },
                     spec,
@@ -263,6 +267,7 @@ impl<'a> DiskOnBeam<'a> {
                     basis: RefCell::new(None),
                     observed: LastEvaluation::new(),
                     gone: Cell::new(false),
+                    under_patch: RefCell::new([vec![0.0; mesh], vec![0.0; mesh]]),
                 }
             })
             .collect();
@@ -483,13 +488,11 @@ impl<'a> DiskOnBeam<'a> {
         match self.loaded.modal {
             None => AxisPoint::on(nodes, &z[..self.n], &zd[..self.n], s, sdot),
             Some(modal) => {
-                // Only the unknowns under the patch are read.
-                let mesh = d.rider.n;
-                let (mut q, mut v) = (vec![0.0; mesh], vec![0.0; mesh]);
-                let under = || nodes.iter().flat_map(|nb| [nb.u, nb.w, nb.phi]).flatten();
-                modal.expand_at(under(), &z[..self.n], &mut q);
-                modal.expand_at(under(), &zd[..self.n], &mut v);
-                AxisPoint::on(nodes, &q, &v, s, sdot)
+                let mut under_patch = d.under_patch.borrow_mut();
+                let [q, v] = &mut *under_patch;
+                let under = nodes.iter().flat_map(|nb| [nb.u, nb.w, nb.phi]).flatten();
+                modal.expand_pair_at(under, (&z[..self.n], &zd[..self.n]), (q, v));
+                AxisPoint::on(nodes, q, v, s, sdot)
             }
         }
     }
