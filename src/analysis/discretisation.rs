@@ -156,23 +156,20 @@ pub struct Discretisation {
 #[derive(Clone)]
 struct Estimate {
     static_at_probes: Vec<f64>,
-    /// The probes' static rotations as lengths ([`BeamSpec::rotation_as_length`]).
-    turned_at_probes: Vec<f64>,
+    /// The probes' static rotations |φ|, and the largest as a length
+    /// ([`BeamSpec::rotation_as_length`]).
+    rotation_at_probes: Vec<f64>,
+    turned: f64,
     omega: Vec<f64>,
     truncated: Vec<Vec<f64>>,
-    rotations: Option<Rotations>,
-}
-
-/// The probes' static rotations, and after the first k modes for every k. A load switched on
-/// an undamped beam leaves every mode ringing with its static share, and a mode's share of a
-/// rotation falls more slowly with its order than its share of a deflection. Counted by the
-/// deflections alone, C1's 12 elements read the rotation rows 1.5·10⁻³ of their largest off 64
-/// elements' (the 16 counted by the rotations too: 8.9·10⁻⁴), and B1's 12 elements 3.2·10⁻³ off
-/// a run asked for a tenth of the accuracy (its 24: 8.0·10⁻⁴).
-#[derive(Clone)]
-struct Rotations {
-    static_at_probes: Vec<f64>,
-    truncated: Vec<Vec<f64>>,
+    /// The rotations after the first k modes for every k, where a load is switched. A load
+    /// switched on an undamped beam leaves every mode ringing with its static share, and a
+    /// mode's share of a rotation falls more slowly with its order than its share of a
+    /// deflection. Counted by the deflections alone, C1's 12 elements read the rotation rows
+    /// 1.5·10⁻³ of their largest off 64 elements' (the 16 counted by the rotations too:
+    /// 8.9·10⁻⁴), and B1's 12 elements 3.2·10⁻³ off a run asked for a tenth of the accuracy
+    /// (its 24: 8.0·10⁻⁴).
+    truncated_rotations: Option<Vec<Vec<f64>>>,
 }
 
 /// `loads` make the static deflection; those flagged `true` change during the run and so
@@ -257,17 +254,14 @@ fn estimate(
         }
     }
     let displaced = probes.iter().map(|&x| beam.displacement_at(&q, x));
+    let rotation_at_probes: Vec<f64> = displaced.clone().map(|d| d.phi.abs()).collect();
     Some(Estimate {
-        static_at_probes: displaced.clone().map(|d| d.u.hypot(d.w)).collect(),
-        turned_at_probes: (displaced.clone())
-            .map(|d| spec.rotation_as_length(d.phi))
-            .collect(),
+        static_at_probes: displaced.map(|d| d.u.hypot(d.w)).collect(),
+        turned: spec.rotation_as_length(largest(&rotation_at_probes)),
+        rotation_at_probes,
         omega,
         truncated,
-        rotations: rotations.then(|| Rotations {
-            static_at_probes: displaced.map(|d| d.phi.abs()).collect(),
-            truncated: truncated_rotations,
-        }),
+        truncated_rotations: rotations.then_some(truncated_rotations),
     })
 }
 
@@ -588,11 +582,7 @@ fn within(a: &[f64], b: &[f64], tol: f64) -> bool {
 /// `tol` of the deflection: nothing to hold them to); `None` where the loads do not deflect
 /// the probes.
 fn excited_modes(est: &Estimate, tol: f64) -> Option<(usize, [f64; 2])> {
-    let largest = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(*x));
-    let scale = response_scale(
-        largest(&est.static_at_probes),
-        largest(&est.turned_at_probes),
-    );
+    let scale = response_scale(largest(&est.static_at_probes), est.turned);
     if !(scale > 0.0) {
         return None;
     }
@@ -607,17 +597,22 @@ fn excited_modes(est: &Estimate, tol: f64) -> Option<(usize, [f64; 2])> {
             .map_or(1, |k| k + 1)
     };
     let deflected = last_adding(&est.truncated, scale);
-    let Some(r) = &est.rotations else {
+    let Some(truncated_rotations) = &est.truncated_rotations else {
         return Some((deflected, [scale, 0.0]));
     };
-    let turned = largest(&r.static_at_probes);
-    if largest(&est.turned_at_probes) <= tol * scale {
+    if est.turned <= tol * scale {
         return Some((deflected, [scale, 0.0]));
     }
+    let turned = largest(&est.rotation_at_probes);
     Some((
-        deflected.max(last_adding(&r.truncated, turned)),
+        deflected.max(last_adding(truncated_rotations, turned)),
         [scale, turned],
     ))
+}
+
+/// The largest of `v`'s entries, 0 for none.
+fn largest(v: &[f64]) -> f64 {
+    v.iter().fold(0.0_f64, |m, x| m.max(*x))
 }
 
 /// The mesh [`refine`] settled on, and whether the last two meshes it compared agreed.
@@ -667,8 +662,10 @@ fn refine(
                 .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
         };
         let dw = largest_change(&coarse.static_at_probes, &fine.static_at_probes);
-        let dphi = match (&coarse.rotations, &fine.rotations) {
-            (Some(a), Some(b)) => largest_change(&a.static_at_probes, &b.static_at_probes),
+        let dphi = match (&coarse.truncated_rotations, &fine.truncated_rotations) {
+            (Some(_), Some(_)) => {
+                largest_change(&coarse.rotation_at_probes, &fine.rotation_at_probes)
+            }
             _ => 0.0,
         };
         // A rotation the check does not hold (`limits[1]` 0) moves the mesh nowhere.
