@@ -221,12 +221,17 @@ impl ModalBasis {
         }
     }
 
-    /// (R f)ᵢ at each unknown i of `at`, for a force acting on the unknowns `acting` (index,
-    /// value): R is symmetric, so each is R's column i against the force, a few products per
-    /// unknown where [`Self::add_static_correction`] forms R f over the whole mesh. Vehicles'
-    /// wheels read their track at the unknowns under them alone; `None` on a mesh past
-    /// [`KEPT_COLUMNS_UP_TO`] unknowns or without a flexibility.
-    pub fn static_correction_at(&self, acting: &[(usize, f64)], at: &[usize]) -> Option<Vec<f64>> {
+    /// (R f)ᵢ at each unknown i of `at` for each of K forces acting on the unknowns `acting`
+    /// (index, the K forces' values there): R is symmetric, so each is R's column i against
+    /// the forces, a few products per unknown where [`Self::add_static_correction`] forms
+    /// R f over the whole mesh, and the forces share each column as it is read. Vehicles'
+    /// wheels read their track and its rates at the unknowns under them alone; `None` on a
+    /// mesh past [`KEPT_COLUMNS_UP_TO`] unknowns or without a flexibility.
+    pub fn static_corrections_at<const K: usize>(
+        &self,
+        acting: &[(usize, [f64; K])],
+        at: &[usize],
+    ) -> Option<Vec<[f64; K]>> {
         let lu = self.flexibility.as_ref()?;
         let n = self.shapes.nrows();
         if n > KEPT_COLUMNS_UP_TO {
@@ -238,7 +243,12 @@ impl ModalBasis {
             at.iter()
                 .map(|&i| {
                     let column = columns[i].get_or_insert_with(|| self.column_of_r(lu, i));
-                    acting.iter().map(|&(j, f)| column[j] * f).sum()
+                    let mut out = [0.0; K];
+                    for &(j, f) in acting {
+                        let r = column[j];
+                        out.iter_mut().zip(f).for_each(|(o, f)| *o += r * f);
+                    }
+                    out
                 })
                 .collect(),
         )

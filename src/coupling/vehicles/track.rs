@@ -136,17 +136,28 @@ impl VehiclesOnBeam<'_> {
             return;
         };
         let n = self.loaded.beam.dim();
-        let mut loads: [Vec<(usize, f64)>; 3] = Default::default();
+        // Per unknown a wheel loads, the force there and its first two rates, summed over
+        // the wheels: several wheels' patches share unknowns.
+        let mut loads: Vec<(usize, [f64; 3])> = Vec::new();
         for (c, rows) in contacts.iter().zip(on_mesh) {
             let p = -self.vehicles[c.vehicle].static_loads[c.axle];
             let (v, a) = (c.speed, c.accel);
-            loads[0].extend(rows[0].iter().map(|&(i, g)| (i, p * g)));
-            for &(i, g) in &rows[1] {
-                loads[1].push((i, p * v * g));
-                loads[2].push((i, p * a * g));
-            }
-            loads[2].extend(rows[2].iter().map(|&(i, g)| (i, p * v * v * g)));
+            loads.extend(rows[0].iter().map(|&(i, g)| (i, [p * g, 0.0, 0.0])));
+            loads.extend(
+                rows[1]
+                    .iter()
+                    .map(|&(i, g)| (i, [0.0, p * v * g, p * a * g])),
+            );
+            loads.extend(rows[2].iter().map(|&(i, g)| (i, [0.0, 0.0, p * v * v * g])));
         }
+        loads.sort_unstable_by_key(|&(i, _)| i);
+        loads.dedup_by(|(i, f), (kept, sum)| {
+            let same = i == kept;
+            if same {
+                sum.iter_mut().zip(*f).for_each(|(s, f)| *s += f);
+            }
+            same
+        });
         // The wheels read u at the unknowns under them alone.
         let mut under: Vec<usize> = on_mesh
             .iter()
@@ -154,21 +165,24 @@ impl VehiclesOnBeam<'_> {
             .collect();
         under.sort_unstable();
         under.dedup();
-        let solve = |f: &[(usize, f64)]| {
-            let mut u = vec![0.0; n];
-            match modal.static_correction_at(f, &under) {
-                Some(values) => under.iter().zip(values).for_each(|(&i, v)| u[i] = v),
-                None => {
-                    let mut dense = vec![0.0; n];
-                    f.iter().for_each(|&(i, v)| dense[i] += v);
-                    modal.add_static_correction(&dense, &mut u);
+        let mut u = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
+        match modal.static_corrections_at(&loads, &under) {
+            Some(values) => {
+                for (&i, v) in under.iter().zip(values) {
+                    (0..3).for_each(|k| u[k][i] = v[k]);
                 }
             }
-            u
-        };
-        let (u0, u1) = (solve(&loads[0]), solve(&loads[1]));
+            None => {
+                for (k, u) in u.iter_mut().enumerate() {
+                    let mut dense = vec![0.0; n];
+                    loads.iter().for_each(|&(i, f)| dense[i] += f[k]);
+                    modal.add_static_correction(&dense, u);
+                }
+            }
+        }
+        let [u0, u1, u2] = u;
         // The track's acceleration enters only through an unsprung mass's inertia.
-        let u2 = self.unsprung().then(|| solve(&loads[2]));
+        let u2 = self.unsprung().then_some(u2);
         let read = |row: &Row, u: &[f64]| -> f64 { row.iter().map(|&(i, g)| g * u[i]).sum() };
         for (c, rows) in contacts.iter_mut().zip(on_mesh) {
             let (v, a) = (c.speed, c.accel);
