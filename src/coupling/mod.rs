@@ -38,6 +38,7 @@ pub mod vehicles;
 
 use std::borrow::Cow;
 use std::cell::{Cell, OnceCell, RefCell};
+use std::collections::VecDeque;
 use std::rc::Rc;
 
 use contact::{AxisPoint, Row};
@@ -191,32 +192,47 @@ pub struct DiskOnBeam<'a> {
 /// observation was made from.
 type ObservedAt = ([f64; 3], Vec<Option<DiskObservation>>, Option<Vec<f64>>);
 
-/// A value kept with the time and state (t, y) it was formed at, until another is asked.
-pub(crate) struct LastEvaluation<T>(RefCell<Option<(f64, Vec<f64>, Rc<T>)>>);
+/// Values kept with the time and state (t, y) each was formed at: the last one, or the last
+/// few where observers come back to times the steps met.
+pub(crate) struct LastEvaluation<T> {
+    kept: RefCell<VecDeque<(f64, Vec<f64>, Rc<T>)>>,
+    capacity: usize,
+}
 
 impl<T> LastEvaluation<T> {
     pub(crate) fn new() -> Self {
-        LastEvaluation(RefCell::new(None))
+        Self::keeping(1)
     }
 
-    /// The value at (t, the parts of y in order), formed by `form` unless it is the one kept.
+    /// Keeping the last `capacity` values.
+    pub(crate) fn keeping(capacity: usize) -> Self {
+        LastEvaluation {
+            kept: RefCell::new(VecDeque::with_capacity(capacity)),
+            capacity: capacity.max(1),
+        }
+    }
+
+    /// The value at (t, the parts of y in order), formed by `form` unless it is one kept.
     pub(crate) fn at(&self, t: f64, y: &[&[f64]], form: impl FnOnce() -> T) -> Rc<T> {
-        let mut kept = self.0.borrow_mut();
+        let mut kept = self.kept.borrow_mut();
         let same = |k: &[f64]| {
             k.len() == y.iter().map(|p| p.len()).sum::<usize>()
                 && y.iter().flat_map(|p| p.iter()).zip(k).all(|(a, b)| a == b)
         };
-        if let Some((_, _, v)) = kept.as_ref().filter(|(kt, k, _)| *kt == t && same(k)) {
+        if let Some((_, _, v)) = kept.iter().rev().find(|(kt, k, _)| *kt == t && same(k)) {
             return v.clone();
         }
         let v = Rc::new(form());
-        *kept = Some((t, y.concat(), v.clone()));
+        if kept.len() == self.capacity {
+            kept.pop_front();
+        }
+        kept.push_back((t, y.concat(), v.clone()));
         v
     }
 
-    /// Forget the value kept: what it depends on beside (t, y) has changed.
+    /// Forget the values kept: what they depend on beside (t, y) has changed.
     pub(crate) fn forget(&self) {
-        self.0.borrow_mut().take();
+        self.kept.borrow_mut().clear();
     }
 }
 
