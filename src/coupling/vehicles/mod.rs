@@ -411,6 +411,19 @@ impl<'a> VehiclesOnBeam<'a> {
         self.vehicles.iter().any(|v| v.has_unsprung_mass())
     }
 
+    /// z̈ at (t, z, ż) where the wheels' contact forces feel it, through an unsprung mass's
+    /// inertia; empty where no wheel has a mass, whose contact force is then its springs' and
+    /// its track's alone ([`Self::contact_forces`] reads no acceleration): the energy budget
+    /// and the reactions ask for the forces at every sample, and a solve for z̈ costs a force
+    /// evaluation and a mass solve.
+    pub fn acceleration_the_wheels_feel(&self, t: f64, z: &[f64], zd: &[f64]) -> Vec<f64> {
+        if self.unsprung() {
+            self.acceleration(t, z, zd)
+        } else {
+            Vec::new()
+        }
+    }
+
     /// z̈ at (t, z, ż).
     pub fn acceleration(&self, t: f64, z: &[f64], zd: &[f64]) -> Vec<f64> {
         let mut a = vec![0.0; self.dim];
@@ -433,7 +446,8 @@ impl<'a> VehiclesOnBeam<'a> {
     }
 
     /// Each wheel's contact force R_a = P_a + m_a d̈_a − S_a at (t, z, ż) with z̈ = `zdd`, in
-    /// the order of the contacts.
+    /// the order of the contacts. Only a wheel with a mass reads `zdd`: where none has one it
+    /// may be empty ([`Self::acceleration_the_wheels_feel`]).
     pub fn contact_forces(&self, t: f64, z: &[f64], zd: &[f64], zdd: &[f64]) -> Vec<f64> {
         let contacts = self.contacts(t, &z[..self.n]);
         let states = self.springs(t, z, zd);
@@ -968,12 +982,7 @@ impl SecondOrderProblem for VehiclesOnBeam<'_> {
             .fold(0.0_f64, |m, p| m.max(*p));
         let stretch = [self.segment.get()];
         let rn = self.forces_at.at(t, &[z, zd, &stretch], || {
-            let zdd = if self.unsprung() {
-                self.acceleration(t, z, zd)
-            } else {
-                Vec::new()
-            };
-            self.contact_forces(t, z, zd, &zdd)
+            self.contact_forces(t, z, zd, &self.acceleration_the_wheels_feel(t, z, zd))
         });
         rn[index] / scale
     }

@@ -337,7 +337,7 @@ impl<'a> Ledger<'a> {
         };
         let drive = phase.vehicles.map_or(0.0, |v| {
             let (z, zd) = phase.split(y);
-            v.drive_power(t, z, zd, &v.acceleration(t, z, zd))
+            v.drive_power(t, z, zd, &v.acceleration_the_wheels_feel(t, z, zd))
         });
         disk + train + drive
     }

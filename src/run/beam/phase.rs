@@ -157,7 +157,7 @@ impl<'a> Phase<'a> {
         let (z, zd) = self.split(y);
         match rate {
             Some(yp) => v.forces_on_beam(t, z, zd, self.split(yp).1),
-            None => v.forces_on_beam(t, z, zd, &v.acceleration(t, z, zd)),
+            None => v.forces_on_beam(t, z, zd, &v.acceleration_the_wheels_feel(t, z, zd)),
         }
     }
 

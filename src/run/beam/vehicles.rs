@@ -236,7 +236,7 @@ fn take_off(scene: &Scene, flights: &mut Vec<WheelFlight>, k: usize, t: f64) -> 
 /// Whether wheel k, on the track at (t, y), pulls on it.
 fn pulls(v: &VehiclesOnBeam, k: usize, t: f64, y: &[f64]) -> bool {
     let (z, zd) = y.split_at(v.dim());
-    v.contact_forces(t, z, zd, &v.acceleration(t, z, zd))[k] < 0.0
+    v.contact_forces(t, z, zd, &v.acceleration_the_wheels_feel(t, z, zd))[k] < 0.0
 }
 
 /// Each vehicle's report from the ranges watched (per vehicle, its bodies' accelerations then
