@@ -137,34 +137,29 @@ impl VehiclesOnBeam<'_> {
         };
         let n = self.loaded.beam.dim();
         // Per unknown a wheel loads, the force there and its first two rates, summed over
-        // the wheels: several wheels' patches share unknowns.
-        let mut loads: Vec<(usize, [f64; 3])> = Vec::new();
+        // the wheels (several wheels' patches share unknowns); the wheels read u at those
+        // unknowns alone.
+        let mut sums = vec![[0.0; 3]; n];
+        let mut seen = vec![false; n];
+        let mut under: Vec<usize> = Vec::new();
         for (c, rows) in contacts.iter().zip(on_mesh) {
             let p = -self.vehicles[c.vehicle].static_loads[c.axle];
             let (v, a) = (c.speed, c.accel);
-            loads.extend(rows[0].iter().map(|&(i, g)| (i, [p * g, 0.0, 0.0])));
-            loads.extend(
-                rows[1]
-                    .iter()
-                    .map(|&(i, g)| (i, [0.0, p * v * g, p * a * g])),
-            );
-            loads.extend(rows[2].iter().map(|&(i, g)| (i, [0.0, 0.0, p * v * v * g])));
-        }
-        loads.sort_unstable_by_key(|&(i, _)| i);
-        loads.dedup_by(|(i, f), (kept, sum)| {
-            let same = i == kept;
-            if same {
-                sum.iter_mut().zip(*f).for_each(|(s, f)| *s += f);
+            for (k, row) in rows.iter().enumerate() {
+                for &(i, g) in row {
+                    if !std::mem::replace(&mut seen[i], true) {
+                        under.push(i);
+                    }
+                    let f = &mut sums[i];
+                    match k {
+                        0 => f[0] += p * g,
+                        1 => (f[1], f[2]) = (f[1] + p * v * g, f[2] + p * a * g),
+                        _ => f[2] += p * v * v * g,
+                    }
+                }
             }
-            same
-        });
-        // The wheels read u at the unknowns under them alone.
-        let mut under: Vec<usize> = on_mesh
-            .iter()
-            .flat_map(|rows| rows.iter().flatten().map(|&(i, _)| i))
-            .collect();
-        under.sort_unstable();
-        under.dedup();
+        }
+        let loads: Vec<(usize, [f64; 3])> = under.iter().map(|&i| (i, sums[i])).collect();
         let mut u = [vec![0.0; n], vec![0.0; n], vec![0.0; n]];
         match modal.static_corrections_at(&loads, &under) {
             Some(values) => {
