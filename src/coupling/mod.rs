@@ -195,9 +195,12 @@ type ObservedAt = ([f64; 3], Vec<Option<DiskObservation>>, Option<Vec<f64>>);
 /// Values kept with the time and state (t, y) each was formed at: the last one, or the last
 /// few where observers come back to times the steps met.
 pub(crate) struct LastEvaluation<T> {
-    kept: RefCell<VecDeque<(f64, Vec<f64>, Rc<T>)>>,
+    kept: RefCell<VecDeque<Evaluated<T>>>,
     capacity: usize,
 }
+
+/// A value with the time and state it was formed at.
+type Evaluated<T> = (f64, Vec<f64>, Rc<T>);
 
 impl<T> LastEvaluation<T> {
     pub(crate) fn new() -> Self {
