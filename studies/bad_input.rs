@@ -1242,7 +1242,7 @@ fn car(edit: impl Fn(String) -> String) -> String {
 /// Vehicles and their profile: one sentence naming the line and key for each flaw.
 #[test]
 fn vehicles_refused_with_one_sentence() {
-    let cases: [(&str, String, &[&str]); 16] = [
+    let cases: [(&str, String, &[&str]); 17] = [
         ("unknown-part", car(|t| t.replace("lower: a2", "lower: a9")), &["vehicles.springs.lower", "a9", "names no body or axle"]),
         ("duplicate-name", car(|t| t.replace("name: a2", "name: body")), &["vehicles.axles.name", "names two parts"]),
         ("negative-mass", car(|t| t.replace("mass: 1000.0", "mass: -1000.0")), &["vehicles.bodies.mass", "positive"]),
@@ -1259,6 +1259,7 @@ fn vehicles_refused_with_one_sentence() {
         ("profile-nan", car(|t| t).replace("    supports: {from: pinned, to: roller}\n", "    supports: {from: pinned, to: roller}\n  profile:\n    points: [[0.0, .nan]]\n"), &["track.profile.points", "finite"]),
         ("iso-class", car(|t| t).replace("    supports: {from: pinned, to: roller}\n", "    supports: {from: pinned, to: roller}\n  profile:\n    iso8608: {class: Z}\n"), &["track.profile.iso8608.class", "A to H"]),
         ("vehicles-on-curve", format!("duration: 1\n{PARABOLA}{}", car(|t| t).split_once("    supports: {from: pinned, to: roller}\n").expect("split").1), &["vehicles", "beam tracks only"]),
+        ("disk-flies-beside", car(|t| format!("disk: {{mass: 100, radius: 0.2, s0: 1.0, omega0: -10, contact_loss: fly}}\n{t}")), &["disk.contact_loss", "does not beside vehicles", "contact_loss: stop"]),
     ];
     for (name, text, needles) in cases {
         rejected(name, &text, needles);

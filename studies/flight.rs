@@ -337,7 +337,7 @@ fn a_landing_on_a_free_beam_keeps_the_momenta() {
     let setup = free_free();
     let beam = Beam::new(setup.beam.clone());
     let loaded = LoadedBeam::new(&beam, &setup.loads, None, None, None);
-    let c = DiskOnBeam::new(&loaded, setup.disks.clone());
+    let c = DiskOnBeam::new(&loaded, setup.disks.clone(), None);
     let n = beam.dim();
     let (q, v) = moving(n);
     let (velocity, omega) = ([2.0, -3.0], 5.0);
@@ -446,7 +446,7 @@ fn a_landing_beside_a_rolling_disk_keeps_the_momenta_of_all_three() {
     setup.disks.push(second);
     let beam = Beam::new(setup.beam.clone());
     let loaded = LoadedBeam::new(&beam, &setup.loads, None, None, None);
-    let c = DiskOnBeam::new(&loaded, setup.disks.clone());
+    let c = DiskOnBeam::new(&loaded, setup.disks.clone(), None);
     let n = beam.dim();
     assert_eq!(c.dim(), n + 2);
     let (q, v) = moving(n);
@@ -556,7 +556,7 @@ fn a_bounce_on_a_free_beam_reverses_the_normal_speed_and_keeps_the_momentum() {
     let setup = free_free();
     let beam = Beam::new(setup.beam.clone());
     let loaded = LoadedBeam::new(&beam, &setup.loads, None, None, None);
-    let c = DiskOnBeam::new(&loaded, setup.disks.clone());
+    let c = DiskOnBeam::new(&loaded, setup.disks.clone(), None);
     let n = beam.dim();
     let (q, v) = moving(n);
     let (velocity, omega, s, e) = ([2.0, -3.0], 5.0, 1.7, 0.6);

@@ -15,7 +15,7 @@ use crate::ode::EventSpec;
 
 impl Structure for DiskOnBeam<'_> {
     fn dim(&self) -> usize {
-        self.n + self.disks.iter().filter(|d| d.slot.is_some()).count()
+        self.dim
     }
 
     fn mass(&self, t: f64, q: &[f64]) -> Cow<'_, Sparse> {
@@ -36,6 +36,9 @@ impl Structure for DiskOnBeam<'_> {
     fn mass_mul(&self, t: f64, q: &[f64], a: &[f64], out: &mut [f64]) {
         linalg::mul(self.loaded.model_mass(), &a[..self.n], &mut out[..self.n]);
         out[self.n..].fill(0.0);
+        for &(i, m) in self.beside.iter().flat_map(|b| &b.masses) {
+            out[i] = m * a[i];
+        }
         for (w, row) in self.inertia_at(t, q).iter() {
             let ga = w * dot(row, a);
             for &(i, gi) in row {
@@ -56,11 +59,35 @@ impl Structure for DiskOnBeam<'_> {
         }
         let mut a = Assembly::new(self.dim());
         a.add_sparse(&k, 1.0, 0, 0);
-        self.stiffness_pattern.get_or_init(|| a.pattern()).build(&a)
+        match &self.beside {
+            // The springs couple the bodies to the beam under wheels that move along it.
+            Some(b) => {
+                b.vehicles.add_stiffness(t, q, &mut a);
+                a.build()
+            }
+            None => self.stiffness_pattern.get_or_init(|| a.pattern()).build(&a),
+        }
     }
 
-    /// The beam's damping; the contact coordinates are not damped.
+    /// The beam's damping and the vehicles' dampers beside the disks; the contact
+    /// coordinates are not damped.
     fn damping(&self) -> Option<Cow<'_, Sparse>> {
+        if let Some(b) = &self.beside {
+            let beam = self.loaded.damping();
+            let dampers = b.vehicles.constant_terms().1;
+            if beam.is_none() && dampers.is_none() {
+                return None;
+            }
+            let mut a = Assembly::new(self.dim());
+            if let Some(c) = beam {
+                a.add_sparse(&c, 1.0, 0, 0);
+            }
+            if let Some(c) = dampers {
+                a.add_sparse(c, 1.0, 0, 0);
+            }
+            b.vehicles.add_flying_dampers(&mut a);
+            return Some(Cow::Owned(a.build()));
+        }
         let c = self.loaded.damping()?;
         if self.dim() == self.n {
             return Some(c);
@@ -89,10 +116,15 @@ impl Structure for DiskOnBeam<'_> {
     }
 
     fn norm_groups(&self) -> Vec<Range<usize>> {
+        let vehicles = self.beside.as_ref().map(|b| b.vehicles.own_unknowns());
+        let disks = self.n..vehicles.as_ref().map_or(self.dim(), |v| v.start);
         let mut g = vec![0..self.n];
-        if self.dim() > self.n {
-            g.push(self.n..self.dim());
-        }
+        g.extend(
+            [disks]
+                .into_iter()
+                .chain(vehicles)
+                .filter(|r| !r.is_empty()),
+        );
         g
     }
 }
@@ -104,29 +136,60 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
     /// there shows in the contact force, not in the motion the error estimate measures: a
     /// step moves a rolling disk by at most b/2, so the contact-loss event sees every crest.
     /// A prescribed load crosses at most one element a step (`LoadedBeam::load_step_bound`).
-    fn max_step(&self, t: f64, _q: &[f64], v: &[f64]) -> f64 {
+    /// Beside vehicles, their bound too (`VehiclesOnBeam`'s).
+    fn max_step(&self, t: f64, q: &[f64], v: &[f64]) -> f64 {
+        let beside = match &self.beside {
+            Some(b) => b.vehicles.max_step(t, q, v),
+            None => self.loaded.load_step_bound(t),
+        };
         self.on()
             .map(|(_, d)| match d.slot {
                 Some(i) => 0.5 * d.spec.patch / v[i].abs(),
                 None => self.beam().element_length() / d.spec.v0().abs(),
             })
-            .fold(self.loaded.load_step_bound(t), f64::min)
+            .fold(beside, f64::min)
     }
 
     fn breakpoints(&self) -> Vec<f64> {
-        self.loaded.breakpoints()
+        match &self.beside {
+            Some(b) => b.vehicles.breakpoints(),
+            None => self.loaded.breakpoints(),
+        }
     }
 
     fn enter_segment(&self, start: f64, end: f64) {
-        self.loaded.enter_segment(start, end)
+        match &self.beside {
+            Some(b) => b.vehicles.enter_segment(start, end),
+            None => self.loaded.enter_segment(start, end),
+        }
     }
 
     fn events(&self) -> &[EventSpec<DiskEvent>] {
         &self.events
     }
 
-    /// Disk k's events, each zero where it is met; a disk that has left meets none.
+    fn event_pace(&self, t: f64, q: &[f64], v: &[f64]) -> f64 {
+        self.beside
+            .as_ref()
+            .map_or(f64::INFINITY, |b| b.vehicles.event_pace(t, q, v))
+    }
+
+    fn accepted(&self, t: f64, q: &[f64], v: &[f64]) {
+        if let Some(b) = &self.beside {
+            b.vehicles.accepted(t, q, v);
+        }
+    }
+
+    /// Disk k's events, each zero where it is met; a disk that has left meets none. The
+    /// vehicles' beside them follow.
     fn event(&self, index: usize, t: f64, q: &[f64], v: &[f64]) -> f64 {
+        if let Some(wheel) = self.events[index].reason.wheel {
+            let b = self
+                .beside
+                .as_ref()
+                .expect("a wheel's event is of vehicles beside");
+            return b.vehicles.event(wheel, t, q, v);
+        }
         let (k, which) = self.event_of[index];
         let d = &self.disks[k];
         if d.gone.get() {

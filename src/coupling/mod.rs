@@ -4,7 +4,12 @@
 //! geometry of the contact on the deformed axis. [`DiskOnBeam`] holds the list of disks, each
 //! with its own law: it observes them and their energy here, and assembles their terms into
 //! the beam's equations and watches their events in `equations.rs`; `landing.rs` is a flying
-//! disk's impact with the beam, `vehicles/` the vehicles' wheels on it.
+//! disk's impact with the beam, `vehicles/` the vehicles' wheels on it, `last_evaluation.rs`
+//! what the readings of one state share. Vehicles beside the
+//! disks join their equations: their unknowns follow the contact coordinates, their bodies'
+//! masses the constant mass, their unsprung masses the riders' inertia, their forces,
+//! stiffness, damping and events the disks'; so one solve gives the acceleration that both
+//! the disks' contact forces and the wheels' read.
 //!
 //! - `consistent.rs` (the default): the disk stays on the moving beam. Unknowns z = (q, s),
 //!   s the material point of contact; the disk's rotation θ is not an unknown. Centre
@@ -28,6 +33,7 @@ mod consistent;
 pub mod contact;
 mod equations;
 pub mod landing;
+mod last_evaluation;
 pub(crate) mod law;
 mod moving_force;
 mod moving_mass;
@@ -38,10 +44,10 @@ pub mod vehicles;
 
 use std::borrow::Cow;
 use std::cell::{Cell, OnceCell, RefCell};
-use std::collections::VecDeque;
 use std::rc::Rc;
 
 use contact::{AxisPoint, Row};
+pub(crate) use last_evaluation::LastEvaluation;
 use law::{AddedMass, Law, Rider};
 
 use crate::beam::dynamics::LoadedBeam;
@@ -49,8 +55,9 @@ use crate::beam::{Beam, NodeBasis, PastFreeEnd};
 use crate::disk::Disk;
 use crate::disk::{DiskObservation, StopReason};
 use crate::linalg::{self, Assembly, AssemblyPattern, LowRank, Sparse, SparseLu, Woodbury};
-use crate::ode::second_order::Structure;
+use crate::ode::second_order::{SecondOrderProblem, Structure};
 use crate::ode::EventSpec;
+use vehicles::VehiclesOnBeam;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Coupling {
@@ -135,11 +142,15 @@ const EVENTS: [EventSpec<StopReason>; 5] = [
     },
 ];
 
-/// What a rolling disk on the beam met: which disk (in the scene's order), and what.
+/// What a rolling disk on the beam met: which disk (in the scene's order), and what; or,
+/// with `wheel`, that a vehicle's wheel beside the disks lost or regained the track (which
+/// wheel, numbered as `VehiclesOnBeam`'s events number them; `disk` and `reason` then say
+/// nothing).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DiskEvent {
     pub disk: usize,
     pub reason: StopReason,
+    pub wheel: Option<usize>,
 }
 
 /// One disk on the beam: its law, the disk as the law sees it, where its contact coordinate
@@ -186,63 +197,33 @@ pub struct DiskOnBeam<'a> {
     /// The riders' inertia at the last state asked: Newton takes the mass product, and the
     /// next step its split, at the state its force was evaluated at.
     inertia: LastEvaluation<AddedMass>,
+    /// Vehicles riding beside the disks, whose unknowns follow the contact coordinates: their
+    /// bodies' masses (on the diagonal of z) join the constant mass, their unsprung masses the
+    /// riders' inertia, their springs and wheels the force.
+    beside: Option<Beside<'a>>,
+    /// Unknowns of z.
+    dim: usize,
+}
+
+/// The vehicles beside the disks, and their bodies' masses as (unknown, mass).
+struct Beside<'a> {
+    vehicles: &'a VehiclesOnBeam<'a>,
+    masses: Vec<(usize, f64)>,
 }
 
 /// The disks observed at a state (`None` for one that has left), and the acceleration the
 /// observation was made from.
 type ObservedAt = ([f64; 3], Vec<Option<DiskObservation>>, Option<Vec<f64>>);
 
-/// Values kept with the time and state (t, y) each was formed at: the last one, or the last
-/// few where observers come back to times the steps met.
-pub(crate) struct LastEvaluation<T> {
-    kept: RefCell<VecDeque<Evaluated<T>>>,
-    capacity: usize,
-}
-
-/// A value with the time and state it was formed at.
-type Evaluated<T> = (f64, Vec<f64>, Rc<T>);
-
-impl<T> LastEvaluation<T> {
-    pub(crate) fn new() -> Self {
-        Self::keeping(1)
-    }
-
-    /// Keeping the last `capacity` values.
-    pub(crate) fn keeping(capacity: usize) -> Self {
-        LastEvaluation {
-            kept: RefCell::new(VecDeque::with_capacity(capacity)),
-            capacity: capacity.max(1),
-        }
-    }
-
-    /// The value at (t, the parts of y in order), formed by `form` unless it is one kept.
-    pub(crate) fn at(&self, t: f64, y: &[&[f64]], form: impl FnOnce() -> T) -> Rc<T> {
-        let mut kept = self.kept.borrow_mut();
-        let same = |k: &[f64]| {
-            k.len() == y.iter().map(|p| p.len()).sum::<usize>()
-                && y.iter().flat_map(|p| p.iter()).zip(k).all(|(a, b)| a == b)
-        };
-        if let Some((_, _, v)) = kept.iter().rev().find(|(kt, k, _)| *kt == t && same(k)) {
-            return v.clone();
-        }
-        let v = Rc::new(form());
-        if kept.len() == self.capacity {
-            kept.pop_front();
-        }
-        kept.push_back((t, y.concat(), v.clone()));
-        v
-    }
-
-    /// Forget the values kept: what they depend on beside (t, y) has changed.
-    pub(crate) fn forget(&self) {
-        self.kept.borrow_mut().clear();
-    }
-}
-
 impl<'a> DiskOnBeam<'a> {
     /// The disks `specs` on the beam, in the scene's order; the rolling ones' contact
-    /// coordinates follow the beam's unknowns in that order.
-    pub fn new(loaded: &'a LoadedBeam<'a>, specs: Vec<DiskOnBeamSpec>) -> Self {
+    /// coordinates follow the beam's unknowns in that order, and the unknowns of `vehicles`
+    /// riding beside them (built to start there: [`Self::contact_coordinates`]) follow those.
+    pub fn new(
+        loaded: &'a LoadedBeam<'a>,
+        specs: Vec<DiskOnBeamSpec>,
+        vehicles: Option<&'a VehiclesOnBeam<'a>>,
+    ) -> Self {
         let n = loaded.dim();
         let mut next = n;
         let mut events = Vec::new();
@@ -267,6 +248,7 @@ impl<'a> DiskOnBeam<'a> {
                         reason: DiskEvent {
                             disk: k,
                             reason: e.reason,
+                            wheel: None,
                         },
                         terminal: e.terminal,
                     }));
@@ -290,12 +272,34 @@ impl<'a> DiskOnBeam<'a> {
                 }
             })
             .collect();
-        let mut base = Assembly::new(next);
+        if let Some(v) = vehicles {
+            // A wheel's event says nothing of a disk: `event` hands it to the vehicles.
+            events.extend(Self::wheel_events(v));
+            event_of.resize(events.len(), (0, 0));
+        }
+        let beside = vehicles.map(|v| {
+            assert_eq!(
+                v.first_unknown(),
+                next,
+                "the vehicles' unknowns follow the disks'"
+            );
+            Beside {
+                vehicles: v,
+                masses: v.constant_terms().0,
+            }
+        });
+        let dim = beside.as_ref().map_or(next, |b| b.vehicles.dim());
+        let mut base = Assembly::new(dim);
         base.add_sparse(loaded.model_mass(), 1.0, 0, 0);
         for i in n..next {
             base.add(i, i, 1.0);
         }
+        for &(i, m) in beside.iter().flat_map(|b| &b.masses) {
+            base.add(i, i, m);
+        }
         DiskOnBeam {
+            beside,
+            dim,
             base_mass: base.build(),
             n,
             loaded,
@@ -307,6 +311,31 @@ impl<'a> DiskOnBeam<'a> {
             stiffness_pattern: OnceCell::new(),
             inertia: LastEvaluation::new(),
         }
+    }
+
+    /// The events of vehicles beside the disks, each as the disks' equations watch it.
+    fn wheel_events(v: &VehiclesOnBeam) -> Vec<EventSpec<DiskEvent>> {
+        (v.events().iter().enumerate())
+            .map(|(i, e)| EventSpec {
+                reason: DiskEvent {
+                    disk: 0,
+                    reason: StopReason::ContactLost,
+                    wheel: Some(i),
+                },
+                terminal: e.terminal,
+            })
+            .collect()
+    }
+
+    /// How many contact coordinates the disks `specs` add to z: where vehicles beside them
+    /// start theirs.
+    pub fn contact_coordinates(specs: &[DiskOnBeamSpec]) -> usize {
+        specs.iter().filter(|s| s.coupling.rolls()).count()
+    }
+
+    /// The vehicles riding beside the disks.
+    pub fn vehicles_beside(&self) -> Option<&'a VehiclesOnBeam<'a>> {
+        self.beside.as_ref().map(|b| b.vehicles)
     }
 
     /// How many disks the scene put on the beam (those that have left included).
@@ -431,8 +460,14 @@ impl<'a> DiskOnBeam<'a> {
     /// at its s0 rolling at its Ω0.
     pub fn initial_state(&self, q0: &[f64]) -> (Vec<f64>, Vec<f64>) {
         let nz = self.dim();
-        let mut z = vec![0.0; nz];
-        let mut zd = vec![0.0; nz];
+        let (mut z, mut zd) = match &self.beside {
+            Some(b) => {
+                let mut y = b.vehicles.initial_state(&self.loaded.from_mesh(q0));
+                let zd = y.split_off(nz);
+                (y, zd)
+            }
+            None => (vec![0.0; nz], vec![0.0; nz]),
+        };
         z[..self.n].copy_from_slice(&self.loaded.from_mesh(q0));
         for d in &self.disks {
             let Some(i) = d.slot else { continue };
@@ -534,9 +569,11 @@ impl<'a> DiskOnBeam<'a> {
         // Newton's next mass product is at this z: its inertia is formed from these contacts
         // rather than from second ones at zero velocity.
         self.inertia.at(t, &[z], || {
-            (added.into_iter().flatten())
+            let mut added: AddedMass = (added.into_iter().flatten())
                 .chain(self.loaded.axle_inertia(t))
-                .collect()
+                .collect();
+            self.add_unsprung_beside(t, z, &mut added);
+            added
         });
         forces.concat()
     }
@@ -567,11 +604,21 @@ impl<'a> DiskOnBeam<'a> {
     fn inertia_at(&self, t: f64, z: &[f64]) -> Rc<AddedMass> {
         self.inertia.at(t, &[z], || {
             let still = vec![0.0; z.len()];
-            self.on()
+            let mut added: AddedMass = self
+                .on()
                 .flat_map(|(_, d)| self.added_mass(d, &self.contact_of(d, t, z, &still)))
                 .chain(self.loaded.axle_inertia(t))
-                .collect()
+                .collect();
+            self.add_unsprung_beside(t, z, &mut added);
+            added
         })
+    }
+
+    /// The unsprung masses of the vehicles beside the disks, to `added`.
+    fn add_unsprung_beside(&self, t: f64, z: &[f64], added: &mut AddedMass) {
+        if let Some(b) = &self.beside {
+            b.vehicles.add_unsprung(t, z, added);
+        }
     }
 
     /// Disk `d`'s inertia as z feels it.
@@ -599,6 +646,9 @@ impl<'a> DiskOnBeam<'a> {
         {
             m.add(i, i, 1.0);
         }
+        for &(i, mass) in self.beside.iter().flat_map(|b| &b.masses) {
+            m.add(i, i, mass);
+        }
         m.build()
     }
 
@@ -614,6 +664,7 @@ impl<'a> DiskOnBeam<'a> {
             force.extend(f);
             added.extend(a);
         }
+        self.add_unsprung_beside(t, z, &mut added);
         let mut y = vec![0.0; self.dim()];
         self.force_from(t, z, zd, &force, &mut y);
         if self.lu.borrow().is_none() {
@@ -701,6 +752,16 @@ impl<'a> DiskOnBeam<'a> {
         for &(i, v) in force {
             f[i] += v;
         }
+        if let Some(b) = &self.beside {
+            b.vehicles.add_forces(t, z, zd, f);
+        }
+    }
+
+    /// z̈ at (t, z, ż) for the vehicles beside the disks: the whole system's.
+    pub fn acceleration_beside(&self, t: f64, z: &[f64], zd: &[f64]) -> Vec<f64> {
+        self.observe_with_acceleration(t, z, zd)
+            .1
+            .unwrap_or_else(|| vec![f64::NAN; self.dim()])
     }
 
     /// What the run reports of the first disk at a state (global axes): the disk, where it

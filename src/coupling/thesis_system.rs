@@ -26,11 +26,11 @@ pub fn integrates_as_published(method: Method) -> bool {
     matches!(method, Method::Dopri5 | Method::TrBdf2)
 }
 
-pub struct ThesisSystem<'a> {
-    pub coupled: &'a DiskOnBeam<'a>,
+pub struct ThesisSystem<'s, 'a> {
+    pub coupled: &'s DiskOnBeam<'a>,
 }
 
-impl ThesisSystem<'_> {
+impl ThesisSystem<'_, '_> {
     fn n(&self) -> usize {
         self.coupled.beam().dim()
     }
@@ -72,7 +72,7 @@ impl ThesisSystem<'_> {
     }
 }
 
-impl Dynamics for ThesisSystem<'_> {
+impl Dynamics for ThesisSystem<'_, '_> {
     fn dim(&self) -> usize {
         2 * self.n() + 6
     }
@@ -138,7 +138,7 @@ impl Dynamics for ThesisSystem<'_> {
     }
 }
 
-impl Problem for ThesisSystem<'_> {
+impl Problem for ThesisSystem<'_, '_> {
     type Event = StopReason;
 
     fn breakpoints(&self) -> Vec<f64> {

@@ -15,10 +15,20 @@ pub(super) fn disks_on_beam(
     length: f64,
     gravity: f64,
 ) -> Result<Vec<DiskOnBeamSpec>, Error> {
+    let beside = raw.vehicles.is_some();
     let list =
         match (&raw.disk, &raw.disks) {
             (None, None) => return Ok(Vec::new()),
-            (Some(d), None) => return Ok(vec![disk_on_beam(c, d, "disk", beam, length, gravity)?]),
+            (Some(d), None) => {
+                return Ok(vec![disk_on_beam(
+                    c,
+                    d,
+                    "disk",
+                    beam,
+                    (length, gravity),
+                    beside,
+                )?])
+            }
             (Some(d), Some(_)) => return c.err(
                 d.referenced.line(),
                 "disk",
@@ -37,7 +47,10 @@ pub(super) fn disks_on_beam(
         .value
         .iter()
         .enumerate()
-        .map(|(k, d)| disk_on_beam(c, d, &format!("disks[{}]", k + 1), beam, length, gravity))
+        .map(|(k, d)| {
+            let at = format!("disks[{}]", k + 1);
+            disk_on_beam(c, d, &at, beam, (length, gravity), beside)
+        })
         .collect::<Result<Vec<_>, _>>()?;
     if disks.len() > 1 {
         if let Some(k) = disks.iter().position(|d| d.coupling == Coupling::Thesis) {
@@ -49,14 +62,14 @@ pub(super) fn disks_on_beam(
 }
 
 /// A disk of a beam scene (`at` names it in messages: `disk` or `disks[k]`), checked
-/// against the beam it rolls on.
+/// against the beam it rolls on (of `length`, under `gravity`), `beside` vehicles or not.
 pub(super) fn disk_on_beam(
     c: &Checker,
     file: &Spanned<DiskFile>,
     at: &str,
     beam: &BeamSpec,
-    length: f64,
-    gravity: f64,
+    (length, gravity): (f64, f64),
+    beside: bool,
 ) -> Result<DiskOnBeamSpec, Error> {
     let d = &file.value;
     let disk = c.disk(d, gravity, at)?;
@@ -68,7 +81,7 @@ pub(super) fn disk_on_beam(
         );
     }
     let coupling = coupling(c, d, at)?;
-    let contact_loss = loss_on_beam(c, file, at, coupling)?;
+    let contact_loss = loss_on_beam(c, file, at, coupling, beside)?;
     let (s0, omega0) = start_on_beam(c, file, at, disk.radius, coupling, length)?;
     let mu = match &d.mu {
         Some(m) => Some(c.positive(m, &format!("{at}.mu"))?),
@@ -188,13 +201,15 @@ fn start_on_beam(
 }
 
 /// What happens where disk `file` (named `at`) on a beam loses contact, as its coupling
-/// allows: `fly` only where the disk can leave the beam, and only with the consistent
-/// coupling; left out, it flies with the consistent coupling and stops with the others.
+/// allows: `fly` only where the disk can leave the beam, only with the consistent coupling,
+/// and not `beside` vehicles; left out, it flies with the consistent coupling alone and stops
+/// otherwise.
 fn loss_on_beam(
     c: &Checker,
     file: &Spanned<DiskFile>,
     at: &str,
     coupling: Coupling,
+    beside: bool,
 ) -> Result<ContactLoss, Error> {
     let d = &file.value;
     let line = d
@@ -226,8 +241,15 @@ fn loss_on_beam(
                 "asks the disk to fly off the beam, which only the consistent coupling does: the thesis coupling rolls the disk on the axis as if it were frozen, which gives a landing no meaning; write `contact_loss: stop` or use `coupling: consistent`",
             );
         }
+        (Some(ContactLoss::Fly { .. }), _) if beside => {
+            return c.err(
+                line,
+                &key,
+                "asks the disk to fly off the beam, which it does not beside vehicles (their wheels and the disk share one system, which a flight would split); write `contact_loss: stop` or leave it out: the run stops where the disk loses contact",
+            );
+        }
         (Some(loss), _) => loss,
-        (None, Coupling::Consistent) => ContactLoss::Fly { restitution: 0.0 },
+        (None, Coupling::Consistent) if !beside => ContactLoss::Fly { restitution: 0.0 },
         (None, _) => ContactLoss::Stop,
     })
 }

@@ -109,7 +109,7 @@ pub struct BeamScene {
     /// A train of axle loads crossing the beam, if the scene has one (beside disks or vehicles
     /// too).
     pub train: Option<Train>,
-    /// Vehicles crossing the beam (never with a disk).
+    /// Vehicles crossing the beam (beside disks too).
     pub vehicles: Vec<crate::vehicle::Vehicle>,
     /// The running surface the vehicles ride on.
     pub profile: crate::vehicle::profile::Profile,

@@ -164,18 +164,6 @@ pub(super) fn vehicles(
         return Ok(Vec::new());
     };
     let line = list.referenced.line();
-    if let Some((line, key)) = raw
-        .disk
-        .as_ref()
-        .map(|d| (d.referenced.line(), "disk"))
-        .or(raw.disks.as_ref().map(|d| (d.referenced.line(), "disks")))
-    {
-        return c.err(
-            line,
-            key,
-            "and `vehicles` are both given: a beam carries vehicles or a disk",
-        );
-    }
     if list.value.is_empty() || list.value.len() > MAX_VEHICLES {
         return c.err(
             line,

@@ -27,22 +27,22 @@
 //! own to fly with: the run stops there.
 //!
 //! `track.rs` finds the wheels and the track under each at one instant, `disk_wheel.rs` where
-//! a disk wheel touches, `hops.rs` a wheel's flight and landing; this file assembles them
-//! into the equations of motion, the observation and the energy.
+//! a disk wheel touches, `hops.rs` a wheel's flight and landing; this file forms from them the
+//! forces, the observation and the energy, and `equations.rs` assembles them into the
+//! equations of motion, the vehicles' own or those of disks beside them.
 
 mod disk_wheel;
+mod equations;
 mod hops;
 mod track;
 
-use std::borrow::Cow;
-use std::cell::{Cell, RefCell};
-use std::ops::Range;
+use std::cell::{Cell, OnceCell, RefCell};
 
-use super::LastEvaluation;
+use super::{DiskOnBeam, LastEvaluation};
 use crate::beam::dynamics::{LoadedBeam, STEPS_OVER_AN_ELEMENT_UNDER_A_MASS};
 use crate::beam::PastFreeEnd;
-use crate::linalg::{self, Assembly, LowRank, Sparse, SparseLu, Woodbury};
-use crate::ode::second_order::{SecondOrderProblem, Structure};
+use crate::linalg::{Assembly, LowRank, Sparse, SparseLu, Woodbury};
+use crate::ode::second_order::Structure;
 use crate::ode::EventSpec;
 use crate::vehicle::profile::Profile;
 use crate::vehicle::{Part, Vehicle, Wheel};
@@ -115,14 +115,20 @@ pub struct VehiclesOnBeam<'a> {
     pub profile: &'a Profile,
     /// The beam's unknowns.
     n: usize,
+    /// Where the vehicles' unknowns start: after the beam's, or after the contact coordinates
+    /// of the disks riding beside them.
+    first: usize,
     /// Where each vehicle's unknowns start.
     offsets: Vec<usize>,
     dim: usize,
-    /// The beam's mass and the bodies', block-diagonal: the constant part of the mass.
+    /// The beam's mass and the bodies', block-diagonal: the constant part of the mass (a unit
+    /// mass stands in on each disk's contact coordinate, whose mass the disks assemble).
     base: Sparse,
     base_lu: SparseLu,
     /// The beam's damping and the dampers' with the axles held: constant.
     damping: Option<Sparse>,
+    /// The dampers' alone, for the disks' equations to border the beam's with.
+    own_damping: Option<Sparse>,
     /// The springs' stiffness with the axles held.
     rigid_track: Sparse,
     /// Half-width of the patch a wheel rides on.
@@ -146,18 +152,24 @@ pub struct VehiclesOnBeam<'a> {
     /// Per wheel, on a road its disk bridges, the crest it rests on, as the last step taken
     /// left it; `None` until then, and in the air.
     resting: RefCell<Vec<Option<Resting>>>,
+    /// The disks beside the vehicles, whose equations hold the vehicles' too: every
+    /// acceleration the vehicles read is the whole system's, solved there.
+    host: OnceCell<&'a DiskOnBeam<'a>>,
 }
 
 impl<'a> VehiclesOnBeam<'a> {
+    /// The vehicles on the beam, their unknowns from `first` on in z (the beam's count, or
+    /// past the contact coordinates of disks beside them).
     pub fn new(
         loaded: &'a LoadedBeam<'a>,
         vehicles: &'a [Vehicle],
         profile: &'a Profile,
         patch: f64,
+        first: usize,
     ) -> Option<Self> {
         let n = loaded.dim();
         let mut offsets = Vec::with_capacity(vehicles.len());
-        let mut dim = n;
+        let mut dim = first;
         for v in vehicles {
             offsets.push(dim);
             dim += v.unknowns();
@@ -175,13 +187,18 @@ impl<'a> VehiclesOnBeam<'a> {
         }
         let mut mass = Assembly::new(dim);
         mass.add_sparse(loaded.model_mass(), 1.0, 0, 0);
+        for i in n..first {
+            mass.add(i, i, 1.0);
+        }
         let mut stiff = Assembly::new(dim);
         let mut damp = Assembly::new(dim);
+        let mut own = Assembly::new(dim);
         let mut damped = false;
         if let Some(c) = loaded.damping() {
             damp.add_sparse(&c, 1.0, 0, 0);
             damped = true;
         }
+        let mut dampers = false;
         for (v, &o) in vehicles.iter().zip(&offsets) {
             for (i, m) in v.mass_diagonal().into_iter().enumerate() {
                 mass.add(o + i, o + i, m);
@@ -191,10 +208,12 @@ impl<'a> VehiclesOnBeam<'a> {
                 for j in 0..v.unknowns() {
                     stiff.add(o + i, o + j, k[(i, j)]);
                     damp.add(o + i, o + j, c[(i, j)]);
+                    own.add(o + i, o + j, c[(i, j)]);
                 }
             }
-            damped |= v.springs.iter().any(|s| s.c != 0.0);
+            dampers |= v.springs.iter().any(|s| s.c != 0.0);
         }
+        damped |= dampers;
         let wheels = vehicles.iter().flat_map(|v| v.axles.iter());
         for (axle, h) in wheels.zip(&hops) {
             if let Some(h) = *h {
@@ -214,6 +233,7 @@ impl<'a> VehiclesOnBeam<'a> {
             base,
             base_lu,
             damping: damped.then(|| damp.build()),
+            own_damping: dampers.then(|| own.build()),
             rigid_track: stiff.build(),
             patch,
             segment: Cell::new(f64::NAN),
@@ -232,7 +252,23 @@ impl<'a> VehiclesOnBeam<'a> {
             hops,
             airborne: RefCell::new(vec![false; axles]),
             resting: RefCell::new(vec![None; axles]),
+            first,
+            host: OnceCell::new(),
         })
+    }
+
+    /// The vehicles ride beside the disks of `host`, whose equations hold theirs.
+    pub fn ride_beside(&self, host: &'a DiskOnBeam<'a>) {
+        // A second host would leave the first's equations without the vehicles.
+        assert!(
+            self.host.set(host).is_ok(),
+            "the vehicles ride beside one set of disks"
+        );
+    }
+
+    /// Where the vehicles' unknowns start in z.
+    pub fn first_unknown(&self) -> usize {
+        self.first
     }
 
     /// The beam's unknowns: the first of z.
@@ -398,13 +434,18 @@ impl<'a> VehiclesOnBeam<'a> {
             .mass_split(t, &z[..self.n])
             .map(|(_, l)| l)
             .unwrap_or_default();
+        self.add_unsprung(t, z, &mut out);
+        out
+    }
+
+    /// The unsprung masses' m g gᵀ, to `out`.
+    pub fn add_unsprung(&self, t: f64, z: &[f64], out: &mut LowRank) {
         for c in self.contacts(t, &z[..self.n]).iter() {
             let m = self.vehicles[c.vehicle].axles[c.axle].mass;
             if m > 0.0 && !c.rows[0].is_empty() && self.flying(c.wheel).is_none() {
                 out.push((m, c.rows[0].clone()));
             }
         }
-        out
     }
 
     fn unsprung(&self) -> bool {
@@ -424,8 +465,11 @@ impl<'a> VehiclesOnBeam<'a> {
         }
     }
 
-    /// z̈ at (t, z, ż).
+    /// z̈ at (t, z, ż): the whole system's, beside disks.
     pub fn acceleration(&self, t: f64, z: &[f64], zd: &[f64]) -> Vec<f64> {
+        if let Some(host) = self.host.get() {
+            return host.acceleration_beside(t, z, zd);
+        }
         let mut a = vec![0.0; self.dim];
         self.force(t, z, zd, &mut a);
         self.solve_mass(t, z, &mut a);
@@ -751,239 +795,4 @@ struct VehicleState {
     stretch: Vec<(f64, f64)>,
     /// Per axle: S_a.
     on_axle: Vec<f64>,
-}
-
-impl Structure for VehiclesOnBeam<'_> {
-    fn dim(&self) -> usize {
-        self.dim
-    }
-    fn mass(&self, t: f64, z: &[f64]) -> Cow<'_, Sparse> {
-        let added = self.added_mass(t, z);
-        if added.is_empty() {
-            return Cow::Borrowed(&self.base);
-        }
-        let mut a = Assembly::new(self.dim);
-        a.add_sparse(&self.base, 1.0, 0, 0);
-        linalg::low_rank_entries(&added).for_each(|(i, j, v)| a.add(i, j, v));
-        Cow::Owned(a.build())
-    }
-    fn mass_is_constant(&self) -> bool {
-        self.loaded.mass_is_constant() && !self.unsprung()
-    }
-    fn mass_split(&self, t: f64, z: &[f64]) -> Option<(&Sparse, LowRank)> {
-        (!self.mass_is_constant()).then(|| (&self.base, self.added_mass(t, z)))
-    }
-    fn mass_mul(&self, t: f64, z: &[f64], a: &[f64], out: &mut [f64]) {
-        linalg::mul(&self.base, a, out);
-        for (w, g) in self.added_mass(t, z) {
-            let ga = w * g.iter().map(|&(i, c)| c * a[i]).sum::<f64>();
-            g.iter().for_each(|&(i, c)| out[i] += c * ga);
-        }
-    }
-    fn force(&self, t: f64, z: &[f64], zd: &[f64], f: &mut [f64]) {
-        let n = self.n;
-        self.loaded.force(t, &z[..n], &zd[..n], &mut f[..n]);
-        f[n..].fill(0.0);
-        let states = self.springs(t, z, zd);
-        let contacts = self.contacts(t, &z[..self.n]);
-        let mut next = contacts.iter();
-        for ((i, veh), st) in self.vehicles.iter().enumerate().zip(&states) {
-            let o = self.offsets[i];
-            for (s, &(e, ed)) in veh.springs.iter().zip(&st.stretch) {
-                let pull = s.k * e + s.c * ed;
-                for (part, sign) in [(s.upper, -1.0), (s.lower, 1.0)] {
-                    if let Part::Body(b) = part {
-                        for (j, l) in veh.lever(b, s.x) {
-                            f[o + j] += sign * pull * l;
-                        }
-                    }
-                }
-            }
-            for (a, axle) in veh.axles.iter().enumerate() {
-                let c = next.next().expect("a contact per axle");
-                if let Some(h) = self.flying(c.wheel) {
-                    f[h] = st.on_axle[a] - veh.static_loads[a];
-                    continue;
-                }
-                let on_beam =
-                    -veh.static_loads[a] - axle.mass * st.tracks[a].convective + st.on_axle[a];
-                for &(j, g) in &c.rows[0] {
-                    f[j] += g * on_beam;
-                }
-            }
-        }
-    }
-    fn stiffness(&self, t: f64, z: &[f64]) -> Sparse {
-        let n = self.n;
-        let mut a = Assembly::new(self.dim);
-        a.add_sparse(&self.loaded.stiffness(t, &z[..n]), 1.0, 0, 0);
-        a.add_sparse(&self.rigid_track, 1.0, 0, 0);
-        let contacts = self.contacts(t, &z[..self.n]);
-        let mut next = contacts.iter();
-        // Each spring on a wheel that is on the deck couples the beam under it to its body.
-        let mut wheels = Vec::new();
-        for veh in self.vehicles {
-            wheels.push(
-                veh.axles
-                    .iter()
-                    .map(|_| next.next().expect("a contact per axle"))
-                    .collect::<Vec<_>>(),
-            );
-        }
-        for (i, veh) in self.vehicles.iter().enumerate() {
-            let o = self.offsets[i];
-            for s in &veh.springs {
-                let (Part::Body(b), Part::Axle(ax)) = (s.upper, s.lower) else {
-                    continue;
-                };
-                let c = wheels[i][ax];
-                let hop;
-                let g = match self.flying(c.wheel) {
-                    Some(h) => {
-                        hop = vec![(h, 1.0)];
-                        &hop
-                    }
-                    None => &c.rows[0],
-                };
-                let lever: Vec<(usize, f64)> = veh.lever(b, s.x).collect();
-                for &(p, gp) in g {
-                    for &(r, gr) in g {
-                        a.add(p, r, s.k * gp * gr);
-                    }
-                    for &(j, l) in &lever {
-                        a.add(p, o + j, -s.k * gp * l);
-                        a.add(o + j, p, -s.k * gp * l);
-                    }
-                }
-            }
-        }
-        a.build()
-    }
-    fn damping(&self) -> Option<Cow<'_, Sparse>> {
-        let base = self.damping.as_ref()?;
-        let airborne = self.airborne.borrow();
-        if !airborne.iter().any(|&a| a) {
-            return Some(Cow::Borrowed(base));
-        }
-        // A flying axle's dampers act between it and the bodies above it.
-        let mut a = Assembly::new(self.dim);
-        a.add_sparse(base, 1.0, 0, 0);
-        let mut k = 0;
-        for (i, veh) in self.vehicles.iter().enumerate() {
-            for s in &veh.springs {
-                let (Part::Body(b), Part::Axle(ax)) = (s.upper, s.lower) else {
-                    continue;
-                };
-                if let Some(h) = self.flying(k + ax) {
-                    a.add(h, h, s.c);
-                    for (j, l) in veh.lever(b, s.x) {
-                        let o = self.offsets[i] + j;
-                        a.add(h, o, -s.c * l);
-                        a.add(o, h, -s.c * l);
-                    }
-                }
-            }
-            k += veh.axles.len();
-        }
-        Some(Cow::Owned(a.build()))
-    }
-    fn norm_groups(&self) -> Vec<Range<usize>> {
-        if self.dim > self.n {
-            vec![0..self.n, self.n..self.dim]
-        } else {
-            vec![0..self.n]
-        }
-    }
-    fn norm_weights(&self) -> Option<Vec<f64>> {
-        self.loaded.norm_weights().map(|mut w| {
-            w.resize(self.dim, 1.0);
-            w
-        })
-    }
-    fn norm_rows(&self) -> Option<crate::ode::ModeRows> {
-        self.loaded.norm_rows()
-    }
-}
-
-impl SecondOrderProblem for VehiclesOnBeam<'_> {
-    /// The wheel whose contact force fell to zero, or which, flying, touched the track.
-    type Event = usize;
-    fn max_step(&self, t: f64, _q: &[f64], _v: &[f64]) -> f64 {
-        self.step_bound(t, _q)
-    }
-    /// The beam's, each wheel's arrival on and departure from the deck, its crossing of each
-    /// kink of the profile, and each vehicle's stop.
-    fn breakpoints(&self) -> Vec<f64> {
-        let length = self.loaded.beam.length;
-        let kinks = self.profile.kinks();
-        let mut out = self.loaded.breakpoints();
-        for v in self.vehicles {
-            out.extend(v.stops_at());
-            let reach = v.reach(self.patch);
-            // A point wheel's track turns at each kink. A disk pivots over a crest from where
-            // its contact reaches the corner to where it leaves it, X = x − a s/√(1 + s²) for
-            // each face's slope s; in a hollow it rests on both faces at one place, where its
-            // contact jumps from one to the other: there, with the centre at the height a disk
-            // on either face has, line + a √(1 + s²). The drive's power turns at each.
-            let turns: Vec<f64> = match v.wheel {
-                Wheel::Point => kinks.clone(),
-                Wheel::Disk { radius } => self
-                    .profile
-                    .corners()
-                    .into_iter()
-                    .flat_map(|(x, left, right)| {
-                        if right > left {
-                            let lift = |s: f64| (1.0 + s * s).sqrt();
-                            vec![x + radius * (lift(right) - lift(left)) / (left - right)]
-                        } else {
-                            let (from, to) = pivot((x, left, right), radius);
-                            vec![from, to]
-                        }
-                    })
-                    .collect(),
-            };
-            // Where a free end lets the patch's slab step by the tip's deflection, the steps
-            // shorten from where the patch reaches it ([`Self::crossing_a_free_end`]).
-            let reaching = self.free_ends().map(|(x, inward)| x + inward * reach);
-            for a in &v.axles {
-                let places = [-reach, length + reach]
-                    .into_iter()
-                    .chain(reaching.clone())
-                    .chain(turns.iter().copied());
-                out.extend(places.filter_map(|x| v.time_at(x + a.x)));
-            }
-        }
-        out
-    }
-    fn enter_segment(&self, start: f64, end: f64) {
-        self.loaded.enter_segment(start, end);
-        self.segment.set(0.5 * (start + end));
-    }
-    fn events(&self) -> &[EventSpec<usize>] {
-        &self.events
-    }
-    fn event_pace(&self, t: f64, _q: &[f64], _v: &[f64]) -> f64 {
-        self.crest_pace(t).unwrap_or(f64::INFINITY)
-    }
-    fn accepted(&self, t: f64, q: &[f64], _v: &[f64]) {
-        self.remember_crests(t, q);
-    }
-    fn event(&self, index: usize, t: f64, z: &[f64], zd: &[f64]) -> f64 {
-        if let Some(k) = self.crest_event(self.events[index].reason) {
-            return self.crest_ahead(k, t, z);
-        }
-        if let Some(h) = self.flying(index) {
-            return self.gap(index, t, z, h);
-        }
-        let scale = self
-            .vehicles
-            .iter()
-            .flat_map(|v| v.static_loads.iter())
-            .fold(0.0_f64, |m, p| m.max(*p));
-        let stretch = [self.segment.get()];
-        let rn = self.forces_at.at(t, &[z, zd, &stretch], || {
-            self.contact_forces(t, z, zd, &self.acceleration_the_wheels_feel(t, z, zd))
-        });
-        rn[index] / scale
-    }
 }

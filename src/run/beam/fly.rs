@@ -216,6 +216,7 @@ impl<'a> OnTheBeam<'a, '_> {
             BesideEvent::Rolling(DiskEvent {
                 disk: j,
                 reason: StopReason::LeftTrack,
+                wheel: None,
             }) => {
                 self.left[j] = Some(t);
                 Ok(Beside::Goes(one_leaves(c, j, self.rec, t, y)))

@@ -208,6 +208,7 @@ impl<'a> Ledger<'a> {
         if let Some(c) = phase.coupled {
             let (z0, zd0) = phase.split(y0);
             let (dk, dp) = Self::in_system(c, &c.observe_all(0.0, z0, zd0));
+            let (dk, dp) = (dk + vk + vs, dp + vp);
             check = EnergyCheck::new(dk + dp + strain0, dk + dp.abs() + strain0);
         }
         moving.1 = Self::moving_power(phase, 0.0, y0);

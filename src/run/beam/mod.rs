@@ -10,10 +10,12 @@
 //! acceleration cutoff's period by `contact_mean.rs`, the support reactions counted to that
 //! cutoff by `reactions.rs`) until a free vibration can move none of
 //! them (`settled.rs`); the disks ride through the disk's life at its track
-//! (`disk::life`), the beam's side of it here and its flights and landings in `fly.rs`; the
-//! vehicles' drive over the whole run is `vehicles.rs`. [`run`] names the steps of a run: build the model,
-//! the start state, ride (integrate while the disk is on), vibrate alone, collect; what it hands
-//! back, and the warnings read from it, is `result.rs`.
+//! (`disk::life`), the beam's side of it in `ride.rs` and its flights and landings in
+//! `fly.rs`; the vehicles' drive over the whole run is `vehicles.rs`, whose wheels' events the
+//! disks' ride meets too where vehicles ride beside them (the disks then leave without ending
+//! it). [`run`] names the steps of a run: build the model, the start state, ride (integrate
+//! while the disk is on), vibrate alone, collect; what it hands back, and the warnings read
+//! from it, is `result.rs`.
 
 mod acceleration;
 mod contact_mean;
@@ -25,6 +27,7 @@ mod phase;
 mod reactions;
 mod recorder;
 mod result;
+mod ride;
 mod sensors;
 mod settled;
 mod vehicles;
@@ -67,6 +70,7 @@ use std::sync::Arc;
 use fly::*;
 use recorder::*;
 pub use result::{BeamRow, BeamRun, Envelope, Extremes, Frame};
+use ride::*;
 use vehicles::*;
 pub use vehicles::{AxleFlight, VehicleReport};
 use watch::*;
@@ -272,6 +276,8 @@ enum CoupledEnd {
         y: Vec<f64>,
         disk: Option<usize>,
     },
+    /// The vehicles beside the disks met their event `wheel` (`VehiclesOnBeam`'s numbering).
+    Wheel { t: f64, y: Vec<f64>, wheel: usize },
 }
 
 /// Integrate the disk on the beam until it leaves it, stops, or the run ends.
@@ -293,7 +299,10 @@ fn integrate_coupled(
         .next_exit()
         .map_or(scene.duration, |(te, _)| te.min(scene.duration));
     if let Some((t0, z0, zd0)) = from {
-        let ahead: Vec<f64> = outputs.iter().copied().filter(|&o| o > t0).collect();
+        // From the start itself where a vehicle's wheel beside the disks set off in the air.
+        let ahead: Vec<f64> = (outputs.iter().copied())
+            .filter(|&o| o > t0 || t0 == 0.0)
+            .collect();
         let out = integrate(c, t0, &z0, &zd0, until, &ahead, opts, rec)
             .map_err(|e| solver_error(scene, opts.method, e))?;
         stats.add(&out.stats);
@@ -319,6 +328,7 @@ fn integrate_coupled(
             reason: DiskEvent {
                 disk: 0,
                 reason: h.reason,
+                wheel: None,
             },
             t: h.t,
         });
@@ -338,6 +348,9 @@ fn coupled_end(
     stopped_by: Option<ode::EventHit<DiskEvent>>,
     y: Vec<f64>,
 ) -> CoupledEnd {
+    if let Some(wheel) = stopped_by.as_ref().and_then(|hit| hit.reason.wheel) {
+        return CoupledEnd::Wheel { t, y, wheel };
+    }
     let disk = stopped_by.as_ref().map(|hit| hit.reason.disk);
     let stop = match stopped_by {
         None if t < scene.duration => None,
@@ -410,8 +423,13 @@ pub fn run(
         rho_inf: setup.rho_inf,
         ..over.options(scene)
     };
-    let coupled = (!setup.disks.is_empty()).then(|| DiskOnBeam::new(&loaded, setup.disks.clone()));
-    let vehicles = vehicles_on(scene, setup, &loaded)?;
+    let first = loaded.dim() + DiskOnBeam::contact_coordinates(&setup.disks);
+    let vehicles = vehicles_on(scene, setup, &loaded, first)?;
+    let coupled = (!setup.disks.is_empty())
+        .then(|| DiskOnBeam::new(&loaded, setup.disks.clone(), vehicles.as_ref()));
+    if let (Some(c), Some(v)) = (&coupled, &vehicles) {
+        v.ride_beside(c);
+    }
     steps_within_budget(scene, &loaded, vehicles.as_ref(), &opts)?;
     let given = setup.acceleration_cutoff_hz.is_some();
     watch::grid_within_budget(scene, &loaded, filter.as_ref(), (exact, given))?;
@@ -640,6 +658,13 @@ fn thesis_system(
 ) -> Result<bool, Error> {
     let literal = coupled.is_some_and(|c| c.spec().coupling == Coupling::Thesis)
         && integrates_as_published(opts.method);
+    if literal && !setup.vehicles.is_empty() {
+        return Err(Error::Input(format!(
+            "scene {}: {} integrates the thesis coupling as the published 3n + 6 system, which holds the disk and the beam alone; beside vehicles use genalpha or esdirk4",
+            scene.name,
+            opts.method.name()
+        )));
+    }
     if literal && setup.beam.model != BeamModel::Exact {
         return Err(Error::Input(format!(
             "scene {}: {} integrates the thesis coupling as the published 3n + 6 system, which transcribes the exact beam; use `model: exact`, or genalpha or esdirk4 for the thesis coupling on a {} beam",
@@ -659,7 +684,7 @@ fn initial_state(
     vehicles: Option<&VehiclesOnBeam>,
     start: &[f64],
 ) -> Vec<f64> {
-    if let Some(v) = vehicles {
+    if let (Some(v), None) = (vehicles, coupled) {
         return v.initial_state(&loaded.from_mesh(start));
     }
     match coupled {
@@ -673,194 +698,6 @@ fn initial_state(
             .chain(vec![0.0; loaded.dim()])
             .collect(),
     }
-}
-
-/// Integrate while a disk is on the beam: rolling, and flying and landing where a disk
-/// loses contact and flies, until the last leaves the beam, one stops, or the run ends.
-#[allow(clippy::too_many_arguments)]
-fn ride<'a>(
-    scene: &Scene,
-    setup: &BeamScene,
-    loaded: &'a LoadedBeam<'a>,
-    c: &'a DiskOnBeam<'a>,
-    literal: bool,
-    start: &[f64],
-    outputs: &[f64],
-    opts: &mut ode::Options,
-    rec: &mut Recorder<'a>,
-    stats: &mut Stats,
-) -> Result<Ridden, Error> {
-    let mut on = OnTheBeam {
-        scene,
-        setup,
-        loaded,
-        c,
-        literal,
-        start,
-        outputs,
-        opts,
-        rec,
-        stats,
-        flights: Vec::new(),
-        left: vec![None; c.count()],
-    };
-    life::live(&mut on, Next::Rolls(None))
-}
-
-/// The beam as a disk's life meets it (`disk::life`): what the riders' phases need of the
-/// run, and what they keep. Its flights and landings are `fly.rs`.
-struct OnTheBeam<'a, 'r> {
-    scene: &'r Scene,
-    setup: &'r BeamScene,
-    loaded: &'a LoadedBeam<'a>,
-    c: &'a DiskOnBeam<'a>,
-    literal: bool,
-    start: &'r [f64],
-    outputs: &'r [f64],
-    opts: &'r mut ode::Options,
-    rec: &'r mut Recorder<'a>,
-    stats: &'r mut Stats,
-    flights: Vec<FlightRecord>,
-    /// When each disk left the beam.
-    left: Vec<Option<f64>>,
-}
-
-impl<'a> OnTheBeam<'a, '_> {
-    /// Disk k flies where its scene lets it, beside disks that can ride on through its
-    /// landing (`DiskOnBeam::rides_beside_a_flight`); beside others a lift-off stops the run.
-    fn flies(&self, k: usize) -> bool {
-        let c = self.c;
-        matches!(c.spec_of(k).contact_loss, ContactLoss::Fly { .. })
-            && (0..c.count()).all(|j| j == k || c.has_left(j) || c.rides_beside_a_flight(j))
-    }
-
-    /// The run stops at t in the state y of the coupled phase, for `stop`, where `disk`'s
-    /// event stopped it.
-    fn stopped(&mut self, t: f64, y: Vec<f64>, stop: Stop, disk: Option<usize>) -> Next<Self> {
-        // The run stops between output times: its last row is the stop itself.
-        if self.rec.history.rows.last().is_none_or(|r| r.t < t) {
-            self.rec.output(t, &y);
-        }
-        Next::Ends(Ridden {
-            stop,
-            left_track_t: None,
-            disks_left: self.left.clone(),
-            flights: std::mem::take(&mut self.flights),
-            then: Then::Ended { t, y },
-            lost_contact: None,
-            stopped_disk: disk.filter(|_| stop != Stop::End),
-            wheel_flights: Vec::new(),
-        })
-    }
-
-    /// The last disk has left the beam at t, the beam in (q, v): from then on the residual
-    /// vibration is watched.
-    fn left_beam(&mut self, t: f64, q: Vec<f64>, v: Vec<f64>) -> Next<Self> {
-        for l in self.left.iter_mut().filter(|l| l.is_none()) {
-            *l = Some(t);
-        }
-        self.rec.last_load_leaves(t);
-        self.rec.restart();
-        Next::Ends(Ridden {
-            stop: Stop::End,
-            left_track_t: Some(t),
-            disks_left: self.left.clone(),
-            flights: std::mem::take(&mut self.flights),
-            then: Then::Alone { t, q, v },
-            lost_contact: None,
-            stopped_disk: None,
-            wheel_flights: Vec::new(),
-        })
-    }
-}
-
-impl<'a> life::Track for OnTheBeam<'a, '_> {
-    type Rolling = Option<(f64, Vec<f64>, Vec<f64>)>;
-    type Launch = Launch;
-    type Touch = Touch;
-    type End = Ridden;
-
-    /// The disks roll from `from` (the run's start where `None`) until one leaves the beam,
-    /// stops, or lifts off, or the run ends.
-    fn roll(&mut self, from: Self::Rolling) -> Result<Next<Self>, Error> {
-        let end = integrate_coupled(
-            self.scene,
-            self.c,
-            self.literal,
-            self.start,
-            from,
-            self.outputs,
-            self.opts,
-            self.rec,
-            self.stats,
-        )?;
-        Ok(match end {
-            CoupledEnd::Stopped {
-                t,
-                y,
-                stop: Stop::Event(StopReason::ContactLost),
-                disk: Some(k),
-            } if self.flies(k) => {
-                // The damping the plan chose is for loads that move: once the disk has
-                // left the beam, what it lands with or leaves behind vibrates freely.
-                if self.setup.rho_inf_chosen.is_some() {
-                    self.opts.rho_inf = 1.0;
-                }
-                Next::Flies(lift_off(self.c, self.rec, t, &y, k))
-            }
-            CoupledEnd::Stopped { t, y, stop, disk } => self.stopped(t, y, stop, disk),
-            CoupledEnd::Left { t, y, disk } => {
-                let c = self.c;
-                let k = disk.unwrap_or_else(|| leaving(c, t));
-                let on = (0..c.count()).filter(|&j| !c.has_left(j)).count();
-                if on > 1 {
-                    self.left[k] = Some(t);
-                    return Ok(Next::Rolls(Some(one_leaves(c, k, self.rec, t, y))));
-                }
-                self.rec.ledger.disk_leaves(&self.rec.phase, t, &y);
-                let n = self.loaded.dim();
-                let (z, zd) = self.rec.phase.split(&y);
-                let (q, v) = (z[..n].to_vec(), zd[..n].to_vec());
-                self.left_beam(t, q, v)
-            }
-        })
-    }
-
-    fn fly(&mut self, launch: Launch) -> Result<Next<Self>, Error> {
-        self.fly_once(launch)
-    }
-
-    fn land(&mut self, touch: Touch) -> Result<Next<Self>, Error> {
-        self.touch_down(touch)
-    }
-}
-
-/// The prescribed load that left the beam at t, its exit time, where no disk's event stopped
-/// the integration.
-fn leaving(c: &DiskOnBeam, t: f64) -> usize {
-    match c.next_exit() {
-        Some((te, k)) if (te - t).abs() <= 1e-12 * te.max(1.0) => k,
-        _ => unreachable!("the coupled phase stops early only at an event or a load's exit"),
-    }
-}
-
-/// Disk k leaves the beam at t, in the state y, while others ride on: the state they go on
-/// from, with its contact coordinate at rest.
-fn one_leaves(
-    c: &DiskOnBeam,
-    k: usize,
-    rec: &mut Recorder,
-    t: f64,
-    y: Vec<f64>,
-) -> (f64, Vec<f64>, Vec<f64>) {
-    rec.ledger.one_disk_leaves(&rec.phase, t, &y, k);
-    rec.restart();
-    let (z, zd) = rec.phase.split(&y);
-    let (z, mut zd) = (z.to_vec(), zd.to_vec());
-    c.leave(k, &mut zd);
-    let y: Vec<f64> = z.iter().chain(&zd).copied().collect();
-    rec.ledger.restart(&rec.phase, t, &y);
-    (t, z, zd)
 }
 
 /// Integrate the beam alone from where the riders left it to the end of the run.

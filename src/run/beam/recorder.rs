@@ -795,12 +795,12 @@ impl Dense for Watched<'_> {
 }
 
 /// Hands the recorder the reduced state (q, s; v, ṡ) of the literal thesis system.
-pub(super) struct ThesisSystemObserver<'a, 'r> {
-    pub(super) sys: &'a ThesisSystem<'a>,
+pub(super) struct ThesisSystemObserver<'a, 's, 'c, 'r> {
+    pub(super) sys: &'a ThesisSystem<'s, 'c>,
     pub(super) rec: &'a mut Recorder<'r>,
 }
 
-impl Observer for ThesisSystemObserver<'_, '_> {
+impl Observer for ThesisSystemObserver<'_, '_, '_, '_> {
     fn output(&mut self, t: f64, y: &[f64]) {
         let r = self.sys.reduced(t, y);
         self.rec.output(t, &r);

@@ -66,12 +66,13 @@ pub(super) fn vehicles_on<'a>(
     scene: &Scene,
     setup: &'a BeamScene,
     loaded: &'a LoadedBeam<'a>,
+    first: usize,
 ) -> Result<Option<VehiclesOnBeam<'a>>, Error> {
     if setup.vehicles.is_empty() {
         return Ok(None);
     }
     let patch = crate::coupling::patch::dispersed_half_width(setup.beam.depth);
-    VehiclesOnBeam::new(loaded, &setup.vehicles, &setup.profile, patch)
+    VehiclesOnBeam::new(loaded, &setup.vehicles, &setup.profile, patch, first)
         .map(Some)
         .ok_or_else(|| {
             Error::Solver(format!(
@@ -96,20 +97,7 @@ pub(super) fn drive<'a>(
 ) -> Result<Ridden, Error> {
     let n = v.dim();
     let (mut t, mut y) = (0.0, y0.to_vec());
-    let mut flights: Vec<WheelFlight> = Vec::new();
-    let (mut meeting, mut stalled) = (None, 0);
-    // Held from the first step on, as from every accepted one: searched afresh at each stage,
-    // a contact could pass to a crest rising ahead without the impact the crest event finds.
-    v.remember_crests(t, &y[..n]);
-    // A wheel that cannot hold the track it starts on (a crest sharper than it follows at its
-    // speed) is in the air from the first row on, as at any lift-off.
-    for k in 0..v.wheels() {
-        if v.can_fly(k) && pulls(v, k, t, &y) {
-            v.lift(k, t, &mut y);
-            take_off(scene, &mut flights, k, t)?;
-            rec.ledger.restart(&rec.phase, t, &y);
-        }
-    }
+    let mut wheels = Wheels::start(scene, v, t, &mut y, rec)?;
     let (stop, lost_contact) = loop {
         let ahead: Vec<f64> = outputs
             .iter()
@@ -123,37 +111,9 @@ pub(super) fn drive<'a>(
         let Some(hit) = out.stopped_by else {
             break (Stop::End, None);
         };
-        let k = hit.reason;
-        if let Some(k) = v.crest_event(k) {
-            stalled = if meeting == Some(t) { stalled + 1 } else { 0 };
-            meeting = Some(t);
-            if stalled > MAX_MEETINGS_AT_ONCE {
-                let (i, axle) = v.wheel(k);
-                return Err(Error::Solver(format!(
-                    "scene {}: vehicle {}'s disk wheel {axle} met crest after crest at t = {t:.9} s without moving on: the road's crests there lie level within round-off",
-                    scene.name, v.vehicles[i].name
-                )));
-            }
-            meet_crest(scene, v, k, t, &mut y, rec, &mut flights)?;
-            continue;
+        if let Some(lost) = wheels.meet(scene, v, hit.reason, t, &mut y, rec)? {
+            break (Stop::Event(StopReason::ContactLost), Some(lost));
         }
-        if !v.can_fly(k) {
-            break (Stop::Event(StopReason::ContactLost), Some(v.wheel(k)));
-        }
-        if v.flies(k) {
-            record_once(rec, t, &y);
-            rec.restart();
-            land(v, k, t, &mut y, rec, &mut flights);
-        } else {
-            // The row at the lift-off is the wheel's first in the air: its contact force may
-            // drop to zero at once (a disk wheel at a crest), and on the track past that
-            // instant the wheel would pull on the deck.
-            v.lift(k, t, &mut y);
-            record_once(rec, t, &y);
-            rec.restart();
-            take_off(scene, &mut flights, k, t)?;
-        }
-        rec.ledger.restart(&rec.phase, t, &y);
     };
     record_once(rec, t, &y);
     Ok(Ridden {
@@ -164,8 +124,95 @@ pub(super) fn drive<'a>(
         then: Then::Ended { t, y },
         lost_contact,
         stopped_disk: None,
-        wheel_flights: flights,
+        wheel_flights: wheels.flights,
     })
+}
+
+/// The vehicles' wheels over a run: their flights, and the crests they meet.
+pub(super) struct Wheels {
+    pub(super) flights: Vec<WheelFlight>,
+    /// When a wheel last met a crest, and how many it has met since at that instant.
+    meeting: Option<f64>,
+    stalled: usize,
+}
+
+impl Wheels {
+    /// The wheels at the run's start (t, y): the crests they rest on held from the first
+    /// step on, as from every accepted one (searched afresh at each stage, a contact could
+    /// pass to a crest rising ahead without the impact the crest event finds), and a wheel
+    /// that cannot hold the track it starts on (a crest sharper than it follows at its speed)
+    /// in the air from the first row on, as at any lift-off.
+    pub(super) fn start(
+        scene: &Scene,
+        v: &VehiclesOnBeam,
+        t: f64,
+        y: &mut [f64],
+        rec: &mut Recorder,
+    ) -> Result<Self, Error> {
+        let mut wheels = Wheels {
+            flights: Vec::new(),
+            meeting: None,
+            stalled: 0,
+        };
+        v.remember_crests(t, &y[..v.dim()]);
+        for k in 0..v.wheels() {
+            if v.can_fly(k) && pulls(v, k, t, y) {
+                v.lift(k, t, y);
+                take_off(scene, &mut wheels.flights, k, t)?;
+                rec.ledger.restart(&rec.phase, t, y);
+            }
+        }
+        Ok(wheels)
+    }
+
+    /// The vehicles' event `k` met at t in the state y: a crest met, a flying wheel landing,
+    /// or a wheel lifting off, after which the run goes on from y; the vehicle and axle of a
+    /// wheel that cannot fly and lost contact, where the run stops.
+    pub(super) fn meet(
+        &mut self,
+        scene: &Scene,
+        v: &VehiclesOnBeam,
+        k: usize,
+        t: f64,
+        y: &mut [f64],
+        rec: &mut Recorder,
+    ) -> Result<Option<(usize, String)>, Error> {
+        if let Some(k) = v.crest_event(k) {
+            self.stalled = if self.meeting == Some(t) {
+                self.stalled + 1
+            } else {
+                0
+            };
+            self.meeting = Some(t);
+            if self.stalled > MAX_MEETINGS_AT_ONCE {
+                let (i, axle) = v.wheel(k);
+                return Err(Error::Solver(format!(
+                    "scene {}: vehicle {}'s disk wheel {axle} met crest after crest at t = {t:.9} s without moving on: the road's crests there lie level within round-off",
+                    scene.name, v.vehicles[i].name
+                )));
+            }
+            meet_crest(scene, v, k, t, y, rec, &mut self.flights)?;
+            return Ok(None);
+        }
+        if !v.can_fly(k) {
+            return Ok(Some(v.wheel(k)));
+        }
+        if v.flies(k) {
+            record_once(rec, t, y);
+            rec.restart();
+            land(v, k, t, y, rec, &mut self.flights);
+        } else {
+            // The row at the lift-off is the wheel's first in the air: its contact force may
+            // drop to zero at once (a disk wheel at a crest), and on the track past that
+            // instant the wheel would pull on the deck.
+            v.lift(k, t, y);
+            record_once(rec, t, y);
+            rec.restart();
+            take_off(scene, &mut self.flights, k, t)?;
+        }
+        rec.ledger.restart(&rec.phase, t, y);
+        Ok(None)
+    }
 }
 
 /// The row at t, unless the history already ends there.
