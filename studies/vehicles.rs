@@ -2450,7 +2450,7 @@ fn a_moving_mass_disk_beside_a_car_is_a_one_axle_train_beside_it() {
 
 /// A rolling disk beside a car on a damped suspension: the energy balance (the beam's, the
 /// disk's and the car's energies against the drive's work and the damper's) closes to the
-/// fourth-order method's error, and shrinks with it (measured 2.3·10⁻⁹ at rtol 10⁻⁶, 7.1·10⁻¹¹
+/// fourth-order method's error, and shrinks with it (measured 2.3·10⁻⁹ at rtol 10⁻⁶, 7.2·10⁻¹¹
 /// at 10⁻⁸). A term of the coupling seen from one side only (the car's wheel force on the
 /// beam, its inertia in the disks' mass) would leave the work it does unbooked.
 #[test]

@@ -101,7 +101,8 @@ pub(super) fn beam_scene(
     let profile = profile(c, raw, &raw.track.value)?;
     wheel_breakpoints(c, raw, &vehicles, &profile)?;
     disk_wheels_on_the_road(c, raw, &vehicles, &profile)?;
-    let duration = run_length(c, raw, duration, (&beam, length), train.as_ref(), &vehicles)?;
+    let riders = (train.as_ref(), vehicles.as_slice(), disks.as_slice());
+    let duration = run_length(c, raw, duration, (&beam, length), riders)?;
     let (probes, shapes, magnify) = outputs(c, raw, length, duration)?;
     let rho_inf = rho_inf(c, raw)?;
     let accuracy = accuracy(c, raw)?;
@@ -147,22 +148,41 @@ pub(super) fn beam_scene(
     Ok((scene, given))
 }
 
+/// A train, the vehicles and the disks on the beam.
+type Riders<'r> = (
+    Option<&'r Train>,
+    &'r [crate::vehicle::Vehicle],
+    &'r [DiskOnBeamSpec],
+);
+
 /// The run's length: with a train or vehicles `duration` is the free vibration after the
-/// last axle has left (or the last vehicle has stopped).
+/// last axle has left (or the last vehicle has stopped), and beside vehicles after each disk
+/// has crossed at its starting speed.
 fn run_length(
     c: &Checker,
     raw: &SceneFile,
     duration: f64,
     (beam, length): (&BeamSpec, f64),
-    train: Option<&Train>,
-    vehicles: &[crate::vehicle::Vehicle],
+    (train, vehicles, disks): Riders,
 ) -> Result<f64, Error> {
+    let disks_cross = || {
+        let v0 = |d: &DiskOnBeamSpec| d.v0();
+        (disks.iter())
+            .filter(|d| v0(d) != 0.0)
+            .map(|d| (if v0(d) > 0.0 { length - d.s0 } else { d.s0 }) / v0(d).abs())
+            .fold(0.0, f64::max)
+    };
     let crossing = train.map_or(0.0, |t| t.gone(length)).max(
         vehicles
             .iter()
             .map(|v| vehicle_gone(v, length, patch::dispersed_half_width(beam.depth)))
             .fold(0.0, f64::max),
     );
+    let crossing = if vehicles.is_empty() {
+        crossing
+    } else {
+        crossing.max(disks_cross())
+    };
     match (&raw.train, &raw.vehicles) {
         (None, None) => Ok(duration),
         (Some(file), _) => c.derived(
