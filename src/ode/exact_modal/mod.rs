@@ -11,7 +11,8 @@
 //!   whose coefficients follow from the equation term by term (every term bounded: no
 //!   cancellation), in sub-steps of ωh, ch ≤ [`SERIES_REACH`];
 //! - elsewhere, a polynomial particular solution (its coefficients from the top degree down,
-//!   each division by ω²h² ≥ [`SERIES_REACH`]² keeping them bounded) plus the free response
+//!   each division by ω²h² ≥ [`PARTICULAR_REACH`]² keeping them bounded, and by ch ≤ 1 or
+//!   ω²h² ≥ [`SERIES_REACH`]² the damping's term too) plus the free response
 //!   e^{−ch τ/2}(e₀ C(τ) + b S(τ)), C and S the cosine and sine (or their hyperbolic forms
 //!   over-damped), which holds every damping alike.
 //!
@@ -28,6 +29,11 @@ mod energy;
 
 /// How far (ωh or ch) a Taylor series is summed in one piece.
 const SERIES_REACH: f64 = 4.0;
+/// From this ωh on, where ch ≤ 1, a mode takes the particular polynomial: the coefficient two
+/// degrees up enters each by (j + 2)(j + 1)/ω²h² ≤ 7.5 at the degree 6 a quartic element's
+/// force is fitted by, the damping's by ch (j + 1)/ω²h² ≤ 1.5. Read within the step it is one
+/// phasor product and a short polynomial, where the series sums up to forty terms.
+const PARTICULAR_REACH: f64 = 2.0;
 /// Terms of a series past which what is left is below round-off (4^k/k! < 1e-17 from here).
 const SERIES_TERMS: usize = 48;
 
@@ -546,7 +552,7 @@ fn shifted(c: &[f64], shift: f64) -> Vec<f64> {
 fn motion(w2: f64, c: f64, h: f64, g: &[f64], x0: f64, v0: f64) -> Motion {
     let wh = w2.max(0.0).sqrt() * h;
     let ch = c.abs() * h;
-    if wh > SERIES_REACH {
+    if wh > SERIES_REACH || (wh > PARTICULAR_REACH && ch <= 1.0) {
         let p = particular(w2, c, h, g);
         let (p0, p1) = (p[0], p.get(1).copied().unwrap_or(0.0) / h);
         return Motion::Particular {
@@ -721,7 +727,7 @@ const TEST_MODES: [(f64, f64); 6] = [
     (4.0e6, 10.0),
 ];
 #[cfg(test)]
-const TEST_STEPS: [f64; 4] = [1e-3, 0.01, 0.1, 1.0];
+const TEST_STEPS: [f64; 5] = [1e-3, 0.01, 0.1, 1.0, 3.0];
 
 #[cfg(test)]
 mod tests {
