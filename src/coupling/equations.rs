@@ -183,7 +183,7 @@ impl SecondOrderProblem for DiskOnBeam<'_> {
     /// Disk k's events, each zero where it is met; a disk that has left meets none. The
     /// vehicles' beside them follow.
     fn event(&self, index: usize, t: f64, q: &[f64], v: &[f64]) -> f64 {
-        if let Some(wheel) = self.events[index].reason.wheel {
+        if let DiskEvent::Wheel(wheel) = self.events[index].reason {
             let b = self
                 .beside
                 .as_ref()

@@ -142,15 +142,14 @@ const EVENTS: [EventSpec<StopReason>; 5] = [
     },
 ];
 
-/// What a rolling disk on the beam met: which disk (in the scene's order), and what; or,
-/// with `wheel`, that a vehicle's wheel beside the disks lost or regained the track (which
-/// wheel, numbered as `VehiclesOnBeam`'s events number them; `disk` and `reason` then say
-/// nothing).
+/// What the disks' equations met.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct DiskEvent {
-    pub disk: usize,
-    pub reason: StopReason,
-    pub wheel: Option<usize>,
+pub enum DiskEvent {
+    /// A rolling disk (in the scene's order) met `reason`.
+    Disk { disk: usize, reason: StopReason },
+    /// A vehicle's wheel beside the disks lost or regained the track: the event numbered as
+    /// `VehiclesOnBeam`'s events number them.
+    Wheel(usize),
 }
 
 /// One disk on the beam: its law, the disk as the law sees it, where its contact coordinate
@@ -245,10 +244,9 @@ impl<'a> DiskOnBeam<'a> {
                 if slot.is_some() {
                     let watched = if spec.mu.is_some() { 5 } else { 4 };
                     events.extend(EVENTS[..watched].iter().map(|e| EventSpec {
-                        reason: DiskEvent {
+                        reason: DiskEvent::Disk {
                             disk: k,
                             reason: e.reason,
-                            wheel: None,
                         },
                         terminal: e.terminal,
                     }));
@@ -317,11 +315,7 @@ impl<'a> DiskOnBeam<'a> {
     fn wheel_events(v: &VehiclesOnBeam) -> Vec<EventSpec<DiskEvent>> {
         (v.events().iter().enumerate())
             .map(|(i, e)| EventSpec {
-                reason: DiskEvent {
-                    disk: 0,
-                    reason: StopReason::ContactLost,
-                    wheel: Some(i),
-                },
+                reason: DiskEvent::Wheel(i),
                 terminal: e.terminal,
             })
             .collect()

@@ -213,20 +213,19 @@ impl<'a> OnTheBeam<'a, '_> {
             Some(hit) => hit.reason,
         };
         match reason {
-            BesideEvent::Rolling(DiskEvent {
+            BesideEvent::Rolling(DiskEvent::Disk {
                 disk: j,
                 reason: StopReason::LeftTrack,
-                wheel: None,
             }) => {
                 self.left[j] = Some(t);
                 Ok(Beside::Goes(one_leaves(c, j, self.rec, t, y)))
             }
-            BesideEvent::Rolling(e) => Ok(Beside::Then(self.stopped(
-                t,
-                y,
-                Stop::Event(e.reason),
-                Some(e.disk),
-            ))),
+            BesideEvent::Rolling(DiskEvent::Disk { disk, reason }) => Ok(Beside::Then(
+                self.stopped(t, y, Stop::Event(reason), Some(disk)),
+            )),
+            BesideEvent::Rolling(DiskEvent::Wheel(_)) => {
+                unreachable!("a disk beside vehicles stops where it would fly")
+            }
             BesideEvent::Flight(FlightEvent::PassesEnd) => {
                 self.rec.phase.flying = None;
                 self.left[k] = Some(t);

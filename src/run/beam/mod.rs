@@ -325,10 +325,9 @@ fn integrate_coupled(
         stats.add(&out.stats);
         // The literal system holds the lone disk.
         let hit = out.stopped_by.map(|h| ode::EventHit {
-            reason: DiskEvent {
+            reason: DiskEvent::Disk {
                 disk: 0,
                 reason: h.reason,
-                wheel: None,
             },
             t: h.t,
         });
@@ -348,15 +347,15 @@ fn coupled_end(
     stopped_by: Option<ode::EventHit<DiskEvent>>,
     y: Vec<f64>,
 ) -> CoupledEnd {
-    if let Some(wheel) = stopped_by.as_ref().and_then(|hit| hit.reason.wheel) {
-        return CoupledEnd::Wheel { t, y, wheel };
-    }
-    let disk = stopped_by.as_ref().map(|hit| hit.reason.disk);
-    let stop = match stopped_by {
-        None if t < scene.duration => None,
-        None => Some(Stop::End),
-        Some(hit) if hit.reason.reason == StopReason::LeftTrack => None,
-        Some(hit) => Some(Stop::Event(hit.reason.reason)),
+    let (disk, stop) = match stopped_by.map(|hit| hit.reason) {
+        Some(DiskEvent::Wheel(wheel)) => return CoupledEnd::Wheel { t, y, wheel },
+        None if t < scene.duration => (None, None),
+        None => (None, Some(Stop::End)),
+        Some(DiskEvent::Disk {
+            disk,
+            reason: StopReason::LeftTrack,
+        }) => (Some(disk), None),
+        Some(DiskEvent::Disk { disk, reason }) => (Some(disk), Some(Stop::Event(reason))),
     };
     match stop {
         None => CoupledEnd::Left { t, y, disk },
