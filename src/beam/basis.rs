@@ -30,6 +30,23 @@ impl Lagrange {
         self.nodes.len()
     }
 
+    /// Every shape function's coefficients in powers of ξ, lowest first.
+    pub fn monomials(&self) -> Vec<Vec<f64>> {
+        (0..self.nodes.len())
+            .map(|a| {
+                let mut c = vec![self.scale[a]];
+                for (_, node) in self.nodes.iter().enumerate().filter(|&(b, _)| b != a) {
+                    // c(ξ)·(ξ − ξ_b): shifted up a degree, less ξ_b times itself.
+                    c.insert(0, 0.0);
+                    for j in 0..c.len() - 1 {
+                        c[j] -= node * c[j + 1];
+                    }
+                }
+                c
+            })
+            .collect()
+    }
+
     /// Values and derivatives (in ξ) of every shape function at ξ.
     pub fn eval(&self, xi: f64, n: &mut [f64], dn: &mut [f64]) {
         let k = self.nodes.len();
@@ -91,6 +108,25 @@ impl Lagrange {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each shape function's powers of ξ against its values, on degrees 1 to 8 over the
+    /// element: within 10⁻¹² (the coefficients of degree 8 reach about 10², their sum at
+    /// |ξ| ≤ 1 cancels to the value).
+    #[test]
+    fn monomials_are_the_shape_functions() {
+        for p in 1..=8 {
+            let b = Lagrange::new(p);
+            let monomials = b.monomials();
+            let mut n = vec![0.0; p + 1];
+            for xi in [-1.0, -0.71, 0.0, 0.3127, 0.95, 1.0] {
+                b.values(xi, &mut n);
+                for (a, c) in monomials.iter().enumerate() {
+                    let value = c.iter().rev().fold(0.0, |acc, cj| acc * xi + cj);
+                    assert!((value - n[a]).abs() < 1e-12, "p = {p}, N_{a}({xi})");
+                }
+            }
+        }
+    }
 
     /// Partition of unity, Kronecker property at the nodes, and exact derivatives of ξ^p.
     #[test]

@@ -235,12 +235,7 @@ impl<'a> LoadedBeam<'a> {
     /// them, handed to `add` one by one: a reader of a few rows against the loads (a probe's
     /// static correction) then touches the few unknowns under each load, not the whole mesh.
     pub fn external_terms(&self, t: f64, mut add: impl FnMut(usize, f64)) {
-        for l in self.active(t) {
-            self.beam.point_load_terms(l.x, l.force, l.mz, &mut add);
-        }
-        if let Some(weight) = self.beam.weight() {
-            weight.iter().enumerate().for_each(|(i, &v)| add(i, v));
-        }
+        self.standing_terms(t, &mut add);
         for (x, p) in self.axles(t) {
             self.beam.point_load_terms(x, [0.0, -p], 0.0, &mut add);
         }
@@ -267,6 +262,38 @@ impl<'a> LoadedBeam<'a> {
             let c = r.convective(speed, &q_at, &v_at);
             r.spread([0.0; 2], c, &mut add);
         }
+    }
+
+    /// The loads that do not move, handed term by term to `add` as [`Self::external_terms`]
+    /// does: the point loads acting at t and the beam's weight.
+    pub fn standing_terms(&self, t: f64, mut add: impl FnMut(usize, f64)) {
+        for l in self.active(t) {
+            self.beam.point_load_terms(l.x, l.force, l.mz, &mut add);
+        }
+        if let Some(weight) = self.beam.weight() {
+            weight.iter().enumerate().for_each(|(i, &v)| add(i, v));
+        }
+    }
+
+    /// The train's moving forces on the beam over [t0, t1], a stretch between two of its
+    /// breakpoints: each one's place at t0 and at t1, and its force.
+    pub fn axle_paths(&self, t0: f64, t1: f64) -> Vec<(f64, f64, f64)> {
+        let length = self.beam.length;
+        let when = if self.segment.get().is_nan() {
+            0.5 * (t0 + t1)
+        } else {
+            self.segment.get()
+        };
+        let place = |train: &Train, a: usize, t: f64| train.position(a, t).clamp(0.0, length);
+        self.train
+            .filter(|tr| tr.model == TrainModel::MovingForce)
+            .into_iter()
+            .flat_map(|train| {
+                train
+                    .on(length, when)
+                    .map(move |a| (place(train, a, t0), place(train, a, t1), train.loads[a]))
+            })
+            .collect()
     }
 
     /// The train's moving forces on the beam at t, with their forces (none for moving masses).

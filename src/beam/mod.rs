@@ -629,6 +629,35 @@ impl Beam {
         self.h
     }
 
+    /// Per element, the coefficients in powers of its ξ of Σ_a row[i_a] N_a(ξ), i_a the
+    /// unknown of component c (0 u, 1 w, 2 φ) at its node a: what `row` reads of a unit point
+    /// load in that component, as a polynomial along each element.
+    pub fn row_along_elements(&self, row: &[f64], c: usize) -> Vec<Vec<f64>> {
+        let monomials = self.basis.monomials();
+        let p = self.spec.order;
+        (0..self.spec.elements)
+            .map(|e| {
+                let mut out = vec![0.0; p + 1];
+                for (a, n) in monomials.iter().enumerate() {
+                    if let Some(i) = self.eq[3 * (e * p + a) + c] {
+                        out.iter_mut().zip(n).for_each(|(o, nj)| *o += row[i] * nj);
+                    }
+                }
+                out
+            })
+            .collect()
+    }
+
+    /// The element a point moving straight from x0 to x1 stays in, and its ξ at either end;
+    /// `None` where the path crosses a node.
+    pub fn element_path(&self, x0: f64, x1: f64) -> Option<(usize, f64, f64)> {
+        let e = self.element_of(0.5 * (x0 + x1));
+        let xi = |x: f64| 2.0 * (x - e as f64 * self.h) / self.h - 1.0;
+        let (xi0, xi1) = (xi(x0), xi(x1));
+        let inside = |xi: f64| xi.abs() <= 1.0 + PATH_SLACK;
+        (inside(xi0) && inside(xi1)).then_some((e, xi0, xi1))
+    }
+
     /// The element holding material point x (the end elements extend past the ends).
     pub fn element_of(&self, x: f64) -> usize {
         ((x / self.h).floor().max(0.0) as usize).min(self.spec.elements - 1)
@@ -980,4 +1009,27 @@ impl Beam {
         let (s, c) = self.turn;
         [self.spec.from[0] + x * c, self.spec.from[1] + x * s]
     }
+}
+
+/// How far past its element's ends (in ξ) a load's path over a step may reach: the rounding
+/// of the time it crosses a node, not a crossing.
+const PATH_SLACK: f64 = 1e-9;
+
+/// Add `scale` times c(ξ0 + β σ) to the polynomial in σ `out`, c in powers of ξ (a row read
+/// along an element, [`Beam::row_along_elements`]): what the row reads of a point force
+/// moving straight along the element, as a polynomial in the step's own time.
+pub fn add_along(c: &[f64], (xi0, beta): (f64, f64), scale: f64, out: &mut Vec<f64>) {
+    // Horner's rule on polynomials: q ← q·(ξ0 + β σ) + c_j from the top degree down.
+    let mut q: Vec<f64> = Vec::with_capacity(c.len());
+    for &cj in c.iter().rev() {
+        q.push(0.0);
+        for j in (1..q.len()).rev() {
+            q[j] = q[j] * xi0 + q[j - 1] * beta;
+        }
+        q[0] = q[0] * xi0 + cj;
+    }
+    if out.len() < q.len() {
+        out.resize(q.len(), 0.0);
+    }
+    out.iter_mut().zip(&q).for_each(|(o, qj)| *o += scale * qj);
 }

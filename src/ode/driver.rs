@@ -461,6 +461,10 @@ impl Dense for StepperDense<'_> {
     fn power_integrals(&self, ta: f64, tb: f64) -> Option<super::PowerIntegrals> {
         self.stepper.power_integrals(ta, tb)
     }
+
+    fn forms(&self, rows: &[super::FormRow]) -> Option<super::StepForms> {
+        self.stepper.forms(rows)
+    }
 }
 
 /// The breakpoints strictly inside (t0, t_end), ascending.

@@ -394,6 +394,35 @@ pub trait Dense {
     fn power_integrals(&self, _ta: f64, _tb: f64) -> Option<PowerIntegrals> {
         None
     }
+    /// The weighted sums `rows` of the oscillators over the step, in closed form where the
+    /// stepper holds its motion as one ([`Stepper::forms`]).
+    fn forms(&self, _rows: &[FormRow]) -> Option<StepForms> {
+        None
+    }
+}
+
+/// A weighted sum of a linear modal problem's oscillators: of their displacements, or of
+/// their accelerations.
+pub struct FormRow<'a> {
+    pub weights: &'a [f64],
+    pub accelerations: bool,
+}
+
+/// Weighted sums of the oscillators over one exactly integrated step, each a polynomial in
+/// σ = (t − t0)/h and the under-damped oscillators' free motions Re Σ_k B_k e^{λ_k (t − t0)}.
+pub struct StepForms {
+    t0: f64,
+    h: f64,
+    lambda: Vec<nalgebra::Complex<f64>>,
+    /// How many sums.
+    count: usize,
+    /// The sums' polynomials, coefficient by coefficient: degree j of sum r at j · count + r.
+    polys: Vec<f64>,
+    /// Each sum's amplitude of free motion k at k · count + r.
+    free: Vec<nalgebra::Complex<f64>>,
+    /// The phasors e^{λ_k τ} at the last time read, and the factor that carries them on by
+    /// the spacing met last.
+    carry: std::cell::RefCell<exact_modal::Carry>,
 }
 
 /// What a linear modal problem's forces and damping did over an interval: Σ_k ∫ g_k ẋ_k dt,
@@ -472,6 +501,11 @@ pub(crate) trait Stepper {
     /// The force's work and the damping's energy over [ta, tb] within the accepted step, where
     /// the stepper holds its motion in closed form (`exact-modal`); `None` elsewhere.
     fn power_integrals(&self, _ta: f64, _tb: f64) -> Option<PowerIntegrals> {
+        None
+    }
+    /// The weighted sums `rows` of the oscillators over the accepted step in closed form
+    /// (`exact-modal`); `None` elsewhere.
+    fn forms(&self, _rows: &[FormRow]) -> Option<StepForms> {
         None
     }
     /// The most an accepted step may grow the next one by.

@@ -19,13 +19,16 @@
 //! The error estimate is what the two highest Chebyshev coefficients of the force would move:
 //! for a force that is a polynomial of the degree the problem names, nothing.
 //!
-//! `energy.rs`: each oscillator's work and damping over a step in closed form, for the ledger.
+//! `energy.rs`: each oscillator's work and damping over a step in closed form, for the ledger;
+//! `forms.rs`: weighted sums of the oscillators over a step in closed form, for the watches.
 
 use super::second_order::{LinearModal, Structure};
-use super::{Attempt, Ctx, Dynamics, PowerIntegrals, SolveError, Stepper};
+use super::{Attempt, Ctx, Dynamics, FormRow, PowerIntegrals, SolveError, StepForms, Stepper};
 use energy::{sum_at, ModeEnergy};
 
 mod energy;
+mod forms;
+pub(crate) use forms::Carry;
 
 /// How far (ωh or ch) a Taylor series is summed in one piece.
 const SERIES_REACH: f64 = 4.0;
@@ -300,6 +303,10 @@ impl Stepper for ExactModal {
             work: to_end.work - to_start.work,
             dissipated: to_end.dissipated - to_start.dissipated,
         })
+    }
+
+    fn forms(&self, rows: &[FormRow]) -> Option<StepForms> {
+        forms::forms(&self.accepted, self.linear.as_ref()?, rows)
     }
 
     fn max_growth(&self) -> f64 {

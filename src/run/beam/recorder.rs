@@ -3,9 +3,10 @@
 
 use super::contact_mean::ContactMeans;
 use super::ledger::{Piece, LOBATTO};
-use super::modal_probes::ModalProbes;
+use super::modal_probes::{ModalProbes, StepCorrection};
 use super::reactions::Reactions;
 use super::*;
+use crate::ode::{FormRow, StepForms};
 
 /// Samples of the energy ledger while an axle or a wheel passes the beam's shortest wave.
 const SAMPLES_PER_PASSAGE: f64 = 8.0;
@@ -60,6 +61,8 @@ pub(super) struct Recorder<'a> {
     reactions: Reactions,
     /// On a modal beam, the probes read from the amplitudes.
     pub(super) modal_probes: Option<ModalProbes>,
+    /// Their sums over the modes, which a step's closed forms are asked for.
+    probe_rows: std::cell::OnceCell<Vec<(Vec<f64>, bool)>>,
     pub(super) history: History<'a>,
     pub(super) envelope: Envelope,
     pub(super) pictures: Pictures<'a>,
@@ -238,16 +241,93 @@ impl Recorder<'_> {
         along: bool,
     ) -> Option<Vec<f64>> {
         let phase = &self.phase;
-        let alone = phase.coupled.is_none() && phase.flying.is_none() && phase.vehicles.is_none();
         let (probes, yp) = self.modal_probes.as_ref().zip(rate)?;
-        if !alone || (along && self.watch_along) {
+        if !self.reads_probes_alone() || (along && self.watch_along) {
             return None;
         }
         let n = phase.loaded.dim();
-        let kept = self.filter.as_ref().map_or(n, |f| f.kept.min(n));
-        let loads = |add: &mut dyn FnMut(usize, f64)| phase.loaded.external_terms(t, add);
-        let loads: Option<&dyn Fn(&mut dyn FnMut(usize, f64))> = phase.correct.then_some(&loads);
-        Some(probes.read(&y[..n], &phase.split(yp).1[..n], kept, loads))
+        let a = &phase.split(yp).1[..n];
+        let mut out = probes.read(&y[..n], a, self.kept_accelerations(), None);
+        self.correct_probes(t, &mut out);
+        Some(out)
+    }
+
+    /// Whether a snapshot is the probes of a modal beam alone: no disk, flight or vehicle.
+    fn reads_probes_alone(&self) -> bool {
+        let phase = &self.phase;
+        self.modal_probes.is_some()
+            && phase.coupled.is_none()
+            && phase.flying.is_none()
+            && phase.vehicles.is_none()
+    }
+
+    /// The modes whose accelerations the probes read: those below the cutoff.
+    fn kept_accelerations(&self) -> usize {
+        let n = self.phase.loaded.dim();
+        self.filter.as_ref().map_or(n, |f| f.kept.min(n))
+    }
+
+    /// Add the static response of the modes left out at t to the probes' values `out`.
+    fn correct_probes(&self, t: f64, out: &mut [f64]) {
+        let (Some(probes), true) = (&self.modal_probes, self.phase.correct) else {
+            return;
+        };
+        let loads = |add: &mut dyn FnMut(usize, f64)| self.phase.loaded.external_terms(t, add);
+        probes.correct(out, Some(&loads));
+    }
+
+    /// The probes' sums over the modes in closed form over the step `dense` holds, where a
+    /// snapshot is the probes alone and the stepper holds its motion as one (`exact-modal`):
+    /// what [`Self::probes_alone`] reads, at a fraction of reading the state.
+    pub(super) fn probe_forms(&self, dense: &dyn Dense) -> Option<StepForms> {
+        if !self.reads_probes_alone() || self.watch_along {
+            return None;
+        }
+        let probes = self.modal_probes.as_ref()?;
+        let rows = (self.probe_rows).get_or_init(|| probes.form_rows(self.kept_accelerations()));
+        let rows: Vec<FormRow> = rows
+            .iter()
+            .map(|(weights, accelerations)| FormRow {
+                weights,
+                accelerations: *accelerations,
+            })
+            .collect();
+        dense.forms(&rows)
+    }
+
+    /// The probes' static correction over the step [t0, t1] as polynomials in time, where
+    /// the loads are moving forces and standing ones (no riders' inertia).
+    pub(super) fn probe_correction(&self, t0: f64, t1: f64) -> Option<StepCorrection> {
+        let (probes, phase) = (self.modal_probes.as_ref()?, &self.phase);
+        let middle = 0.5 * (t0 + t1);
+        if !phase.correct || !(t1 > t0) || !phase.loaded.riding(middle).is_empty() {
+            return None;
+        }
+        let standing = |add: &mut dyn FnMut(usize, f64)| phase.loaded.standing_terms(middle, add);
+        let paths = phase.loaded.axle_paths(t0, t1);
+        probes.correction_over(phase.beam, (t0, t1), &standing, &paths)
+    }
+
+    /// The snapshot at t read from the probes' `forms` and, where the step has one, their
+    /// static `correction` over it.
+    pub(super) fn snapshot_of_forms(
+        &self,
+        forms: &StepForms,
+        correction: Option<&StepCorrection>,
+        t: f64,
+    ) -> Snapshot {
+        let mut probes = vec![0.0; forms.len()];
+        forms.at(t, &mut probes);
+        match correction {
+            Some(c) => c.add_to(t, &mut probes),
+            None => self.correct_probes(t, &mut probes),
+        }
+        Snapshot {
+            probes,
+            disk: None,
+            along: Vec::new(),
+            vehicles: Vec::new(),
+        }
     }
 
     /// What the watches see of the vehicles: per vehicle its bodies' accelerations then its
@@ -792,6 +872,13 @@ impl Dense for Watched<'_> {
             None => self.dense.rate(t),
         }
     }
+
+    fn forms(&self, rows: &[FormRow]) -> Option<StepForms> {
+        self.step
+            .is_none()
+            .then(|| self.dense.forms(rows))
+            .flatten()
+    }
 }
 
 /// Hands the recorder the reduced state (q, s; v, ṡ) of the literal thesis system.
@@ -853,6 +940,7 @@ pub(super) fn recorder<'a>(
     Recorder {
         ledger: Ledger::new(&phase, &setup.loads, y0),
         modal_probes: ModalProbes::new(phase.loaded, &probe_xs),
+        probe_rows: std::cell::OnceCell::new(),
         filter,
         reactions: Reactions::new(),
         stations: beam.stations(&xs),

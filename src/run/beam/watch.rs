@@ -397,7 +397,12 @@ impl Recorder<'_> {
         let last = self.last.take();
         let mut w = std::mem::replace(&mut self.watches, Watches::new(0, 0, 0, 0));
         let mut check = std::mem::replace(&mut self.grid_check, GridCheck::new(0.0));
+        let forms = self.probe_forms(dense);
+        let correction = forms.as_ref().and_then(|_| self.probe_correction(t0, t1));
         let see = |t: f64, along: bool, vehicles: bool| {
+            if let Some(forms) = &forms {
+                return self.snapshot_of_forms(forms, correction.as_ref(), t);
+            }
             let (y, rate) = (dense.at(t), self.rate(dense, t));
             if vehicles {
                 self.snapshot(t, &y, rate.as_deref(), along)
