@@ -5,14 +5,14 @@
 //! stretch), so no stage ever sees a load on the wrong side of its jump.
 
 use std::borrow::Cow;
-use std::cell::{Cell, RefCell};
+use std::cell::{Cell, OnceCell, RefCell};
 use std::rc::Rc;
 
 use super::damping::Rayleigh;
 use super::load::PointLoad;
 use super::modal::ModalBasis;
 use super::train::{RidingAxle, Train, TrainModel};
-use super::{Beam, PastFreeEnd};
+use super::{add_along, Beam, PastFreeEnd};
 use crate::linalg::{Assembly, LowRank, Sparse};
 use crate::ode::second_order::{LinearModal, SecondOrderProblem, Structure};
 use crate::ode::NoEvent;
@@ -28,6 +28,9 @@ pub struct LoadedBeam<'a> {
     pub train: Option<&'a Train>,
     /// Midpoint of the current stretch between breakpoints; NaN outside a run.
     segment: Cell<f64>,
+    /// Per mode, its shape along each element in the directions along and across the axis,
+    /// in powers of ξ: what a moving force reads of it (formed where a step first asks).
+    modes_along: OnceCell<Vec<[Vec<Vec<f64>>; 2]>>,
     /// When an axle enters or leaves the beam.
     train_breakpoints: Vec<f64>,
     /// Internal forces, kept so that each force evaluation does not allocate.
@@ -111,6 +114,7 @@ impl<'a> LoadedBeam<'a> {
             damping,
             train,
             segment: Cell::new(f64::NAN),
+            modes_along: OnceCell::new(),
             train_breakpoints: train_breakpoints(beam, train),
             scratch: RefCell::new(vec![0.0; beam.dim()]),
             damped: RefCell::new(vec![0.0; modal.map_or(beam.dim(), |m| m.dim())]),
@@ -685,6 +689,48 @@ impl Structure for LoadedBeam<'_> {
             None => self.beam.tangent(q),
             Some(m) => m.stiffness().clone(),
         }
+    }
+    /// A modal beam under its weight, standing point loads and moving forces: the standing
+    /// loads' projection, constant over a stretch, and each axle's, which between two node
+    /// crossings reads each mode's shape along one element at a ξ linear in time.
+    fn force_at_rest_over(&self, t: f64, h: f64) -> Option<Vec<Vec<f64>>> {
+        let m = self.modal?;
+        if self.moving_masses().is_some() || !(h > 0.0) {
+            return None;
+        }
+        let mut constant = vec![0.0; m.dim()];
+        if let Some(w) = self.beam.weight() {
+            m.project(w, &mut constant);
+        }
+        for l in self.active(t + 0.5 * h) {
+            let add = |i: usize, v: f64| m.add_row(i, v, &mut constant);
+            self.beam.point_load_terms(l.x, l.force, l.mz, add);
+        }
+        let mut g: Vec<Vec<f64>> = constant.into_iter().map(|c| vec![c]).collect();
+        let along = self.modes_along.get_or_init(|| {
+            let mut unit = vec![0.0; m.dim()];
+            let mut shape = vec![0.0; self.beam.dim()];
+            (0..m.dim())
+                .map(|k| {
+                    unit.fill(0.0);
+                    unit[k] = 1.0;
+                    m.expand(&unit, &mut shape);
+                    [0, 1].map(|d| self.beam.row_along_elements(&shape, d))
+                })
+                .collect()
+        });
+        for (x0, x1, force) in self.axle_paths(t, t + h) {
+            let local = self.beam.to_local([0.0, -force]);
+            let (e, xi0, xi1) = self.beam.element_path(x0, x1)?;
+            for (directions, gk) in along.iter().zip(g.iter_mut()) {
+                for (elements, &f) in directions.iter().zip(&local) {
+                    if f != 0.0 {
+                        add_along(&elements[e], (xi0, xi1 - xi0), f, gk);
+                    }
+                }
+            }
+        }
+        Some(g)
     }
 }
 

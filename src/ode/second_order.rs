@@ -70,6 +70,12 @@ pub trait Structure {
     fn linear_modal(&self) -> Option<LinearModal> {
         None
     }
+    /// The force at rest, f(t + σh, 0, 0), per unknown as a polynomial in σ ∈ [0, 1] (powers
+    /// of σ, lowest first), where the structure forms it in closed form over the stretch;
+    /// `None` where it is to be sampled.
+    fn force_at_rest_over(&self, _t: f64, _h: f64) -> Option<Vec<Vec<f64>>> {
+        None
+    }
 }
 
 /// A structure over time: what the driver watches besides the steps (see [`Problem`]).

@@ -181,6 +181,10 @@ impl Stepper for ExactModal {
         ctx: &mut Ctx,
     ) -> Result<Attempt, SolveError> {
         let s = structural(p)?;
+        if let Some(g) = s.force_at_rest_over(t, h) {
+            ctx.stats.rhs_evals += 1;
+            return self.attempt_under(g, vec![0.0; y.len()], t, y, h, ctx);
+        }
         let linear = self.linear.as_ref().ok_or(SolveError::NotLinearModal)?;
         let n = linear.stiffness.len();
         let d = self.degree;
@@ -197,39 +201,21 @@ impl Stepper for ExactModal {
             }
         }
         let mut error = vec![0.0; 2 * n];
-        let mut force = Vec::with_capacity(n);
-        let mut motions = Vec::with_capacity(n);
         let weigh = |row: &[f64], k: usize| -> f64 {
             row.iter().zip(&samples[k]).map(|(w, v)| w * v).sum()
         };
+        let mut force = Vec::with_capacity(n);
         for k in 0..n {
             let dropped =
                 weigh(&self.chebyshev[d], k).abs() + weigh(&self.chebyshev[d - 1], k).abs();
-            let (w2, c) = (linear.stiffness[k], linear.damping[k]);
-            let w = w2.max(0.0).sqrt();
+            let (w2, w) = (linear.stiffness[k], linear.stiffness[k].max(0.0).sqrt());
             // What the two highest coefficients move: at most their size times the static
             // (1/ω²) or the impulsive (h²/2) response, and a rate of h or 1/ω.
             error[k] = dropped * (0.5 * h * h).min(if w2 > 0.0 { 1.0 / w2 } else { f64::INFINITY });
             error[n + k] = dropped * h.min(if w > 0.0 { 1.0 / w } else { f64::INFINITY });
-            let g: Vec<f64> = self.monomial.iter().map(|row| weigh(row, k)).collect();
-            let m = motion(w2, c, h, &g, y[k], y[n + k]);
-            let (x1, v1) = evaluate(&m, w2, c, h, 1.0);
-            self.y_new[k] = x1;
-            self.y_new[n + k] = v1;
-            force.push(g);
-            motions.push(m);
+            force.push(self.monomial.iter().map(|row| weigh(row, k)).collect());
         }
-        if self.y_new.iter().any(|v| !v.is_finite()) {
-            return Err(SolveError::NonFinite { t: t + h });
-        }
-        self.trial = StepMotion {
-            t0: t,
-            h,
-            force,
-            motions,
-        };
-        let err = ctx.norm(&error, y, &self.y_new);
-        Ok(Attempt::Done { err })
+        self.attempt_under(force, error, t, y, h, ctx)
     }
 
     fn y_new(&self) -> &[f64] {
@@ -317,6 +303,44 @@ impl Stepper for ExactModal {
 }
 
 impl ExactModal {
+    /// The step from (t, y) over h under the force `g` (per oscillator, its coefficients in
+    /// σ), whose fit may err by what moves the state by `error`.
+    fn attempt_under(
+        &mut self,
+        force: Vec<Vec<f64>>,
+        error: Vec<f64>,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        ctx: &mut Ctx,
+    ) -> Result<Attempt, SolveError> {
+        let linear = self.linear.as_ref().ok_or(SolveError::NotLinearModal)?;
+        let n = linear.stiffness.len();
+        if force.len() != n {
+            return Err(SolveError::NotLinearModal);
+        }
+        let mut motions = Vec::with_capacity(n);
+        for (k, g) in force.iter().enumerate() {
+            let (w2, c) = (linear.stiffness[k], linear.damping[k]);
+            let m = motion(w2, c, h, g, y[k], y[n + k]);
+            let (x1, v1) = evaluate(&m, w2, c, h, 1.0);
+            self.y_new[k] = x1;
+            self.y_new[n + k] = v1;
+            motions.push(m);
+        }
+        if self.y_new.iter().any(|v| !v.is_finite()) {
+            return Err(SolveError::NonFinite { t: t + h });
+        }
+        self.trial = StepMotion {
+            t0: t,
+            h,
+            force,
+            motions,
+        };
+        let err = ctx.norm(&error, y, &self.y_new);
+        Ok(Attempt::Done { err })
+    }
+
     /// The Chebyshev–Lobatto points of a fit of `degree` and the weights that turn samples at
     /// them into Chebyshev coefficients.
     fn fit_to_degree(&mut self, degree: usize) {

@@ -783,3 +783,61 @@ fn collect(
         beam,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::Planner;
+    use crate::scene::SceneSpec;
+
+    /// A train's force on the modes over a stretch between two kinks, in closed form (each
+    /// axle's mode shapes along its element, ξ linear in time), against the force sampled at
+    /// rest within the stretch: on the HSLM bridge as a modal beam, level (the axles' forces
+    /// across the axis alone) and inclined (along it as well). Within 10⁻¹² of the force's size, the
+    /// round-off of the shapes' powers of ξ.
+    #[test]
+    fn a_train_s_modal_force_over_a_stretch_is_its_samples() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/studies/hslm-15m.yaml");
+        let text = std::fs::read_to_string(path).expect("the study is readable");
+        for to in ["[15.0, 0.0]", "[14.0, 5.0]"] {
+            let text = text
+                .replace("to: [15.0, 0.0]", &format!("to: {to}"))
+                .replace("    damping:", "    model: modal\n    damping:");
+            let spec = SceneSpec::parse(&text, "test", "hslm").expect("a valid scene");
+            let scene = Planner::default().plan(&spec).expect("planned");
+            let setup = scene.beam().expect("a beam scene");
+            let beam = Beam::shared(&setup.beam);
+            let (modal, damping, lowest) = modes_and_damping(&scene, &beam).expect("modes");
+            let (loaded, _) = loaded_beam(&beam, setup, modal.as_deref(), (damping, lowest), true);
+            let mut kinks = loaded.kinks();
+            kinks.extend(loaded.breakpoints());
+            kinks.sort_by(f64::total_cmp);
+            kinks.dedup();
+            let n = loaded.dim();
+            let (zeros, mut f) = (vec![0.0; n], vec![0.0; n]);
+            let mut checked = 0;
+            for stretch in kinks.windows(2).step_by(7) {
+                let (t0, h) = (stretch[0], stretch[1] - stretch[0]);
+                if !(h > 1e-9) {
+                    continue;
+                }
+                // Which axles are on is the stretch's, as the run decides it.
+                loaded.enter_segment(t0, t0 + h);
+                let g = loaded.force_at_rest_over(t0, h).expect("a closed form");
+                for sigma in [0.0, 0.3, 0.77, 1.0] {
+                    loaded.force(t0 + sigma * h, &zeros, &zeros, &mut f);
+                    let size: f64 = f.iter().map(|v| v.abs()).sum::<f64>().max(1.0);
+                    for (gk, fk) in g.iter().zip(&f) {
+                        let read = gk.iter().rev().fold(0.0, |acc, c| acc * sigma + c);
+                        assert!(
+                            (read - fk).abs() <= 1e-12 * size,
+                            "to {to}, t {t0} + {sigma}·{h}: {read} against {fk}"
+                        );
+                    }
+                }
+                checked += 1;
+            }
+            assert!(checked > 20, "to {to}: {checked} stretches");
+        }
+    }
+}
