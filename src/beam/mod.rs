@@ -1019,17 +1019,20 @@ const PATH_SLACK: f64 = 1e-9;
 /// along an element, [`Beam::row_along_elements`]): what the row reads of a point force
 /// moving straight along the element, as a polynomial in the step's own time.
 pub fn add_along(c: &[f64], (xi0, beta): (f64, f64), scale: f64, out: &mut Vec<f64>) {
-    // Horner's rule on polynomials: q ← q·(ξ0 + β σ) + c_j from the top degree down.
-    let mut q: Vec<f64> = Vec::with_capacity(c.len());
-    for &cj in c.iter().rev() {
-        q.push(0.0);
-        for j in (1..q.len()).rev() {
+    // Horner's rule on polynomials: q ← q·(ξ0 + β σ) + c_j from the top degree down, on the
+    // stack (a step composes one a mode and a probe's row for every axle on the span).
+    let mut q = [0.0; MAX_ORDER + 1];
+    let len = c.len().min(q.len());
+    for (degree, &cj) in c[..len].iter().rev().enumerate() {
+        for j in (1..=degree).rev() {
             q[j] = q[j] * xi0 + q[j - 1] * beta;
         }
         q[0] = q[0] * xi0 + cj;
     }
-    if out.len() < q.len() {
-        out.resize(q.len(), 0.0);
+    if out.len() < len {
+        out.resize(len, 0.0);
     }
-    out.iter_mut().zip(&q).for_each(|(o, qj)| *o += scale * qj);
+    out.iter_mut()
+        .zip(&q[..len])
+        .for_each(|(o, qj)| *o += scale * qj);
 }
