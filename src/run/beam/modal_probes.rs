@@ -80,17 +80,16 @@ impl ModalProbes {
         &self.modes
     }
 
-    /// Per probe (u, w, φ, the acceleration's w) from the amplitudes `z`, their accelerations
-    /// `a` (the first `kept` of them: the acceleration's cutoff) and, to correct for the modes
-    /// left out, the mesh's loads, which `loads` hands term by term to the function it is given.
-    pub fn read(&self, z: &[f64], a: &[f64], kept: usize, loads: Option<Loads>) -> Vec<f64> {
+    /// Per probe (u, w, φ, the acceleration's w) from the amplitudes `z` and their
+    /// accelerations `a` (the first `kept` of them: the acceleration's cutoff), before the
+    /// static correction ([`Self::correct`]).
+    pub fn read(&self, z: &[f64], a: &[f64], kept: usize) -> Vec<f64> {
         let dot = |r: &[f64], v: &[f64]| -> f64 { r.iter().zip(v).map(|(x, y)| x * y).sum() };
         let mut out = Vec::with_capacity(4 * self.modes.len());
         for rows in &self.modes {
             out.extend(rows.iter().map(|row| dot(row, z)));
             out.push(dot(&rows[1][..kept], &a[..kept]));
         }
-        self.correct(&mut out, loads);
         out
     }
 
@@ -111,8 +110,8 @@ impl ModalProbes {
 
     /// Add to the probes' u, w and φ in `out` (four values a probe, as [`Self::read`] gives
     /// them) the static response of the modes left out to the `loads`.
-    pub fn correct(&self, out: &mut [f64], loads: Option<Loads>) {
-        let (Some(residual), Some(loads)) = (&self.residual, loads) else {
+    pub fn correct(&self, out: &mut [f64], loads: Loads) {
+        let Some(residual) = &self.residual else {
             return;
         };
         for (r, values) in residual.iter().zip(out.chunks_mut(4)) {
@@ -153,7 +152,7 @@ impl ModalProbes {
                 .collect()
         });
         let mut constant = vec![0.0; 4 * residual.len()];
-        self.correct(&mut constant, Some(standing));
+        self.correct(&mut constant, standing);
         let mut polys: Vec<Vec<f64>> = constant
             .chunks(4)
             .flat_map(|c| c[..3].iter().map(|&v| vec![v]))

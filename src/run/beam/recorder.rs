@@ -247,7 +247,7 @@ impl Recorder<'_> {
         }
         let n = phase.loaded.dim();
         let a = &phase.split(yp).1[..n];
-        let mut out = probes.read(&y[..n], a, self.kept_accelerations(), None);
+        let mut out = probes.read(&y[..n], a, self.kept_accelerations());
         self.correct_probes(t, &mut out);
         Some(out)
     }
@@ -273,7 +273,7 @@ impl Recorder<'_> {
             return;
         };
         let loads = |add: &mut dyn FnMut(usize, f64)| self.phase.loaded.external_terms(t, add);
-        probes.correct(out, Some(&loads));
+        probes.correct(out, &loads);
     }
 
     /// The probes' sums over the modes in closed form over the step `dense` holds, where a
