@@ -279,6 +279,19 @@ impl<'a> LoadedBeam<'a> {
         }
     }
 
+    /// The standing loads' force on the modes at t into `f`: the weight's projection and
+    /// each point load's, projected at its element's unknowns.
+    fn standing_on_modes(&self, m: &ModalBasis, t: f64, f: &mut [f64]) {
+        match self.beam.weight() {
+            Some(w) => m.project(w, f),
+            None => f.fill(0.0),
+        }
+        let mut add = |i: usize, v: f64| m.add_row(i, v, f);
+        for l in self.active(t) {
+            self.beam.point_load_terms(l.x, l.force, l.mz, &mut add);
+        }
+    }
+
     /// The train's moving forces on the beam over [t0, t1], a stretch between two of its
     /// breakpoints: each one's place at t0 and at t1, and its force.
     pub fn axle_paths(&self, t0: f64, t1: f64) -> Vec<(f64, f64, f64)> {
@@ -624,16 +637,9 @@ impl Structure for LoadedBeam<'_> {
                 self.add_axle_inertia(t, |i| q[i], |i| v[i], |i, x| f[i] += x);
             }
             Some(m) => {
-                if let Some(w) = self.beam.weight() {
-                    m.project(w, f);
-                } else {
-                    f.fill(0.0);
-                }
+                self.standing_on_modes(m, t, f);
                 // A point load or axle reaches only its element's unknowns: projected there.
                 let mut add = |i: usize, v: f64| m.add_row(i, v, f);
-                for l in self.active(t) {
-                    self.beam.point_load_terms(l.x, l.force, l.mz, &mut add);
-                }
                 for (x, p) in self.axles(t) {
                     self.beam.point_load_terms(x, [0.0, -p], 0.0, &mut add);
                 }
@@ -699,13 +705,7 @@ impl Structure for LoadedBeam<'_> {
             return None;
         }
         let mut constant = vec![0.0; m.dim()];
-        if let Some(w) = self.beam.weight() {
-            m.project(w, &mut constant);
-        }
-        for l in self.active(t + 0.5 * h) {
-            let add = |i: usize, v: f64| m.add_row(i, v, &mut constant);
-            self.beam.point_load_terms(l.x, l.force, l.mz, add);
-        }
+        self.standing_on_modes(m, t + 0.5 * h, &mut constant);
         let mut g: Vec<Vec<f64>> = constant.into_iter().map(|c| vec![c]).collect();
         let along = self.modes_along.get_or_init(|| {
             let mut unit = vec![0.0; m.dim()];
