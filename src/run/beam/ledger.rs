@@ -669,20 +669,14 @@ impl<'a> Ledger<'a> {
     }
 
     /// The piece of a step from the last point booked to (t, y), whose moving loads' work and
-    /// damping's energy the integrator knows in closed form.
+    /// damping's energy the integrator knows in closed form; at the step's end its powers
+    /// are those `step_ends` read there.
     pub fn exact_piece(&self, phase: &Phase, t: f64, y: &[f64], by: PowerIntegrals) -> Piece {
-        Piece {
-            end: t,
-            moving: Booking::Exact {
-                energy: by.work,
-                power: Self::moving_power(phase, t, y),
-            },
-            damping: Booking::Exact {
-                energy: by.dissipated,
-                power: Self::damping_power(phase, t, y),
-            },
-            at_loads: self.at_loads(phase, y),
-        }
+        let power = match &self.end_power {
+            Some(e) if e.t == t => [e.power, e.damping],
+            _ => Self::powers(phase, t, y),
+        };
+        self.integrated(phase, t, y, [by.work, by.dissipated], power)
     }
 
     /// An energy booked as (t, power, energy), carried on to the `end` of a piece that
