@@ -29,6 +29,8 @@ pub(super) enum ModeEnergy {
         /// Both roots, or the first of a conjugate pair.
         roots: Vec<Root>,
     },
+    /// A mode at rest under no force ([`Motion::Rest`]): no work, no loss.
+    Rest,
 }
 
 /// A root of a free motion: its term's rate V, μ = λh, and g and p' against e^{μσ}.
@@ -163,12 +165,14 @@ impl ModeEnergy {
                     roots,
                 })
             }
+            Motion::Rest => Some(ModeEnergy::Rest),
         }
     }
 
     /// (∫ g ẋ dt, c ∫ ẋ² dt) from the step's start to σ.
     pub(super) fn at(&self, sigma: f64) -> (f64, f64) {
         match self {
+            ModeEnergy::Rest => (0.0, 0.0),
             ModeEnergy::Series(pieces) => {
                 let at = sigma * pieces.len() as f64;
                 let i = (at as usize).min(pieces.len() - 1);

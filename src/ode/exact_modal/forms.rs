@@ -45,6 +45,7 @@ pub(super) fn forms(m: &StepMotion, linear: &LinearModal, rows: &[FormRow]) -> O
                 let b = e1 + half * e0;
                 parts.push((p, Some((C64::new(*e0, -b / wd), C64::new(-half, wd)))));
             }
+            Motion::Rest => parts.push((&[], None)),
             Motion::Series(_) => return None,
         }
     }

@@ -60,6 +60,9 @@ enum Motion {
     Series(Vec<Vec<f64>>),
     /// x = p(σ) + the free response from (e₀, e₁), e₁ the rate in t.
     Particular { p: Vec<f64>, e0: f64, e1: f64 },
+    /// At rest under no force: a mode the loads do not reach (a level beam's axial modes
+    /// under vertical loads), which every reading then skips.
+    Rest,
 }
 
 /// A step's motion: every oscillator's, and the force's polynomial in σ.
@@ -581,6 +584,9 @@ fn shifted(c: &[f64], shift: f64) -> Vec<f64> {
 
 /// The motion of x'' + c x' + ω² x = g(σ) over [0, h] (' in t, σ = t/h), from (x0, v0).
 fn motion(w2: f64, c: f64, h: f64, g: &[f64], x0: f64, v0: f64) -> Motion {
+    if x0 == 0.0 && v0 == 0.0 && g.iter().all(|&gj| gj == 0.0) {
+        return Motion::Rest;
+    }
     let wh = w2.max(0.0).sqrt() * h;
     let ch = c.abs() * h;
     if wh > SERIES_REACH || (wh > PARTICULAR_REACH && ch <= 1.0) {
@@ -696,6 +702,7 @@ fn evaluate(m: &Motion, w2: f64, c: f64, h: f64, sigma: f64) -> (f64, f64) {
             let (x_f, v_f) = free(w2, c, *e0, *e1, sigma * h);
             (x_p + x_f, v_p + v_f)
         }
+        Motion::Rest => (0.0, 0.0),
     }
 }
 
