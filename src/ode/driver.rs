@@ -164,13 +164,11 @@ impl<'a, E: Copy + std::fmt::Debug> Driver<'a, E> {
         }
     }
 
-    /// The end of the stretch between breakpoints that t lies in.
+    /// The end of the stretch between breakpoints that t lies in: the breakpoints are sorted,
+    /// and a train sets one at every axle's crossing of every node.
     fn segment_end(&self, t: f64) -> f64 {
-        self.breaks
-            .iter()
-            .copied()
-            .find(|&b| b > t)
-            .unwrap_or(self.t_end)
+        let next = self.breaks.partition_point(|&b| b <= t);
+        self.breaks.get(next).copied().unwrap_or(self.t_end)
     }
 
     fn run(&mut self, observer: &mut dyn Observer) -> Result<Option<EventHit<E>>, SolveError> {
