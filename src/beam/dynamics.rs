@@ -12,7 +12,7 @@ use super::damping::Rayleigh;
 use super::load::PointLoad;
 use super::modal::ModalBasis;
 use super::train::{RidingAxle, Train, TrainModel};
-use super::{add_along, Beam, PastFreeEnd};
+use super::{Beam, PastFreeEnd, RowAlong};
 use crate::linalg::{Assembly, LowRank, Sparse};
 use crate::ode::second_order::{LinearModal, SecondOrderProblem, Structure};
 use crate::ode::NoEvent;
@@ -30,7 +30,7 @@ pub struct LoadedBeam<'a> {
     segment: Cell<f64>,
     /// Per mode, its shape along each element in the directions along and across the axis,
     /// in powers of ξ: what a moving force reads of it (formed where a step first asks).
-    modes_along: OnceCell<Vec<[Vec<Vec<f64>>; 2]>>,
+    modes_along: OnceCell<Vec<RowAlong>>,
     /// When an axle enters or leaves the beam.
     train_breakpoints: Vec<f64>,
     /// Internal forces, kept so that each force evaluation does not allocate.
@@ -715,21 +715,12 @@ impl Structure for LoadedBeam<'_> {
                     unit.fill(0.0);
                     unit[k] = 1.0;
                     m.expand(&unit, &mut shape);
-                    [0, 1].map(|d| self.beam.row_along_elements(&shape, d))
+                    self.beam.row_along(&shape)
                 })
                 .collect()
         });
-        for (x0, x1, force) in self.axle_paths(t, t + h) {
-            let local = self.beam.to_local([0.0, -force]);
-            let (e, xi0, xi1) = self.beam.element_path(x0, x1)?;
-            for (directions, gk) in along.iter().zip(g.iter_mut()) {
-                for (elements, &f) in directions.iter().zip(&local) {
-                    if f != 0.0 {
-                        add_along(&elements[e], (xi0, xi1 - xi0), f, gk);
-                    }
-                }
-            }
-        }
+        self.beam
+            .add_paths_along(along, &self.axle_paths(t, t + h), &mut g)?;
         Some(g)
     }
 }

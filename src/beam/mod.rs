@@ -648,6 +648,35 @@ impl Beam {
             .collect()
     }
 
+    /// A row read along the elements ([`Self::row_along_elements`]) of a point force's two
+    /// components, u and w.
+    pub fn row_along(&self, row: &[f64]) -> RowAlong {
+        [0, 1].map(|c| self.row_along_elements(row, c))
+    }
+
+    /// What each of `rows` reads of the vertical forces moving straight over a step, each
+    /// path (x0, x1, force), added to that row's polynomial in the step's own time in `out`;
+    /// `None` where a path crosses a node, over which no polynomial holds.
+    pub fn add_paths_along(
+        &self,
+        rows: &[RowAlong],
+        paths: &[(f64, f64, f64)],
+        out: &mut [Vec<f64>],
+    ) -> Option<()> {
+        for &(x0, x1, force) in paths {
+            let local = self.to_local([0.0, -force]);
+            let (e, xi0, xi1) = self.element_path(x0, x1)?;
+            for (components, poly) in rows.iter().zip(out.iter_mut()) {
+                for (elements, &f) in components.iter().zip(&local) {
+                    if f != 0.0 {
+                        add_along(&elements[e], (xi0, xi1 - xi0), f, poly);
+                    }
+                }
+            }
+        }
+        Some(())
+    }
+
     /// The element a point moving straight from x0 to x1 stays in, and its ξ at either end;
     /// `None` where the path crosses a node.
     pub fn element_path(&self, x0: f64, x1: f64) -> Option<(usize, f64, f64)> {
@@ -1011,6 +1040,9 @@ impl Beam {
     }
 }
 
+/// A row along the elements per component of a point force, u and w ([`Beam::row_along`]).
+pub type RowAlong = [Vec<Vec<f64>>; 2];
+
 /// How far past its element's ends (in ξ) a load's path over a step may reach: the rounding
 /// of the time it crosses a node, not a crossing.
 const PATH_SLACK: f64 = 1e-9;
@@ -1018,7 +1050,7 @@ const PATH_SLACK: f64 = 1e-9;
 /// Add `scale` times c(ξ0 + β σ) to the polynomial in σ `out`, c in powers of ξ (a row read
 /// along an element, [`Beam::row_along_elements`]): what the row reads of a point force
 /// moving straight along the element, as a polynomial in the step's own time.
-pub fn add_along(c: &[f64], (xi0, beta): (f64, f64), scale: f64, out: &mut Vec<f64>) {
+fn add_along(c: &[f64], (xi0, beta): (f64, f64), scale: f64, out: &mut Vec<f64>) {
     // Horner's rule on polynomials: q ← q·(ξ0 + β σ) + c_j from the top degree down, on the
     // stack (a step composes one a mode and a probe's row for every axle on the span).
     let mut q = [0.0; MAX_ORDER + 1];

@@ -6,7 +6,7 @@
 //! modes over the mesh and solving for the static correction cost most of a snapshot.
 
 use crate::beam::dynamics::LoadedBeam;
-use crate::beam::{add_along, Beam};
+use crate::beam::{Beam, RowAlong};
 use std::cell::OnceCell;
 
 /// u, w and φ at one point, a row over the modes.
@@ -22,7 +22,7 @@ pub(super) struct ModalProbes {
     /// Per probe, per u, w and φ, per direction of a point force (along the axis and across
     /// it), the residual row along each element as a polynomial in its ξ: formed where a step
     /// first asks for it.
-    along: OnceCell<Vec<[[Vec<Vec<f64>>; 2]; 3]>>,
+    along: OnceCell<Vec<[RowAlong; 3]>>,
 }
 
 /// The probes' static correction over one step, each probe's u, w and φ a polynomial in the
@@ -145,10 +145,7 @@ impl ModalProbes {
         let along = self.along.get_or_init(|| {
             residual
                 .iter()
-                .map(|rows| {
-                    rows.each_ref()
-                        .map(|row| [0, 1].map(|d| beam.row_along_elements(row, d)))
-                })
+                .map(|rows| rows.each_ref().map(|row| beam.row_along(row)))
                 .collect()
         });
         let mut constant = vec![0.0; 4 * residual.len()];
@@ -157,20 +154,7 @@ impl ModalProbes {
             .chunks(4)
             .flat_map(|c| c[..3].iter().map(|&v| vec![v]))
             .collect();
-        for &(x0, x1, force) in paths {
-            let local = beam.to_local([0.0, -force]);
-            // An axle that crosses a node inside the step is no polynomial over it.
-            let (e, xi0, xi1) = beam.element_path(x0, x1)?;
-            for (rows, polys) in along.iter().zip(polys.chunks_mut(3)) {
-                for (directions, poly) in rows.iter().zip(polys.iter_mut()) {
-                    for (elements, &f) in directions.iter().zip(&local) {
-                        if f != 0.0 {
-                            add_along(&elements[e], (xi0, xi1 - xi0), f, poly);
-                        }
-                    }
-                }
-            }
-        }
+        beam.add_paths_along(along.as_flattened(), paths, &mut polys)?;
         Some(StepCorrection {
             t0,
             h: t1 - t0,
@@ -250,15 +234,13 @@ mod tests {
             .collect();
         let size: f64 = row.iter().map(|v| v.abs()).sum();
         let force = [0.0, -2.5e5];
-        let local = beam.to_local(force);
-        let along = [0, 1].map(|d| beam.row_along_elements(&row, d));
+        let along = [beam.row_along(&row)];
         let h = beam.element_length();
         for (x0, x1) in [(2.0 * h, 3.0 * h), (4.1 * h, 4.9 * h), (1.0 * h, 0.2 * h)] {
-            let (e, xi0, xi1) = beam.element_path(x0, x1).expect("within an element");
-            let mut poly = Vec::new();
-            for (elements, &f) in along.iter().zip(&local) {
-                add_along(&elements[e], (xi0, xi1 - xi0), f, &mut poly);
-            }
+            let mut poly = vec![Vec::new()];
+            beam.add_paths_along(&along, &[(x0, x1, -force[1])], &mut poly)
+                .expect("within an element");
+            let poly = &poly[0];
             for sigma in [0.0, 0.25, 0.6, 1.0] {
                 let x = x0 + sigma * (x1 - x0);
                 let mut direct = 0.0;
