@@ -5,7 +5,7 @@
 //! (μ = λh, Q' + μQ = P). The energy ledger reads them where the step's force is the moving
 //! loads' alone.
 
-use super::{horner, shifted, Motion, SERIES_TERMS};
+use super::{horner, shifted_into, Motion, SERIES_TERMS};
 use crate::ode::PowerIntegrals;
 
 /// Below this |κ|^½ h (κ = c²/4 − ω²) a mode is too near critical damping for its free motion
@@ -14,36 +14,48 @@ use crate::ode::PowerIntegrals;
 const SPLIT_REACH: f64 = 0.05;
 
 /// One oscillator's ∫₀^σh g ẋ dt and c ∫₀^σh ẋ² dt over its motion in a step, as functions of
-/// σ formed once a step: the ledger reads them at every output time within it.
-#[derive(Clone, Debug)]
-pub(super) enum ModeEnergy {
-    /// Per piece of the series, the antiderivatives in its own time of g ẋ dt/dς and of
-    /// c ẋ² dt/dς, and what the pieces before it added.
-    Series(Vec<SeriesPiece>),
+/// σ formed once a step: the ledger reads them at every output time within it. Its buffers
+/// are kept from step to step and refilled ([`ModeEnergy::refill`]): a sweep forms one per
+/// mode at every step.
+#[derive(Clone, Debug, Default)]
+pub(super) struct ModeEnergy {
+    form: Form,
+    /// Per piece of a series, the antiderivatives in its own time of g ẋ dt/dς and of
+    /// c ẋ² dt/dς, and what the pieces before it added; only the first `Form::Series` count.
+    pieces: Vec<SeriesPiece>,
+    /// The particular form's antiderivatives of g p' and of p'².
+    polynomial: (Vec<f64>, Vec<f64>),
+    /// The particular form's roots: both, or the first of a conjugate pair.
+    roots: Vec<Root>,
+    /// Scratch: the force in a piece's own time, and the slope of a piece or of p.
+    force: Vec<f64>,
+    slope: Vec<f64>,
+}
+
+#[derive(Clone, Copy, Debug, Default)]
+enum Form {
+    /// Not formed: a free motion too near critical damping to split ([`SPLIT_REACH`]).
+    #[default]
+    Unsplit,
+    /// The series' first `count` pieces.
+    Series(usize),
     /// x = p(σ) + Σ A e^{λτ} over the roots λ = −c/2 ± √κ, ẋ = p'(σ)/h + Σ V e^{μσ}, μ = λh.
-    Particular {
-        h: f64,
-        c: f64,
-        /// The antiderivatives of g p' and of p'².
-        polynomial: (Vec<f64>, Vec<f64>),
-        /// Both roots, or the first of a conjugate pair.
-        roots: Vec<Root>,
-    },
+    Particular { h: f64, c: f64 },
     /// A mode at rest under no force ([`Motion::Rest`]): no work, no loss.
     Rest,
 }
 
 /// A root of a free motion: its term's rate V, μ = λh, and g and p' against e^{μσ}.
-#[derive(Clone, Debug)]
-pub(super) struct Root {
+#[derive(Clone, Debug, Default)]
+struct Root {
     v: C64,
     mu: C64,
     g: Against,
     slope: Against,
 }
 
-#[derive(Clone, Debug)]
-pub(super) struct SeriesPiece {
+#[derive(Clone, Debug, Default)]
+struct SeriesPiece {
     work: Vec<f64>,
     dissipated: Vec<f64>,
     before: (f64, f64),
@@ -51,79 +63,77 @@ pub(super) struct SeriesPiece {
 
 /// ∫₀^σ P(σ) e^{μσ} dσ for a polynomial P: Q(σ) e^{μσ} − Q(0) with Q' + μQ = P, formed from the
 /// top degree down (an error carried on by (j + 1)/|μ| a degree), where |μ| ≥ 2; by the series
-/// of [`exp_moments`] at each σ where |μ| is smaller.
-#[derive(Clone, Debug)]
-enum Against {
-    Antiderivative(Vec<C64>),
-    Moments(Vec<f64>),
+/// of [`exp_moments`] at each σ where |μ| is smaller (`moments` then holds P).
+#[derive(Clone, Debug, Default)]
+struct Against {
+    moments: bool,
+    q: Vec<C64>,
+    poly: Vec<f64>,
 }
 
 impl Against {
-    fn new(poly: &[f64], mu: C64) -> Against {
-        if mu.norm() < 2.0 {
-            return Against::Moments(poly.to_vec());
+    fn refill(&mut self, poly: &[f64], mu: C64) {
+        self.moments = mu.norm() < 2.0;
+        if self.moments {
+            self.poly.clear();
+            self.poly.extend_from_slice(poly);
+            return;
         }
         let inverse = mu.inv();
-        let mut q = vec![C64::new(0.0, 0.0); poly.len()];
+        self.q.clear();
+        self.q.resize(poly.len(), C64::new(0.0, 0.0));
         let mut above = C64::new(0.0, 0.0);
         for j in (0..poly.len()).rev() {
             above = (C64::new(poly[j], 0.0) - above * (j + 1) as f64) * inverse;
-            q[j] = above;
+            self.q[j] = above;
         }
-        Against::Antiderivative(q)
     }
 
     /// The integral to σ, with e^{μσ} given.
     fn at(&self, mu: C64, sigma: f64, e: C64) -> C64 {
-        match self {
-            Against::Antiderivative(q) => {
-                let value = q
-                    .iter()
-                    .rev()
-                    .fold(C64::new(0.0, 0.0), |acc, qj| acc * sigma + qj);
-                value * e - q.first().copied().unwrap_or_default()
-            }
-            Against::Moments(poly) => exp_moments(mu, sigma, poly.len())
+        if self.moments {
+            return exp_moments(mu, sigma, self.poly.len())
                 .iter()
-                .zip(poly)
+                .zip(&self.poly)
                 .map(|(k, a)| k * *a)
-                .sum(),
+                .sum();
         }
+        let value = (self.q.iter().rev()).fold(C64::new(0.0, 0.0), |acc, qj| acc * sigma + qj);
+        value * e - self.q.first().copied().unwrap_or_default()
     }
 }
 
 impl ModeEnergy {
-    /// `None` for a free motion too near critical damping to split ([`SPLIT_REACH`]).
-    pub(super) fn new(m: &Motion, g: &[f64], (w2, c): (f64, f64), h: f64) -> Option<ModeEnergy> {
+    /// Form the energies of the motion `m` under `g` into the kept buffers; `false` for a free
+    /// motion too near critical damping to split ([`SPLIT_REACH`]).
+    pub(super) fn refill(&mut self, m: &Motion, g: &[f64], (w2, c): (f64, f64), h: f64) -> bool {
+        self.form = Form::Unsplit;
         match m {
             Motion::Series(pieces) => {
                 let count = pieces.len();
                 let part = 1.0 / count as f64;
                 let hp = h * part;
                 let mut before = (0.0, 0.0);
-                let mut out = Vec::with_capacity(count);
-                for (i, s) in pieces.iter().enumerate() {
+                if self.pieces.len() < count {
+                    self.pieces.resize_with(count, SeriesPiece::default);
+                }
+                for (i, (s, piece)) in pieces.iter().zip(&mut self.pieces).enumerate() {
                     // The force and the rate in the piece's own time ς, as `motion` formed
                     // them: dt = hp dς and ẋ = x'(ς)/hp.
-                    let mut gi = shifted(g, i as f64 * part);
+                    shifted_into(g, i as f64 * part, &mut self.force);
                     let mut scale = 1.0;
-                    for coefficient in gi.iter_mut() {
+                    for coefficient in self.force.iter_mut() {
                         *coefficient *= scale;
                         scale *= part;
                     }
-                    let slope = derivative(s);
-                    let work = antiderivative_of_product(&gi, &slope, 1.0);
-                    let dissipated = antiderivative_of_square(&slope, c / hp);
-                    let piece = SeriesPiece {
-                        before,
-                        work,
-                        dissipated,
-                    };
+                    derivative_into(s, &mut self.slope);
+                    antiderivative_of_product(&self.force, &self.slope, 1.0, &mut piece.work);
+                    antiderivative_of_square(&self.slope, c / hp, &mut piece.dissipated);
+                    piece.before = before;
                     before.0 += horner(&piece.work, 1.0);
                     before.1 += horner(&piece.dissipated, 1.0);
-                    out.push(piece);
                 }
-                Some(ModeEnergy::Series(out))
+                self.form = Form::Series(count);
             }
             Motion::Particular { p, e0, e1 } => {
                 let half = 0.5 * c;
@@ -134,61 +144,47 @@ impl ModeEnergy {
                     C64::new(kappa.sqrt(), 0.0)
                 };
                 if root.norm() * h < SPLIT_REACH {
-                    return None;
+                    return false;
                 }
                 let b = e1 + half * e0;
-                let slope = derivative(p);
+                derivative_into(p, &mut self.slope);
                 // Under-damped, the second root and its term are the first's conjugates: the
                 // first alone is kept.
                 let signs: &[f64] = if kappa < 0.0 { &[1.0] } else { &[1.0, -1.0] };
-                let roots = signs
-                    .iter()
-                    .map(|&sign| {
-                        let lambda = C64::new(-half, 0.0) + root * sign;
-                        let amplitude = (C64::new(*e0, 0.0) + C64::new(b, 0.0) / root * sign) * 0.5;
-                        let mu = lambda * h;
-                        Root {
-                            v: lambda * amplitude,
-                            mu,
-                            g: Against::new(g, mu),
-                            slope: Against::new(&slope, mu),
-                        }
-                    })
-                    .collect();
-                Some(ModeEnergy::Particular {
-                    h,
-                    c,
-                    polynomial: (
-                        antiderivative_of_product(g, &slope, 1.0),
-                        antiderivative_of_square(&slope, 1.0),
-                    ),
-                    roots,
-                })
+                self.roots.resize_with(signs.len(), Root::default);
+                for (&sign, r) in signs.iter().zip(&mut self.roots) {
+                    let lambda = C64::new(-half, 0.0) + root * sign;
+                    let amplitude = (C64::new(*e0, 0.0) + C64::new(b, 0.0) / root * sign) * 0.5;
+                    r.v = lambda * amplitude;
+                    r.mu = lambda * h;
+                    r.g.refill(g, r.mu);
+                    r.slope.refill(&self.slope, r.mu);
+                }
+                antiderivative_of_product(g, &self.slope, 1.0, &mut self.polynomial.0);
+                antiderivative_of_square(&self.slope, 1.0, &mut self.polynomial.1);
+                self.form = Form::Particular { h, c };
             }
-            Motion::Rest => Some(ModeEnergy::Rest),
+            Motion::Rest => self.form = Form::Rest,
         }
+        true
     }
 
     /// (∫ g ẋ dt, c ∫ ẋ² dt) from the step's start to σ.
     pub(super) fn at(&self, sigma: f64) -> (f64, f64) {
-        match self {
-            ModeEnergy::Rest => (0.0, 0.0),
-            ModeEnergy::Series(pieces) => {
-                let at = sigma * pieces.len() as f64;
-                let i = (at as usize).min(pieces.len() - 1);
-                let piece = &pieces[i];
+        match self.form {
+            Form::Unsplit | Form::Rest => (0.0, 0.0),
+            Form::Series(count) => {
+                let at = sigma * count as f64;
+                let i = (at as usize).min(count - 1);
+                let piece = &self.pieces[i];
                 let local = at - i as f64;
                 (
                     piece.before.0 + horner(&piece.work, local),
                     piece.before.1 + horner(&piece.dissipated, local),
                 )
             }
-            ModeEnergy::Particular {
-                h,
-                c,
-                polynomial,
-                roots,
-            } => {
+            Form::Particular { h, c } => {
+                let (roots, polynomial) = (&self.roots, &self.polynomial);
                 let a = &roots[0];
                 let pair = roots.len() == 1;
                 let ea = (a.mu * sigma).exp();
@@ -301,13 +297,10 @@ fn exp_moments(mu: C64, s: f64, count: usize) -> Vec<C64> {
     out
 }
 
-/// The coefficients of a polynomial's derivative.
-fn derivative(c: &[f64]) -> Vec<f64> {
-    c.iter()
-        .enumerate()
-        .skip(1)
-        .map(|(j, a)| j as f64 * a)
-        .collect()
+/// The coefficients of a polynomial's derivative, into `out`.
+fn derivative_into(c: &[f64], out: &mut Vec<f64>) {
+    out.clear();
+    out.extend(c.iter().enumerate().skip(1).map(|(j, a)| j as f64 * a));
 }
 
 /// 1/k for the degrees an antiderivative of a product of two series reaches: a division in
@@ -330,12 +323,14 @@ fn divide_by_degree(out: &mut [f64]) {
     }
 }
 
-/// The antiderivative that vanishes at 0 of `scale` times the product of two polynomials.
-fn antiderivative_of_product(a: &[f64], b: &[f64], scale: f64) -> Vec<f64> {
+/// The antiderivative that vanishes at 0 of `scale` times the product of two polynomials,
+/// into `out`.
+fn antiderivative_of_product(a: &[f64], b: &[f64], scale: f64, out: &mut Vec<f64>) {
+    out.clear();
     if a.is_empty() || b.is_empty() {
-        return Vec::new();
+        return;
     }
-    let mut out = vec![0.0; a.len() + b.len()];
+    out.resize(a.len() + b.len(), 0.0);
     for (i, ai) in a.iter().enumerate() {
         let ai = scale * ai;
         // Slices zipped, not indexed: the inner loop runs without bounds checks, vectorised.
@@ -343,18 +338,18 @@ fn antiderivative_of_product(a: &[f64], b: &[f64], scale: f64) -> Vec<f64> {
             *o += ai * bj;
         }
     }
-    divide_by_degree(&mut out);
-    out
+    divide_by_degree(out);
 }
 
-/// The antiderivative that vanishes at 0 of `scale` times a polynomial's square: each cross
-/// product formed once and doubled, half the products of [`antiderivative_of_product`] on a
-/// series of the step's length.
-fn antiderivative_of_square(a: &[f64], scale: f64) -> Vec<f64> {
+/// The antiderivative that vanishes at 0 of `scale` times a polynomial's square, into `out`:
+/// each cross product formed once and doubled, half the products of
+/// [`antiderivative_of_product`] on a series of the step's length.
+fn antiderivative_of_square(a: &[f64], scale: f64, out: &mut Vec<f64>) {
+    out.clear();
     if a.is_empty() {
-        return Vec::new();
+        return;
     }
-    let mut out = vec![0.0; 2 * a.len()];
+    out.resize(2 * a.len(), 0.0);
     for (i, ai) in a.iter().enumerate() {
         let ai = scale * ai;
         out[2 * i + 1] += ai * a[i];
@@ -363,8 +358,7 @@ fn antiderivative_of_square(a: &[f64], scale: f64) -> Vec<f64> {
             *o += twice * aj;
         }
     }
-    divide_by_degree(&mut out);
-    out
+    divide_by_degree(out);
 }
 
 #[cfg(test)]
@@ -413,12 +407,14 @@ mod tests {
             (0.669_990_521_792_428_1, 0.326_072_577_431_273_1),
             (0.930_568_155_797_026_3, 0.173_927_422_568_726_93),
         ];
+        let mut energy = ModeEnergy::default();
         for &(w2, c) in TEST_MODES.iter().chain(&[(4.0e6, 1.0e4)]) {
             for &h in &TEST_STEPS {
                 let m = motion(w2, c, h, &g, 0.3, -1.7);
                 for &sigma in &[0.37, 1.0] {
+                    // One set of buffers refilled for every case, as a run refills them.
                     let Some((work, dissipated)) =
-                        ModeEnergy::new(&m, &g, (w2, c), h).map(|e| e.at(sigma))
+                        energy.refill(&m, &g, (w2, c), h).then(|| energy.at(sigma))
                     else {
                         // Critically damped: the one form left to the quadrature.
                         let split = (0.25 * c * c - w2).abs().sqrt() * h;

@@ -99,8 +99,9 @@ pub(crate) struct ExactModal {
     /// complex product instead of an exponential, a sine and a cosine per mode.
     phasors: std::cell::RefCell<Option<Phasors>>,
     /// The accepted step's work and dissipation per mode as functions of time, formed at the
-    /// first time asked (`None` inside: a mode too near critical damping to have them).
-    energy: std::cell::RefCell<Option<Option<Vec<ModeEnergy>>>>,
+    /// first time asked (`Some(false)`: a mode too near critical damping to have them); the
+    /// buffers stay from step to step.
+    energy: std::cell::RefCell<(Option<bool>, Vec<ModeEnergy>)>,
     /// The last σ the energies were summed to within the accepted step, and their sums.
     energy_at: std::cell::RefCell<Option<(f64, PowerIntegrals)>>,
 }
@@ -131,7 +132,7 @@ impl ExactModal {
             y_new: vec![0.0; n],
             evaluated: std::cell::RefCell::new(None),
             phasors: std::cell::RefCell::new(None),
-            energy: std::cell::RefCell::new(None),
+            energy: std::cell::RefCell::new((None, Vec::new())),
             energy_at: std::cell::RefCell::new(None),
         }
     }
@@ -170,7 +171,7 @@ impl Stepper for ExactModal {
         };
         self.evaluated.replace(None);
         self.phasors.replace(None);
-        self.energy.replace(None);
+        self.energy.borrow_mut().0 = None;
         self.energy_at.replace(None);
         Ok(())
     }
@@ -234,7 +235,7 @@ impl Stepper for ExactModal {
             e.0 = f64::NAN;
         }
         self.phasors.replace(None);
-        self.energy.replace(None);
+        self.energy.borrow_mut().0 = None;
         self.energy_at.replace(None);
     }
 
@@ -266,17 +267,25 @@ impl Stepper for ExactModal {
             return None;
         }
         let mut energy = self.energy.borrow_mut();
-        if energy.is_none() {
-            let modes: Option<Vec<ModeEnergy>> = (m.motions.iter().zip(&m.force))
+        let (formed, modes) = &mut *energy;
+        if formed.is_none() {
+            modes.resize_with(m.motions.len(), ModeEnergy::default);
+            let mut all = true;
+            for (k, ((motion, g), mode)) in m
+                .motions
+                .iter()
+                .zip(&m.force)
+                .zip(modes.iter_mut())
                 .enumerate()
-                .map(|(k, (motion, g))| {
-                    let mode = (linear.stiffness[k], linear.damping[k]);
-                    ModeEnergy::new(motion, g, mode, m.h)
-                })
-                .collect();
-            *energy = Some(modes);
+            {
+                let oscillator = (linear.stiffness[k], linear.damping[k]);
+                all = all && mode.refill(motion, g, oscillator, m.h);
+            }
+            *formed = Some(all);
         }
-        let modes = energy.as_ref().and_then(|e| e.as_ref())?;
+        if *formed != Some(true) {
+            return None;
+        }
         let sigma = |t: f64| ((t - m.t0) / m.h).clamp(0.0, 1.0);
         let (sa, sb) = (sigma(ta), sigma(tb));
         // The ledger asks for consecutive pieces: where one starts the last ended.
@@ -572,14 +581,21 @@ fn horner(c: &[f64], x: f64) -> f64 {
 
 /// The coefficients of p(σ + shift) from those of p(σ).
 fn shifted(c: &[f64], shift: f64) -> Vec<f64> {
-    let mut out = c.to_vec();
+    let mut out = Vec::with_capacity(c.len());
+    shifted_into(c, shift, &mut out);
+    out
+}
+
+/// [`shifted`] into `out`.
+fn shifted_into(c: &[f64], shift: f64, out: &mut Vec<f64>) {
+    out.clear();
+    out.extend_from_slice(c);
     let n = out.len();
     for i in 0..n {
         for j in (i..n - 1).rev() {
             out[j] += shift * out[j + 1];
         }
     }
-    out
 }
 
 /// The motion of x'' + c x' + ω² x = g(σ) over [0, h] (' in t, σ = t/h), from (x0, v0).
