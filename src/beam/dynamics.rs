@@ -706,7 +706,10 @@ impl Structure for LoadedBeam<'_> {
         }
         let mut constant = vec![0.0; m.dim()];
         self.standing_on_modes(m, t + 0.5 * h, &mut constant);
-        let mut g: Vec<Vec<f64>> = constant.into_iter().map(|c| vec![c]).collect();
+        let mut g: Vec<Vec<f64>> = constant
+            .into_iter()
+            .map(|c| self.beam.polynomial_along_from(c))
+            .collect();
         let along = self.modes_along.get_or_init(|| {
             let mut unit = vec![0.0; m.dim()];
             let mut shape = vec![0.0; self.beam.dim()];

@@ -668,18 +668,28 @@ impl Beam {
         paths: &[(f64, f64, f64)],
         out: &mut [Vec<f64>],
     ) -> Option<()> {
+        let len = self.spec.order + 1;
+        let mut powers = vec![0.0; len * len];
         for &(x0, x1, force) in paths {
             let local = self.to_local([0.0, -force]);
             let (e, xi0, xi1) = self.element_path(x0, x1)?;
+            powers_along((xi0, xi1 - xi0), len, &mut powers);
             for (components, poly) in rows.iter().zip(out.iter_mut()) {
                 for (elements, &f) in components.iter().zip(&local) {
                     if f != 0.0 {
-                        add_along(&elements[e], (xi0, xi1 - xi0), f, poly);
+                        add_along(&elements[e], (&powers, len), f, poly);
                     }
                 }
             }
         }
         Some(())
+    }
+
+    /// The constant polynomial c, with room for what [`Self::add_paths_along`] adds to it.
+    pub fn polynomial_along_from(&self, c: f64) -> Vec<f64> {
+        let mut p = Vec::with_capacity(self.spec.order + 1);
+        p.push(c);
+        p
     }
 
     /// The element a point moving straight from x0 to x1 stays in, and its ξ at either end;
@@ -1052,24 +1062,33 @@ pub type RowAlong = [Vec<Vec<f64>>; 2];
 /// of the time it crosses a node, not a crossing.
 const PATH_SLACK: f64 = 1e-9;
 
-/// Add `scale` times c(ξ0 + β σ) to the polynomial in σ `out`, c in powers of ξ (a row read
-/// along an element, [`Beam::row_along_elements`]): what the row reads of a point force
-/// moving straight along the element, as a polynomial in the step's own time.
-fn add_along(c: &[f64], (xi0, beta): (f64, f64), scale: f64, out: &mut Vec<f64>) {
-    // Horner's rule on polynomials: q ← q·(ξ0 + β σ) + c_j from the top degree down, on the
-    // stack (a step composes one a mode and a probe's row for every axle on the span).
-    let mut q = [0.0; MAX_ORDER + 1];
-    let len = c.len().min(q.len());
-    for (degree, &cj) in c[..len].iter().rev().enumerate() {
-        for j in (1..=degree).rev() {
-            q[j] = q[j] * xi0 + q[j - 1] * beta;
+/// The powers (ξ0 + β σ)^j, j < `len`, in powers of σ: row j of `out` (`len` wide) holds
+/// the binomial terms of the j-th. A path's powers serve every row read along it, each row
+/// then a product with them ([`add_along`]) instead of a Horner composition of its own.
+fn powers_along((xi0, beta): (f64, f64), len: usize, out: &mut [f64]) {
+    out[0] = 1.0;
+    for j in 1..len {
+        let (before, row) = out.split_at_mut(j * len);
+        let last = &before[(j - 1) * len..];
+        row[0] = last[0] * xi0;
+        for k in 1..=j {
+            row[k] = last[k] * xi0 + last[k - 1] * beta;
         }
-        q[0] = q[0] * xi0 + cj;
     }
+}
+
+/// Add `scale` times c(ξ0 + β σ) to the polynomial in σ `out`, c in powers of ξ (a row read
+/// along an element, [`Beam::row_along_elements`]) and `powers` the path's powers of
+/// ξ0 + β σ ([`powers_along`]): what the row reads of a point force moving straight along the
+/// element, as a polynomial in the step's own time.
+fn add_along(c: &[f64], (powers, width): (&[f64], usize), scale: f64, out: &mut Vec<f64>) {
+    let len = c.len().min(width);
     if out.len() < len {
         out.resize(len, 0.0);
     }
-    out.iter_mut()
-        .zip(&q[..len])
-        .for_each(|(o, qj)| *o += scale * qj);
+    for (j, &cj) in c[..len].iter().enumerate() {
+        let s = scale * cj;
+        let row = &powers[j * width..j * width + j + 1];
+        out.iter_mut().zip(row).for_each(|(o, pk)| *o += s * pk);
+    }
 }

@@ -152,7 +152,7 @@ impl ModalProbes {
         self.correct(&mut constant, standing);
         let mut polys: Vec<Vec<f64>> = constant
             .chunks(4)
-            .flat_map(|c| c[..3].iter().map(|&v| vec![v]))
+            .flat_map(|c| c[..3].iter().map(|&v| beam.polynomial_along_from(v)))
             .collect();
         beam.add_paths_along(along.as_flattened(), paths, &mut polys)?;
         Some(StepCorrection {
