@@ -301,15 +301,13 @@ impl<'a> LoadedBeam<'a> {
         } else {
             self.segment.get()
         };
-        let place = |train: &Train, a: usize, t: f64| train.position(a, t).clamp(0.0, length);
-        self.train
-            .filter(|tr| tr.model == TrainModel::MovingForce)
-            .into_iter()
-            .flat_map(|train| {
-                train
-                    .on(length, when)
-                    .map(move |a| (place(train, a, t0), place(train, a, t1), train.loads[a]))
-            })
+        let Some(train) = self.moving_forces() else {
+            return Vec::new();
+        };
+        let place = |a: usize, t: f64| train.position(a, t).clamp(0.0, length);
+        train
+            .on(length, when)
+            .map(|a| (place(a, t0), place(a, t1), train.loads[a]))
             .collect()
     }
 
@@ -324,14 +322,16 @@ impl<'a> LoadedBeam<'a> {
         } else {
             self.segment.get()
         };
-        self.train
-            .filter(|tr| tr.model == TrainModel::MovingForce)
-            .into_iter()
-            .flat_map(move |train| {
-                train
-                    .on(length, when)
-                    .map(move |a| (train.position(a, t).clamp(0.0, length), train.loads[a]))
-            })
+        let train = self.moving_forces();
+        let on = train.map_or(0..0, |train| train.on(length, when));
+        on.filter_map(move |a| {
+            train.map(|train| (train.position(a, t).clamp(0.0, length), train.loads[a]))
+        })
+    }
+
+    /// The train, where its axles are moving forces.
+    fn moving_forces(&self) -> Option<&'a Train> {
+        self.train.filter(|tr| tr.model == TrainModel::MovingForce)
     }
 
     /// The train's axles riding on the beam at t as moving masses (none for moving forces):

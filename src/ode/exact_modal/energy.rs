@@ -73,7 +73,7 @@ struct Against {
 
 impl Against {
     fn refill(&mut self, poly: &[f64], mu: C64) {
-        self.moments = mu.norm() < 2.0;
+        self.moments = mu.norm_sqr() < 4.0;
         if self.moments {
             self.poly.clear();
             self.poly.extend_from_slice(poly);
@@ -143,7 +143,7 @@ impl ModeEnergy {
                 } else {
                     C64::new(kappa.sqrt(), 0.0)
                 };
-                if root.norm() * h < SPLIT_REACH {
+                if kappa.abs().sqrt() * h < SPLIT_REACH {
                     return false;
                 }
                 let b = e1 + half * e0;
@@ -208,7 +208,7 @@ impl ModeEnergy {
                 // ∫₀^σ e^{νσ} dσ = (e^{νσ} − 1)/ν from the roots' own exponentials where |ν| ≥ 2
                 // (the error of the difference is then a round-off of 1/|ν|, of the step's).
                 let exp_integral = |nu: C64, e: C64| {
-                    if nu.norm() >= 2.0 {
+                    if nu.norm_sqr() >= 4.0 {
                         (e - 1.0) / nu
                     } else {
                         sigma * exp_m1_over(nu * sigma)
@@ -248,7 +248,7 @@ type C64 = nalgebra::Complex<f64>;
 /// (e^z − 1)/z (1 at z = 0) without the cancellation of the difference at small |z|: its real
 /// part as expm1(x) cos y − 2 sin²(y/2), each term to its own round-off.
 fn exp_m1_over(z: C64) -> C64 {
-    if z.norm() == 0.0 {
+    if z.re == 0.0 && z.im == 0.0 {
         return C64::new(1.0, 0.0);
     }
     let (sin, cos) = z.im.sin_cos();
@@ -266,7 +266,7 @@ fn exp_moments(mu: C64, s: f64, count: usize) -> Vec<C64> {
     if s == 0.0 {
         return out;
     }
-    if z.norm() <= 2.0 {
+    if z.norm_sqr() <= 4.0 {
         // K_j = s^{j+1} Σ_m z^m / (m! (j + m + 1)).
         let mut term = C64::new(1.0, 0.0);
         for m in 0..SERIES_TERMS {
@@ -274,7 +274,7 @@ fn exp_moments(mu: C64, s: f64, count: usize) -> Vec<C64> {
                 *k += term / (j + m + 1) as f64;
             }
             term = term * z / (m + 1) as f64;
-            if term.norm() < 1e-18 {
+            if term.norm_sqr() < 1e-36 {
                 break;
             }
         }
